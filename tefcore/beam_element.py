@@ -1,0 +1,244 @@
+"""Rotating beam finite element with fifteen degrees of freedom.
+
+The element follows the UMARC-type element of the paper: flap bending ``w``
+and lag bending ``v`` are cubic Hermite (value and slope at both ends),
+elastic twist ``phi`` is quadratic (both ends and the mid-point) and axial
+extension ``u`` is cubic (both ends and two interior points)::
+
+    local dof  0..3    u(0), u(1/3), u(2/3), u(1)
+               4..7    v(0), v'(0), v(1), v'(1)
+               8..11   w(0), w'(0), w(1), w'(1)
+               12..14  phi(0), phi(1/2), phi(1)
+
+All quantities are in rotor nondimensional units (length R, time 1/Omega,
+mass per length m0); see ``docs/theory.md`` for the energy expressions that
+the quadratic forms below discretise.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+N_DOF = 15
+U_DOF = slice(0, 4)
+V_DOF = slice(4, 8)
+W_DOF = slice(8, 12)
+PHI_DOF = slice(12, 15)
+
+#: Gauss points per element.  The integrands are at most of degree ~8 in xi for
+#: linearly varying properties (tension is quadratic, curvatures linear), so
+#: six points integrate the stiffness and mass exactly for such sections.
+N_GAUSS = 6
+
+
+def hermite(xi, h):
+    """Cubic Hermite shape functions and their x-derivatives.
+
+    Parameters
+    ----------
+    xi : array_like
+        Local coordinate in [0, 1].
+    h : float or array_like
+        Element length (broadcast against ``xi``).
+
+    Returns
+    -------
+    n, dn, ddn : ndarray
+        Values, first and second x-derivatives, each with a trailing axis of 4
+        (value/slope at the inboard node, value/slope at the outboard node).
+
+    Examples
+    --------
+    >>> n, dn, ddn = hermite(0.0, 0.5)
+    >>> n.round(12).tolist(), dn.round(12).tolist()
+    ([1.0, 0.0, 0.0, 0.0], [0.0, 1.0, 0.0, 0.0])
+    """
+    xi = np.asarray(xi, dtype=float)
+    h = np.asarray(h, dtype=float)
+    xi, h = np.broadcast_arrays(xi, h)
+    n = np.stack([1 - 3 * xi**2 + 2 * xi**3,
+                  h * (xi - 2 * xi**2 + xi**3),
+                  3 * xi**2 - 2 * xi**3,
+                  h * (-(xi**2) + xi**3)], axis=-1)
+    dn = np.stack([(-6 * xi + 6 * xi**2) / h,
+                   1 - 4 * xi + 3 * xi**2,
+                   (6 * xi - 6 * xi**2) / h,
+                   -2 * xi + 3 * xi**2], axis=-1)
+    ddn = np.stack([(-6 + 12 * xi) / h**2,
+                    (-4 + 6 * xi) / h,
+                    (6 - 12 * xi) / h**2,
+                    (-2 + 6 * xi) / h], axis=-1)
+    return n, dn, ddn
+
+
+def lagrange(xi, h, order):
+    """Equally spaced Lagrange shape functions of the given order on [0, 1].
+
+    Parameters
+    ----------
+    xi : array_like
+        Local coordinate in [0, 1].
+    h : float or array_like
+        Element length, for the x-derivative.
+    order : int
+        Polynomial order (2 for torsion, 3 for axial).
+
+    Returns
+    -------
+    n, dn : ndarray
+        Values and x-derivatives with a trailing axis of ``order + 1``.
+
+    Examples
+    --------
+    >>> n, dn = lagrange(0.5, 1.0, 2)
+    >>> n.round(12).tolist()
+    [0.0, 1.0, 0.0]
+    """
+    xi = np.asarray(xi, dtype=float)
+    h = np.asarray(h, dtype=float)
+    xi, h = np.broadcast_arrays(xi, h)
+    nodes = np.linspace(0.0, 1.0, order + 1)
+    n = np.ones(xi.shape + (order + 1,))
+    dn = np.zeros(xi.shape + (order + 1,))
+    for i, xi_i in enumerate(nodes):
+        others = np.delete(nodes, i)
+        denom = np.prod(xi_i - others)
+        n[..., i] = np.prod(xi[..., None] - others, axis=-1) / denom
+        # derivative of a product: sum over the factor that is differentiated
+        for j in range(order):
+            rest = np.delete(others, j)
+            dn[..., i] += np.prod(xi[..., None] - rest, axis=-1) / denom
+    return n, dn / h[..., None]
+
+
+def field_operators(xi, h):
+    """Rows that map the 15 element dofs to every field the energies need.
+
+    Parameters
+    ----------
+    xi : array_like, shape (..., )
+        Local coordinates.
+    h : array_like
+        Element lengths, broadcast against ``xi``.
+
+    Returns
+    -------
+    dict of ndarray, each of shape ``xi.shape + (15,)``
+        Keys ``u, du, v, dv, ddv, w, dw, ddw, phi, dphi``.
+    """
+    xi, h = np.broadcast_arrays(np.asarray(xi, float), np.asarray(h, float))
+    hn, hdn, hddn = hermite(xi, h)
+    un, udn = lagrange(xi, h, 3)
+    pn, pdn = lagrange(xi, h, 2)
+    shape = xi.shape + (N_DOF,)
+    ops = {k: np.zeros(shape) for k in
+           ("u", "du", "v", "dv", "ddv", "w", "dw", "ddw", "phi", "dphi")}
+    ops["u"][..., U_DOF], ops["du"][..., U_DOF] = un, udn
+    ops["v"][..., V_DOF], ops["dv"][..., V_DOF], ops["ddv"][..., V_DOF] = hn, hdn, hddn
+    ops["w"][..., W_DOF], ops["dw"][..., W_DOF], ops["ddw"][..., W_DOF] = hn, hdn, hddn
+    ops["phi"][..., PHI_DOF], ops["dphi"][..., PHI_DOF] = pn, pdn
+    return ops
+
+
+def _sym(a, b):
+    """a b^T + b a^T over the trailing axis (energy term c*a*b -> matrix c*_sym)."""
+    return a[..., :, None] * b[..., None, :] + b[..., :, None] * a[..., None, :]
+
+
+def _sq(a):
+    return a[..., :, None] * a[..., None, :]
+
+
+def element_matrices(x0, h, sec, pitch, tension):
+    """Mass, elastic stiffness and centrifugal stiffness of many elements at once.
+
+    Parameters
+    ----------
+    x0, h : ndarray, shape (n_el,)
+        Inboard station and length of each element (fractions of R).
+    sec : callable
+        ``sec(x)`` returns a dict of nondimensional section properties at the
+        radial stations ``x`` (any shape): ``mass, ei_flap, ei_lag, gj, ea,
+        im_flap, im_lag, cg_offset, tension_offset, ka``.
+    pitch : callable
+        ``pitch(x)``: geometric pitch angle (collective plus pretwist) in rad.
+    tension : callable
+        ``tension(x)``: nondimensional centrifugal tension per Omega^2,
+        ``T(x) = int_x^1 m(s) s ds``.
+
+    Returns
+    -------
+    m_el, k_el, k_cf : ndarray, shape (n_el, 15, 15)
+        Mass; elastic stiffness (scales with (Omega_ref/Omega)^2 when the
+        rotor speed changes); centrifugal stiffness (per Omega^2, i.e.
+        independent of rotor speed in rotor units).
+    """
+    g, wg = np.polynomial.legendre.leggauss(N_GAUSS)
+    xi = 0.5 * (g + 1.0)
+    wg = 0.5 * wg
+    x0 = np.asarray(x0, float)[:, None]
+    h = np.asarray(h, float)[:, None]
+    x = x0 + xi[None, :] * h                      # (n_el, n_g)
+    ops = field_operators(np.broadcast_to(xi, x.shape), np.broadcast_to(h, x.shape))
+    p = sec(x)
+    th = pitch(x)
+    c, s = np.cos(th), np.sin(th)
+    t = tension(x)
+    m, eg, ea_off = p["mass"], p["cg_offset"], p["tension_offset"]
+
+    # curvatures and slopes in the section principal axes (chordwise / flapwise)
+    kap_c = c[..., None] * ops["ddv"] + s[..., None] * ops["ddw"]
+    kap_f = c[..., None] * ops["ddw"] - s[..., None] * ops["ddv"]
+    slope_c = c[..., None] * ops["dv"] + s[..., None] * ops["dw"]
+    slope_f = c[..., None] * ops["dw"] - s[..., None] * ops["dv"]
+
+    def co(a):
+        return a[..., None, None]
+
+    # elastic strain energy; bending stiffnesses are given about the tension
+    # axis, so the elastic-axis value adds EA e_A^2 (parallel-axis theorem)
+    k_el = (co(p["ea"]) * _sq(ops["du"])
+            - co(p["ea"] * ea_off) * _sym(ops["du"], kap_c)
+            + co(p["ei_lag"] + p["ea"] * ea_off**2) * _sq(kap_c)
+            + co(p["ei_flap"]) * _sq(kap_f)
+            + co(p["gj"]) * _sq(ops["dphi"]))
+
+    # centrifugal terms: tension stiffening, in-plane/axial softening,
+    # propeller moment, tension-torsion and CG / tension-axis couplings
+    im_diff = p["im_lag"] - p["im_flap"]
+    k_cf = (co(t) * (_sq(ops["dv"]) + _sq(ops["dw"]))
+            + co(t * p["ka"] ** 2) * _sq(ops["dphi"])
+            - co(m) * (_sq(ops["u"]) + _sq(ops["v"]))
+            + co(im_diff * np.cos(2 * th)) * _sq(ops["phi"])
+            - co(t * ea_off) * _sym(ops["phi"], kap_f)
+            + co(x * m * eg) * _sym(ops["phi"], slope_f)
+            + co(m * eg) * _sym(ops["u"], slope_c)
+            + co(m * eg * s) * _sym(ops["v"], ops["phi"]))
+
+    m_el = (co(m) * (_sq(ops["u"]) + _sq(ops["v"]) + _sq(ops["w"]))
+            + co(p["im_flap"] + p["im_lag"]) * _sq(ops["phi"])
+            + co(m * eg * c) * _sym(ops["w"], ops["phi"])
+            - co(m * eg * s) * _sym(ops["v"], ops["phi"]))
+
+    weight = (wg[None, :] * h)[..., None, None]
+    return ((m_el * weight).sum(axis=1), (k_el * weight).sum(axis=1),
+            (k_cf * weight).sum(axis=1))
+
+
+def gyroscopic_element(x0, h, sec):
+    """Coriolis (gyroscopic) matrix of many elements: axial-lag coupling.
+
+    Returns ``g_el`` (n_el, 15, 15), skew-symmetric, such that the equations
+    read ``M q** + G q* + K q = 0`` with ``G = 2 m (v-row u*, -u-row v*)``.
+    """
+    g, wg = np.polynomial.legendre.leggauss(N_GAUSS)
+    xi = 0.5 * (g + 1.0)
+    wg = 0.5 * wg
+    x0 = np.asarray(x0, float)[:, None]
+    h = np.asarray(h, float)[:, None]
+    x = x0 + xi[None, :] * h
+    ops = field_operators(np.broadcast_to(xi, x.shape), np.broadcast_to(h, x.shape))
+    m = sec(x)["mass"][..., None, None]
+    vu = ops["v"][..., :, None] * ops["u"][..., None, :]
+    g_el = 2.0 * m * (vu - np.swapaxes(vu, -1, -2))
+    return (g_el * (wg[None, :] * h)[..., None, None]).sum(axis=1)

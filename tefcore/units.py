@@ -1,0 +1,500 @@
+"""Unit expressions and conversion to the SI units used internally.
+
+Every quantity inside tefcore is SI (kg, m, s, N, rad).  Input files quote
+the paper's units ("34 ft", "392 RPM", "81.52 ft-lb/rad"); this module turns
+such unit expressions into an SI factor and a dimension vector
+``(M, L, T)`` (mass, length, time exponents).  Angles are dimensionless:
+``rad`` has factor 1, ``deg`` factor pi/180 and ``rpm`` factor 2 pi/60.
+
+Grammar of a unit expression: base units joined by ``*``, ``-``, ``·`` or a
+space (product) and ``/`` (each ``/`` divides by the next factor only, so
+``ft-lb/rad/sec`` is ft lb rad^-1 s^-1), with integer powers ``^2``,
+``**2`` or ``^-1``, and parentheses.  ``1`` and ``percent``/``%`` are
+dimensionless.
+
+The bare ``lb`` is ambiguous (pound-mass or pound-force).  It is resolved
+by the expected dimension: both readings are tried and the one whose
+dimension matches is kept.  ``lbm`` and ``lbf`` are never ambiguous.
+
+Examples
+--------
+>>> to_si(34, "ft")
+10.363199999999999
+>>> round(to_si(330, "lb/in", "force_per_length"), 3)
+57791.856
+>>> round(to_si(2.031, "lb/ft", "mass_per_length"), 4)
+3.0225
+>>> from_si(to_si(392, "RPM"), "rpm")
+392.0
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from collections.abc import Sequence
+
+import numpy as np
+from scipy import constants as sc
+
+__all__ = [
+    "DIMENSIONS",
+    "SI_UNITS",
+    "dimension_name",
+    "format_dims",
+    "from_si",
+    "parse_quantity",
+    "parse_unit",
+    "resolve_dimension",
+    "to_si",
+]
+
+Dims = tuple[int, int, int]
+
+_NONE: Dims = (0, 0, 0)
+_MASS: Dims = (1, 0, 0)
+_LENGTH: Dims = (0, 1, 0)
+_TIME: Dims = (0, 0, 1)
+_FORCE: Dims = (1, 1, -2)
+
+#: Named physical dimensions as (M, L, T) exponent vectors.
+DIMENSIONS: dict[str, Dims] = {
+    "dimensionless": _NONE,
+    "angle": _NONE,
+    "per_angle": _NONE,
+    "mass": _MASS,
+    "length": _LENGTH,
+    "time": _TIME,
+    "velocity": (0, 1, -1),
+    "angular_velocity": (0, 0, -1),
+    "density": (1, -3, 0),
+    "mass_per_length": (1, -1, 0),
+    "mass_moment_per_length": (1, 1, 0),
+    "inertia_per_length": (1, 1, 0),
+    "force": _FORCE,
+    "force_per_length": (1, 0, -2),
+    "moment_per_angle": (1, 2, -2),
+    "moment_damping": (1, 2, -1),
+    "bending_stiffness": (1, 3, -2),
+    "torsional_stiffness": (1, 3, -2),
+}
+
+#: SI unit string for each named dimension; every one parses to factor 1.0.
+SI_UNITS: dict[str, str] = {
+    "dimensionless": "1",
+    "angle": "rad",
+    "per_angle": "1/rad",
+    "mass": "kg",
+    "length": "m",
+    "time": "s",
+    "velocity": "m/s",
+    "angular_velocity": "rad/s",
+    "density": "kg/m^3",
+    "mass_per_length": "kg/m",
+    "mass_moment_per_length": "kg*m",
+    "inertia_per_length": "kg*m^2/m",
+    "force": "N",
+    "force_per_length": "N/m",
+    "moment_per_angle": "N*m/rad",
+    "moment_damping": "N*m*s/rad",
+    "bending_stiffness": "N*m^2",
+    "torsional_stiffness": "N*m^2",
+}
+
+# Base units: name -> (SI factor, dims).  "Hz" is left out on purpose: with
+# rad dimensionless, 1 Hz would silently equal 1 rad/s; write "rev/s".
+_UNITS: dict[str, tuple[float, Dims]] = {
+    "1": (1.0, _NONE),
+    "percent": (0.01, _NONE),
+    "%": (0.01, _NONE),
+    "rad": (1.0, _NONE),
+    "deg": (sc.degree, _NONE),
+    "degree": (sc.degree, _NONE),
+    "degrees": (sc.degree, _NONE),
+    "rev": (2.0 * math.pi, _NONE),
+    "rpm": (2.0 * math.pi / sc.minute, (0, 0, -1)),
+    "m": (1.0, _LENGTH),
+    "cm": (sc.centi, _LENGTH),
+    "mm": (sc.milli, _LENGTH),
+    "km": (sc.kilo, _LENGTH),
+    "ft": (sc.foot, _LENGTH),
+    "foot": (sc.foot, _LENGTH),
+    "feet": (sc.foot, _LENGTH),
+    "in": (sc.inch, _LENGTH),
+    "inch": (sc.inch, _LENGTH),
+    "inches": (sc.inch, _LENGTH),
+    "kg": (1.0, _MASS),
+    "g": (sc.gram, _MASS),
+    "lbm": (sc.pound, _MASS),
+    "slug": (sc.slug, _MASS),
+    "s": (1.0, _TIME),
+    "sec": (1.0, _TIME),
+    "min": (sc.minute, _TIME),
+    "h": (sc.hour, _TIME),
+    "N": (1.0, _FORCE),
+    "kN": (sc.kilo, _FORCE),
+    "lbf": (sc.pound_force, _FORCE),
+    "Pa": (1.0, (1, -1, -2)),
+    "psi": (sc.psi, (1, -1, -2)),
+    "J": (1.0, (1, 2, -2)),
+    "kt": (sc.knot, (0, 1, -1)),
+    "knot": (sc.knot, (0, 1, -1)),
+    "mph": (sc.mph, (0, 1, -1)),
+}
+# Imperial and named units are matched case-insensitively ("RPM", "Deg");
+# SI symbols are not ("m" is not "M", "s" is not "S").
+_CASELESS = {
+    k.lower(): k
+    for k in (
+        "percent rad deg degree degrees rev rpm ft foot feet in inch inches "
+        "lbm slug sec lbf psi kt knot mph"
+    ).split()
+}
+_AMBIGUOUS_LB = "lb"
+
+_TOKEN = re.compile(
+    r"\s*(?:(?P<num>(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)"
+    r"|(?P<name>[A-Za-z_%][A-Za-z_]*)"
+    r"|(?P<op>\*\*|[*/^()·-]))"
+)
+_QUANTITY = re.compile(r"^\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*(.*?)\s*$")
+
+
+def resolve_dimension(dimension: str | Sequence[int]) -> Dims:
+    """Return the (M, L, T) vector of a dimension name or vector.
+
+    Parameters
+    ----------
+    dimension : str or sequence of 3 int
+        A key of :data:`DIMENSIONS` or an explicit exponent vector.
+
+    Returns
+    -------
+    tuple of int
+
+    Raises
+    ------
+    ValueError
+        If the name is unknown or the vector is not 3 integers.
+
+    Examples
+    --------
+    >>> resolve_dimension("moment_damping")
+    (1, 2, -1)
+    """
+    if isinstance(dimension, str):
+        try:
+            return DIMENSIONS[dimension]
+        except KeyError:
+            raise ValueError(
+                f"unknown dimension {dimension!r}; known: {', '.join(sorted(DIMENSIONS))}"
+            ) from None
+    dims = tuple(int(d) for d in dimension)
+    if len(dims) != 3 or any(d != e for d, e in zip(dims, dimension, strict=True)):
+        raise ValueError(f"dimension vector must be 3 integers (M, L, T), got {dimension!r}")
+    return dims  # type: ignore[return-value]
+
+
+def format_dims(dims: Sequence[int]) -> str:
+    """Format a dimension vector, e.g. ``M L^2 T^-1``; ``1`` if dimensionless.
+
+    Examples
+    --------
+    >>> format_dims((1, 2, -1))
+    'M L^2 T^-1'
+    """
+    parts = [
+        sym if e == 1 else f"{sym}^{e}" for sym, e in zip("MLT", dims, strict=True) if e != 0
+    ]
+    return " ".join(parts) or "1"
+
+
+def dimension_name(dims: Sequence[int]) -> str:
+    """Describe a dimension vector by its exponents and any matching names.
+
+    Examples
+    --------
+    >>> dimension_name((0, 1, 0))
+    'L (length)'
+    """
+    names = [k for k, v in DIMENSIONS.items() if v == tuple(dims)]
+    return format_dims(dims) + (f" ({', '.join(names)})" if names else "")
+
+
+class _Parser:
+    """Recursive-descent parser; counts the net power of the bare ``lb``."""
+
+    def __init__(self, text: str):
+        self.text = text
+        self.tokens: list[tuple[str, str]] = []
+        pos, text = 0, text.rstrip()
+        while pos < len(text):
+            m = _TOKEN.match(text, pos)
+            if m is None or m.end() == pos:
+                raise ValueError(f"cannot parse unit {self.text!r} at {text[pos:]!r}")
+            kind = m.lastgroup
+            self.tokens.append((kind, m.group(kind)))  # type: ignore[arg-type]
+            pos = m.end()
+        self.i = 0
+
+    def peek(self) -> tuple[str, str] | None:
+        return self.tokens[self.i] if self.i < len(self.tokens) else None
+
+    def take(self) -> tuple[str, str]:
+        tok = self.peek()
+        if tok is None:
+            raise ValueError(f"unit {self.text!r} ends unexpectedly")
+        self.i += 1
+        return tok
+
+    def parse(self) -> tuple[float, list[int], int]:
+        if not self.tokens:
+            raise ValueError("empty unit string")
+        result = self.expr()
+        if self.peek() is not None:
+            raise ValueError(f"unexpected {self.peek()[1]!r} in unit {self.text!r}")
+        return result
+
+    def expr(self) -> tuple[float, list[int], int]:
+        factor, dims, n_lb = self.power()
+        while (tok := self.peek()) is not None and tok != ("op", ")"):
+            if tok[0] == "op" and tok[1] in "*-·/":
+                self.i += 1
+            sign = -1 if tok == ("op", "/") else 1  # otherwise implicit product
+            f, d, n = self.power()
+            factor *= f**sign
+            dims = [a + sign * b for a, b in zip(dims, d, strict=True)]
+            n_lb += sign * n
+        return factor, dims, n_lb
+
+    def power(self) -> tuple[float, list[int], int]:
+        factor, dims, n_lb = self.atom()
+        if (tok := self.peek()) is not None and tok[1] in ("^", "**"):
+            self.i += 1
+            p = self.exponent()
+            factor, dims, n_lb = factor**p, [d * p for d in dims], n_lb * p
+        return factor, dims, n_lb
+
+    def exponent(self) -> int:
+        kind, val = self.take()
+        if val == "(":
+            p = self.exponent()
+            if self.take()[1] != ")":
+                raise ValueError(f"missing ')' in unit {self.text!r}")
+            return p
+        sign = 1
+        if val == "-":
+            sign, (kind, val) = -1, self.take()
+        if kind != "num" or not val.isdigit():
+            raise ValueError(f"exponent must be an integer in unit {self.text!r}")
+        return sign * int(val)
+
+    def atom(self) -> tuple[float, list[int], int]:
+        kind, val = self.take()
+        if val == "(":
+            result = self.expr()
+            if self.take()[1] != ")":
+                raise ValueError(f"missing ')' in unit {self.text!r}")
+            return result
+        if kind == "num":
+            # Only "1" (as in "1/rad"): a stray number such as the "2" of
+            # "in2" must not silently scale the unit.
+            if float(val) != 1.0:
+                raise ValueError(f"unexpected number {val!r} in unit {self.text!r}")
+            return 1.0, [0, 0, 0], 0
+        if kind == "name":
+            if val.lower() == _AMBIGUOUS_LB:
+                return 1.0, [0, 0, 0], 1
+            key = val if val in _UNITS else _CASELESS.get(val.lower())
+            if key is not None:
+                factor, dims = _UNITS[key]
+                return factor, list(dims), 0
+            raise ValueError(f"unknown unit {val!r} in {self.text!r}")
+        raise ValueError(f"unexpected {val!r} in unit {self.text!r}")
+
+
+def parse_unit(
+    unit: str, dimension: str | Sequence[int] | None = None
+) -> tuple[float, Dims]:
+    """Parse a unit expression into its SI factor and dimension vector.
+
+    Parameters
+    ----------
+    unit : str
+        Unit expression, e.g. ``"ft-lb/rad/sec"`` or ``"slug*ft^2/ft"``.
+    dimension : str or sequence of int, optional
+        Expected dimension (a :data:`DIMENSIONS` key or an (M, L, T) vector).
+        When given, the result must match it, and it decides whether a bare
+        ``lb`` means pound-mass or pound-force.
+
+    Returns
+    -------
+    factor : float
+        Multiply a value in `unit` by this to get SI.
+    dims : tuple of int
+        (M, L, T) exponents.
+
+    Raises
+    ------
+    ValueError
+        Unknown unit, syntax error, dimension mismatch, or an ``lb`` that
+        cannot be resolved.
+
+    Examples
+    --------
+    >>> parse_unit("ft-lb/rad", "moment_per_angle")[1]
+    (1, 2, -2)
+    >>> parse_unit("lb*in^2", "bending_stiffness")[0] == 4.4482216152605 * 0.0254**2
+    True
+    >>> parse_unit("furlong")
+    Traceback (most recent call last):
+    ...
+    ValueError: unknown unit 'furlong' in 'furlong'
+    """
+    if not isinstance(unit, str):
+        raise ValueError(f"unit must be a string, got {unit!r}")
+    expected = None if dimension is None else resolve_dimension(dimension)
+    where = "" if dimension is None else f" (expected {_describe(dimension)})"
+    try:
+        factor, dims_list, n_lb = _Parser(unit).parse()
+    except ValueError as err:
+        raise ValueError(f"{err}{where}") from None
+    dims: Dims = tuple(dims_list)  # type: ignore[assignment]
+    if n_lb:
+        # Try both readings of the bare "lb"; keep the one that fits.
+        readings = {
+            "lbm": (factor * sc.pound**n_lb, _add(dims, _MASS, n_lb)),
+            "lbf": (factor * sc.pound_force**n_lb, _add(dims, _FORCE, n_lb)),
+        }
+        if expected is None:
+            raise ValueError(
+                f"'lb' in unit {unit!r} is ambiguous (lbm or lbf); write lbm/lbf "
+                "or give the expected dimension"
+            )
+        fits = [r for r in readings.values() if r[1] == expected]
+        if len(fits) != 1:
+            raise ValueError(
+                f"unit {unit!r} does not match the expected dimension "
+                f"{_describe(dimension)} with 'lb' read as either lbm or lbf"
+            )
+        return fits[0]
+    if expected is not None and dims != expected:
+        raise ValueError(
+            f"unit {unit!r} has dimension {dimension_name(dims)}, "
+            f"expected {_describe(dimension)}"
+        )
+    return factor, dims
+
+
+def _add(dims: Dims, other: Dims, n: int) -> Dims:
+    return tuple(a + n * b for a, b in zip(dims, other, strict=True))  # type: ignore[return-value]
+
+
+def _describe(dimension: str | Sequence[int]) -> str:
+    if isinstance(dimension, str):
+        return f"{dimension} [{format_dims(resolve_dimension(dimension))}]"
+    return format_dims(dimension)
+
+
+def to_si(value, unit: str, dimension: str | Sequence[int] | None = None):
+    """Convert `value` expressed in `unit` to SI.
+
+    Parameters
+    ----------
+    value : float or array_like
+        Value(s) in `unit`.
+    unit : str
+        Unit expression (see :func:`parse_unit`).
+    dimension : str or sequence of int, optional
+        Expected dimension; checked, and used to resolve a bare ``lb``.
+
+    Returns
+    -------
+    float or numpy.ndarray
+        A float for scalar input, otherwise an array.
+
+    Raises
+    ------
+    ValueError
+        As :func:`parse_unit`.
+
+    Examples
+    --------
+    >>> round(to_si(81.52, "ft-lb/rad", "moment_per_angle"), 4)
+    110.5263
+    >>> to_si([1, 2], "in")
+    array([0.0254, 0.0508])
+    """
+    factor, _ = parse_unit(unit, dimension)
+    if np.ndim(value) == 0:
+        return float(value) * factor
+    return np.asarray(value, dtype=float) * factor
+
+
+def from_si(value, unit: str, dimension: str | Sequence[int] | None = None):
+    """Convert an SI `value` to `unit`; the inverse of :func:`to_si`.
+
+    Parameters
+    ----------
+    value : float or array_like
+        Value(s) in SI.
+    unit : str
+        Target unit expression.
+    dimension : str or sequence of int, optional
+        Expected dimension of `unit`.
+
+    Returns
+    -------
+    float or numpy.ndarray
+
+    Raises
+    ------
+    ValueError
+        As :func:`parse_unit`.
+
+    Examples
+    --------
+    >>> round(from_si(5.1816, "ft"), 12)
+    17.0
+    """
+    factor, _ = parse_unit(unit, dimension)
+    if np.ndim(value) == 0:
+        return float(value) / factor
+    return np.asarray(value, dtype=float) / factor
+
+
+def parse_quantity(text: str, dimension: str | Sequence[int] | None = None) -> float:
+    """Parse ``"<number> <unit>"`` into an SI float; the unit is mandatory.
+
+    Parameters
+    ----------
+    text : str
+        E.g. ``"34 ft"``, ``"800 lb/in"``, ``"29 percent"``.
+    dimension : str or sequence of int, optional
+        Expected dimension of the unit.
+
+    Returns
+    -------
+    float
+
+    Raises
+    ------
+    ValueError
+        No leading number, no unit, or a bad unit.
+
+    Examples
+    --------
+    >>> parse_quantity("10 in", "length")
+    0.254
+    >>> parse_quantity("0.3")
+    Traceback (most recent call last):
+    ...
+    ValueError: quantity '0.3' has no unit; pass a plain number for SI values
+    """
+    m = _QUANTITY.match(text) if isinstance(text, str) else None
+    if m is None:
+        raise ValueError(f"cannot read {text!r} as '<number> <unit>'")
+    number, unit = m.groups()
+    if not unit:
+        raise ValueError(f"quantity {text!r} has no unit; pass a plain number for SI values")
+    return to_si(float(number), unit, dimension)

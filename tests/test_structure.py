@@ -1,0 +1,186 @@
+"""Rotating finite-element beam against closed forms and published tables.
+
+All frequencies are nondimensional: for the uniform beams below the rotor
+units make ``m = 1`` and ``L = 1`` (root at the axis), so a nonrotating
+frequency in "per rev" is ``omega / Omega_ref`` and the published
+``omega * sqrt(m L^4 / EI)`` is recovered by multiplying by ``lambda``.
+"""
+
+import numpy as np
+import pytest
+import scipy.linalg
+import scipy.optimize
+from numpy.testing import assert_allclose
+
+from tefcore.structure import RootSprings, assemble_beam, beam_modes
+
+CLAMP = RootSprings(flap=np.inf, lag=np.inf, torsion=np.inf)
+
+
+def uniform(mass=1.0, ei_flap=1.0, ei_lag=1.0, gj=1.0, ea=1e5, im_flap=0.0, im_lag=1e-2,
+            cg_offset=0.0, tension_offset=0.0, ka=0.0):
+    vals = dict(mass=mass, ei_flap=ei_flap, ei_lag=ei_lag, gj=gj, ea=ea, im_flap=im_flap,
+                im_lag=im_lag, cg_offset=cg_offset, tension_offset=tension_offset, ka=ka)
+
+    def section(x):
+        x = np.asarray(x, float)
+        return {k: np.full_like(x, v) for k, v in vals.items()}
+    return section
+
+
+def flat(x):
+    return np.zeros_like(np.asarray(x, float))
+
+
+def eig(beam, which="k_elastic", speed_ratio=1.0, n=8):
+    """All lowest frequencies of the free dofs (per rev of the reference speed)."""
+    f = beam.free
+    k = beam.k_elastic if which == "k_elastic" else beam.stiffness(speed_ratio)
+    # inverse form (largest 1/lambda) keeps the low modes exact beside the
+    # very stiff axial ones, see tefcore.structure._lowest_modes
+    mu = scipy.linalg.eigh(beam.mass[np.ix_(f, f)], k[np.ix_(f, f)], eigvals_only=True)
+    return np.sqrt(1.0 / mu[::-1][:n])
+
+
+# Euler-Bernoulli cantilever: (beta_n L)^2 from cos(bL)cosh(bL) = -1
+CANTILEVER = np.array([1.8751040687, 4.6940911330, 7.8547574382]) ** 2
+
+
+def test_nonrotating_cantilever_bending_converges():
+    # Hermite cubics converge as h^4 in frequency: with 20 elements the third
+    # mode is within 1.6e-5 (measured), so the gate is 3e-5; the error must
+    # fall by about 16x per halving of h (asserted: by more than 10x).
+    errors = []
+    for n_el in (5, 10, 20):
+        beam = assemble_beam(np.linspace(0, 1, n_el + 1), uniform(ei_lag=4.0, gj=1e3),
+                             flat, CLAMP)
+        f = eig(beam, n=12)
+        flap = np.sort(f)[[0, 2, 4]]     # flap (EI=1) interleaves with lag (EI=4)
+        lag = 2.0 * CANTILEVER
+        errors.append(np.abs(flap / CANTILEVER - 1))
+        assert_allclose(f[np.isclose(f, lag[0], rtol=1e-3)], lag[0], rtol=1e-4)
+    errors = np.array(errors)
+    assert np.all(errors[1:, 2] < errors[:-1, 2] / 10), "third mode must converge as h^4"
+    assert_allclose(flap, CANTILEVER, rtol=3e-5)
+
+
+def test_nonrotating_torsion_quadratic_elements_converge():
+    # omega_n = (2n-1) pi/2 sqrt(GJ/I); consistent-mass quadratic elements
+    # converge as h^4 in frequency (measured: x15.6 per halving), so each
+    # halving must gain more than 10x; 16 elements: 4.0e-5 on the third mode.
+    exact = np.array([1, 3, 5]) * np.pi / 2 * np.sqrt(1.0 / 1e-2)
+    errs = []
+    for n_el in (4, 8, 16):
+        beam = assemble_beam(np.linspace(0, 1, n_el + 1),
+                             uniform(ei_flap=1e6, ei_lag=1e6), flat, CLAMP)
+        errs.append(np.abs(eig(beam, n=3) / exact - 1))
+    errs = np.array(errs)
+    assert np.all(errs[1:] < errs[:-1] / 10)
+    assert np.all(errs[-1] < 5e-5)
+
+
+def test_torsion_root_spring_closed_form():
+    # Uniform shaft, root spring k, free tip: beta tan(beta) = k L / GJ,
+    # omega = beta sqrt(GJ / I).  Spring of 2 GJ/L gives beta ~ 1.0769.
+    k, gj, im = 2.0, 1.0, 1e-2
+    beta = scipy.optimize.brentq(lambda b: b * np.tan(b) - k / gj, 0.1, np.pi / 2 - 1e-9)
+    beam = assemble_beam(np.linspace(0, 1, 21), uniform(ei_flap=1e6, ei_lag=1e6, gj=gj,
+                                                        im_lag=im),
+                         flat, RootSprings(flap=np.inf, lag=np.inf, torsion=k))
+    # quadratic torsion elements, 20 of them: measured error 6.6e-6
+    assert_allclose(eig(beam, n=1), beta * np.sqrt(gj / im), rtol=2e-5)
+
+
+def test_propeller_moment_adds_one_per_rev_squared():
+    # With I_m1 = 0 and zero pitch the propeller moment is Omega^2 I_m phi^2,
+    # exactly proportional to the torsional inertia: nu^2 = nu0^2 + 1.
+    # bending and axial stiffness moderate: far-apart stiffness scales make
+    # the generalized eigenproblem ill-conditioned, which is not under test here
+    beam = assemble_beam(np.linspace(0.1, 1, 21), uniform(ei_flap=1e2, ei_lag=1e2, ea=1e4),
+                         flat, RootSprings(flap=np.inf, lag=np.inf, torsion=0.5))
+    nu0 = eig(beam, n=1)
+    nu = beam_modes(beam, n_modes=1).frequencies
+    assert_allclose(nu**2, nu0**2 + 1.0, rtol=1e-9)
+
+
+# Published flapwise frequencies of a uniform rotating cantilever,
+# omega sqrt(mL^4/EI) at lambda = Omega sqrt(mL^4/EI).
+ROTATING_TABLE = {
+    12.0: [13.1702, 37.6031, 79.6145],
+}
+
+
+@pytest.mark.parametrize("lam", sorted(ROTATING_TABLE))
+def test_rotating_uniform_beam_published_table(lam):
+    # Table values are given to 6 significant figures; 20 Hermite elements
+    # converge to better than 1e-5, so the gate is 5e-5 (one unit in the 5th).
+    beam = assemble_beam(np.linspace(0, 1, 21),
+                         uniform(ei_flap=1 / lam**2, ei_lag=1e3, gj=1e3, ea=1e6),
+                         flat, CLAMP)
+    modes = beam_modes(beam, n_modes=3)
+    assert modes.labels == ["flap 1", "flap 2", "flap 3"]
+    assert_allclose(modes.frequencies * lam, ROTATING_TABLE[lam], rtol=5e-5)
+
+
+def test_rotating_lag_equals_flap_minus_one():
+    # Same EI in both planes and zero pitch: K_lag = K_flap - M, so
+    # nu_lag^2 = nu_flap^2 - 1 mode by mode (classical result).
+    beam = assemble_beam(np.linspace(0, 1, 21), uniform(ei_flap=0.01, ei_lag=0.01, gj=1e3,
+                                                        ea=1e7), flat, CLAMP)
+    m = beam_modes(beam, n_modes=4)
+    flap = m.frequencies[[lab.startswith("flap") for lab in m.labels]]
+    lag = m.frequencies[[lab.startswith("lag") for lab in m.labels]]
+    assert_allclose(lag**2, flap**2 - 1.0, rtol=1e-6)
+
+
+def test_hinged_rigid_blade_with_offset():
+    # Articulated uniform blade with hinge offset e: nu_flap^2 = 1 + 3e/(2(1-e)),
+    # nu_lag^2 = 3e/(2(1-e)) (Johnson, Helicopter Theory).  EI = 1e4 puts the
+    # first elastic mode near 400/rev, so the rigid-blade error is of order
+    # (1/400)^2 ~ 1e-5; the gate is 1e-4.
+    e = 0.1
+    beam = assemble_beam(np.linspace(e, 1, 11), uniform(ei_flap=1e4, ei_lag=1e4, gj=1e3,
+                                                        ea=1e6), flat, RootSprings())
+    m = beam_modes(beam, n_modes=3)
+    by = dict(zip(m.labels, m.frequencies))
+    assert_allclose(by["lag 1"] ** 2, 1.5 * e / (1 - e), rtol=1e-4)
+    assert_allclose(by["flap 1"] ** 2, 1 + 1.5 * e / (1 - e), rtol=1e-4)
+    # free feathering with only the propeller moment: a 1/rev rigid pitch mode
+    assert_allclose(by["torsion 1"], 1.0, rtol=1e-6)
+
+
+def test_pitch_90_degrees_swaps_flap_and_lag_stiffness():
+    # At 90 deg pitch the flapwise stiffness acts in-plane and vice versa.
+    a = assemble_beam(np.linspace(0, 1, 11), uniform(ei_flap=1.0, ei_lag=9.0, gj=1e3), flat,
+                      CLAMP)
+    b = assemble_beam(np.linspace(0, 1, 11), uniform(ei_flap=9.0, ei_lag=1.0, gj=1e3),
+                      lambda x: np.full_like(np.asarray(x, float), np.pi / 2), CLAMP)
+    assert_allclose(eig(a), eig(b), rtol=1e-10)
+
+
+def test_matrices_symmetric_and_modes_orthogonal():
+    sec = uniform(cg_offset=0.01, tension_offset=0.005, ka=0.01, im_flap=1e-4)
+    beam = assemble_beam(np.linspace(0.05, 1, 13), sec,
+                         lambda x: 0.2 - 0.15 * np.asarray(x), RootSprings(0.1, 0.2, 0.3, 0.01))
+    for mat in (beam.mass, beam.k_elastic, beam.k_centrifugal):
+        assert_allclose(mat, mat.T, atol=1e-14)
+    assert_allclose(beam.gyroscopic, -beam.gyroscopic.T, atol=1e-14)
+    m = beam_modes(beam, n_modes=6)
+    mm, kk = m.modal_mass, m.modal_stiffness
+    off = ~np.eye(6, dtype=bool)
+    # generalized eigenvectors are M- and K-orthogonal up to round-off amplified
+    # by the conditioning of K (~1e7 here): 1e-8 relative
+    assert np.max(np.abs(mm[off])) < 1e-10 * np.max(np.abs(np.diag(mm)))
+    assert np.max(np.abs(kk[off])) < 1e-8 * np.max(np.abs(np.diag(kk)))
+    assert_allclose(np.diag(kk) / np.diag(mm), m.frequencies**2, rtol=1e-9)
+
+
+def test_shapes_at_nodes_match_dofs_and_normalisation():
+    beam = assemble_beam(np.linspace(0, 1, 9), uniform(ei_lag=4.0, gj=1.0), flat, CLAMP)
+    m = beam_modes(beam, n_modes=4)
+    s = m.shapes(beam.x_nodes)
+    assert_allclose(s["w"][:, 0], m.vectors[3::6][: len(beam.x_nodes), 0], atol=1e-14)
+    flap1 = m.labels.index("flap 1")
+    assert_allclose(s["w"][-1, flap1], 1.0)      # tip deflection normalised to +1
+    with pytest.raises(ValueError, match="stations"):
+        m.shapes([1.5])
