@@ -91,7 +91,7 @@ def lagrange(xi, h, order):
     Examples
     --------
     >>> n, dn = lagrange(0.5, 1.0, 2)
-    >>> n.round(12).tolist()
+    >>> (n.round(12) + 0.0).tolist()
     [0.0, 1.0, 0.0]
     """
     xi = np.asarray(xi, dtype=float)

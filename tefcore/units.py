@@ -12,6 +12,12 @@ space (product) and ``/`` (each ``/`` divides by the next factor only, so
 ``**2`` or ``^-1``, and parentheses.  ``1`` and ``percent``/``%`` are
 dimensionless.
 
+Rates quoted per angular velocity, such as Table 1's actuator damping
+"0.005 ft-lb/rad/sec", mean ft-lb per (rad/sec) although a literal reading
+gives ft-lb rad^-1 s^-1.  When an expected dimension is given and the
+literal reading does not match it, a trailing ``/<angle>/<time>`` is re-read
+as ``/(<angle>/<time>)``; the result must then match.
+
 The bare ``lb`` is ambiguous (pound-mass or pound-force).  It is resolved
 by the expected dimension: both readings are tried and the one whose
 dimension matches is kept.  ``lbm`` and ``lbf`` are never ambiguous.
@@ -157,6 +163,7 @@ _TOKEN = re.compile(
     r"|(?P<name>[A-Za-z_%][A-Za-z_]*)"
     r"|(?P<op>\*\*|[*/^()·-]))"
 )
+_PER_RATE = re.compile(r"/\s*(rad|deg|degrees?|rev)\s*/\s*(s|sec|min)\s*$", re.IGNORECASE)
 _QUANTITY = re.compile(r"^\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*(.*?)\s*$")
 
 
@@ -203,9 +210,7 @@ def format_dims(dims: Sequence[int]) -> str:
     >>> format_dims((1, 2, -1))
     'M L^2 T^-1'
     """
-    parts = [
-        sym if e == 1 else f"{sym}^{e}" for sym, e in zip("MLT", dims, strict=True) if e != 0
-    ]
+    parts = [sym if e == 1 else f"{sym}^{e}" for sym, e in zip("MLT", dims, strict=True) if e != 0]
     return " ".join(parts) or "1"
 
 
@@ -313,9 +318,7 @@ class _Parser:
         raise ValueError(f"unexpected {val!r} in unit {self.text!r}")
 
 
-def parse_unit(
-    unit: str, dimension: str | Sequence[int] | None = None
-) -> tuple[float, Dims]:
+def parse_unit(unit: str, dimension: str | Sequence[int] | None = None) -> tuple[float, Dims]:
     """Parse a unit expression into its SI factor and dimension vector.
 
     Parameters
@@ -353,10 +356,26 @@ def parse_unit(
     """
     if not isinstance(unit, str):
         raise ValueError(f"unit must be a string, got {unit!r}")
+    try:
+        return _parse_unit(unit, unit, dimension)
+    except ValueError:
+        # Engineering notation "ft-lb/rad/sec" = ft-lb per (rad/sec).
+        rate = _PER_RATE.search(unit)
+        if dimension is None or rate is None:
+            raise
+        alternative = f"{unit[: rate.start()]}/({rate.group(1)}/{rate.group(2)})"
+        try:
+            return _parse_unit(alternative, unit, dimension)
+        except ValueError:
+            pass
+        raise
+
+
+def _parse_unit(text: str, unit: str, dimension: str | Sequence[int] | None) -> tuple[float, Dims]:
     expected = None if dimension is None else resolve_dimension(dimension)
     where = "" if dimension is None else f" (expected {_describe(dimension)})"
     try:
-        factor, dims_list, n_lb = _Parser(unit).parse()
+        factor, dims_list, n_lb = _Parser(text).parse()
     except ValueError as err:
         raise ValueError(f"{err}{where}") from None
     dims: Dims = tuple(dims_list)  # type: ignore[assignment]
@@ -380,8 +399,7 @@ def parse_unit(
         return fits[0]
     if expected is not None and dims != expected:
         raise ValueError(
-            f"unit {unit!r} has dimension {dimension_name(dims)}, "
-            f"expected {_describe(dimension)}"
+            f"unit {unit!r} has dimension {dimension_name(dims)}, expected {_describe(dimension)}"
         )
     return factor, dims
 

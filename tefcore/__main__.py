@@ -1,0 +1,5 @@
+"""``python -m tefcore`` is the ``tefcore`` command."""
+
+from .cli import main
+
+raise SystemExit(main())

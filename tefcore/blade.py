@@ -1,0 +1,163 @@
+"""The configured blade: finite-element model, modes and fan plot.
+
+This module turns a :class:`tefcore.config.Config` into the rotor-unit
+finite-element beam of :mod:`tefcore.structure` and its coupled modes.  The
+collective pitch is the geometric pitch at 0.75 R; the built-in twist is
+added relative to its value there.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pandas as pd
+
+from .scaling import RotorUnits
+from .structure import BeamModel, BladeModes, RootSprings, assemble_beam, beam_modes
+
+#: Section arrays and how each is made nondimensional.
+_SECTION_SCALES = {
+    "mass": "mass_per_len", "ei_flap": "bending_stiffness", "ei_lag": "bending_stiffness",
+    "gj": "bending_stiffness", "ea": "axial_stiffness", "im_flap": "inertia_per_length",
+    "im_lag": "inertia_per_length", "cg_offset": "length", "tension_offset": "length",
+    "ka": "length",
+}
+
+
+def rotor_units(cfg) -> RotorUnits:
+    """Reference scales of a configuration (R, Omega, m0 = 3 I_b / R^3)."""
+    return RotorUnits(radius=cfg.rotor.radius, rotor_speed=cfg.rotor.rotor_speed,
+                      mass_per_length=cfg.blade.reference_mass())
+
+
+def section_function(cfg):
+    """Nondimensional section properties of the configured blade, ``f(x)``."""
+    units = rotor_units(cfg)
+
+    def section(x):
+        p = cfg.blade.section(np.clip(x, cfg.blade.stations[0], 1.0))
+        return {k: getattr(units, how)(np.asarray(p[k], float))
+                for k, how in _SECTION_SCALES.items()}
+    return section
+
+
+def pitch_function(cfg, collective: float = 0.0):
+    """Geometric pitch ``theta(x) = theta_75 + twist(x) - twist(0.75)`` [rad]."""
+    stations = np.asarray(cfg.blade.stations, float)
+    twist = np.asarray(cfg.blade.twist, float)
+    t75 = np.interp(0.75, stations, twist)
+    return lambda x: collective + np.interp(x, stations, twist) - t75
+
+
+def root_springs(cfg) -> RootSprings:
+    """Equivalent bearingless-hub root restraints in rotor units.
+
+    The torsion spring is the pitch link (stiffness times horn arm squared)
+    plus any flexbeam torsion in parallel; the blade's own GJ sits in series
+    with it through the finite elements.
+    """
+    units, hub = rotor_units(cfg), cfg.hub
+    return RootSprings(flap=units.spring(hub.flap_spring), lag=units.spring(hub.lag_spring),
+                       torsion=units.spring(hub.pitch_link_torsion_stiffness
+                                            + hub.torsion_spring_parallel),
+                       lag_damper=units.damper(hub.lag_damper))
+
+
+def blade_model(cfg, collective: float = 0.0, n_elements: int | None = None) -> BeamModel:
+    """Assemble the finite-element blade of a configuration.
+
+    Parameters
+    ----------
+    cfg : tefcore.config.Config
+    collective : float
+        Geometric pitch at 0.75 R [rad]; it rotates the section principal
+        axes and so couples flap and lag bending.
+    n_elements : int, optional
+        Equal-length elements from the structural root to the tip
+        (default ``cfg.model.n_elements``).
+
+    Returns
+    -------
+    BeamModel
+    """
+    n = n_elements or cfg.model.n_elements
+    x_nodes = np.linspace(cfg.rotor.root_offset, 1.0, n + 1)
+    return assemble_beam(x_nodes, section_function(cfg), pitch_function(cfg, collective),
+                         root_springs(cfg))
+
+
+def blade_modes(cfg, n_modes: int | None = None, collective: float = 0.0,
+                speed_ratio: float = 1.0, n_elements: int | None = None) -> BladeModes:
+    """Coupled natural modes of the configured blade.
+
+    Parameters
+    ----------
+    cfg : tefcore.config.Config
+    n_modes : int, optional
+        Modes kept (default ``cfg.model.n_modes``).
+    collective : float
+        Pitch at 0.75 R [rad].
+    speed_ratio : float
+        Rotor speed over the configured one; frequencies are per rev of it.
+    n_elements : int, optional
+
+    Returns
+    -------
+    BladeModes
+    """
+    beam = blade_model(cfg, collective, n_elements)
+    return beam_modes(beam, n_modes or cfg.model.n_modes, speed_ratio)
+
+
+def fan_data(cfg, speed_ratios, n_modes: int | None = None,
+             collective: float = 0.0) -> pd.DataFrame:
+    """Frequencies of the labelled modes versus rotor speed (tidy table).
+
+    The beam is assembled once; only the stiffness is re-scaled with speed.
+
+    Returns
+    -------
+    pandas.DataFrame
+        Columns ``speed_ratio, rotor_speed_rpm, mode, label,
+        frequency_per_rev, frequency_hz``.
+    """
+    beam = blade_model(cfg, collective)
+    n = n_modes or cfg.model.n_modes
+    rows = []
+    for r in np.atleast_1d(speed_ratios):
+        if not r > 0:
+            raise ValueError(f"speed ratio must be positive, got {r}")
+        m = beam_modes(beam, n, r)
+        omega = cfg.rotor.rotor_speed * r
+        for j, (lab, f) in enumerate(zip(m.labels, m.frequencies)):
+            rows.append({"speed_ratio": float(r), "rotor_speed_rpm": omega * 30 / np.pi,
+                         "mode": j + 1, "label": lab, "frequency_per_rev": float(f),
+                         "frequency_hz": float(f * omega / (2 * np.pi))})
+    return pd.DataFrame(rows)
+
+
+def fan_plot(cfg, speed_ratios=None, n_modes: int | None = None, ax=None):
+    """Fan plot: modal frequencies [Hz] versus rotor speed, with per-rev rays.
+
+    Returns the matplotlib Axes.
+    """
+    import matplotlib.pyplot as plt
+
+    if speed_ratios is None:
+        speed_ratios = np.linspace(0.2, 1.2, 26)
+    df = fan_data(cfg, speed_ratios, n_modes)
+    if ax is None:
+        _, ax = plt.subplots(figsize=(6, 5))
+    styles = {"flap": "-", "lag": "--", "torsion": "-.", "axial": ":"}
+    for lab, g in df.groupby("label", sort=False):
+        ax.plot(g["rotor_speed_rpm"], g["frequency_hz"], styles[lab.split()[0]], label=lab)
+    rpm = np.array([0.0, df["rotor_speed_rpm"].max()])
+    for k in range(1, 9):
+        ax.plot(rpm, k * rpm / 60, color="0.8", lw=0.7, zorder=0)
+    nominal = cfg.rotor.rotor_speed * 30 / np.pi
+    ax.axvline(nominal, color="0.5", lw=0.8)
+    ax.set_xlabel("rotor speed [RPM]")
+    ax.set_ylabel("frequency [Hz]")
+    ax.set_xlim(0, rpm[1])
+    ax.set_ylim(0, df["frequency_hz"].max() * 1.05)
+    ax.legend(fontsize="small", ncol=2)
+    return ax

@@ -1,0 +1,103 @@
+"""Command line: ``tefcore modes | fanplot | reproduce``.
+
+``tefcore reproduce`` runs everything that reproduces the paper so far and
+writes it to an output folder; it grows as the analyses are added.
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from pathlib import Path
+
+import numpy as np
+
+
+def _load(args):
+    from .config import load_config
+
+    cfg = load_config(args.config)
+    if args.set:
+        over = {}
+        for item in args.set:
+            key, sep, value = item.partition("=")
+            if not sep:
+                raise SystemExit(f"--set expects name=value, got {item!r}")
+            try:
+                over[key.strip()] = float(value)
+            except ValueError:
+                over[key.strip()] = value.strip()
+        cfg = cfg.with_overrides(over)
+    return cfg
+
+
+def _common(p):
+    p.add_argument("--config", default="mdart",
+                   help="configuration TOML file or packaged name (default: mdart)")
+    p.add_argument("-s", "--set", action="append", metavar="NAME=VALUE",
+                   help="override a field by dotted name, e.g. hub.pitch_link_stiffness='800 lb/in'")
+
+
+def cmd_modes(args) -> int:
+    from .blade import blade_modes
+
+    cfg = _load(args)
+    table = blade_modes(cfg, n_modes=args.n_modes,
+                        collective=np.deg2rad(args.collective)).table()
+    if args.csv:
+        table.to_csv(args.csv, index=False)
+    print(table.to_string(index=False, float_format=lambda v: f"{v:.4f}"))
+    return 0
+
+
+def cmd_fanplot(args) -> int:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from .blade import fan_plot
+
+    cfg = _load(args)
+    ax = fan_plot(cfg, n_modes=args.n_modes)
+    ax.set_title(cfg.name)
+    ax.figure.savefig(args.out, dpi=120, bbox_inches="tight")
+    print(f"wrote {args.out}")
+    return 0
+
+
+def cmd_reproduce(args) -> int:
+    from .reproduce import reproduce
+
+    return reproduce(Path(args.out))
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(prog="tefcore", description=__doc__)
+    sub = parser.add_subparsers(dest="command", required=True)
+    p = sub.add_parser("modes", help="coupled blade modes as a table")
+    _common(p)
+    p.add_argument("--n-modes", type=int, default=None)
+    p.add_argument("--collective", type=float, default=0.0, help="pitch at 0.75R [deg]")
+    p.add_argument("--csv", default=None, help="also write the table to this CSV file")
+    p.set_defaults(func=cmd_modes)
+    p = sub.add_parser("fanplot", help="fan plot (frequency vs rotor speed) to an image")
+    _common(p)
+    p.add_argument("--n-modes", type=int, default=None)
+    p.add_argument("--out", default="fanplot.png")
+    p.set_defaults(func=cmd_fanplot)
+    p = sub.add_parser("reproduce", help="reproduce the paper's results into a folder")
+    p.add_argument("--out", default="output", help="output folder (default: output)")
+    p.set_defaults(func=cmd_reproduce)
+    return parser
+
+
+def main(argv=None) -> int:
+    args = build_parser().parse_args(argv)
+    try:
+        return args.func(args)
+    except ValueError as exc:      # configuration errors: say what, no traceback
+        print(f"tefcore: error: {exc}", file=sys.stderr)
+        return 2
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

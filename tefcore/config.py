@@ -1,0 +1,1062 @@
+"""Validated, immutable configuration of a trailing-edge-flap rotor.
+
+A :class:`Config` bundles the sections ``rotor``, ``blade``, ``hub``,
+``flap``, ``actuator``, ``flight`` and ``model``.  Each section declares its
+settings once, as a table of :class:`Param` rows (name, dimension, default,
+allowed range, description); the dataclass fields, validation, TOML I/O
+(:mod:`tefcore.config_io`) and the documentation below all derive from those
+tables.  All values are stored in SI units (angles in rad); strings such as
+``"800 lb/in"`` are converted with :mod:`tefcore.units` using the field's
+dimension.
+
+A range such as ``"(0, radius/2]"`` may reference sibling fields (``radius``)
+or fields of other sections (``rotor.chord``); the latter are checked when
+the sections are assembled into a :class:`Config`.
+
+Examples
+--------
+>>> from tefcore.config_io import load_config
+>>> cfg = load_config("mdart")
+>>> cfg.get("flap.overhang")
+0.29
+>>> stiff = cfg.with_overrides({"hub.pitch_link_stiffness": "800 lb/in"})
+>>> round(stiff.hub.pitch_link_stiffness, 2)
+140101.47
+>>> cfg.with_overrides({"flap.overhang": 1.2})
+Traceback (most recent call last):
+...
+ValueError: flap.overhang = 1.2 is outside the allowed range [0, 1)
+"""
+
+from __future__ import annotations
+
+import ast
+import dataclasses
+import difflib
+import math
+import numbers
+import re
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, field
+from types import MappingProxyType
+from typing import Any
+
+import numpy as np
+from scipy import integrate
+
+from .units import DIMENSIONS, SI_UNITS, parse_quantity, parse_unit
+
+__all__ = [
+    "BLADE_PROPERTIES",
+    "REFERENCE_PARAMS",
+    "REQUIRED",
+    "SECTIONS",
+    "ActuatorConfig",
+    "BladeConfig",
+    "Config",
+    "FlapConfig",
+    "FlightConfig",
+    "HubConfig",
+    "ModelConfig",
+    "Param",
+    "RotorConfig",
+    "coerce_value",
+    "load_config",
+    "resolve_field",
+    "save_config",
+]
+
+
+class _Required:
+    def __repr__(self) -> str:
+        return "REQUIRED"
+
+
+#: Sentinel default of a field that must be given explicitly.
+REQUIRED: Any = _Required()
+
+# Tolerance for geometric equalities built from decimal fractions of R
+# (e.g. 0.83 + 0.18/2 == 0.92 only to rounding).
+_GEOM_TOL = 1e-12
+
+_RANGE = re.compile(r"^\s*([\[(])([^,]+),([^,]+)([\])])\s*$")
+_BOUND_NODES = (
+    ast.Expression, ast.BinOp, ast.UnaryOp, ast.Constant, ast.Name, ast.Attribute,
+    ast.Load, ast.Add, ast.Sub, ast.Mult, ast.Div, ast.USub, ast.UAdd,
+)  # fmt: skip
+_BOUND_CONSTANTS = {"inf": math.inf, "pi": math.pi}
+
+
+def _compile_bound(text: str) -> ast.Expression:
+    tree = ast.parse(text.strip(), mode="eval")
+    for node in ast.walk(tree):
+        if not isinstance(node, _BOUND_NODES) or (
+            isinstance(node, ast.Attribute) and not isinstance(node.value, ast.Name)
+        ):
+            raise ValueError(f"unsupported range bound {text!r}")
+    return tree
+
+
+def _eval_bound(node: ast.AST, lookup: Callable[[str], Any]) -> float:
+    match node:
+        case ast.Expression(body=body):
+            return _eval_bound(body, lookup)
+        case ast.Constant(value=value):
+            return float(value)
+        case ast.Name(id=name):
+            return _BOUND_CONSTANTS[name] if name in _BOUND_CONSTANTS else float(lookup(name))
+        case ast.Attribute(value=ast.Name(id=section), attr=name):
+            return float(lookup(f"{section}.{name}"))
+        case ast.UnaryOp(op=op, operand=operand):
+            value = _eval_bound(operand, lookup)
+            return -value if isinstance(op, ast.USub) else value
+        case ast.BinOp(left=left, op=op, right=right):
+            a, b = _eval_bound(left, lookup), _eval_bound(right, lookup)
+            ops = {ast.Add: a.__add__, ast.Sub: a.__sub__, ast.Mult: a.__mul__}
+            return ops[type(op)](b) if type(op) in ops else a / b
+    raise ValueError(f"unsupported range bound {ast.dump(node)}")
+
+
+def _refs(tree: ast.AST) -> set[str]:
+    names = {n.id for n in ast.walk(tree) if isinstance(n, ast.Name)}
+    dotted = {f"{n.value.id}.{n.attr}" for n in ast.walk(tree) if isinstance(n, ast.Attribute)}
+    sections = {d.split(".")[0] for d in dotted}
+    return (names - sections - set(_BOUND_CONSTANTS)) | dotted
+
+
+@dataclass(frozen=True)
+class Param:
+    """One declared setting: the single source of truth for a field.
+
+    Parameters
+    ----------
+    name : str
+        Field name inside its section.
+    dimension : str
+        Key of :data:`tefcore.units.DIMENSIONS`; values are stored in
+        ``SI_UNITS[dimension]``.
+    default : object
+        Default value, or :data:`REQUIRED`.
+    range : str
+        Allowed interval such as ``"[0, 1)"``; bounds are numbers, ``inf``,
+        ``pi`` or small expressions of other fields (``"radius/2"``,
+        ``"-rotor.chord"``).  Empty for strings.
+    doc : str
+        One-line meaning.
+    kind : {'float', 'int', 'str', 'array'}
+        Value type; arrays are checked element by element.
+    choices : tuple of str
+        Allowed values of a ``'str'`` field (empty: any string).
+    optional : bool
+        Whether None is allowed.
+
+    Examples
+    --------
+    >>> p = Param("chord", "length", REQUIRED, "(0, radius/2]", "Blade chord.")
+    >>> p.limits({"radius": 2.0}.__getitem__)
+    (0.0, 1.0)
+    >>> p.unit
+    'm'
+    """
+
+    name: str
+    dimension: str
+    default: Any
+    range: str
+    doc: str
+    kind: str = "float"
+    choices: tuple[str, ...] = ()
+    optional: bool = False
+    _bounds: tuple = field(init=False, repr=False, compare=False)
+
+    def __post_init__(self):
+        if self.dimension not in DIMENSIONS:
+            raise ValueError(f"Param {self.name!r}: unknown dimension {self.dimension!r}")
+        if self.kind not in ("float", "int", "str", "array"):
+            raise ValueError(f"Param {self.name!r}: unknown kind {self.kind!r}")
+        bounds: tuple = ()
+        if self.kind != "str":
+            m = _RANGE.match(self.range)
+            if m is None:
+                raise ValueError(f"Param {self.name!r}: cannot parse range {self.range!r}")
+            lo, hi = _compile_bound(m.group(2)), _compile_bound(m.group(3))
+            bounds = (lo, hi, m.group(1) == "[", m.group(4) == "]", _refs(lo) | _refs(hi))
+        object.__setattr__(self, "_bounds", bounds)
+
+    @property
+    def required(self) -> bool:
+        """True if the field has no default."""
+        return self.default is REQUIRED
+
+    @property
+    def unit(self) -> str:
+        """SI unit of the stored value (``''`` if dimensionless)."""
+        unit = SI_UNITS[self.dimension]
+        return "" if unit == "1" else unit
+
+    @property
+    def refs(self) -> frozenset[str]:
+        """Fields referenced by the range bounds (dotted = other section)."""
+        return frozenset(self._bounds[4]) if self._bounds else frozenset()
+
+    @property
+    def closed(self) -> tuple[bool, bool]:
+        """Whether the lower and upper bounds are included."""
+        return self._bounds[2], self._bounds[3]
+
+    def limits(self, lookup: Callable[[str], Any]) -> tuple[float | None, float | None]:
+        """Evaluate the bounds; a bound whose reference `lookup` lacks is None.
+
+        Parameters
+        ----------
+        lookup : callable
+            Maps a field name (``"radius"`` or ``"rotor.chord"``) to its value;
+            raises KeyError (or AttributeError) if unavailable.
+
+        Returns
+        -------
+        lo, hi : float or None
+        """
+        out = []
+        for tree in self._bounds[:2]:
+            try:
+                out.append(_eval_bound(tree, lookup))
+            except (KeyError, AttributeError):
+                out.append(None)
+        return out[0], out[1]
+
+    def range_error(self, value, dotted: str, lookup: Callable[[str], Any]) -> str | None:
+        """Message if `value` (scalar or array) is outside the range, else None."""
+        if self.kind == "str" or value is None:
+            return None
+        lo, hi = self.limits(lookup)
+        lo_in, hi_in = self.closed
+        arr = np.asarray(value, dtype=float)
+        bad = np.zeros(arr.shape, dtype=bool)
+        if lo is not None:
+            bad |= arr < lo if lo_in else arr <= lo
+        if hi is not None:
+            bad |= arr > hi if hi_in else arr >= hi
+        if not bad.any():
+            return None
+        i = int(np.flatnonzero(bad)[0])
+        where = f"{dotted}[{i}]" if arr.ndim else dotted
+        unit = f" {self.unit}" if self.unit else ""
+        resolved = ""
+        if self.refs:
+            resolved = f" = {'[' if lo_in else '('}{_fmt(lo)}, {_fmt(hi)}{']' if hi_in else ')'}"
+        return (
+            f"{where} = {_fmt(arr.flat[i] if arr.ndim else value)}{unit} "
+            f"is outside the allowed range {self.range.strip()}{resolved}{unit}"
+        )
+
+
+def _fmt(value) -> str:
+    if value is None:
+        return "?"
+    if isinstance(value, numbers.Integral) and not isinstance(value, bool):
+        return str(int(value))
+    return repr(float(value)) if isinstance(value, numbers.Real) else repr(value)
+
+
+def _is_number(value) -> bool:
+    return isinstance(value, numbers.Real) and not isinstance(value, (bool, np.bool_))
+
+
+def _unit_factor(p: Param, unit, dotted: str) -> float:
+    if p.kind in ("int", "str"):
+        raise ValueError(f"{dotted} takes no unit, got unit {unit!r}")
+    if not isinstance(unit, str):
+        raise ValueError(f"{dotted}: unit must be a string, got {unit!r}")
+    try:
+        return parse_unit(unit, p.dimension)[0]
+    except ValueError as err:
+        raise ValueError(f"{dotted}: {err}") from None
+
+
+def coerce_value(p: Param, raw, dotted: str):
+    """Convert user input for field `p` to its stored SI form, or raise.
+
+    Parameters
+    ----------
+    p : Param
+        Field declaration.
+    raw : object
+        A number (SI), a ``"value unit"`` string, a sequence (arrays), or a
+        table ``{value|values = ..., unit = ..., source = ...}``.
+    dotted : str
+        Dotted field name used in error messages.
+
+    Returns
+    -------
+    float, int, str, None or read-only numpy.ndarray
+
+    Raises
+    ------
+    ValueError
+        Wrong type, bool, NaN/inf, bad unit, or malformed table.
+
+    Examples
+    --------
+    >>> p = Param("radius", "length", REQUIRED, "(0, 100]", "Rotor radius.")
+    >>> coerce_value(p, {"value": 17, "unit": "ft", "source": "Table 1"}, "rotor.radius")
+    5.1815999999999995
+    >>> coerce_value(p, True, "rotor.radius")
+    Traceback (most recent call last):
+    ...
+    ValueError: rotor.radius must be a number, got bool True
+    """
+    factor, has_unit = 1.0, False
+    if isinstance(raw, Mapping):
+        key = "values" if p.kind == "array" else "value"
+        unknown = sorted(set(raw) - {key, "unit", "source"})
+        if unknown:
+            raise ValueError(
+                f"{dotted}: unknown key(s) {', '.join(map(repr, unknown))} in table; "
+                f"allowed keys are {key!r}, 'unit', 'source'"
+            )
+        if key not in raw:
+            raise ValueError(f"{dotted}: table has no {key!r}")
+        if "unit" in raw:
+            factor, has_unit = _unit_factor(p, raw["unit"], dotted), True
+        raw = raw[key]
+    if raw is None and p.optional:
+        return None
+    if p.kind == "str":
+        if not isinstance(raw, str):
+            raise ValueError(f"{dotted} must be a string, got {raw!r}")
+        if p.choices and raw not in p.choices:
+            raise ValueError(f"{dotted} = {raw!r} is not one of {', '.join(map(repr, p.choices))}")
+        return raw
+    if p.kind == "array":
+        return _coerce_array(p, raw, factor, dotted)
+    if isinstance(raw, str) and p.kind == "float" and not has_unit:
+        try:
+            raw = parse_quantity(raw, p.dimension)
+        except ValueError as err:
+            raise ValueError(f"{dotted}: {err}") from None
+    if not _is_number(raw):
+        what = f"{type(raw).__name__} {raw!r}"
+        raise ValueError(
+            f"{dotted} must be {'an integer' if p.kind == 'int' else 'a number'}, got {what}"
+        )
+    value = float(raw) * factor
+    if not math.isfinite(value):
+        raise ValueError(f"{dotted} = {_fmt(raw)} is not finite")
+    if p.kind == "int":
+        if value != int(value):
+            raise ValueError(f"{dotted} = {_fmt(raw)} must be an integer")
+        return int(value)
+    return value
+
+
+def _coerce_array(p: Param, raw, factor: float, dotted: str) -> np.ndarray:
+    if isinstance(raw, str) and factor == 1.0:  # one quantity, broadcast later
+        try:
+            raw = parse_quantity(raw, p.dimension)
+        except ValueError as err:
+            raise ValueError(f"{dotted}: {err}") from None
+    if _is_number(raw):
+        arr = np.array(float(raw))
+    elif isinstance(raw, np.ndarray):
+        if raw.dtype.kind not in "iuf" or raw.ndim > 1:
+            raise ValueError(
+                f"{dotted} must be a 1-D array of numbers, got {raw.dtype} {raw.shape}"
+            )
+        arr = np.array(raw, dtype=float)
+    elif isinstance(raw, (list, tuple)):
+        for i, x in enumerate(raw):
+            if not _is_number(x):
+                raise ValueError(f"{dotted}[{i}] must be a number, got {type(x).__name__} {x!r}")
+        arr = np.array(raw, dtype=float).reshape(-1)
+    else:
+        raise ValueError(
+            f"{dotted} must be a sequence of numbers, got {type(raw).__name__} {raw!r}"
+        )
+    arr = arr * factor
+    bad = np.flatnonzero(~np.isfinite(arr))
+    if bad.size:
+        where = f"{dotted}[{bad[0]}]" if arr.ndim else dotted
+        raise ValueError(f"{where} = {_fmt(arr.flat[bad[0]])} is not finite")
+    arr.setflags(write=False)
+    return arr
+
+
+def _param_doc(p: Param) -> str:
+    kind = {"float": "float", "int": "int", "str": "str", "array": "array_like"}[p.kind]
+    spec = [f"Dimension {p.dimension} [{p.unit or '-'}]"] if p.kind != "str" else []
+    if p.range:
+        spec.append(f"range {p.range}")
+    if p.choices:
+        spec.append("one of " + ", ".join(map(repr, p.choices)))
+    spec.append("required" if p.required else f"default {_fmt(p.default)}")
+    opt = "" if p.required else ", optional"
+    return (
+        f"{p.name} : {kind}{' or None' if p.optional else ''}{opt}\n    {p.doc} {'; '.join(spec)}."
+    )
+
+
+class _Section:
+    """Base of the section dataclasses: coercion, checks and equality."""
+
+    SECTION = ""
+    PARAMS: tuple[Param, ...] = ()
+
+    def __post_init__(self):
+        for p in self.PARAMS:
+            value = coerce_value(p, getattr(self, p.name), self._dotted(p.name))
+            object.__setattr__(self, p.name, value)
+        self._normalize()
+        for p in self.PARAMS:
+            msg = p.range_error(getattr(self, p.name), self._dotted(p.name), self._lookup)
+            if msg:
+                raise ValueError(msg)
+        self._validate()
+
+    def _dotted(self, name: str) -> str:
+        return f"{self.SECTION}.{name}"
+
+    def _lookup(self, name: str):
+        if "." in name:  # another section: checked later by Config
+            raise KeyError(name)
+        return getattr(self, name)
+
+    def _normalize(self) -> None:
+        """Hook: reshape coerced values (arrays) before range checks."""
+
+    def _validate(self) -> None:
+        """Hook: checks involving several fields of this section."""
+
+    def __eq__(self, other):
+        if type(other) is not type(self):
+            return NotImplemented
+        for p in self.PARAMS:
+            a, b = getattr(self, p.name), getattr(other, p.name)
+            same = np.array_equal(a, b) if p.kind == "array" else a == b
+            if not same:
+                return False
+        return True
+
+    __hash__ = None  # type: ignore[assignment]
+
+    def __reduce__(self):
+        # Rebuild through the constructor so that unpickled copies (joblib
+        # workers, deepcopy) are re-validated and their arrays read-only.
+        return _rebuild, (type(self), {p.name: getattr(self, p.name) for p in self.PARAMS})
+
+
+def _rebuild(cls, kwargs):
+    return cls(**kwargs)
+
+
+def _section(name: str):
+    """Turn a `_Section` subclass with a PARAMS table into a frozen dataclass."""
+
+    def wrap(cls):
+        cls.SECTION = name
+        cls.__annotations__ = {}
+        for p in cls.PARAMS:
+            base = {"float": "float", "int": "int", "str": "str", "array": "np.ndarray"}[p.kind]
+            cls.__annotations__[p.name] = f"{base} | None" if p.optional else base
+            if not p.required:
+                setattr(cls, p.name, p.default)
+        table = "\n    ".join(_param_doc(p).replace("\n", "\n    ") for p in cls.PARAMS)
+        cls.__doc__ = cls.__doc__.replace("{params}", table)
+        return dataclass(frozen=True, eq=False, kw_only=True)(cls)
+
+    return wrap
+
+
+@_section("rotor")
+class RotorConfig(_Section):
+    """Rotor geometry, rotor speed, airfoil aerodynamics and atmosphere.
+
+    Parameters
+    ----------
+    {params}
+
+    Examples
+    --------
+    >>> from tefcore.config_io import load_config
+    >>> rotor = load_config("mdart").rotor
+    >>> round(rotor.solidity, 4)
+    0.078
+    """
+
+    PARAMS = (
+        Param("n_blades", "dimensionless", REQUIRED, "[1, 12]", "Number of blades.", "int"),
+        Param("radius", "length", REQUIRED, "(0, 100]", "Rotor radius R."),
+        Param("rotor_speed", "angular_velocity", REQUIRED, "(0, 200]", "Rotor speed Omega."),
+        Param("chord", "length", REQUIRED, "(0, radius/2]", "Blade chord c."),
+        Param("root_offset", "dimensionless", REQUIRED, "[0, 0.5)",
+              "Structural root / R, where the equivalent bearingless-hub root springs attach."),
+        Param("root_cutout", "dimensionless", REQUIRED, "[root_offset, 0.5)",
+              "Start of the aerodynamic span / R."),
+        Param("precone", "angle", 0.0, "[-0.2, 0.2]", "Precone angle."),
+        Param("lift_slope", "per_angle", 2 * math.pi, "(0, 8]", "Section lift-curve slope a."),
+        Param("cd0", "dimensionless", 0.01, "[0, 0.1]", "Drag polar Cd = cd0 + cd1 a + cd2 a^2."),
+        Param("cd1", "dimensionless", 0.0, "[-1, 1]", "Linear drag-polar coefficient."),
+        Param("cd2", "dimensionless", 0.0, "[0, 10]", "Quadratic drag-polar coefficient."),
+        Param("cm0", "dimensionless", 0.0, "[-0.2, 0.2]", "Section pitching moment about c/4."),
+        Param("air_density", "density", 1.225, "(0, 2]", "Air density rho."),
+        Param("speed_of_sound", "velocity", 340.294, "[200, 400]", "Speed of sound."),
+        Param("elastic_axis", "dimensionless", 0.25, "[0, 1]",
+              "Elastic axis aft of the leading edge / c."),
+    )  # fmt: skip
+
+    @property
+    def solidity(self) -> float:
+        """Rotor solidity N c / (pi R)."""
+        return self.n_blades * self.chord / (math.pi * self.radius)
+
+    @property
+    def tip_speed(self) -> float:
+        """Tip speed Omega R [m/s]."""
+        return self.rotor_speed * self.radius
+
+
+#: Spanwise property arrays of the blade, in the order of BladeConfig.section.
+BLADE_PROPERTIES = (
+    "mass", "ei_flap", "ei_lag", "gj", "ea", "im_flap", "im_lag",
+    "cg_offset", "tension_offset", "ka", "twist",
+)  # fmt: skip
+_SCALES = {"mass": "mass_scale", "im_flap": "mass_scale", "im_lag": "mass_scale",
+           "ei_flap": "ei_flap_scale", "ei_lag": "ei_lag_scale", "gj": "gj_scale",
+           "ea": "ea_scale"}  # fmt: skip
+
+
+@_section("blade")
+class BladeConfig(_Section):
+    """Spanwise blade section properties, piecewise linear between stations.
+
+    Property arrays have one value per station; a scalar is broadcast.
+    Chordwise offsets are positive toward the leading edge.
+
+    Parameters
+    ----------
+    {params}
+
+    Examples
+    --------
+    >>> from tefcore.config_io import load_config
+    >>> blade = load_config("mdart").blade
+    >>> sorted(blade.section([0.5, 1.0])) == sorted(BLADE_PROPERTIES)
+    True
+    """
+
+    PARAMS = (
+        Param("stations", "dimensionless", REQUIRED, "[0, 1]",
+              "Radial stations / R, strictly increasing from rotor.root_offset to 1.", "array"),
+        Param("mass", "mass_per_length", REQUIRED, "(0, inf)", "Mass per length.", "array"),
+        Param("ei_flap", "bending_stiffness", REQUIRED, "(0, inf)",
+              "Flapwise (out-of-plane) bending stiffness.", "array"),
+        Param("ei_lag", "bending_stiffness", REQUIRED, "(0, inf)",
+              "Chordwise (in-plane) bending stiffness.", "array"),
+        Param("gj", "torsional_stiffness", REQUIRED, "(0, inf)", "Torsional stiffness.", "array"),
+        Param("ea", "force", REQUIRED, "(0, inf)", "Axial stiffness.", "array"),
+        Param("im_flap", "inertia_per_length", 0.0, "[0, inf)",
+              "Mass moment of inertia about the chord line, int rho zeta^2 dA.", "array"),
+        Param("im_lag", "inertia_per_length", 0.0, "[0, inf)",
+              "Mass moment of inertia about the flapwise axis, int rho eta^2 dA.", "array"),
+        Param("cg_offset", "length", 0.0, "(-rotor.chord, rotor.chord)",
+              "Section CG ahead of the elastic axis.", "array"),
+        Param("tension_offset", "length", 0.0, "(-rotor.chord, rotor.chord)",
+              "Tension axis ahead of the elastic axis.", "array"),
+        Param("ka", "length", 0.0, "[0, inf)",
+              "Polar radius of gyration of the tension-carrying area.", "array"),
+        Param("twist", "angle", 0.0, "(-0.7, 0.7)", "Built-in pretwist.", "array"),
+        Param("mass_scale", "dimensionless", 1.0, "(0, 100]",
+              "Factor on mass, im_flap and im_lag."),
+        Param("ei_flap_scale", "dimensionless", 1.0, "(0, 100]", "Factor on ei_flap."),
+        Param("ei_lag_scale", "dimensionless", 1.0, "(0, 100]", "Factor on ei_lag."),
+        Param("gj_scale", "dimensionless", 1.0, "(0, 100]", "Factor on gj."),
+        Param("ea_scale", "dimensionless", 1.0, "(0, 100]", "Factor on ea."),
+    )  # fmt: skip
+
+    def _normalize(self) -> None:
+        # Stations first: the other arrays are checked against them.
+        s = self.stations
+        if s.ndim != 1 or s.size < 2:
+            raise ValueError(f"blade.stations needs at least 2 stations, got {s.size}")
+        step = np.flatnonzero(np.diff(s) <= 0)
+        if step.size:
+            i = int(step[0]) + 1
+            raise ValueError(
+                f"blade.stations[{i}] = {_fmt(s[i])} is not greater than "
+                f"blade.stations[{i - 1}] = {_fmt(s[i - 1])}; stations must increase strictly"
+            )
+        if abs(s[-1] - 1.0) > _GEOM_TOL:
+            raise ValueError(f"blade.stations[{s.size - 1}] = {_fmt(s[-1])} must be 1.0 (the tip)")
+        for name in BLADE_PROPERTIES:
+            arr = getattr(self, name)
+            if arr.ndim == 0:
+                arr = np.full(s.size, float(arr))
+                arr.setflags(write=False)
+                object.__setattr__(self, name, arr)
+            elif arr.size != s.size:
+                raise ValueError(
+                    f"blade.{name} has {arr.size} values but blade.stations has {s.size}"
+                )
+
+    def section(self, x) -> dict[str, np.ndarray]:
+        """Scaled section properties at radial positions `x`.
+
+        Parameters
+        ----------
+        x : array_like
+            Radial positions / R within ``[stations[0], 1]``.
+
+        Returns
+        -------
+        dict of str to numpy.ndarray
+            Keys are :data:`BLADE_PROPERTIES`; values are linearly
+            interpolated, with the scale factors applied.
+
+        Raises
+        ------
+        ValueError
+            If any `x` lies outside the blade.
+        """
+        x = np.asarray(x, dtype=float)
+        lo = self.stations[0]
+        if x.size and (np.nanmin(x) < lo - _GEOM_TOL or np.nanmax(x) > 1.0 + _GEOM_TOL
+                       or np.isnan(x).any()):  # fmt: skip
+            raise ValueError(f"section positions must lie within [{_fmt(lo)}, 1.0]")
+        out = {}
+        for name in BLADE_PROPERTIES:
+            values = np.interp(x, self.stations, getattr(self, name))
+            scale = _SCALES.get(name)
+            out[name] = values * getattr(self, scale) if scale else values
+        return out
+
+    def reference_mass(self) -> float:
+        """Rotor mass unit m0 = 3 I_b / R^3 = 3 int m x^2 dx [kg/m], x = r/R.
+
+        Independent of R because I_b = R^3 int m x^2 dx (r measured from the
+        rotation axis, from the structural root to the tip); mass_scale is
+        applied.
+
+        Returns
+        -------
+        float
+
+        Examples
+        --------
+        >>> blade = BladeConfig(stations=[0.0, 1.0], mass=2.0, ei_flap=1.0,
+        ...                     ei_lag=1.0, gj=1.0, ea=1.0)
+        >>> blade.reference_mass()  # uniform blade from the axis: m0 = m
+        2.0
+        """
+        m = self.mass * self.mass_scale
+        # m x^2 is cubic on each linear segment: 3-point Gauss is exact there.
+        return 3.0 * math.fsum(
+            integrate.fixed_quad(lambda x: np.interp(x, self.stations, m) * x**2, a, b, n=3)[0]
+            for a, b in zip(self.stations[:-1], self.stations[1:], strict=True)
+        )
+
+    def flapping_inertia(self, radius: float) -> float:
+        """Blade flapping inertia I_b = int m r^2 dr = m0 R^3 / 3 [kg m^2].
+
+        Parameters
+        ----------
+        radius : float
+            Rotor radius R [m].
+        """
+        return self.reference_mass() * radius**3 / 3.0
+
+
+@_section("hub")
+class HubConfig(_Section):
+    """Equivalent bearingless hub: control linkage and root springs/damper.
+
+    Parameters
+    ----------
+    {params}
+    """
+
+    PARAMS = (
+        Param("pitch_link_stiffness", "force_per_length", REQUIRED, "(0, inf)",
+              "Pitch-link axial stiffness."),
+        Param("pitch_horn_arm", "length", REQUIRED, "(0, inf)", "Pitch-horn arm."),
+        Param("flap_spring", "moment_per_angle", REQUIRED, "[0, inf)",
+              "Equivalent flexbeam flap root spring."),
+        Param("lag_spring", "moment_per_angle", REQUIRED, "[0, inf)",
+              "Equivalent flexbeam lag root spring."),
+        Param("lag_damper", "moment_damping", 0.0, "[0, inf)",
+              "Equivalent elastomeric lag damper/snubber (rotational)."),
+        Param("torsion_spring_parallel", "moment_per_angle", 0.0, "[0, inf)",
+              "Flexbeam torsion spring in parallel with the pitch-link path."),
+    )  # fmt: skip
+
+    @property
+    def pitch_link_torsion_stiffness(self) -> float:
+        """Pitch-link stiffness seen in pitch, k_pl h^2 [N m/rad]."""
+        return self.pitch_link_stiffness * self.pitch_horn_arm**2
+
+
+@_section("flap")
+class FlapConfig(_Section):
+    """Trailing-edge flap geometry and inertia (paper notation c_f, c_b, c_cg).
+
+    Parameters
+    ----------
+    {params}
+    """
+
+    PARAMS = (
+        Param("midspan", "dimensionless", REQUIRED, "(0, 1)", "Flap midspan station / R."),
+        Param("span", "dimensionless", REQUIRED, "(0, 1)", "Flap span / R."),
+        Param("chord_ratio", "dimensionless", REQUIRED, "(0, 1)", "Flap chord c_f / c."),
+        Param("overhang", "dimensionless", REQUIRED, "[0, 1)",
+              "Hinge aft of the flap leading edge, c_b / c_f."),
+        Param("cg_offset", "dimensionless", 0.0, "[-1, 1]",
+              "Flap CG aft of the hinge, c_cg / c_f."),
+        Param("mass", "mass_per_length", REQUIRED, "[0, inf)", "Flap mass per span."),
+        Param("inertia_cg", "inertia_per_length", REQUIRED, "[0, inf)",
+              "Flap mass moment of inertia per span about its own CG."),
+    )  # fmt: skip
+
+    @property
+    def inboard(self) -> float:
+        """Inboard edge / R."""
+        return self.midspan - self.span / 2
+
+    @property
+    def outboard(self) -> float:
+        """Outboard edge / R."""
+        return self.midspan + self.span / 2
+
+    def inertia_hinge(self, chord: float) -> float:
+        """Inertia per span about the hinge [kg m] for blade chord `chord` [m]."""
+        return self.inertia_cg + self.mass * (self.cg_offset * self.chord_ratio * chord) ** 2
+
+
+@_section("actuator")
+class ActuatorConfig(_Section):
+    """Flap actuator: torsional spring k_a and damper c_a in series with the flap.
+
+    Parameters
+    ----------
+    {params}
+    """
+
+    PARAMS = (
+        Param("stiffness", "moment_per_angle", REQUIRED, "(0, inf)", "Actuator stiffness k_a."),
+        Param("damping", "moment_damping", 0.0, "[0, inf)", "Actuator damping c_a."),
+    )
+
+
+@_section("flight")
+class FlightConfig(_Section):
+    """Flight condition, trim target and prescribed actuator input.
+
+    The shaft angle is positive for forward tilt (nose down, as in level
+    flight).  The actuator input is delta_a = A cos(n psi - phase).
+
+    Parameters
+    ----------
+    {params}
+    """
+
+    PARAMS = (
+        Param("advance_ratio", "dimensionless", 0.0, "[0, 0.6]", "Advance ratio mu."),
+        Param("shaft_angle", "angle", 0.0, "[-0.6, 0.6]", "Shaft tilt, positive forward."),
+        Param("ct_sigma", "dimensionless", 0.075, "[0, 0.2]", "Trim thrust target C_T/sigma."),
+        Param("collective", "angle", None, "[-0.2, 0.5]",
+              "Prescribed collective (hover), used instead of ct_sigma when given.",
+              optional=True),
+        Param("actuator_amplitude", "angle", 0.0, "[0, 0.35]", "Actuator amplitude A."),
+        Param("actuator_harmonic", "dimensionless", 0, "[0, 10]",
+              "Actuator harmonic n (per rev).", "int"),
+        Param("actuator_phase", "angle", 0.0, "[-2*pi, 2*pi]", "Actuator phase."),
+    )  # fmt: skip
+
+
+@_section("model")
+class ModelConfig(_Section):
+    """Discretisation and aerodynamic model choices.
+
+    Parameters
+    ----------
+    {params}
+    """
+
+    PARAMS = (
+        Param("n_elements", "dimensionless", 20, "[2, 200]", "Beam finite elements.", "int"),
+        Param("n_modes", "dimensionless", 9, "[1, 60]", "Coupled modes retained.", "int"),
+        Param("aero_model", "dimensionless", "thin_airfoil", "", "Section aerodynamics.", "str",
+              choices=("thin_airfoil", "c81")),
+        Param("c81_deck", "dimensionless", "", "", "C81 table file (aero_model = 'c81').", "str"),
+    )  # fmt: skip
+
+    def _validate(self) -> None:
+        if self.aero_model == "c81" and not self.c81_deck:
+            raise ValueError("model.c81_deck must name a deck when model.aero_model = 'c81'")
+
+
+#: Section name -> section class, in file order.
+SECTIONS: dict[str, type[_Section]] = {
+    cls.SECTION: cls
+    for cls in (RotorConfig, BladeConfig, HubConfig, FlapConfig, ActuatorConfig,
+                FlightConfig, ModelConfig)
+}  # fmt: skip
+_TOP_LEVEL = ("name", "description")
+
+#: Stated values in [reference]: checks against derived quantities, not inputs.
+REFERENCE_PARAMS: dict[str, Param] = {
+    p.name: p
+    for p in (
+        Param("lock_number", "dimensionless", None, "(0, inf)", "Lock number.", optional=True),
+        Param("solidity", "dimensionless", None, "(0, 1)", "Rotor solidity.", optional=True),
+        Param("tip_speed", "velocity", None, "(0, inf)", "Tip speed.", optional=True),
+    )
+}
+
+
+def _close(word: str, options) -> str:
+    near = difflib.get_close_matches(word, list(options), n=3, cutoff=0.6)
+    return f"; did you mean {' or '.join(map(repr, near))}?" if near else ""
+
+
+def resolve_field(key: str) -> tuple[str | None, str]:
+    """Split a dotted field name into (section, field), checking both exist.
+
+    Returns ``(None, name)`` for the top-level ``name``/``description``.
+
+    Raises
+    ------
+    ValueError
+        Unknown section or field, with close matches.
+
+    Examples
+    --------
+    >>> resolve_field("flap.overhang")
+    ('flap', 'overhang')
+    >>> resolve_field("flap.overhng")
+    Traceback (most recent call last):
+    ...
+    ValueError: unknown field 'flap.overhng'; did you mean 'flap.overhang'?
+    """
+    if not isinstance(key, str):
+        raise ValueError(f"field names must be strings, got {key!r}")
+    section, dot, name = key.partition(".")
+    if not dot and key in _TOP_LEVEL:
+        return None, key
+    cls = SECTIONS.get(section)
+    if cls is None or not dot or name not in {p.name for p in cls.PARAMS}:
+        every = [f"{s}.{p.name}" for s, c in SECTIONS.items() for p in c.PARAMS]
+        raise ValueError(f"unknown field {key!r}{_close(key, [*every, *_TOP_LEVEL])}")
+    return section, name
+
+
+@dataclass(frozen=True, eq=False, kw_only=True)
+class Config:
+    """Complete, validated rotor configuration (SI units).
+
+    Sections may be given as section objects or as mappings of their fields.
+    `sources` (dotted name -> provenance) and `reference` (stated values,
+    see :data:`REFERENCE_PARAMS`) are carried along but are not part of
+    equality.
+
+    Raises
+    ------
+    ValueError
+        If any field, or any relation between fields, is invalid; the
+        message names the dotted field(s).
+
+    Examples
+    --------
+    >>> from tefcore.config_io import load_config
+    >>> cfg = load_config("mdart")
+    >>> round(cfg.lock_number, 2)
+    9.17
+    >>> cfg.with_overrides({"flap.midspan": 0.95})
+    Traceback (most recent call last):
+    ...
+    ValueError: flap.midspan + flap.span/2 = 1.04 lies beyond the blade tip (1)
+    """
+
+    rotor: RotorConfig
+    blade: BladeConfig
+    hub: HubConfig
+    flap: FlapConfig
+    actuator: ActuatorConfig
+    flight: FlightConfig = field(default_factory=FlightConfig)
+    model: ModelConfig = field(default_factory=ModelConfig)
+    name: str = ""
+    description: str = ""
+    reference: Mapping[str, float] = field(default_factory=dict, repr=False)
+    sources: Mapping[str, str] = field(default_factory=dict, repr=False)
+
+    def __post_init__(self):
+        for name, cls in SECTIONS.items():
+            value = getattr(self, name)
+            if isinstance(value, Mapping):
+                unknown = sorted(set(value) - {p.name for p in cls.PARAMS})
+                if unknown:
+                    raise ValueError(f"unknown field(s) {', '.join(map(repr, unknown))} in {name}")
+                object.__setattr__(self, name, value := cls(**value))
+            if not isinstance(value, cls):
+                raise ValueError(f"{name} must be a {cls.__name__}, got {type(value).__name__}")
+        for name in _TOP_LEVEL:
+            if not isinstance(getattr(self, name), str):
+                raise ValueError(f"{name} must be a string, got {getattr(self, name)!r}")
+        reference = {}
+        for key, raw in self.reference.items():
+            p = REFERENCE_PARAMS.get(key)
+            if p is None:
+                raise ValueError(f"unknown reference value {key!r}{_close(key, REFERENCE_PARAMS)}")
+            reference[key] = coerce_value(p, raw, f"reference.{key}")
+            if msg := p.range_error(reference[key], f"reference.{key}", self._lookup):
+                raise ValueError(msg)
+        object.__setattr__(self, "reference", MappingProxyType(reference))
+        object.__setattr__(self, "sources", MappingProxyType(dict(self.sources)))
+        self._check_relations()
+
+    def _lookup(self, key: str):
+        section, name = resolve_field(key)
+        return getattr(getattr(self, section), name) if section else getattr(self, name)
+
+    def _check_relations(self) -> None:
+        # Ranges that reference other sections (skipped by the sections).
+        for sname, cls in SECTIONS.items():
+            section = getattr(self, sname)
+            if not any("." in r for p in cls.PARAMS for r in p.refs):
+                continue
+
+            def lookup(key, section=section):
+                return self._lookup(key) if "." in key else getattr(section, key)
+
+            for p in cls.PARAMS:
+                if any("." in r for r in p.refs):
+                    msg = p.range_error(getattr(section, p.name), f"{sname}.{p.name}", lookup)
+                    if msg:
+                        raise ValueError(msg)
+        rotor, flap = self.rotor, self.flap
+        s0 = self.blade.stations[0]
+        if abs(s0 - rotor.root_offset) > _GEOM_TOL:
+            raise ValueError(
+                f"blade.stations[0] = {_fmt(s0)} must equal rotor.root_offset = "
+                f"{_fmt(rotor.root_offset)} (the blade starts at the structural root)"
+            )
+        if flap.inboard < rotor.root_cutout - _GEOM_TOL:
+            raise ValueError(
+                f"flap.midspan - flap.span/2 = {flap.inboard:.6g} lies inboard of "
+                f"rotor.root_cutout = {_fmt(rotor.root_cutout)}"
+            )
+        if flap.outboard > 1.0 + _GEOM_TOL:
+            raise ValueError(
+                f"flap.midspan + flap.span/2 = {flap.outboard:.6g} lies beyond the blade tip (1)"
+            )
+        if 1.0 - flap.chord_ratio < rotor.elastic_axis - _GEOM_TOL:
+            raise ValueError(
+                f"flap.chord_ratio = {_fmt(flap.chord_ratio)} does not fit behind the elastic "
+                f"axis: flap leading edge at {1.0 - flap.chord_ratio:.6g} c is ahead of "
+                f"rotor.elastic_axis = {_fmt(rotor.elastic_axis)}"
+            )
+
+    def __eq__(self, other):
+        if not isinstance(other, Config):
+            return NotImplemented
+        return all(getattr(self, n) == getattr(other, n) for n in (*SECTIONS, *_TOP_LEVEL))
+
+    __hash__ = None  # type: ignore[assignment]
+
+    def __reduce__(self):
+        # MappingProxyType cannot be pickled: hand plain dicts to the constructor.
+        kwargs = {f.name: getattr(self, f.name) for f in dataclasses.fields(self)}
+        kwargs.update(reference=dict(self.reference), sources=dict(self.sources))
+        return _rebuild, (Config, kwargs)
+
+    def get(self, key: str):
+        """Value of a dotted field, e.g. ``cfg.get("flap.cg_offset")`` (SI).
+
+        Raises
+        ------
+        ValueError
+            Unknown field (with close matches).
+        """
+        return self._lookup(key)
+
+    def with_overrides(self, overrides: Mapping[str, Any]) -> Config:
+        """Return a new validated Config with dotted fields replaced.
+
+        Parameters
+        ----------
+        overrides : mapping
+            Dotted name -> SI number, ``"value unit"`` string, sequence
+            (blade arrays) or ``{value|values, unit, source}`` table.
+            Overrides are applied together, then validated.
+
+        Returns
+        -------
+        Config
+            A new object; `self` is unchanged.  ``sources`` records each
+            override.
+
+        Raises
+        ------
+        ValueError
+            Unknown field (with close matches) or invalid result.
+
+        Examples
+        --------
+        >>> from tefcore.config_io import load_config
+        >>> cfg = load_config("mdart")
+        >>> cfg.with_overrides({"flap.cg_offset": 0.33}).flap.cg_offset, cfg.flap.cg_offset
+        (0.33, 0.0)
+        """
+        per_section: dict[str, dict[str, Any]] = {}
+        top: dict[str, Any] = {}
+        sources = dict(self.sources)
+        for key, value in overrides.items():
+            section, name = resolve_field(key)
+            (per_section.setdefault(section, {}) if section else top)[name] = value
+            given = value.get("source") if isinstance(value, Mapping) else None
+            sources[key] = given if isinstance(given, str) else f"override: {value!r}"
+        new = {s: dataclasses.replace(getattr(self, s), **kw) for s, kw in per_section.items()}
+        return dataclasses.replace(self, **new, **top, sources=sources)
+
+    @property
+    def flapping_inertia(self) -> float:
+        """Blade flapping inertia I_b [kg m^2] about the rotation axis."""
+        return self.blade.flapping_inertia(self.rotor.radius)
+
+    @property
+    def reference_mass(self) -> float:
+        """Nondimensional mass unit m0 = 3 I_b / R^3 [kg/m]."""
+        return self.blade.reference_mass()
+
+    @property
+    def lock_number(self) -> float:
+        """Lock number gamma = rho a c R^4 / I_b."""
+        r = self.rotor
+        return r.air_density * r.lift_slope * r.chord * r.radius**4 / self.flapping_inertia
+
+    def reference_checks(self) -> dict[str, tuple[float, float]]:
+        """Stated reference values next to the values computed from the inputs.
+
+        Returns
+        -------
+        dict of str to (stated, computed)
+        """
+        computed = {
+            "lock_number": lambda: self.lock_number,
+            "solidity": lambda: self.rotor.solidity,
+            "tip_speed": lambda: self.rotor.tip_speed,
+        }
+        return {k: (v, computed[k]()) for k, v in self.reference.items()}
+
+
+def load_config(path_or_name) -> Config:
+    """Load a TOML file or packaged configuration; see :mod:`tefcore.config_io`."""
+    from .config_io import load_config as _load  # deferred: config_io imports this module
+
+    return _load(path_or_name)
+
+
+def save_config(cfg: Config, path):
+    """Write `cfg` as TOML; see :func:`tefcore.config_io.save_config`."""
+    from .config_io import save_config as _save
+
+    return _save(cfg, path)

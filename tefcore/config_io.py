@@ -1,0 +1,321 @@
+"""TOML reading and writing of :class:`tefcore.config.Config`, and settings docs.
+
+File layout: optional top-level ``name`` and ``description``, an optional
+``[reference]`` table of stated values (see
+:data:`tefcore.config.REFERENCE_PARAMS`), and one table per section.  A
+scalar field is a bare number (SI), a ``"value unit"`` string, or an inline
+table ``{value = 17.0, unit = "ft", source = "Table 1"}``; a blade array is a
+list (SI) or ``{values = [...], unit = "lb/ft", source = "..."}`` (often
+written as a ``[blade.mass]`` sub-table).  Unknown keys are errors.  Missing
+fields take their defaults; fields declared ``REQUIRED`` (all rotor
+geometry, the blade property tables, the hub springs and control linkage,
+the flap geometry and inertia, and the actuator stiffness) must be present.
+
+Examples
+--------
+>>> cfg = load_config("mdart")
+>>> cfg.sources["rotor.radius"]
+'Table 1: Rotor Diameter 34 ft'
+>>> loads_config(dumps_config(cfg)) == cfg
+True
+"""
+
+from __future__ import annotations
+
+import difflib
+import os
+import tomllib
+from collections.abc import Mapping
+from importlib import resources
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import tomli_w
+
+from .config import REFERENCE_PARAMS, SECTIONS, Config, Param
+
+__all__ = [
+    "available_configs",
+    "config_from_dict",
+    "config_to_dict",
+    "dumps_config",
+    "load_config",
+    "loads_config",
+    "save_config",
+    "settings_markdown",
+    "settings_table",
+]
+
+_PACKAGE_DATA = ("tefcore", "data")
+
+
+def _unknown_keys(keys, allowed, where: str) -> None:
+    unknown = [k for k in keys if k not in allowed]
+    if unknown:
+        hints = []
+        for k in unknown:
+            near = difflib.get_close_matches(k, list(allowed), n=1, cutoff=0.6)
+            hints.append(f"{k!r}" + (f" (did you mean {near[0]!r}?)" if near else ""))
+        raise ValueError(f"unknown key(s) in {where}: {', '.join(hints)}")
+
+
+def config_from_dict(data: Mapping[str, Any], *, origin: str = "config") -> Config:
+    """Build a Config from parsed TOML data.
+
+    Parameters
+    ----------
+    data : mapping
+        Parsed TOML document (see the module docstring for the layout).
+    origin : str
+        Prefix for error messages, usually the file name.
+
+    Returns
+    -------
+    Config
+        With ``sources`` from the ``source`` entries (``"default"`` for
+        defaulted fields).
+
+    Raises
+    ------
+    ValueError
+        Unknown keys, missing required fields, or invalid values; the
+        message starts with `origin` and names the dotted field.
+
+    Examples
+    --------
+    >>> config_from_dict({"rotor": {"radius": "17 ft"}}, origin="x.toml")  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    ValueError: x.toml: missing required field(s) rotor.n_blades, rotor.rotor_speed, ...
+    """
+    try:
+        return _from_dict(data)
+    except ValueError as err:
+        raise ValueError(f"{origin}: {err}") from None
+
+
+def _source_of(raw, dotted: str) -> str | None:
+    if isinstance(raw, Mapping) and "source" in raw:
+        if not isinstance(raw["source"], str):
+            raise ValueError(f"{dotted}: source must be a string, got {raw['source']!r}")
+        return raw["source"]
+    return None
+
+
+def _from_dict(data: Mapping[str, Any]) -> Config:
+    _unknown_keys(data, ["name", "description", "reference", *SECTIONS], "the top level")
+    sources: dict[str, str] = {}
+    sections: dict[str, Any] = {}
+    missing: list[str] = []
+    for sname, cls in SECTIONS.items():
+        table = data.get(sname, {})
+        if not isinstance(table, Mapping):
+            raise ValueError(f"[{sname}] must be a table, got {table!r}")
+        params = {p.name: p for p in cls.PARAMS}
+        _unknown_keys(table, params, f"[{sname}]")
+        for name, p in params.items():
+            dotted = f"{sname}.{name}"
+            if name in table:
+                if src := _source_of(table[name], dotted):
+                    sources[dotted] = src
+            elif p.required:
+                missing.append(dotted)
+            else:
+                sources[dotted] = "default"
+        sections[sname] = table
+    if missing:
+        raise ValueError(f"missing required field(s) {', '.join(missing)} (no defaults)")
+    reference = data.get("reference", {})
+    if not isinstance(reference, Mapping):
+        raise ValueError(f"[reference] must be a table, got {reference!r}")
+    _unknown_keys(reference, REFERENCE_PARAMS, "[reference]")
+    for key, raw in reference.items():
+        if src := _source_of(raw, f"reference.{key}"):
+            sources[f"reference.{key}"] = src
+    built = {name: cls(**sections[name]) for name, cls in SECTIONS.items()}
+    return Config(
+        **built,
+        name=data.get("name", ""),
+        description=data.get("description", ""),
+        reference=reference,
+        sources=sources,
+    )
+
+
+def _entry(p: Param, value, source: str | None) -> dict[str, Any]:
+    key = "values" if p.kind == "array" else "value"
+    entry: dict[str, Any] = {key: value.tolist() if isinstance(value, np.ndarray) else value}
+    if p.unit:
+        entry["unit"] = p.unit
+    if source:
+        entry["source"] = source
+    return entry
+
+
+def config_to_dict(cfg: Config) -> dict[str, Any]:
+    """TOML-ready nested dict of `cfg`: SI values with units and sources.
+
+    Optional fields set to None are left out (absent means None on loading).
+
+    Examples
+    --------
+    >>> d = config_to_dict(load_config("mdart"))
+    >>> d["actuator"]["damping"]["unit"]
+    'N*m*s/rad'
+    """
+    out: dict[str, Any] = {"name": cfg.name, "description": cfg.description}
+    if cfg.reference:
+        out["reference"] = {
+            k: _entry(REFERENCE_PARAMS[k], v, cfg.sources.get(f"reference.{k}"))
+            for k, v in cfg.reference.items()
+        }
+    for sname, cls in SECTIONS.items():
+        section = getattr(cfg, sname)
+        out[sname] = {
+            p.name: _entry(p, getattr(section, p.name), cfg.sources.get(f"{sname}.{p.name}"))
+            for p in cls.PARAMS
+            if getattr(section, p.name) is not None
+        }
+    return out
+
+
+def _literal(value) -> str:
+    # tomli_w formats each scalar (floats via repr, so round trips are exact).
+    if isinstance(value, list):
+        return "[" + ", ".join(_literal(v) for v in value) + "]"
+    return tomli_w.dumps({"x": value}).partition("=")[2].strip()
+
+
+def _inline(entry: Mapping[str, Any]) -> str:
+    return "{" + ", ".join(f"{k} = {_literal(v)}" for k, v in entry.items()) + "}"
+
+
+def dumps_config(cfg: Config) -> str:
+    """Serialise `cfg` to TOML text (SI values, unit strings, sources).
+
+    Scalars are written as inline tables; blade arrays as sub-tables with
+    several values per line.
+    """
+    data = config_to_dict(cfg)
+    lines = [
+        "# tefcore configuration; values in SI, see tefcore.config for the fields.",
+        f"name = {_literal(data.pop('name'))}",
+        f"description = {_literal(data.pop('description'))}",
+    ]
+    for table, entries in data.items():
+        scalars = {k: e for k, e in entries.items() if "values" not in e}
+        arrays = {k: e for k, e in entries.items() if "values" in e}
+        lines += ["", f"[{table}]"] + [f"{k} = {_inline(e)}" for k, e in scalars.items()]
+        for k, e in arrays.items():
+            values = [_literal(v) for v in e["values"]]
+            rows = [", ".join(values[i : i + 4]) for i in range(0, len(values), 4)]
+            lines += ["", f"[{table}.{k}]", "values = ["]
+            lines += [f"    {row}," for row in rows] + ["]"]
+            lines += [f"{key} = {_literal(v)}" for key, v in e.items() if key != "values"]
+    return "\n".join(lines) + "\n"
+
+
+def loads_config(text: str, *, origin: str = "<string>") -> Config:
+    """Parse TOML text into a Config (see :func:`config_from_dict`)."""
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as err:
+        raise ValueError(f"{origin}: invalid TOML: {err}") from None
+    return config_from_dict(data, origin=origin)
+
+
+def available_configs() -> list[str]:
+    """Names of the configurations shipped in ``tefcore/data``.
+
+    Examples
+    --------
+    >>> "mdart" in available_configs()
+    True
+    """
+    folder = resources.files(_PACKAGE_DATA[0]).joinpath(_PACKAGE_DATA[1])
+    return sorted(
+        f.name.removesuffix(".toml") for f in folder.iterdir() if f.name.endswith(".toml")
+    )
+
+
+def load_config(path_or_name: str | os.PathLike) -> Config:
+    """Load a configuration file, or a packaged one by name (e.g. ``"mdart"``).
+
+    Parameters
+    ----------
+    path_or_name : str or path-like
+        A path to a TOML file, or the bare name of a file in ``tefcore/data``
+        (a string without ``.toml`` suffix or directory part).
+
+    Returns
+    -------
+    Config
+
+    Raises
+    ------
+    FileNotFoundError
+        No such file or packaged configuration.
+    ValueError
+        Invalid content (message starts with the file name).
+    """
+    if (
+        isinstance(path_or_name, str)
+        and not path_or_name.endswith(".toml")
+        and (os.sep not in path_or_name and "/" not in path_or_name)
+    ):
+        name = path_or_name
+        resource = resources.files(_PACKAGE_DATA[0]).joinpath(_PACKAGE_DATA[1], f"{name}.toml")
+        if not resource.is_file():
+            raise FileNotFoundError(
+                f"no packaged configuration {name!r}; available: {', '.join(available_configs())}"
+            )
+        return loads_config(resource.read_text(encoding="utf-8"), origin=f"{name}.toml")
+    path = Path(path_or_name)
+    return loads_config(path.read_text(encoding="utf-8"), origin=str(path))
+
+
+def save_config(cfg: Config, path: str | os.PathLike) -> Path:
+    """Write `cfg` to `path` as TOML; ``load_config(path) == cfg`` exactly.
+
+    Returns
+    -------
+    pathlib.Path
+        The written path.
+    """
+    path = Path(path)
+    path.write_text(dumps_config(cfg), encoding="utf-8")
+    return path
+
+
+def settings_table() -> list[dict[str, Any]]:
+    """All declared settings as rows (section, name, dimension, unit, ...).
+
+    Examples
+    --------
+    >>> rows = settings_table()
+    >>> [r["range"] for r in rows if r["field"] == "flap.overhang"]
+    ['[0, 1)']
+    """
+    return [
+        {
+            "field": f"{sname}.{p.name}",
+            "kind": p.kind,
+            "dimension": p.dimension,
+            "unit": p.unit,
+            "default": "required" if p.required else p.default,
+            "range": p.range or ", ".join(p.choices),
+            "description": p.doc,
+        }
+        for sname, cls in SECTIONS.items()
+        for p in cls.PARAMS
+    ]
+
+
+def settings_markdown() -> str:
+    """The settings table as a Markdown table (for the documentation)."""
+    rows = settings_table()
+    head = list(rows[0])
+    lines = ["| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
+    lines += ["| " + " | ".join(str(r[h]) for h in head) + " |" for r in rows]
+    return "\n".join(lines)
