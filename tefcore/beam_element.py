@@ -17,6 +17,8 @@ the quadratic forms below discretise.
 
 from __future__ import annotations
 
+import functools
+
 import numpy as np
 
 N_DOF = 15
@@ -111,13 +113,24 @@ def lagrange(xi, h, order):
     return n, dn / h[..., None]
 
 
+@functools.lru_cache(maxsize=16)
+def _reference_shapes(xi: tuple):
+    """Shape functions and xi-derivatives for a unit element (cached)."""
+    xi = np.asarray(xi)
+    hn, hdn, hddn = hermite(xi, 1.0)
+    un, udn = lagrange(xi, 1.0, 3)
+    pn, pdn = lagrange(xi, 1.0, 2)
+    return hn, hdn, hddn, un, udn, pn, pdn
+
+
 def field_operators(xi, h):
     """Rows that map the 15 element dofs to every field the energies need.
 
     Parameters
     ----------
-    xi : array_like, shape (..., )
-        Local coordinates.
+    xi : array_like, shape (n,) or (m, n)
+        Local coordinates (the same row of points is shared by all elements
+        when 2-D, e.g. Gauss points).
     h : array_like
         Element lengths, broadcast against ``xi``.
 
@@ -127,16 +140,25 @@ def field_operators(xi, h):
         Keys ``u, du, v, dv, ddv, w, dw, ddw, phi, dphi``.
     """
     xi, h = np.broadcast_arrays(np.asarray(xi, float), np.asarray(h, float))
-    hn, hdn, hddn = hermite(xi, h)
-    un, udn = lagrange(xi, h, 3)
-    pn, pdn = lagrange(xi, h, 2)
+    if xi.ndim == 2 and np.all(xi == xi[:1]):
+        ref = [np.broadcast_to(a, xi.shape + a.shape[1:])
+               for a in _reference_shapes(tuple(xi[0]))]
+    else:
+        ref = _reference_shapes(tuple(xi.ravel()))
+        ref = [a.reshape(xi.shape + a.shape[1:]) for a in ref]
+    hn, hdn, hddn, un, udn, pn, pdn = ref
+    hh = h[..., None]
+    # Hermite slope dofs carry a factor h in the value (unit-element form)
+    slope = np.array([1.0, 0.0, 1.0, 0.0]) + np.array([0.0, 1.0, 0.0, 1.0]) * hh
     shape = xi.shape + (N_DOF,)
     ops = {k: np.zeros(shape) for k in
            ("u", "du", "v", "dv", "ddv", "w", "dw", "ddw", "phi", "dphi")}
-    ops["u"][..., U_DOF], ops["du"][..., U_DOF] = un, udn
-    ops["v"][..., V_DOF], ops["dv"][..., V_DOF], ops["ddv"][..., V_DOF] = hn, hdn, hddn
-    ops["w"][..., W_DOF], ops["dw"][..., W_DOF], ops["ddw"][..., W_DOF] = hn, hdn, hddn
-    ops["phi"][..., PHI_DOF], ops["dphi"][..., PHI_DOF] = pn, pdn
+    ops["u"][..., U_DOF], ops["du"][..., U_DOF] = un, udn / hh
+    for f, sl in (("v", V_DOF), ("w", W_DOF)):
+        ops[f][..., sl] = hn * slope
+        ops["d" + f][..., sl] = hdn * slope / hh
+        ops["dd" + f][..., sl] = hddn * slope / hh**2
+    ops["phi"][..., PHI_DOF], ops["dphi"][..., PHI_DOF] = pn, pdn / hh
     return ops
 
 
@@ -168,10 +190,11 @@ def element_matrices(x0, h, sec, pitch, tension):
 
     Returns
     -------
-    m_el, k_el, k_cf : ndarray, shape (n_el, 15, 15)
+    m_el, k_el, k_cf, g_el : ndarray, shape (n_el, 15, 15)
         Mass; elastic stiffness (scales with (Omega_ref/Omega)^2 when the
         rotor speed changes); centrifugal stiffness (per Omega^2, i.e.
-        independent of rotor speed in rotor units).
+        independent of rotor speed in rotor units); Coriolis (gyroscopic,
+        per Omega, skew-symmetric).
     """
     g, wg = np.polynomial.legendre.leggauss(N_GAUSS)
     xi = 0.5 * (g + 1.0)
@@ -220,25 +243,10 @@ def element_matrices(x0, h, sec, pitch, tension):
             + co(m * eg * c) * _sym(ops["w"], ops["phi"])
             - co(m * eg * s) * _sym(ops["v"], ops["phi"]))
 
-    weight = (wg[None, :] * h)[..., None, None]
-    return ((m_el * weight).sum(axis=1), (k_el * weight).sum(axis=1),
-            (k_cf * weight).sum(axis=1))
-
-
-def gyroscopic_element(x0, h, sec):
-    """Coriolis (gyroscopic) matrix of many elements: axial-lag coupling.
-
-    Returns ``g_el`` (n_el, 15, 15), skew-symmetric, such that the equations
-    read ``M q** + G q* + K q = 0`` with ``G = 2 m (v-row u*, -u-row v*)``.
-    """
-    g, wg = np.polynomial.legendre.leggauss(N_GAUSS)
-    xi = 0.5 * (g + 1.0)
-    wg = 0.5 * wg
-    x0 = np.asarray(x0, float)[:, None]
-    h = np.asarray(h, float)[:, None]
-    x = x0 + xi[None, :] * h
-    ops = field_operators(np.broadcast_to(xi, x.shape), np.broadcast_to(h, x.shape))
-    m = sec(x)["mass"][..., None, None]
+    # Coriolis: T_kin contains m (v* u - u* v), so row v gets +2 m u* and
+    # row u gets -2 m v* (skew-symmetric gyroscopic matrix)
     vu = ops["v"][..., :, None] * ops["u"][..., None, :]
-    g_el = 2.0 * m * (vu - np.swapaxes(vu, -1, -2))
-    return (g_el * (wg[None, :] * h)[..., None, None]).sum(axis=1)
+    g_el = 2.0 * co(m) * (vu - np.swapaxes(vu, -1, -2))
+
+    weight = (wg[None, :] * h)[..., None, None]
+    return tuple((a * weight).sum(axis=1) for a in (m_el, k_el, k_cf, g_el))

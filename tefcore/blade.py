@@ -29,9 +29,9 @@ def rotor_units(cfg) -> RotorUnits:
                       mass_per_length=cfg.blade.reference_mass())
 
 
-def section_function(cfg):
+def section_function(cfg, units: RotorUnits | None = None):
     """Nondimensional section properties of the configured blade, ``f(x)``."""
-    units = rotor_units(cfg)
+    units = units or rotor_units(cfg)
 
     def section(x):
         p = cfg.blade.section(np.clip(x, cfg.blade.stations[0], 1.0))
@@ -48,14 +48,14 @@ def pitch_function(cfg, collective: float = 0.0):
     return lambda x: collective + np.interp(x, stations, twist) - t75
 
 
-def root_springs(cfg) -> RootSprings:
+def root_springs(cfg, units: RotorUnits | None = None) -> RootSprings:
     """Equivalent bearingless-hub root restraints in rotor units.
 
     The torsion spring is the pitch link (stiffness times horn arm squared)
     plus any flexbeam torsion in parallel; the blade's own GJ sits in series
     with it through the finite elements.
     """
-    units, hub = rotor_units(cfg), cfg.hub
+    units, hub = units or rotor_units(cfg), cfg.hub
     return RootSprings(flap=units.spring(hub.flap_spring), lag=units.spring(hub.lag_spring),
                        torsion=units.spring(hub.pitch_link_torsion_stiffness
                                             + hub.torsion_spring_parallel),
@@ -81,8 +81,9 @@ def blade_model(cfg, collective: float = 0.0, n_elements: int | None = None) -> 
     """
     n = n_elements or cfg.model.n_elements
     x_nodes = np.linspace(cfg.rotor.root_offset, 1.0, n + 1)
-    return assemble_beam(x_nodes, section_function(cfg), pitch_function(cfg, collective),
-                         root_springs(cfg))
+    units = rotor_units(cfg)
+    return assemble_beam(x_nodes, section_function(cfg, units), pitch_function(cfg, collective),
+                         root_springs(cfg, units))
 
 
 def blade_modes(cfg, n_modes: int | None = None, collective: float = 0.0,

@@ -21,7 +21,7 @@ import pandas as pd
 import scipy.integrate
 import scipy.linalg
 
-from .beam_element import element_matrices, field_operators, gyroscopic_element
+from .beam_element import element_matrices, field_operators
 
 NODE_DOFS = ("u", "v", "dv", "w", "dw", "phi")
 FIELD_GROUPS = ("axial", "lag", "flap", "torsion")
@@ -156,18 +156,13 @@ def assemble_beam(x_nodes, section: Callable, pitch: Callable,
     n_el = len(xn) - 1
     n_dof = 6 * (n_el + 1) + 3 * n_el
     tension = tension_from_mass(lambda s: section(s)["mass"], xn[0])
-    m_el, k_el, k_cf = element_matrices(xn[:-1], np.diff(xn), section, pitch, tension)
-    g_el = gyroscopic_element(xn[:-1], np.diff(xn), section)
+    elements = element_matrices(xn[:-1], np.diff(xn), section, pitch, tension)
     dmap = _dof_map(n_el)
-    rows = np.repeat(dmap, 15, axis=1).ravel()
-    cols = np.tile(dmap, (1, 15)).ravel()
-
-    def scatter(el):
-        out = np.zeros((n_dof, n_dof))
-        np.add.at(out, (rows, cols), el.ravel())
-        return out
-
-    mass, k_elastic, k_cf_g, gyro = scatter(m_el), scatter(k_el), scatter(k_cf), scatter(g_el)
+    flat = (dmap[:, :, None] * n_dof + dmap[:, None, :]).ravel()
+    # scatter-add all four element sets at once (bincount is the fast add.at)
+    mass, k_elastic, k_cf_g, gyro = (
+        np.bincount(flat, weights=el.ravel(), minlength=n_dof * n_dof).reshape(n_dof, n_dof)
+        for el in elements)
     damp = np.zeros((n_dof, n_dof))
     fixed = [0, 1, 3]                   # u, v, w at the root
     for dof, k in ((2, root.lag), (4, root.flap), (5, root.torsion)):

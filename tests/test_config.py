@@ -70,7 +70,6 @@ def test_mdart_baseline_from_text():
     assert MDART.flight.ct_sigma == 0.075
     assert MDART.flight.collective is None
     assert MDART.flap.cg_offset == 0.0  # mass-balanced baseline flap
-    assert MDART.hub.pitch_link_stiffness == to_si(330, "lb/in", "force_per_length")
     assert MDART.blade.stations.size == 21
     assert MDART.blade.stations[0] == MDART.rotor.root_offset
 
