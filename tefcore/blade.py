@@ -160,5 +160,5 @@ def fan_plot(cfg, speed_ratios=None, n_modes: int | None = None, ax=None):
     ax.set_ylabel("frequency [Hz]")
     ax.set_xlim(0, rpm[1])
     ax.set_ylim(0, df["frequency_hz"].max() * 1.05)
-    ax.legend(fontsize="small", ncol=2)
+    ax.legend(fontsize="small", loc="upper left", bbox_to_anchor=(1.01, 1.0))
     return ax
