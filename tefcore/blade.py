@@ -129,7 +129,7 @@ def fan_data(cfg, speed_ratios, n_modes: int | None = None,
             raise ValueError(f"speed ratio must be positive, got {r}")
         m = beam_modes(beam, n, r)
         omega = cfg.rotor.rotor_speed * r
-        for j, (lab, f) in enumerate(zip(m.labels, m.frequencies)):
+        for j, (lab, f) in enumerate(zip(m.labels, m.frequencies, strict=False)):
             rows.append({"speed_ratio": float(r), "rotor_speed_rpm": omega * 30 / np.pi,
                          "mode": j + 1, "label": lab, "frequency_per_rev": float(f),
                          "frequency_hz": float(f * omega / (2 * np.pi))})

@@ -20,7 +20,8 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 import scipy.optimize
-from scipy.constants import inch, pound, g as g0
+from scipy.constants import g as g0
+from scipy.constants import inch, pound
 
 from .blade import blade_modes
 

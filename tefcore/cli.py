@@ -35,7 +35,8 @@ def _common(p):
     p.add_argument("--config", default="mdart",
                    help="configuration TOML file or packaged name (default: mdart)")
     p.add_argument("-s", "--set", action="append", metavar="NAME=VALUE",
-                   help="override a field by dotted name, e.g. hub.pitch_link_stiffness='800 lb/in'")
+                   help="override a field by dotted name, "
+                        "e.g. hub.pitch_link_stiffness='800 lb/in'")
 
 
 def cmd_modes(args) -> int:

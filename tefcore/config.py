@@ -2,16 +2,20 @@
 
 A :class:`Config` bundles the sections ``rotor``, ``blade``, ``hub``,
 ``flap``, ``actuator``, ``flight`` and ``model``.  Each section declares its
-settings once, as a table of :class:`Param` rows (name, dimension, default,
-allowed range, description); the dataclass fields, validation, TOML I/O
-(:mod:`tefcore.config_io`) and the documentation below all derive from those
-tables.  All values are stored in SI units (angles in rad); strings such as
-``"800 lb/in"`` are converted with :mod:`tefcore.units` using the field's
-dimension.
+settings once, as a table of :class:`~tefcore.settings.Param` rows (name,
+dimension, default, allowed range, description); the dataclass fields,
+validation, TOML I/O (:mod:`tefcore.config_io`) and the documentation below
+all derive from those tables through the generic machinery of
+:mod:`tefcore.settings`.  All values are stored in SI units (angles in rad);
+strings such as ``"800 lb/in"`` are converted with :mod:`tefcore.units`
+using the field's dimension.
 
 A range such as ``"(0, radius/2]"`` may reference sibling fields (``radius``)
 or fields of other sections (``rotor.chord``); the latter are checked when
 the sections are assembled into a :class:`Config`.
+
+The module is longer than ~400 lines because it is mostly the declarative
+field tables of the seven sections, which belong next to their physics.
 
 Examples
 --------
@@ -30,13 +34,9 @@ ValueError: flap.overhang = 1.2 is outside the allowed range [0, 1)
 
 from __future__ import annotations
 
-import ast
 import dataclasses
-import difflib
 import math
-import numbers
-import re
-from collections.abc import Callable, Mapping
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 from types import MappingProxyType
 from typing import Any
@@ -44,7 +44,7 @@ from typing import Any
 import numpy as np
 from scipy import integrate
 
-from .units import DIMENSIONS, SI_UNITS, parse_quantity, parse_unit
+from .settings import REQUIRED, Param, _close, _fmt, _rebuild, _Section, _section, coerce_value
 
 __all__ = [
     "BLADE_PROPERTIES",
@@ -67,404 +67,9 @@ __all__ = [
 ]
 
 
-class _Required:
-    def __repr__(self) -> str:
-        return "REQUIRED"
-
-
-#: Sentinel default of a field that must be given explicitly.
-REQUIRED: Any = _Required()
-
 # Tolerance for geometric equalities built from decimal fractions of R
 # (e.g. 0.83 + 0.18/2 == 0.92 only to rounding).
 _GEOM_TOL = 1e-12
-
-_RANGE = re.compile(r"^\s*([\[(])([^,]+),([^,]+)([\])])\s*$")
-_BOUND_NODES = (
-    ast.Expression, ast.BinOp, ast.UnaryOp, ast.Constant, ast.Name, ast.Attribute,
-    ast.Load, ast.Add, ast.Sub, ast.Mult, ast.Div, ast.USub, ast.UAdd,
-)  # fmt: skip
-_BOUND_CONSTANTS = {"inf": math.inf, "pi": math.pi}
-
-
-def _compile_bound(text: str) -> ast.Expression:
-    tree = ast.parse(text.strip(), mode="eval")
-    for node in ast.walk(tree):
-        if not isinstance(node, _BOUND_NODES) or (
-            isinstance(node, ast.Attribute) and not isinstance(node.value, ast.Name)
-        ):
-            raise ValueError(f"unsupported range bound {text!r}")
-    return tree
-
-
-def _eval_bound(node: ast.AST, lookup: Callable[[str], Any]) -> float:
-    match node:
-        case ast.Expression(body=body):
-            return _eval_bound(body, lookup)
-        case ast.Constant(value=value):
-            return float(value)
-        case ast.Name(id=name):
-            return _BOUND_CONSTANTS[name] if name in _BOUND_CONSTANTS else float(lookup(name))
-        case ast.Attribute(value=ast.Name(id=section), attr=name):
-            return float(lookup(f"{section}.{name}"))
-        case ast.UnaryOp(op=op, operand=operand):
-            value = _eval_bound(operand, lookup)
-            return -value if isinstance(op, ast.USub) else value
-        case ast.BinOp(left=left, op=op, right=right):
-            a, b = _eval_bound(left, lookup), _eval_bound(right, lookup)
-            ops = {ast.Add: a.__add__, ast.Sub: a.__sub__, ast.Mult: a.__mul__}
-            return ops[type(op)](b) if type(op) in ops else a / b
-    raise ValueError(f"unsupported range bound {ast.dump(node)}")
-
-
-def _refs(tree: ast.AST) -> set[str]:
-    names = {n.id for n in ast.walk(tree) if isinstance(n, ast.Name)}
-    dotted = {f"{n.value.id}.{n.attr}" for n in ast.walk(tree) if isinstance(n, ast.Attribute)}
-    sections = {d.split(".")[0] for d in dotted}
-    return (names - sections - set(_BOUND_CONSTANTS)) | dotted
-
-
-@dataclass(frozen=True)
-class Param:
-    """One declared setting: the single source of truth for a field.
-
-    Parameters
-    ----------
-    name : str
-        Field name inside its section.
-    dimension : str
-        Key of :data:`tefcore.units.DIMENSIONS`; values are stored in
-        ``SI_UNITS[dimension]``.
-    default : object
-        Default value, or :data:`REQUIRED`.
-    range : str
-        Allowed interval such as ``"[0, 1)"``; bounds are numbers, ``inf``,
-        ``pi`` or small expressions of other fields (``"radius/2"``,
-        ``"-rotor.chord"``).  Empty for strings.
-    doc : str
-        One-line meaning.
-    kind : {'float', 'int', 'str', 'array'}
-        Value type; arrays are checked element by element.
-    choices : tuple of str
-        Allowed values of a ``'str'`` field (empty: any string).
-    optional : bool
-        Whether None is allowed.
-
-    Examples
-    --------
-    >>> p = Param("chord", "length", REQUIRED, "(0, radius/2]", "Blade chord.")
-    >>> p.limits({"radius": 2.0}.__getitem__)
-    (0.0, 1.0)
-    >>> p.unit
-    'm'
-    """
-
-    name: str
-    dimension: str
-    default: Any
-    range: str
-    doc: str
-    kind: str = "float"
-    choices: tuple[str, ...] = ()
-    optional: bool = False
-    _bounds: tuple = field(init=False, repr=False, compare=False)
-
-    def __post_init__(self):
-        if self.dimension not in DIMENSIONS:
-            raise ValueError(f"Param {self.name!r}: unknown dimension {self.dimension!r}")
-        if self.kind not in ("float", "int", "str", "array"):
-            raise ValueError(f"Param {self.name!r}: unknown kind {self.kind!r}")
-        bounds: tuple = ()
-        if self.kind != "str":
-            m = _RANGE.match(self.range)
-            if m is None:
-                raise ValueError(f"Param {self.name!r}: cannot parse range {self.range!r}")
-            lo, hi = _compile_bound(m.group(2)), _compile_bound(m.group(3))
-            bounds = (lo, hi, m.group(1) == "[", m.group(4) == "]", _refs(lo) | _refs(hi))
-        object.__setattr__(self, "_bounds", bounds)
-
-    @property
-    def required(self) -> bool:
-        """True if the field has no default."""
-        return self.default is REQUIRED
-
-    @property
-    def unit(self) -> str:
-        """SI unit of the stored value (``''`` if dimensionless)."""
-        unit = SI_UNITS[self.dimension]
-        return "" if unit == "1" else unit
-
-    @property
-    def refs(self) -> frozenset[str]:
-        """Fields referenced by the range bounds (dotted = other section)."""
-        return frozenset(self._bounds[4]) if self._bounds else frozenset()
-
-    @property
-    def closed(self) -> tuple[bool, bool]:
-        """Whether the lower and upper bounds are included."""
-        return self._bounds[2], self._bounds[3]
-
-    def limits(self, lookup: Callable[[str], Any]) -> tuple[float | None, float | None]:
-        """Evaluate the bounds; a bound whose reference `lookup` lacks is None.
-
-        Parameters
-        ----------
-        lookup : callable
-            Maps a field name (``"radius"`` or ``"rotor.chord"``) to its value;
-            raises KeyError (or AttributeError) if unavailable.
-
-        Returns
-        -------
-        lo, hi : float or None
-        """
-        out = []
-        for tree in self._bounds[:2]:
-            try:
-                out.append(_eval_bound(tree, lookup))
-            except (KeyError, AttributeError):
-                out.append(None)
-        return out[0], out[1]
-
-    def range_error(self, value, dotted: str, lookup: Callable[[str], Any]) -> str | None:
-        """Message if `value` (scalar or array) is outside the range, else None."""
-        if self.kind == "str" or value is None:
-            return None
-        lo, hi = self.limits(lookup)
-        lo_in, hi_in = self.closed
-        arr = np.asarray(value, dtype=float)
-        bad = np.zeros(arr.shape, dtype=bool)
-        if lo is not None:
-            bad |= arr < lo if lo_in else arr <= lo
-        if hi is not None:
-            bad |= arr > hi if hi_in else arr >= hi
-        if not bad.any():
-            return None
-        i = int(np.flatnonzero(bad)[0])
-        where = f"{dotted}[{i}]" if arr.ndim else dotted
-        unit = f" {self.unit}" if self.unit else ""
-        resolved = ""
-        if self.refs:
-            resolved = f" = {'[' if lo_in else '('}{_fmt(lo)}, {_fmt(hi)}{']' if hi_in else ')'}"
-        return (
-            f"{where} = {_fmt(arr.flat[i] if arr.ndim else value)}{unit} "
-            f"is outside the allowed range {self.range.strip()}{resolved}{unit}"
-        )
-
-
-def _fmt(value) -> str:
-    if value is None:
-        return "?"
-    if isinstance(value, numbers.Integral) and not isinstance(value, bool):
-        return str(int(value))
-    return repr(float(value)) if isinstance(value, numbers.Real) else repr(value)
-
-
-def _is_number(value) -> bool:
-    return isinstance(value, numbers.Real) and not isinstance(value, (bool, np.bool_))
-
-
-def _unit_factor(p: Param, unit, dotted: str) -> float:
-    if p.kind in ("int", "str"):
-        raise ValueError(f"{dotted} takes no unit, got unit {unit!r}")
-    if not isinstance(unit, str):
-        raise ValueError(f"{dotted}: unit must be a string, got {unit!r}")
-    try:
-        return parse_unit(unit, p.dimension)[0]
-    except ValueError as err:
-        raise ValueError(f"{dotted}: {err}") from None
-
-
-def coerce_value(p: Param, raw, dotted: str):
-    """Convert user input for field `p` to its stored SI form, or raise.
-
-    Parameters
-    ----------
-    p : Param
-        Field declaration.
-    raw : object
-        A number (SI), a ``"value unit"`` string, a sequence (arrays), or a
-        table ``{value|values = ..., unit = ..., source = ...}``.
-    dotted : str
-        Dotted field name used in error messages.
-
-    Returns
-    -------
-    float, int, str, None or read-only numpy.ndarray
-
-    Raises
-    ------
-    ValueError
-        Wrong type, bool, NaN/inf, bad unit, or malformed table.
-
-    Examples
-    --------
-    >>> p = Param("radius", "length", REQUIRED, "(0, 100]", "Rotor radius.")
-    >>> coerce_value(p, {"value": 17, "unit": "ft", "source": "Table 1"}, "rotor.radius")
-    5.1815999999999995
-    >>> coerce_value(p, True, "rotor.radius")
-    Traceback (most recent call last):
-    ...
-    ValueError: rotor.radius must be a number, got bool True
-    """
-    factor, has_unit = 1.0, False
-    if isinstance(raw, Mapping):
-        key = "values" if p.kind == "array" else "value"
-        unknown = sorted(set(raw) - {key, "unit", "source"})
-        if unknown:
-            raise ValueError(
-                f"{dotted}: unknown key(s) {', '.join(map(repr, unknown))} in table; "
-                f"allowed keys are {key!r}, 'unit', 'source'"
-            )
-        if key not in raw:
-            raise ValueError(f"{dotted}: table has no {key!r}")
-        if "unit" in raw:
-            factor, has_unit = _unit_factor(p, raw["unit"], dotted), True
-        raw = raw[key]
-    if raw is None and p.optional:
-        return None
-    if p.kind == "str":
-        if not isinstance(raw, str):
-            raise ValueError(f"{dotted} must be a string, got {raw!r}")
-        if p.choices and raw not in p.choices:
-            raise ValueError(f"{dotted} = {raw!r} is not one of {', '.join(map(repr, p.choices))}")
-        return raw
-    if p.kind == "array":
-        return _coerce_array(p, raw, factor, dotted)
-    if isinstance(raw, str) and p.kind == "float" and not has_unit:
-        try:
-            raw = parse_quantity(raw, p.dimension)
-        except ValueError as err:
-            raise ValueError(f"{dotted}: {err}") from None
-    if not _is_number(raw):
-        what = f"{type(raw).__name__} {raw!r}"
-        raise ValueError(
-            f"{dotted} must be {'an integer' if p.kind == 'int' else 'a number'}, got {what}"
-        )
-    value = float(raw) * factor
-    if not math.isfinite(value):
-        raise ValueError(f"{dotted} = {_fmt(raw)} is not finite")
-    if p.kind == "int":
-        if value != int(value):
-            raise ValueError(f"{dotted} = {_fmt(raw)} must be an integer")
-        return int(value)
-    return value
-
-
-def _coerce_array(p: Param, raw, factor: float, dotted: str) -> np.ndarray:
-    if isinstance(raw, str) and factor == 1.0:  # one quantity, broadcast later
-        try:
-            raw = parse_quantity(raw, p.dimension)
-        except ValueError as err:
-            raise ValueError(f"{dotted}: {err}") from None
-    if _is_number(raw):
-        arr = np.array(float(raw))
-    elif isinstance(raw, np.ndarray):
-        if raw.dtype.kind not in "iuf" or raw.ndim > 1:
-            raise ValueError(
-                f"{dotted} must be a 1-D array of numbers, got {raw.dtype} {raw.shape}"
-            )
-        arr = np.array(raw, dtype=float)
-    elif isinstance(raw, (list, tuple)):
-        for i, x in enumerate(raw):
-            if not _is_number(x):
-                raise ValueError(f"{dotted}[{i}] must be a number, got {type(x).__name__} {x!r}")
-        arr = np.array(raw, dtype=float).reshape(-1)
-    else:
-        raise ValueError(
-            f"{dotted} must be a sequence of numbers, got {type(raw).__name__} {raw!r}"
-        )
-    arr = arr * factor
-    bad = np.flatnonzero(~np.isfinite(arr))
-    if bad.size:
-        where = f"{dotted}[{bad[0]}]" if arr.ndim else dotted
-        raise ValueError(f"{where} = {_fmt(arr.flat[bad[0]])} is not finite")
-    arr.setflags(write=False)
-    return arr
-
-
-def _param_doc(p: Param) -> str:
-    kind = {"float": "float", "int": "int", "str": "str", "array": "array_like"}[p.kind]
-    spec = [f"Dimension {p.dimension} [{p.unit or '-'}]"] if p.kind != "str" else []
-    if p.range:
-        spec.append(f"range {p.range}")
-    if p.choices:
-        spec.append("one of " + ", ".join(map(repr, p.choices)))
-    spec.append("required" if p.required else f"default {_fmt(p.default)}")
-    opt = "" if p.required else ", optional"
-    return (
-        f"{p.name} : {kind}{' or None' if p.optional else ''}{opt}\n    {p.doc} {'; '.join(spec)}."
-    )
-
-
-class _Section:
-    """Base of the section dataclasses: coercion, checks and equality."""
-
-    SECTION = ""
-    PARAMS: tuple[Param, ...] = ()
-
-    def __post_init__(self):
-        for p in self.PARAMS:
-            value = coerce_value(p, getattr(self, p.name), self._dotted(p.name))
-            object.__setattr__(self, p.name, value)
-        self._normalize()
-        for p in self.PARAMS:
-            msg = p.range_error(getattr(self, p.name), self._dotted(p.name), self._lookup)
-            if msg:
-                raise ValueError(msg)
-        self._validate()
-
-    def _dotted(self, name: str) -> str:
-        return f"{self.SECTION}.{name}"
-
-    def _lookup(self, name: str):
-        if "." in name:  # another section: checked later by Config
-            raise KeyError(name)
-        return getattr(self, name)
-
-    def _normalize(self) -> None:
-        """Hook: reshape coerced values (arrays) before range checks."""
-
-    def _validate(self) -> None:
-        """Hook: checks involving several fields of this section."""
-
-    def __eq__(self, other):
-        if type(other) is not type(self):
-            return NotImplemented
-        for p in self.PARAMS:
-            a, b = getattr(self, p.name), getattr(other, p.name)
-            same = np.array_equal(a, b) if p.kind == "array" else a == b
-            if not same:
-                return False
-        return True
-
-    __hash__ = None  # type: ignore[assignment]
-
-    def __reduce__(self):
-        # Rebuild through the constructor so that unpickled copies (joblib
-        # workers, deepcopy) are re-validated and their arrays read-only.
-        return _rebuild, (type(self), {p.name: getattr(self, p.name) for p in self.PARAMS})
-
-
-def _rebuild(cls, kwargs):
-    return cls(**kwargs)
-
-
-def _section(name: str):
-    """Turn a `_Section` subclass with a PARAMS table into a frozen dataclass."""
-
-    def wrap(cls):
-        cls.SECTION = name
-        cls.__annotations__ = {}
-        for p in cls.PARAMS:
-            base = {"float": "float", "int": "int", "str": "str", "array": "np.ndarray"}[p.kind]
-            cls.__annotations__[p.name] = f"{base} | None" if p.optional else base
-            if not p.required:
-                setattr(cls, p.name, p.default)
-        table = "\n    ".join(_param_doc(p).replace("\n", "\n    ") for p in cls.PARAMS)
-        cls.__doc__ = cls.__doc__.replace("{params}", table)
-        return dataclass(frozen=True, eq=False, kw_only=True)(cls)
-
-    return wrap
 
 
 @_section("rotor")
@@ -813,11 +418,6 @@ REFERENCE_PARAMS: dict[str, Param] = {
 }
 
 
-def _close(word: str, options) -> str:
-    near = difflib.get_close_matches(word, list(options), n=3, cutoff=0.6)
-    return f"; did you mean {' or '.join(map(repr, near))}?" if near else ""
-
-
 def resolve_field(key: str) -> tuple[str | None, str]:
     """Split a dotted field name into (section, field), checking both exist.
 
@@ -919,19 +519,8 @@ class Config:
 
     def _check_relations(self) -> None:
         # Ranges that reference other sections (skipped by the sections).
-        for sname, cls in SECTIONS.items():
-            section = getattr(self, sname)
-            if not any("." in r for p in cls.PARAMS for r in p.refs):
-                continue
-
-            def lookup(key, section=section):
-                return self._lookup(key) if "." in key else getattr(section, key)
-
-            for p in cls.PARAMS:
-                if any("." in r for r in p.refs):
-                    msg = p.range_error(getattr(section, p.name), f"{sname}.{p.name}", lookup)
-                    if msg:
-                        raise ValueError(msg)
+        for sname in SECTIONS:
+            getattr(self, sname)._check_cross_refs(self._lookup)
         rotor, flap = self.rotor, self.flap
         s0 = self.blade.stations[0]
         if abs(s0 - rotor.root_offset) > _GEOM_TOL:

@@ -33,7 +33,8 @@ from typing import Any
 import numpy as np
 import tomli_w
 
-from .config import REFERENCE_PARAMS, SECTIONS, Config, Param
+from .config import REFERENCE_PARAMS, SECTIONS, Config
+from .settings import Param
 
 __all__ = [
     "available_configs",

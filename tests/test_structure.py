@@ -157,7 +157,7 @@ def test_hinged_rigid_blade_with_offset():
     beam = assemble_beam(np.linspace(e, 1, 11), uniform(ei_flap=1e4, ei_lag=1e4, gj=1e3,
                                                         ea=1e6), flat, RootSprings())
     m = beam_modes(beam, n_modes=3)
-    by = dict(zip(m.labels, m.frequencies))
+    by = dict(zip(m.labels, m.frequencies, strict=False))
     assert_allclose(by["lag 1"] ** 2, 1.5 * e / (1 - e), rtol=1e-4)
     assert_allclose(by["flap 1"] ** 2, 1 + 1.5 * e / (1 - e), rtol=1e-4)
     # free feathering with only the propeller moment: a 1/rev rigid pitch mode
