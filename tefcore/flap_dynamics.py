@@ -1,0 +1,385 @@
+"""Trailing-edge flap and actuator dynamics (docs/theory.md section 4).
+
+The flap is a rigid chordwise body hinged to the blade section, driven
+through the actuator: a torsional spring ``k_a`` and damper ``c_a`` between
+the flap and the actuator base, whose angle ``delta_a(psi)`` is the input.
+Its equation comes from the kinetic energy of the flap riding on the
+rotating, bending and twisting blade (Lagrange / Hamilton), per unit span:
+
+``I_h (delta** + Theta**) - S_f eta_h Theta** - S_f (w** cos Theta - v** sin Theta)
++ Omega^2 [I_h sin Phi cos Phi - S_f eta_h cos Theta sin Phi]
+- Omega^2 S_f r (w' cos Theta - v' sin Theta) + ... = H_aero``
+
+integrated over the flap span, plus ``k_a (delta - delta_a) + c_a (delta* - delta_a*)``.
+``Theta = theta + phi`` is the section pitch, ``Phi = Theta + delta`` the
+flap's own pitch, ``eta_h`` the hinge position ahead of the elastic axis
+(negative: the hinge is aft), ``S_f = m_f c_cg`` and ``I_h`` the flap's first
+and second mass moments about its hinge (``c_cg`` positive aft).
+
+Everything here is SI (seconds, not azimuth): these are the section-level
+analyses behind the paper's Figs. 5-7, with the section motion prescribed.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import pandas as pd
+import scipy.optimize
+
+
+@dataclass(frozen=True)
+class FlapProperties:
+    """Mass, geometry and actuator of one trailing-edge flap (SI).
+
+    Attributes
+    ----------
+    span : float
+        Flap span [m].
+    radius_mid : float
+        Radial station of the flap mid-span [m].
+    chord : float
+        Blade chord c [m].
+    chord_ratio, overhang, cg_offset : float
+        c_f/c, c_b/c_f (hinge aft of the flap nose), c_cg/c_f (CG aft of hinge).
+    hinge_from_ea : float
+        eta_h, chordwise hinge position from the elastic axis, positive toward
+        the leading edge [m] (negative for a trailing-edge flap).
+    mass, inertia_cg : float
+        Flap mass [kg/m] and inertia about its CG [kg m^2/m] per unit span.
+    k_a, c_a : float
+        Actuator torsional stiffness [N m/rad] and damping [N m s/rad] of the
+        whole flap.
+    """
+
+    span: float
+    radius_mid: float
+    chord: float
+    chord_ratio: float
+    overhang: float
+    cg_offset: float
+    hinge_from_ea: float
+    mass: float
+    inertia_cg: float
+    k_a: float
+    c_a: float
+
+    @property
+    def flap_chord(self) -> float:
+        return self.chord_ratio * self.chord
+
+    @property
+    def first_moment(self) -> float:
+        """S_f = m_f c_cg per unit span [kg m / m] (positive: CG aft of hinge)."""
+        return self.mass * self.cg_offset * self.flap_chord
+
+    @property
+    def inertia_hinge(self) -> float:
+        """I_h = I_cg + m_f c_cg^2 per unit span [kg m^2 / m]."""
+        return self.inertia_cg + self.mass * (self.cg_offset * self.flap_chord) ** 2
+
+    def stations(self, n: int = 3):
+        """Gauss-Legendre stations [m] and weights [m] over the flap span."""
+        g, w = np.polynomial.legendre.leggauss(n)
+        return self.radius_mid + 0.5 * self.span * g, 0.5 * self.span * w
+
+
+def flap_properties(cfg) -> FlapProperties:
+    """Flap properties of a configuration.
+
+    The hinge lies ``overhang * c_f`` behind the flap nose, which is at
+    ``(1 - E) c`` from the leading edge; the elastic axis is at
+    ``rotor.elastic_axis * c``.
+    """
+    r, f = cfg.rotor, cfg.flap
+    x_hinge = 1.0 - f.chord_ratio + f.overhang * f.chord_ratio     # fraction of chord
+    return FlapProperties(span=f.span * r.radius, radius_mid=f.midspan * r.radius,
+                          chord=r.chord, chord_ratio=f.chord_ratio, overhang=f.overhang,
+                          cg_offset=f.cg_offset,
+                          hinge_from_ea=(r.elastic_axis - x_hinge) * r.chord,
+                          mass=f.mass, inertia_cg=f.inertia_cg,
+                          k_a=cfg.actuator.stiffness, c_a=cfg.actuator.damping)
+
+
+def centrifugal_hinge_moment(props: FlapProperties, rotor_speed, pitch, delta):
+    """Centrifugal (propeller) moment on the flap per unit span [N m/m].
+
+    ``Omega^2 [I_h sin Phi cos Phi - S_f eta_h cos Theta sin Phi]`` with
+    ``Phi = Theta + delta``; it sits on the inertial side of the equation, so
+    it restores the flap toward the plane of rotation.
+    """
+    phi = pitch + delta
+    return rotor_speed**2 * (props.inertia_hinge * np.sin(phi) * np.cos(phi)
+                             - props.first_moment * props.hinge_from_ea
+                             * np.cos(pitch) * np.sin(phi))
+
+
+def flap_natural_frequency(props: FlapProperties, rotor_speed: float, pitch: float = 0.0):
+    """Natural frequency of the flap on a rigid, non-moving section [rad/s].
+
+    ``omega_f^2 = [k_a + b_f Omega^2 (I_h cos 2Theta - S_f eta_h cos^2 Theta)] / (b_f I_h)``,
+    the linearisation of :func:`centrifugal_hinge_moment`; in vacuum
+    (no aerodynamic stiffness or apparent mass).
+
+    Examples
+    --------
+    >>> p = FlapProperties(span=1.0, radius_mid=4.0, chord=0.25, chord_ratio=0.3,
+    ...                    overhang=0.0, cg_offset=0.0, hinge_from_ea=-0.1, mass=0.5,
+    ...                    inertia_cg=1e-4, k_a=100.0, c_a=0.0)
+    >>> round(float(flap_natural_frequency(p, 0.0)), 6)
+    1000.0
+    """
+    k_cf = rotor_speed**2 * (props.inertia_hinge * np.cos(2 * pitch)
+                             - props.first_moment * props.hinge_from_ea * np.cos(pitch) ** 2)
+    return np.sqrt((props.k_a + props.span * k_cf) / (props.span * props.inertia_hinge))
+
+
+@dataclass
+class SectionMotion:
+    """Prescribed blade-section motion over one revolution at one station.
+
+    All callables take the azimuth ``psi`` [rad] (array) and return SI
+    values: ``velocity`` [m/s], ``alpha`` [rad] and its time derivatives
+    ``alpha_rate`` [rad/s], ``alpha_accel``, the plunge (up) velocity and
+    acceleration of the elastic axis, and the section pitch ``pitch`` with
+    ``pitch_accel`` (for the flap inertia), ``flap_slope`` w' and
+    ``flap_accel`` (w** of the section, for the flap's first moment).
+    """
+
+    velocity: object
+    alpha: object
+    alpha_rate: object
+    alpha_accel: object
+    plunge_rate: object
+    plunge_accel: object
+    pitch: object
+    pitch_accel: object
+    flap_slope: object
+    flap_accel: object
+
+
+def rotor_section_motion(cfg, x: float, *, advance_ratio: float, collective: float,
+                         cyclic_cos: float = 0.0, cyclic_sin: float = 0.0,
+                         inflow: float = 0.0, coning: float = 0.0) -> SectionMotion:
+    """Section motion of a rigid blade with zero cyclic flapping (wind-tunnel trim).
+
+    ``U_T = Omega R (x + mu sin psi)``, ``U_P = Omega R (lambda + mu beta_0 cos psi)``,
+    ``theta = theta_0 + theta_1c cos psi + theta_1s sin psi`` (pretwist
+    included at ``x``), ``alpha = theta - U_P / U_T``.
+
+    Parameters
+    ----------
+    cfg : tefcore.config.Config
+    x : float
+        Station, fraction of R.
+    advance_ratio, collective, cyclic_cos, cyclic_sin, inflow, coning : float
+        mu, theta_75 [rad], theta_1c, theta_1s [rad], inflow ratio lambda
+        (positive down through the disk), coning beta_0 [rad].
+    """
+    om, rad = cfg.rotor.rotor_speed, cfg.rotor.radius
+    tw = np.interp(x, cfg.blade.stations, cfg.blade.twist) - np.interp(
+        0.75, cfg.blade.stations, cfg.blade.twist)
+    mu = advance_ratio
+
+    def theta(p):
+        return collective + tw + cyclic_cos * np.cos(p) + cyclic_sin * np.sin(p)
+
+    def theta_dd(p):       # d2/dt2 = Omega^2 d2/dpsi2
+        return -om**2 * (cyclic_cos * np.cos(p) + cyclic_sin * np.sin(p))
+
+    def ut(p):
+        return om * rad * (x + mu * np.sin(p))
+
+    def up(p):
+        return om * rad * (inflow + mu * coning * np.cos(p))
+
+    def alpha(p):
+        return theta(p) - up(p) / ut(p)
+
+    def d_dt(f, p, h=1e-4):  # central difference in psi, exact enough for smooth f
+        return om * (f(p + h) - f(p - h)) / (2 * h)
+
+    return SectionMotion(
+        velocity=ut, alpha=alpha,
+        alpha_rate=lambda p: d_dt(alpha, p),
+        alpha_accel=lambda p: om * (d_dt(alpha, p + 1e-4) - d_dt(alpha, p - 1e-4)) / 2e-4,
+        plunge_rate=lambda p: np.zeros_like(np.asarray(p, float)),
+        plunge_accel=lambda p: np.zeros_like(np.asarray(p, float)),
+        pitch=theta, pitch_accel=theta_dd,
+        flap_slope=lambda p: np.full_like(np.asarray(p, float), coning),
+        flap_accel=lambda p: np.zeros_like(np.asarray(p, float)))
+
+
+def rotor_motion(cfg, **controls):
+    """Factory ``motion_at(r)`` of :func:`rotor_section_motion` by radius [m]."""
+    radius = cfg.rotor.radius
+    return lambda r: rotor_section_motion(cfg, r / radius, **controls)
+
+
+def spectral_derivative(n: int) -> np.ndarray:
+    """d/dpsi on ``n`` equally spaced periodic points (Fourier collocation).
+
+    Exact for trigonometric polynomials of degree below n/2 (the Nyquist
+    term, whose derivative is ambiguous on the grid, is dropped).
+
+    Examples
+    --------
+    >>> psi = np.linspace(0, 2 * np.pi, 16, endpoint=False)
+    >>> bool(np.allclose(spectral_derivative(16) @ np.sin(3 * psi), 3 * np.cos(3 * psi)))
+    True
+    """
+    k = np.fft.fftfreq(n, 1.0 / n)
+    if n % 2 == 0:
+        k[n // 2] = 0.0
+    return np.real(np.fft.ifft(1j * k[:, None] * np.fft.fft(np.eye(n), axis=0), axis=0))
+
+
+def azimuth_grid(n: int = 72) -> np.ndarray:
+    """``n`` equally spaced azimuths over one revolution [rad]."""
+    return np.linspace(0.0, 2 * np.pi, n, endpoint=False)
+
+
+def _strips(props, motion_at, n_span):
+    r_pts, weights = props.stations(n_span)
+    return [(r, w, motion_at(r)) for r, w in zip(r_pts, weights, strict=True)]
+
+
+def aerodynamic_hinge_moment(aero, props: FlapProperties, motion_at, psi, delta, delta_rate,
+                             delta_accel, *, density: float, speed_of_sound: float,
+                             n_span: int = 3):
+    """Aerodynamic hinge moment of the whole flap [N m], positive TE down.
+
+    Strip theory over the flap span with ``n_span`` Gauss points;
+    ``motion_at(r)`` gives the :class:`SectionMotion` at radius ``r`` [m] and
+    ``aero`` is a section model with the ``loads`` interface
+    (:class:`tefcore.flap_aero.ThinAirfoilFlap` or a C81 table model).
+    ``delta_rate``/``delta_accel`` are time derivatives [rad/s, rad/s^2].
+    """
+    total = 0.0
+    for _, wgt, m in _strips(props, motion_at, n_span):
+        vel = m.velocity(psi)
+        out = aero.loads(alpha=m.alpha(psi), alpha_rate=m.alpha_rate(psi),
+                         alpha_accel=m.alpha_accel(psi), plunge_rate=m.plunge_rate(psi),
+                         plunge_accel=m.plunge_accel(psi), delta=delta, delta_rate=delta_rate,
+                         delta_accel=delta_accel, velocity=vel, density=density,
+                         chord=props.chord, mach=vel / speed_of_sound)
+        total = total + wgt * out["hinge_moment"]
+    return total
+
+
+def inertial_hinge_moment(props: FlapProperties, motion_at, psi, delta, delta_accel, *,
+                          rotor_speed: float, n_span: int = 3):
+    """Inertial and centrifugal moment of the whole flap [N m] (left-hand side).
+
+    ``int [I_h (delta** + Theta**) - S_f eta_h Theta** - S_f w** cos Theta
+    + M_cf(Theta, delta) - Omega^2 S_f r w' cos Theta] dr`` for a section with
+    no lag motion (the lag and Coriolis terms of docs/theory.md section 4
+    enter through the coupled model).
+    """
+    total = 0.0
+    ih, sf, eta = props.inertia_hinge, props.first_moment, props.hinge_from_ea
+    for r, wgt, m in _strips(props, motion_at, n_span):
+        th = m.pitch(psi)
+        th_dd = m.pitch_accel(psi)
+        per_span = (ih * (delta_accel + th_dd) - sf * eta * th_dd
+                    - sf * m.flap_accel(psi) * np.cos(th)
+                    + centrifugal_hinge_moment(props, rotor_speed, th, delta)
+                    - rotor_speed**2 * sf * r * m.flap_slope(psi) * np.cos(th))
+        total = total + wgt * per_span
+    return total
+
+
+def hinge_moment_history(aero, props: FlapProperties, motion_at, delta_f, *,
+                         rotor_speed: float, density: float, speed_of_sound: float,
+                         n_psi: int = 72) -> pd.DataFrame:
+    """Hinge moment over one revolution for a prescribed flap motion (Fig. 5).
+
+    Parameters
+    ----------
+    delta_f : callable
+        Flap deflection ``delta_f(psi)`` [rad], e.g.
+        ``lambda p: np.deg2rad(2) * np.cos(4 * p - np.deg2rad(240))``.
+
+    Returns
+    -------
+    pandas.DataFrame
+        ``psi_deg, delta_deg, hinge_moment_aero, hinge_moment_inertial`` [N m].
+    """
+    psi = azimuth_grid(n_psi)
+    d = spectral_derivative(n_psi) * rotor_speed
+    delta = delta_f(psi)
+    rate, accel = d @ delta, d @ (d @ delta)
+    aero_h = aerodynamic_hinge_moment(aero, props, motion_at, psi, delta, rate, accel,
+                                      density=density, speed_of_sound=speed_of_sound)
+    inert = inertial_hinge_moment(props, motion_at, psi, delta, accel, rotor_speed=rotor_speed)
+    return pd.DataFrame({"psi_deg": np.rad2deg(psi), "delta_deg": np.rad2deg(delta),
+                         "hinge_moment_aero": aero_h, "hinge_moment_inertial": inert})
+
+
+@dataclass
+class FlapResponse:
+    """Periodic flap response to an actuator input, with actuation power."""
+
+    psi: np.ndarray
+    delta_a: np.ndarray
+    delta_f: np.ndarray
+    hinge_moment_aero: np.ndarray
+    actuator_torque: np.ndarray
+    power: np.ndarray
+
+    @property
+    def half_peak_to_peak(self) -> float:
+        """Half the peak-to-peak flap deflection [rad]."""
+        return 0.5 * float(np.ptp(self.delta_f))
+
+    @property
+    def peak_power(self) -> float:
+        """Largest instantaneous actuation power magnitude [W]."""
+        return float(np.max(np.abs(self.power)))
+
+    @property
+    def mean_power(self) -> float:
+        """Mean absolute actuation power over the revolution [W]."""
+        return float(np.mean(np.abs(self.power)))
+
+
+def flap_response(aero, props: FlapProperties, motion_at, delta_a, *, rotor_speed: float,
+                  density: float, speed_of_sound: float, n_psi: int = 72,
+                  tol: float = 1e-10) -> FlapResponse:
+    """Periodic flap deflection driven through the actuator (Fig. 6).
+
+    Solves, by Fourier collocation on ``n_psi`` azimuths (harmonic balance),
+    ``inertial(delta) + c_a (delta* - delta_a*) + k_a (delta - delta_a)
+    = H_aero(delta, delta*, delta**)`` for the periodic ``delta_f(psi)``.
+
+    Raises
+    ------
+    RuntimeError
+        If the collocation equations do not converge (with the residual).
+    """
+    psi = azimuth_grid(n_psi)
+    d = spectral_derivative(n_psi) * rotor_speed
+    da = delta_a(psi)
+    da_rate = d @ da
+
+    def parts(delta):
+        rate, accel = d @ delta, d @ (d @ delta)
+        h = aerodynamic_hinge_moment(aero, props, motion_at, psi, delta, rate, accel,
+                                     density=density, speed_of_sound=speed_of_sound)
+        torque = props.k_a * (da - delta) + props.c_a * (da_rate - rate)
+        inert = inertial_hinge_moment(props, motion_at, psi, delta, accel,
+                                      rotor_speed=rotor_speed)
+        return h, torque, inert
+
+    def residual(delta):
+        h, torque, inert = parts(delta)
+        return (inert - torque - h) / props.k_a       # in radians: well scaled
+
+    sol = scipy.optimize.root(residual, da.copy(), method="hybr", tol=tol)
+    if not sol.success or np.max(np.abs(sol.fun)) > 1e-8:
+        raise RuntimeError(f"flap response did not converge: {sol.message}; "
+                           f"max residual {np.max(np.abs(sol.fun)):.3e} rad")
+    h, torque, _ = parts(sol.x)
+    return FlapResponse(psi=psi, delta_a=da, delta_f=sol.x, hinge_moment_aero=h,
+                        actuator_torque=torque, power=torque * da_rate)
