@@ -392,6 +392,18 @@ class ModelConfig(_Section):
         Param("aero_model", "dimensionless", "thin_airfoil", "", "Section aerodynamics.", "str",
               choices=("thin_airfoil", "c81")),
         Param("c81_deck", "dimensionless", "", "", "C81 table file (aero_model = 'c81').", "str"),
+        Param("tef", "dimensionless", "dynamic", "",
+              "Trailing-edge flap: 'dynamic' (flap dof with actuator) or 'none' (no flap, "
+              "plain airfoil: the paper's baseline rotor).", "str", choices=("dynamic", "none")),
+        Param("inflow", "dimensionless", "linear", "",
+              "Inflow: 'linear' (uniform momentum in hover, Drees in forward flight) or "
+              "'uniform'.", "str", choices=("linear", "uniform")),
+        Param("n_azimuth", "dimensionless", 24, "[8, 240]",
+              "Azimuth collocation points of the harmonic-balance trim.", "int"),
+        Param("n_floquet_steps", "dimensionless", 72, "[8, 5000]",
+              "RK4 steps per revolution of the Floquet transition matrices.", "int"),
+        Param("n_gauss", "dimensionless", 6, "[2, 40]",
+              "Gauss points per aerodynamic span segment (inboard, flap, outboard).", "int"),
     )  # fmt: skip
 
     def _validate(self) -> None:

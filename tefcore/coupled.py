@@ -1,0 +1,262 @@
+"""Coupled blade/flap/actuator equations in rotor units (docs/theory.md section 6).
+
+Generalised coordinates: ``N`` coupled blade modes ``q_R`` and the flap
+deflection ``delta`` (``q_F``).  For any azimuths and any motion
+``(q, q*, q**)`` the model returns the residual of the nonlinear equations
+
+``R = M_s q_R** + (C_s + G_s) q_R* + K_s q_R + (flap reactions) - Q_aero``
+``R_F = flap inertia/centrifugal + k_a (delta - delta_a) + c_a (...)* - H_aero``
+
+(all divided by ``m0 Omega^2 R^3``).  Trim solves ``R = 0`` for a periodic
+motion, and the linearised ``M, C, K`` of the paper's eq. (5) are the
+derivatives of ``R`` with respect to ``q**, q*, q`` (``linearize``).
+
+Aerodynamics: strip theory on Gauss points over three span segments (inboard
+of the flap, the flap, outboard), the section model of :mod:`tefcore.flap_aero`
+(or a C81 table model) with the flap deflection on the flap segment and zero
+elsewhere.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from .blade import blade_modes, pitch_function, rotor_units
+from .flap_dynamics import flap_properties
+
+
+def section_model(cfg):
+    """The configured section aerodynamics (thin-airfoil or C81 table)."""
+    r, f = cfg.rotor, cfg.flap
+    chord_ratio = f.chord_ratio if cfg.model.tef == "dynamic" else 0.2
+    overhang = f.overhang if cfg.model.tef == "dynamic" else 0.0
+    if cfg.model.aero_model == "c81":
+        from .c81 import C81FlapTable, read_c81
+
+        return C81FlapTable(read_c81(cfg.model.c81_deck), chord_ratio, overhang)
+    from .flap_aero import ThinAirfoilFlap
+
+    return ThinAirfoilFlap(chord_ratio, overhang, cd0=r.cd0, cd1=r.cd1, cd2=r.cd2, cm0=r.cm0,
+                           lift_slope=r.lift_slope)
+
+
+def _gauss_segments(edges, n):
+    g, w = np.polynomial.legendre.leggauss(n)
+    xs, ws = [], []
+    for a, b in zip(edges[:-1], edges[1:], strict=True):
+        xs.append(0.5 * (a + b) + 0.5 * (b - a) * g)
+        ws.append(0.5 * (b - a) * w)
+    return np.concatenate(xs), np.concatenate(ws)
+
+
+@dataclass
+class Controls:
+    """Blade pitch controls [rad]: ``theta = theta_0 + theta_1c cos psi + theta_1s sin psi``."""
+
+    collective: float = 0.0
+    cyclic_cos: float = 0.0
+    cyclic_sin: float = 0.0
+
+    def as_array(self):
+        return np.array([self.collective, self.cyclic_cos, self.cyclic_sin])
+
+
+@dataclass
+class CoupledModel:
+    """Blade modes + flap dof with their aerodynamic and inertial couplings.
+
+    Build it with :func:`coupled_model`.
+    """
+
+    cfg: object
+    modes: object
+    n_modes: int
+    has_flap: bool
+    x: np.ndarray                 # aerodynamic stations (fractions of R)
+    w: np.ndarray                 # their quadrature weights
+    on_flap: np.ndarray           # mask of stations on the flap span
+    shapes: dict                  # mode shapes at x: w, dw, v, dv, phi (n_st, n_modes)
+    twist: np.ndarray             # pretwist at x relative to 0.75 R [rad]
+    m_s: np.ndarray
+    c_s: np.ndarray
+    k_s: np.ndarray
+    flap: dict = field(default_factory=dict)   # nondimensional flap properties
+    aero: object = None
+    scale: dict = field(default_factory=dict)
+
+    @property
+    def n_dof(self) -> int:
+        return self.n_modes + int(self.has_flap)
+
+    @property
+    def labels(self) -> list[str]:
+        """Coordinate labels: ``blade flap 1`` ..., then ``TEF``."""
+        out = [f"blade {lab}" for lab in self.modes.labels]
+        return out + (["TEF"] if self.has_flap else [])
+
+    def actuator_input(self, psi):
+        """Actuator base angle ``delta_a(psi)`` and its psi-derivative [rad]."""
+        f = self.cfg.flight
+        arg = f.actuator_harmonic * psi - f.actuator_phase
+        return (f.actuator_amplitude * np.cos(arg),
+                -f.actuator_amplitude * f.actuator_harmonic * np.sin(arg))
+
+    def pitch(self, psi, controls: Controls):
+        """Geometric pitch theta(x, psi) at the stations and its psi-derivatives."""
+        c, s = np.cos(psi)[:, None], np.sin(psi)[:, None]
+        cyc = controls.cyclic_cos * c + controls.cyclic_sin * s
+        cyc_d = -controls.cyclic_cos * s + controls.cyclic_sin * c
+        shape = (psi.size, self.x.size)
+        return (controls.collective + self.twist[None, :] + cyc,
+                np.broadcast_to(cyc_d, shape), np.broadcast_to(-cyc, shape))
+
+    def evaluate(self, psi, q, qd, qdd, controls: Controls, inflow):
+        """Residual and section loads for motions at azimuths ``psi``.
+
+        Parameters
+        ----------
+        psi : ndarray, shape (n,)
+        q, qd, qdd : ndarray, shape (n_dof, n)
+            Coordinates and their psi-derivatives.
+        controls : Controls
+        inflow : callable
+            ``inflow(x, psi)`` inflow ratio (down positive).
+
+        Returns
+        -------
+        residual : ndarray, shape (n_dof, n)
+        thrust : ndarray, shape (n,)
+            Blade vertical force per azimuth, as C_T/sigma contribution
+            (its azimuthal mean is the rotor C_T/sigma).
+        """
+        cfg, sh, nm = self.cfg, self.shapes, self.n_modes
+        psi = np.asarray(psi, float)
+        qb, qbd, qbdd = q[:nm], qd[:nm], qdd[:nm]
+        # blade fields at (azimuth, station)
+        w, wd, wdd = (a.T @ sh["w"].T for a in (qb, qbd, qbdd))
+        dw, dwd = (a.T @ sh["dw"].T for a in (qb, qbd))
+        v, vd, vdd = (a.T @ sh["v"].T for a in (qb, qbd, qbdd))
+        dv, dvd = (a.T @ sh["dv"].T for a in (qb, qbd))
+        ph, phd, phdd = (a.T @ sh["phi"].T for a in (qb, qbd, qbdd))
+        theta, theta_d, theta_dd = self.pitch(psi, controls)
+        big_theta, big_theta_d, big_theta_dd = theta + ph, theta_d + phd, theta_dd + phdd
+        if self.has_flap:
+            dl = np.where(self.on_flap, q[nm][:, None], 0.0)
+            dld = np.where(self.on_flap, qd[nm][:, None], 0.0)
+            dldd = np.where(self.on_flap, qdd[nm][:, None], 0.0)
+        else:
+            dl = dld = dldd = np.zeros_like(w)
+
+        # velocities (units of Omega R) and angle of attack
+        mu = cfg.flight.advance_ratio
+        slope = dw + cfg.rotor.precone
+        ut = self.x[None, :] + mu * np.sin(psi)[:, None] + vd
+        up = inflow(self.x[None, :], psi[:, None]) + wd + mu * slope * np.cos(psi)[:, None]
+        inflow_angle = np.arctan(up / ut)          # keeps (-pi/2, pi/2): reverse flow below
+        sign = np.sign(ut)                         # reverse flow flips the loads
+        speed = np.hypot(ut, up)
+        sc = self.scale
+        out = self.aero.loads(alpha=big_theta - inflow_angle,
+                              alpha_rate=big_theta_d * sc["omega"],
+                              alpha_accel=big_theta_dd * sc["omega"] ** 2,
+                              plunge_rate=np.zeros_like(w), plunge_accel=wdd * sc["accel"],
+                              delta=dl, delta_rate=dld * sc["omega"],
+                              delta_accel=dldd * sc["omega"] ** 2,
+                              velocity=speed * sc["speed"], density=cfg.rotor.air_density,
+                              chord=cfg.rotor.chord, axis=cfg.rotor.elastic_axis,
+                              mach=speed * sc["speed"] / cfg.rotor.speed_of_sound)
+        lift = sign * out["lift"] / sc["force"]
+        drag = sign * out["drag"] / sc["force"]
+        moment = sign * out["moment"] / sc["moment"]
+        cphi, sphi = np.cos(inflow_angle), np.sin(inflow_angle)
+        fz = lift * cphi - drag * sphi
+        fy = -(lift * sphi + drag * cphi)
+        wq = self.w[None, :]
+        q_aero = (fz * wq) @ sh["w"] + (fy * wq) @ sh["v"] + (moment * wq) @ sh["phi"]
+        res = np.empty((self.n_dof, psi.size))
+        res[:nm] = self.m_s @ qbdd + self.c_s @ qbd + self.k_s @ qb - q_aero.T
+        thrust = (fz * wq).sum(axis=1) * sc["ct_sigma"]
+        if self.has_flap:
+            hinge = sign * out["hinge_moment"] / sc["moment"]
+            res[:nm] += self._flap_reactions(big_theta, dl, dld, dldd, wq).T
+            res[nm] = self._flap_equation(psi, big_theta, big_theta_dd, dl, dldd, q[nm], qd[nm],
+                                          wdd, vdd, v, slope, dv, dvd, dwd, hinge, wq)
+        return res, thrust
+
+    def _flap_reactions(self, th, dl, dld, dldd, wq):
+        """delta-dependent inertial loads of the flap on the blade modes."""
+        f, sh, m = self.flap, self.shapes, self.on_flap[None, :] * wq
+        ih, sf, eta = f["inertia_hinge"], f["first_moment"], f["hinge_from_ea"]
+        c, s = np.cos(th), np.sin(th)
+        phi_f = th + dl
+        m_cf = ih * (np.sin(phi_f) * np.cos(phi_f) - s * c) - eta * sf * (
+            np.sin(th + phi_f) - np.sin(2 * th))
+        x = self.x[None, :]
+        ipe = ih - sf * eta
+        return ((-sf * c * dldd * m) @ sh["w"] + ((sf * s * (dldd - dl)) * m) @ sh["v"]
+                + ((ipe * dldd + m_cf) * m) @ sh["phi"]
+                + ((-sf * x * c * dl - 2 * ipe * s * s * dld) * m) @ sh["dw"]
+                + ((sf * x * s * dl - 2 * ipe * s * c * dld) * m) @ sh["dv"])
+
+    def _flap_equation(self, psi, th, th_dd, dl, dldd, delta, delta_d, wdd, vdd, v, slope, dv,
+                       dvd, dwd, hinge, wq):
+        """Flap equation residual (docs/theory.md section 4.1), integrated over the span."""
+        f = self.flap
+        ih, sf, eta = f["inertia_hinge"], f["first_moment"], f["hinge_from_ea"]
+        c, s = np.cos(th), np.sin(th)
+        phi_f = th + dl
+        x = self.x[None, :]
+        ipe = ih - sf * eta
+        per_span = (ih * (dldd + th_dd) - sf * eta * th_dd - sf * (wdd * c - vdd * s)
+                    + ih * np.sin(phi_f) * np.cos(phi_f) - sf * eta * c * np.sin(phi_f)
+                    - sf * x * (slope * c - dv * s) - sf * v * s
+                    + ipe * (dvd * np.sin(2 * th) + dwd * (1 - np.cos(2 * th))) - hinge)
+        da, da_d = self.actuator_input(psi)
+        return ((per_span * self.on_flap[None, :] * wq).sum(axis=1)
+                + f["k_a"] * (delta - da) + f["c_a"] * (delta_d - da_d))
+
+
+def coupled_model(cfg, collective: float = 0.0, modes=None) -> CoupledModel:
+    """Build the coupled model of a configuration.
+
+    Parameters
+    ----------
+    cfg : tefcore.config.Config
+    collective : float
+        Pitch at 0.75 R [rad] at which the blade modes are computed (the
+        structural flap-lag coupling depends on it).
+    modes : BladeModes, optional
+        Precomputed modes (else computed here).
+    """
+    units = rotor_units(cfg)
+    modes = modes or blade_modes(cfg, collective=collective)
+    r, fl = cfg.rotor, cfg.flap
+    has_flap = cfg.model.tef == "dynamic"
+    x_in, x_out = fl.midspan - fl.span / 2, fl.midspan + fl.span / 2
+    edges = [r.root_cutout, x_in, x_out, 1.0]
+    x, w = _gauss_segments(edges, cfg.model.n_gauss)
+    n = cfg.model.n_gauss
+    on_flap = np.zeros(x.size, bool)
+    on_flap[n:2 * n] = True
+    s = modes.shapes(x)
+    shapes = {"w": s["w"], "dw": s["dw"], "v": s["v"], "dv": s["dv"], "phi": s["phi"]}
+    twist = pitch_function(cfg, 0.0)(x)
+    om, rad, m0 = units.rotor_speed, units.radius, units.mass_per_length
+    scale = {"omega": om, "speed": om * rad, "accel": om**2 * rad,
+             "force": m0 * om**2 * rad, "moment": m0 * om**2 * rad**2,
+             "ct_sigma": m0 / (r.air_density * r.chord * rad)}
+    n_m = len(modes.frequencies)
+    flap = {}
+    if has_flap:
+        fp = flap_properties(cfg)
+        flap = {"inertia_hinge": fp.inertia_hinge / (m0 * rad**2),
+                "first_moment": fp.first_moment / (m0 * rad),
+                "hinge_from_ea": fp.hinge_from_ea / rad, "span": fl.span,
+                "k_a": units.spring(fp.k_a), "c_a": units.damper(fp.c_a)}
+    return CoupledModel(cfg=cfg, modes=modes, n_modes=n_m, has_flap=has_flap, x=x, w=w,
+                        on_flap=on_flap, shapes=shapes, twist=twist, m_s=modes.modal_mass,
+                        c_s=modes.modal_damping + modes.modal_gyroscopic,
+                        k_s=modes.modal_stiffness, flap=flap, aero=section_model(cfg),
+                        scale=scale)

@@ -1,0 +1,113 @@
+"""Rotor inflow: uniform momentum (hover, forward flight) and Drees linear inflow.
+
+Inflow ratios are positive down through the disk, in units of the tip speed
+``Omega R``. The shaft angle ``alpha_s`` is positive for forward tilt, which
+makes the free stream pass down through the disk: ``lambda = mu tan(alpha_s)
++ lambda_i`` (Leishman, *Principles of Helicopter Aerodynamics*, ch. 2).
+The paper uses the Bagai-Leishman free wake; a compact model cannot, and the
+linear inflow misses the wake's local peaks (notebooks discuss what that
+shifts).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.optimize
+
+
+@dataclass(frozen=True)
+class Inflow:
+    """Inflow ratio field ``lambda(x, psi) = mu tan(alpha_s) + lambda_0 (1 + kx x cos psi + ky x sin psi)``.
+
+    Attributes
+    ----------
+    mean_induced : float
+        lambda_0, the momentum-theory induced inflow.
+    freestream : float
+        ``mu tan(alpha_s)``, the free-stream part.
+    kx, ky : float
+        Drees longitudinal and lateral gradients (zero for uniform inflow).
+    """
+
+    mean_induced: float
+    freestream: float = 0.0
+    kx: float = 0.0
+    ky: float = 0.0
+
+    @property
+    def total(self) -> float:
+        """Mean total inflow ratio."""
+        return self.freestream + self.mean_induced
+
+    def __call__(self, x, psi):
+        x, psi = np.broadcast_arrays(np.asarray(x, float), np.asarray(psi, float))
+        return self.freestream + self.mean_induced * (
+            1.0 + self.kx * x * np.cos(psi) + self.ky * x * np.sin(psi))
+
+
+def momentum_inflow(ct: float, advance_ratio: float, shaft_angle: float = 0.0) -> float:
+    """Mean induced inflow from momentum theory (Glauert), ``lambda_i``.
+
+    Solves ``lambda_i = C_T / (2 sqrt(mu^2 + lambda^2))`` with
+    ``lambda = mu tan(alpha_s) + lambda_i``; in hover ``sqrt(C_T / 2)``.
+
+    Parameters
+    ----------
+    ct : float
+        Thrust coefficient (negative thrust gives negative inflow).
+    advance_ratio : float
+    shaft_angle : float
+        Forward tilt [rad].
+
+    Examples
+    --------
+    >>> round(momentum_inflow(0.008, 0.0), 10)
+    0.0632455532
+    """
+    if not np.isfinite(ct):
+        raise ValueError(f"thrust coefficient must be finite, got {ct}")
+    mu = advance_ratio
+    lam_fs = mu * np.tan(shaft_angle)
+    if ct == 0.0:
+        return 0.0
+    if mu == 0.0 and lam_fs == 0.0:
+        return float(np.sign(ct) * np.sqrt(abs(ct) / 2.0))
+
+    def f(li):
+        return li - ct / (2.0 * np.hypot(mu, lam_fs + li))
+
+    hover = np.sqrt(abs(ct) / 2.0)
+    lo, hi = (1e-12, 2 * hover) if ct > 0 else (-2 * hover, -1e-12)
+    return float(scipy.optimize.brentq(f, lo, hi, xtol=1e-14))
+
+
+def drees_gradients(advance_ratio: float, total_inflow: float) -> tuple[float, float]:
+    """Drees (1949) linear inflow gradients ``(kx, ky)``.
+
+    ``kx = 4/3 (1 - cos chi - 1.8 mu^2) / sin chi``, ``ky = -2 mu``, with the
+    wake skew angle ``chi = atan(mu / lambda)``; zero in hover.
+    """
+    mu = advance_ratio
+    if mu == 0.0:
+        return 0.0, 0.0
+    chi = np.arctan2(mu, total_inflow)
+    return float(4.0 / 3.0 * (1.0 - np.cos(chi) - 1.8 * mu**2) / np.sin(chi)), -2.0 * mu
+
+
+def rotor_inflow(ct: float, advance_ratio: float, shaft_angle: float = 0.0,
+                 model: str = "linear") -> Inflow:
+    """Inflow field for a thrust coefficient and flight condition.
+
+    Parameters
+    ----------
+    model : {'linear', 'uniform'}
+        'linear' adds the Drees gradients in forward flight.
+    """
+    if model not in ("linear", "uniform"):
+        raise ValueError(f"inflow model must be 'linear' or 'uniform', got {model!r}")
+    li = momentum_inflow(ct, advance_ratio, shaft_angle)
+    fs = advance_ratio * np.tan(shaft_angle)
+    kx, ky = (drees_gradients(advance_ratio, fs + li) if model == "linear" else (0.0, 0.0))
+    return Inflow(mean_induced=li, freestream=fs, kx=kx, ky=ky)

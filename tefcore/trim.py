@@ -1,0 +1,270 @@
+"""Wind-tunnel trim: periodic blade/flap response and controls together.
+
+Harmonic balance by Fourier collocation (docs/theory.md section 7): the
+coupled equations are enforced at ``N`` equally spaced azimuths, with the
+azimuth derivatives given by the Fourier differentiation matrix, together
+with the trim targets
+
+* ``C_T/sigma`` equal to the target (unknown: collective; dropped when the
+  collective is prescribed),
+* zero first-harmonic tip flap deflection ``beta_1c = beta_1s = 0``
+  (unknowns: cyclic pitch; forward flight only — in hover the solution is
+  axisymmetric and ``N = 1``),
+* momentum inflow consistent with the thrust (unknown: ``lambda_i``).
+
+Newton's method with the exact block structure: the residual at one azimuth
+depends only on ``(q, q*, q**)`` there, so its Jacobian is found for all
+azimuths at once from ``3 n`` perturbed evaluations.  Convergence is
+quadratic; a trim that does not converge raises :class:`TrimError` with its
+residual history.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from .coupled import Controls, CoupledModel
+from .flap_dynamics import spectral_derivative
+from .inflow import Inflow, drees_gradients
+
+
+class TrimError(RuntimeError):
+    """The trim did not converge; ``history`` holds the residual per iteration."""
+
+    def __init__(self, message: str, history: list[dict]):
+        super().__init__(message)
+        self.history = history
+
+
+def fourier_coefficients(samples: np.ndarray) -> np.ndarray:
+    """Complex Fourier coefficients (last axis = equally spaced azimuths)."""
+    return np.fft.rfft(samples, axis=-1) / samples.shape[-1]
+
+
+def fourier_eval(samples: np.ndarray, psi, derivative: int = 0) -> np.ndarray:
+    """Trigonometric interpolation of periodic samples (and its derivatives).
+
+    Exact for trigonometric polynomials of degree below ``N/2``; the Nyquist
+    term is kept as a cosine in the value and dropped from derivatives (as in
+    :func:`tefcore.flap_dynamics.spectral_derivative`).
+
+    Examples
+    --------
+    >>> grid = np.linspace(0, 2 * np.pi, 8, endpoint=False)
+    >>> round(float(fourier_eval(np.sin(2 * grid), np.array([0.3]))[0]), 12)
+    0.564642473395
+    """
+    n = samples.shape[-1]
+    c = fourier_coefficients(samples)
+    k = np.arange(c.shape[-1])
+    weight = np.where((k == 0) | ((n % 2 == 0) & (k == n // 2)), 1.0, 2.0)
+    psi = np.atleast_1d(np.asarray(psi, float))
+    ik = (1j * k) ** derivative
+    if derivative and n % 2 == 0:
+        ik = np.where(k == n // 2, 0.0, ik)
+    basis = np.exp(1j * np.outer(k, psi))                # (n_k, n_psi)
+    return np.real((c * weight * ik) @ basis)
+
+
+@dataclass
+class TrimResult:
+    """Converged trim: controls, inflow and the periodic response."""
+
+    model: CoupledModel
+    psi: np.ndarray
+    q: np.ndarray                 # (n_dof, N) at the collocation azimuths
+    controls: Controls
+    inflow: Inflow
+    ct_sigma: float
+    history: list = field(default_factory=list)
+
+    def motion(self, psi):
+        """``q, q*, q**`` at any azimuths, by Fourier interpolation."""
+        return tuple(fourier_eval(self.q, psi, d) for d in (0, 1, 2))
+
+    def summary(self) -> dict:
+        """Scalars for tables: controls [deg], inflow, thrust, flap harmonics."""
+        out = {"collective_deg": np.rad2deg(self.controls.collective),
+               "cyclic_cos_deg": np.rad2deg(self.controls.cyclic_cos),
+               "cyclic_sin_deg": np.rad2deg(self.controls.cyclic_sin),
+               "inflow": self.inflow.total, "induced_inflow": self.inflow.mean_induced,
+               "ct_sigma": self.ct_sigma, "iterations": len(self.history)}
+        if self.model.has_flap:
+            c = fourier_coefficients(self.q[-1])
+            out["delta_mean_deg"] = float(np.rad2deg(np.real(c[0])))
+            for k in range(1, min(6, c.size)):
+                out[f"delta_{k}c_deg"] = float(np.rad2deg(2 * np.real(c[k])))
+                out[f"delta_{k}s_deg"] = float(np.rad2deg(-2 * np.imag(c[k])))
+        return out
+
+
+def _inflow(model, lam_i):
+    f = model.cfg.flight
+    fs = f.advance_ratio * np.tan(f.shaft_angle)
+    kx, ky = (drees_gradients(f.advance_ratio, fs + lam_i)
+              if model.cfg.model.inflow == "linear" else (0.0, 0.0))
+    return Inflow(mean_induced=lam_i, freestream=fs, kx=kx, ky=ky)
+
+
+def trim(model: CoupledModel, *, tol: float = 1e-10, max_iter: int = 40,
+         initial: TrimResult | None = None) -> TrimResult:
+    """Trim the coupled model (wind-tunnel trim in forward flight).
+
+    Parameters
+    ----------
+    model : CoupledModel
+    tol : float
+        Convergence on the largest residual (rotor units) and the largest
+        Newton update.
+    max_iter : int
+    initial : TrimResult, optional
+        Warm start (e.g. the previous point of a sweep).
+
+    Returns
+    -------
+    TrimResult
+
+    Raises
+    ------
+    TrimError
+        If Newton's method does not converge in ``max_iter`` iterations or
+        the residual becomes non-finite.
+    """
+    cfg = model.cfg
+    f = cfg.flight
+    hover = f.advance_ratio == 0.0
+    n_psi = 1 if hover else cfg.model.n_azimuth
+    psi = np.linspace(0, 2 * np.pi, n_psi, endpoint=False)
+    d1 = spectral_derivative(n_psi)
+    d2 = d1 @ d1
+    n = model.n_dof
+    free_collective = f.collective is None
+    sigma = cfg.rotor.solidity
+    mu, fs = f.advance_ratio, f.advance_ratio * np.tan(f.shaft_angle)
+    tip = model.modes.shapes([1.0])["w"][0]                  # tip flap of each mode
+
+    # unknowns: Q (n x N), [theta_0], [theta_1c, theta_1s], lambda_i
+    if initial is not None and initial.q.shape == (n, n_psi):
+        q0, ctl, lam = initial.q.copy(), initial.controls, initial.inflow.mean_induced
+    else:
+        q0 = np.zeros((n, n_psi))
+        ctl = Controls(collective=f.collective if f.collective is not None
+                       else 6 * f.ct_sigma / cfg.rotor.lift_slope + 0.75 * np.sqrt(
+                           f.ct_sigma * sigma / 2))
+        lam = np.sqrt(max(f.ct_sigma * sigma, 1e-6) / 2)
+    ctl_names = (["collective"] if free_collective else []) + ([] if hover else
+                                                               ["cyclic_cos", "cyclic_sin"])
+    x = np.concatenate([q0.ravel(), [getattr(ctl, k) for k in ctl_names], [lam]])
+    nq = n * n_psi
+
+    def unpack(vec):
+        c = Controls(ctl.collective, ctl.cyclic_cos, ctl.cyclic_sin)
+        for k, val in zip(ctl_names, vec[nq:-1], strict=True):
+            setattr(c, k, float(val))
+        return vec[:nq].reshape(n, n_psi), c, float(vec[-1])
+
+    def residuals(vec, per_psi=False):
+        q, c, li = unpack(vec)
+        res, thrust = model.evaluate(psi, q, q @ d1.T, q @ d2.T, c, _inflow(model, li))
+        return res, thrust, c, li
+
+    def scalars(q, thrust, li):
+        ct_s = thrust.mean()
+        out = [ct_s - f.ct_sigma] if free_collective else []
+        if not hover:
+            w_tip = tip @ q[:model.n_modes]
+            out += [2 * np.mean(w_tip * np.cos(psi)), 2 * np.mean(w_tip * np.sin(psi))]
+        ct = ct_s * sigma
+        out.append(li - ct / (2 * np.hypot(mu, fs + li)))
+        return np.array(out)
+
+    history = []
+    for it in range(max_iter):
+        res, thrust, c, li = residuals(x)
+        q = x[:nq].reshape(n, n_psi)
+        r = np.concatenate([res.ravel(), scalars(q, thrust, li)])
+        norm = float(np.max(np.abs(r)))
+        history.append({"iteration": it, "max_residual": norm, "collective_deg":
+                        np.rad2deg(c.collective), "cyclic_cos_deg": np.rad2deg(c.cyclic_cos),
+                        "cyclic_sin_deg": np.rad2deg(c.cyclic_sin), "inflow": li})
+        if not np.isfinite(norm):
+            raise TrimError("trim residual became non-finite", history)
+        jac = _jacobian(model, x, r, c, li, residuals, scalars, psi, d1, d2, n, n_psi, nq,
+                        tip, hover, free_collective, sigma, mu, fs)
+        step = np.linalg.solve(jac, -r)
+        # damped Newton: halve the step while the residual grows
+        alpha = 1.0
+        for _ in range(8):
+            trial = x + alpha * step
+            rt, tt, ct_, lt = residuals(trial)
+            qt = trial[:nq].reshape(n, n_psi)
+            if np.max(np.abs(np.concatenate([rt.ravel(), scalars(qt, tt, lt)]))) <= norm \
+                    or norm < 1e-6:
+                break
+            alpha *= 0.5
+        x = x + alpha * step
+        if norm < tol and np.max(np.abs(alpha * step)) < 1e3 * tol:
+            q, c, li = unpack(x)
+            res, thrust = model.evaluate(psi, q, q @ d1.T, q @ d2.T, c, _inflow(model, li))
+            return TrimResult(model=model, psi=psi, q=q, controls=c, inflow=_inflow(model, li),
+                              ct_sigma=float(thrust.mean()), history=history)
+    raise TrimError(f"trim did not converge in {max_iter} iterations "
+                    f"(last max residual {history[-1]['max_residual']:.3e})", history)
+
+
+def _jacobian(model, x, r0, c, li, residuals, scalars, psi, d1, d2, n, n_psi, nq, tip, hover,
+              free_collective, sigma, mu, fs):
+    """Newton Jacobian using the per-azimuth block structure."""
+    q = x[:nq].reshape(n, n_psi)
+    qd, qdd = q @ d1.T, q @ d2.T
+    infl = _inflow(model, li)
+    base_res, base_thr = model.evaluate(psi, q, qd, qdd, c, infl)
+    blocks, tblocks = [], []
+    for arr_i in range(3):                      # d/dq, d/dq*, d/dq**
+        jb = np.empty((n_psi, n, n))
+        tb = np.empty((n_psi, n))
+        for j in range(n):
+            h = 1e-7
+            args = [q, qd, qdd]
+            pert = args[arr_i].copy()
+            pert[j] += h
+            args[arr_i] = pert
+            res, thr = model.evaluate(psi, *args, c, infl)
+            jb[:, :, j] = ((res - base_res) / h).T
+            tb[:, j] = (thr - base_thr) / h
+        blocks.append(jb)
+        tblocks.append(tb)
+    eye = np.eye(n_psi)
+    # J[(i,m),(j,l)] = J0[m,i,j] I_ml + J1[m,i,j] D_ml + J2[m,i,j] D2_ml
+    j4 = (blocks[0][:, None] * eye[:, :, None, None] + blocks[1][:, None] * d1[:, :, None, None]
+          + blocks[2][:, None] * d2[:, :, None, None])          # (m, l, i, j)
+    jqq = j4.transpose(2, 0, 3, 1).reshape(nq, nq)
+    n_s = r0.size - nq
+    jac = np.zeros((r0.size, r0.size))
+    jac[:nq, :nq] = jqq
+    # thrust derivative wrt Q (mean over azimuth)
+    dct = (tblocks[0].T + tblocks[1].T @ d1 + tblocks[2].T @ d2) / n_psi     # (n, N)
+    row = 0
+    if free_collective:
+        jac[nq, :nq] = dct.ravel()
+        row += 1
+    if not hover:
+        w_tip = np.zeros((n, n_psi))
+        w_tip[:model.n_modes] = tip[:, None]
+        jac[nq + row, :nq] = (2 / n_psi * w_tip * np.cos(psi)).ravel()
+        jac[nq + row + 1, :nq] = (2 / n_psi * w_tip * np.sin(psi)).ravel()
+        row += 2
+    denom = 2 * np.hypot(mu, fs + li)
+    jac[nq + row, :nq] = -sigma * dct.ravel() / denom
+    # control and inflow columns by forward differences of the whole residual
+    for k in range(nq, x.size):
+        h = 1e-7
+        xp = x.copy()
+        xp[k] += h
+        res, thr, _, lp = residuals(xp)
+        qp = xp[:nq].reshape(n, n_psi)
+        jac[:, k] = (np.concatenate([res.ravel(), scalars(qp, thr, lp)]) - r0) / h
+    assert n_s == row + 1
+    return jac
