@@ -13,6 +13,8 @@ parallelism comes from sweeping points in separate processes instead.
 
 import os
 
+import numpy  # noqa: F401  (load both BLAS builds before limiting them:
+import scipy.linalg  # noqa: F401  threadpoolctl only sees libraries already loaded)
 from threadpoolctl import threadpool_limits
 
 __version__ = "0.1.0"

@@ -289,12 +289,18 @@ def section_loads(static_model, *, alpha, alpha_rate, alpha_accel, plunge_rate, 
              "delta_rate", "delta_accel", "axis")
     vals = dict(zip(names, (alpha, alpha_rate, alpha_accel, plunge_rate, plunge_accel, delta,
                             delta_rate, delta_accel, axis), strict=True))
-    arrs = [_finite(k, v) for k, v in vals.items()]
-    arrs += [_finite(k, v, positive=True) for k, v in
-             (("velocity", velocity), ("density", density), ("chord", chord))]
+    vals.update(velocity=velocity, density=density, chord=chord, mach=mach)
+    arrs = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in vals.values()))
+    # one finiteness test for all inputs (this sits in the trim's inner loop);
+    # the per-name checks run only to word the error
+    if not np.isfinite(np.stack(arrs)).all():
+        for k, v in vals.items():
+            _finite(k, v)
+    for k in ("velocity", "density", "chord"):
+        if np.any(vals[k] <= 0.0):
+            _finite(k, vals[k], positive=True)
     pg = prandtl_glauert(mach)
-    arrs.append(np.asarray(mach, dtype=float))
-    al, ar, aa, pr, pa, dl, dr, da, ax, u, rho, chd, m = np.broadcast_arrays(*arrs)
+    al, ar, aa, pr, pa, dl, dr, da, ax, u, rho, chd, m = arrs
     if not getattr(static_model, "compressibility", True):
         pg = 1.0
     b = 0.5 * chd

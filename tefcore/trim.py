@@ -24,6 +24,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 import numpy as np
+import scipy.linalg
 
 from .coupled import Controls, CoupledModel
 from .flap_dynamics import spectral_derivative
@@ -79,6 +80,7 @@ class TrimResult:
     inflow: Inflow
     ct_sigma: float
     history: list = field(default_factory=list)
+    jacobian: np.ndarray | None = field(default=None, repr=False)
 
     def motion(self, psi):
         """``q, q*, q**`` at any azimuths, by Fourier interpolation."""
@@ -181,6 +183,12 @@ def trim(model: CoupledModel, *, tol: float = 1e-10, max_iter: int = 40,
         return np.array(out)
 
     history = []
+    lu = None
+    if initial is not None and initial.jacobian is not None and \
+            initial.jacobian.shape == (x.size, x.size):
+        lu = scipy.linalg.lu_factor(initial.jacobian)
+        jac = initial.jacobian
+    prev = np.inf
     for it in range(max_iter):
         res, thrust, c, li = residuals(x)
         q = x[:nq].reshape(n, n_psi)
@@ -191,25 +199,28 @@ def trim(model: CoupledModel, *, tol: float = 1e-10, max_iter: int = 40,
                         "cyclic_sin_deg": np.rad2deg(c.cyclic_sin), "inflow": li})
         if not np.isfinite(norm):
             raise TrimError("trim residual became non-finite", history)
-        jac = _jacobian(model, x, r, c, li, residuals, scalars, psi, d1, d2, n, n_psi, nq,
-                        tip, hover, free_collective, sigma, mu, fs)
-        step = np.linalg.solve(jac, -r)
+        if norm < tol:
+            return TrimResult(model=model, psi=psi, q=q, controls=c, inflow=_inflow(model, li),
+                              ct_sigma=float(thrust.mean()), history=history, jacobian=jac)
+        # chord method: keep the factorised Jacobian while it converges fast,
+        # refresh it when the residual falls by less than 10x per iteration
+        if lu is None or norm > 0.1 * prev:
+            jac = _jacobian(model, x, r, c, li, residuals, scalars, psi, d1, d2, n, n_psi, nq,
+                            tip, hover, free_collective, sigma, mu, fs)
+            lu = scipy.linalg.lu_factor(jac)
+        prev = norm
+        step = scipy.linalg.lu_solve(lu, -r)
         # damped Newton: halve the step while the residual grows
         alpha = 1.0
         for _ in range(8):
             trial = x + alpha * step
-            rt, tt, ct_, lt = residuals(trial)
+            rt, tt, _, lt = residuals(trial)
             qt = trial[:nq].reshape(n, n_psi)
             if np.max(np.abs(np.concatenate([rt.ravel(), scalars(qt, tt, lt)]))) <= norm \
                     or norm < 1e-6:
                 break
             alpha *= 0.5
         x = x + alpha * step
-        if norm < tol and np.max(np.abs(alpha * step)) < 1e3 * tol:
-            q, c, li = unpack(x)
-            res, thrust = model.evaluate(psi, q, q @ d1.T, q @ d2.T, c, _inflow(model, li))
-            return TrimResult(model=model, psi=psi, q=q, controls=c, inflow=_inflow(model, li),
-                              ct_sigma=float(thrust.mean()), history=history)
     raise TrimError(f"trim did not converge in {max_iter} iterations "
                     f"(last max residual {history[-1]['max_residual']:.3e})", history)
 

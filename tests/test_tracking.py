@@ -1,0 +1,207 @@
+"""Tests of tefcore.tracking: MAC and mode tracking along a sweep."""
+
+import numpy as np
+import pandas as pd
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+from hypothesis.extra import numpy as hnp
+
+from tefcore.tracking import label_changes, mac, match_modes, track_modes
+
+# ------------------------------------------------------------------ MAC
+
+
+def test_mac_identity_scaling_and_phase_invariance():
+    rng = np.random.default_rng(0)
+    a = rng.normal(size=(6, 3)) + 1j * rng.normal(size=(6, 3))
+    scaled = a * np.array([2.0, -1j, 0.3 * np.exp(0.7j)])
+    np.testing.assert_allclose(np.diag(mac(a, scaled)), 1.0, rtol=1e-14)
+    q, _ = np.linalg.qr(a)  # orthonormal columns: MAC is the identity
+    np.testing.assert_allclose(mac(q, q), np.eye(3), atol=1e-14)
+
+
+def test_mac_is_vectorised_and_matches_the_definition():
+    rng = np.random.default_rng(1)
+    a = rng.normal(size=(5, 4)) + 1j * rng.normal(size=(5, 4))
+    b = rng.normal(size=(5, 2)) + 1j * rng.normal(size=(5, 2))
+    m = mac(a, b)
+    assert m.shape == (4, 2)
+    for i in range(4):
+        for j in range(2):
+            x, y = a[:, i], b[:, j]
+            ref = abs(np.vdot(x, y)) ** 2 / (np.vdot(x, x).real * np.vdot(y, y).real)
+            assert m[i, j] == pytest.approx(ref, rel=1e-13)
+    assert mac(a[:, 0], b[:, 1]).shape == (1, 1)  # 1-D input is one column
+
+
+def test_mac_complex_conjugation_matters():
+    # phi and conj(phi) are different modes when phi is genuinely complex
+    phi = np.array([1.0, 1j])
+    assert mac(phi, phi.conj())[0, 0] == pytest.approx(0.0, abs=1e-15)
+
+
+def test_mac_errors():
+    with pytest.raises(ValueError, match="differ in length"):
+        mac(np.ones(3), np.ones(4))
+    with pytest.raises(ValueError, match=r"phi_b column\(s\) \[1\] are zero"):
+        mac(np.ones((2, 1)), np.array([[1.0, 0.0], [0.0, 0.0]]))
+    with pytest.raises(ValueError, match="non-finite"):
+        mac(np.array([np.nan, 1.0]), np.ones(2))
+
+
+# Gaussian-integer entries (scaled): exact zero columns occur, underflow does not.
+complex_arrays = hnp.arrays(
+    complex, (4, 3), elements=st.builds(lambda re, im: complex(re, im) / 8,
+                                        st.integers(-40, 40), st.integers(-40, 40)))
+
+
+@settings(max_examples=80, deadline=None)
+@given(complex_arrays, complex_arrays)
+def test_mac_bounded_and_symmetric(a, b):
+    if (np.abs(np.hstack([a, b])).sum(axis=0) == 0).any():
+        with pytest.raises(ValueError):
+            mac(a, b)
+        return
+    m = mac(a, b)
+    assert ((m >= 0) & (m <= 1 + 1e-9)).all()
+    np.testing.assert_allclose(m, mac(b, a).T, rtol=1e-12, atol=1e-15)
+
+
+# ------------------------------------------------------------------ tracking
+
+# Two modes A (f = 1 + x) and B (f = 2 - x) that cross at x = 0.5; a third,
+# C (f = 3), stays apart.  The "solver" lists them by frequency.
+LAWS = {"A": (lambda x: 1.0 + x, 0), "B": (lambda x: 2.0 - x, 1), "C": (lambda x: 3.0, 2)}
+XS = np.linspace(0.0, 1.0, 11)
+
+
+def point(x, *, by_order=False, vectors=True, phase=True):
+    names = sorted(LAWS, key=lambda k: LAWS[k][0](x))
+    modes = pd.DataFrame({
+        "mode_id": range(3),
+        "label": [f"mode {j + 1}" for j in range(3)] if by_order else names,
+        "frequency_per_rev": [LAWS[k][0](x) for k in names],
+        "real_part": [-0.01 * (1 + LAWS[k][1]) for k in names],
+        "damping_ratio": 0.0,
+    })
+    if not vectors:
+        return modes
+    vecs = np.zeros((3, 3), complex)
+    for j, k in enumerate(names):
+        vecs[LAWS[k][1], j] = 1.0
+        vecs[(LAWS[k][1] + 1) % 3, j] = 0.3
+        if phase:
+            vecs[:, j] *= np.exp(1j * (5 * x + 2 * j))
+    return modes, vecs
+
+
+def assert_follows_laws(t, xs=XS, key="label"):
+    for name, (law, _) in LAWS.items():
+        c = t[t[key] == name]
+        assert c["track"].nunique() == 1 and len(c) == len(xs)
+        np.testing.assert_allclose(c["frequency_per_rev"], law(xs[c["step"]]), atol=1e-12)
+
+
+def test_tracks_follow_modes_through_the_crossing():
+    t = track_modes([point(x) for x in XS], values=XS)
+    assert list(t.columns[:5]) == ["step", "track", "label", "label_here", "mode_id"]
+    assert len(t) == 3 * len(XS)
+    assert_follows_laws(t)
+    assert (t["label"] == t["label_here"]).all()
+    assert t.loc[t["label"] == "A", "mode_id"].tolist() == [0] * 6 + [1] * 5  # reordered
+
+
+def test_first_label_is_kept_and_label_changes_are_reported():
+    t = track_modes([point(x, by_order=True) for x in XS], values=XS)
+    start = t[t["step"] == 0].set_index("track")["label"]
+    assert start.tolist() == ["mode 1", "mode 2", "mode 3"]
+    # track 0 is mode A all along; the solver's frequency-order label switches
+    a = t[t["track"] == 0]
+    np.testing.assert_allclose(a["frequency_per_rev"], 1.0 + XS, atol=1e-12)
+    assert (a["label"] == "mode 1").all()
+    assert a["label_here"].tolist() == ["mode 1"] * 6 + ["mode 2"] * 5
+    changes = label_changes(t)
+    assert changes[["track", "from_label", "to_label"]].values.tolist() == [
+        [0, "mode 1", "mode 2"], [1, "mode 2", "mode 1"]]
+    assert t.loc[changes["row"], "step"].tolist() == [6, 6]
+
+
+def test_mac_alone_tracks_the_crossing():
+    t = track_modes([point(x) for x in XS], eig_weight=0.0, predict=False)
+    assert_follows_laws(t)
+
+
+def test_extrapolated_eigenvalues_alone_track_a_straight_crossing():
+    t = track_modes([point(x, vectors=False) for x in XS], values=XS)
+    assert_follows_laws(t)
+
+
+def test_nearest_eigenvalue_without_prediction_or_mac_would_swap():
+    # documents why both MAC and extrapolation are used: the nearest eigenvalue
+    # follows the frequency-ordered branch and swaps the modes at the crossing
+    xs = np.linspace(0.0, 1.0, 6)  # steps straddle the crossing
+    t = track_modes([point(x, vectors=False) for x in xs], values=xs, predict=False)
+    a = t[t["track"] == 0]
+    np.testing.assert_allclose(a["frequency_per_rev"], np.minimum(1 + xs, 2 - xs))
+    assert_follows_laws(track_modes([point(x) for x in xs], values=xs, predict=False),
+                        xs=xs)
+
+
+def test_uneven_steps_use_the_values_for_extrapolation():
+    xs = np.array([0.0, 0.1, 0.2, 0.45, 0.9, 1.0])
+    assert_follows_laws(track_modes([point(x, vectors=False) for x in xs], values=xs), xs=xs)
+
+
+def test_failed_points_are_skipped_and_tracks_continue():
+    pts = [point(x) for x in XS]
+    pts[5] = None
+    t = track_modes(pts, values=XS)
+    assert 5 not in set(t["step"])
+    for name, (law, _) in LAWS.items():
+        c = t[t["label"] == name]
+        assert c["track"].nunique() == 1 and len(c) == len(XS) - 1
+        np.testing.assert_allclose(c["frequency_per_rev"], law(XS[c["step"]]))
+
+
+def test_appearing_and_disappearing_modes():
+    m0, v0 = point(0.0)
+    m1, v1 = point(0.1)
+    fewer = (m1.iloc[:2].reset_index(drop=True), v1[:, :2])  # mode C absent
+    t = track_modes([(m0.iloc[:2], v0[:, :2]), point(0.05), fewer, point(0.15)])
+    assert sorted(t["track"].unique()) == [0, 1, 2]
+    assert t.loc[t["track"] == 2, "step"].tolist() == [1, 3]  # C: new track, kept
+    assert t.loc[t["track"] == 2, "label"].eq("C").all()
+
+
+def test_missing_or_mismatched_eigenvectors_fall_back_to_eigenvalues():
+    pts = [point(x) for x in XS]
+    pts[3] = point(XS[3], vectors=False)
+    m, v = pts[7]
+    pts[7] = (m, np.vstack([v, np.ones((1, 3))]))  # other state size: no MAC there
+    assert_follows_laws(track_modes(pts, values=XS))
+
+
+def test_point_formats_and_errors():
+    m, v = point(0.2)
+    as_obj = type("R", (), {"modes": m, "eigenvectors": v})()
+    t1 = track_modes([as_obj, {"modes": m, "eigenvectors": v}, (m, v), m])
+    assert len(t1) == 12 and t1.groupby("track").size().tolist() == [4, 4, 4]
+    with pytest.raises(ValueError, match="lacks column"):
+        track_modes([m.drop(columns="real_part")])
+    with pytest.raises(ValueError, match="do not match 3 modes"):
+        track_modes([(m, v[:, :2])])
+    with pytest.raises(TypeError, match="cannot read modes"):
+        track_modes([42])
+    with pytest.raises(ValueError, match="2 values for 1 points"):
+        track_modes([m], values=[0, 1])
+    with pytest.raises(ValueError, match="weight"):
+        track_modes([m], mac_weight=0, eig_weight=0)
+    assert track_modes([None, None]).empty
+
+
+def test_match_modes():
+    a, b = point(0.4), point(0.6)  # across the crossing: A and B swap order
+    assert match_modes(a, b).tolist() == [1, 0, 2]
+    fewer = (b[0].iloc[:2], b[1][:, :2])
+    assert match_modes(a, fewer).tolist() == [1, 0, -1]
