@@ -401,7 +401,7 @@ class ModelConfig(_Section):
         Param("n_azimuth", "dimensionless", 24, "[8, 240]",
               "Azimuth collocation points of the harmonic-balance trim.", "int"),
         Param("n_floquet_steps", "dimensionless", 72, "[8, 5000]",
-              "RK4 steps per revolution of the Floquet transition matrices.", "int"),
+              "Magnus (4th order) steps per revolution of the Floquet transition matrices.", "int"),
         Param("n_gauss", "dimensionless", 6, "[2, 40]",
               "Gauss points per aerodynamic span segment (inboard, flap, outboard).", "int"),
     )  # fmt: skip

@@ -19,7 +19,9 @@ import scipy.optimize
 
 @dataclass(frozen=True)
 class Inflow:
-    """Inflow ratio field ``lambda(x, psi) = mu tan(alpha_s) + lambda_0 (1 + kx x cos psi + ky x sin psi)``.
+    """Inflow ratio field over the disk.
+
+    ``lambda(x, psi) = mu tan(alpha_s) + lambda_0 (1 + kx x cos psi + ky x sin psi)``.
 
     Attributes
     ----------

@@ -1,0 +1,177 @@
+"""Linearisation about the trim and Floquet stability with labelled modes.
+
+``stability(cfg)`` is the paper's analysis in one call: coupled model, trim,
+``M(psi), C(psi), K(psi)`` of eq. (5) by central differences of the
+nonlinear residual about the trimmed periodic motion, and Floquet
+eigenanalysis (direct eigenanalysis in hover, where the coefficients are
+constant).  Each mode is labelled by the coordinate that carries most of its
+modal kinetic energy.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import pandas as pd
+import scipy.optimize
+
+from . import floquet
+from .coupled import coupled_model
+from .trim import TrimResult, fourier_eval, trim
+
+
+def linearize(tr: TrimResult, psi, step: float = 1e-6):
+    """``M, C, K`` (each ``(len(psi), n, n)``) about the trimmed motion.
+
+    Central differences of the residual with respect to ``q**, q*, q``,
+    vectorised over the azimuths (the residual at one azimuth depends only on
+    the motion there). Truncation error ~``step^2``, round-off ~``eps/step``.
+    """
+    model = tr.model
+    psi = np.atleast_1d(np.asarray(psi, float))
+    q, qd, qdd = tr.motion(psi)
+    infl = tr.inflow
+    n = model.n_dof
+    out = []
+    for which in (2, 1, 0):                     # M (q**), C (q*), K (q)
+        mat = np.empty((psi.size, n, n))
+        for j in range(n):
+            plus, minus = [q, qd, qdd], [q, qd, qdd]
+            for arr, sgn in ((plus, 1.0), (minus, -1.0)):
+                a = arr[which].copy()
+                a[j] += sgn * step
+                arr[which] = a
+            rp, _ = model.evaluate(psi, *plus, tr.controls, infl)
+            rm, _ = model.evaluate(psi, *minus, tr.controls, infl)
+            mat[:, :, j] = ((rp - rm) / (2 * step)).T
+        out.append(mat)
+    return tuple(out)
+
+
+def state_matrix(m, c, k):
+    """First-order ``A = [[0, I], [-M^-1 K, -M^-1 C]]`` for stacked matrices."""
+    n = m.shape[-1]
+    minv_k = np.linalg.solve(m, k)
+    minv_c = np.linalg.solve(m, c)
+    top = np.concatenate([np.zeros_like(m), np.broadcast_to(np.eye(n), m.shape)], axis=-1)
+    return np.concatenate([top, np.concatenate([-minv_k, -minv_c], axis=-1)], axis=-2)
+
+
+@dataclass
+class StabilityResult:
+    """Modes of the linearised blade/flap system and the trim they belong to."""
+
+    modes: pd.DataFrame
+    eigenvectors: np.ndarray
+    trim: dict
+    trim_result: TrimResult
+
+
+def _label_modes(vectors, mass_diag, labels, freqs):
+    """Label modes by the coordinate they carry, one coordinate per mode.
+
+    Kinetic-energy fractions ``|q_k|^2 M_kk`` of each eigenvector's
+    displacements give a participation matrix; the labels are the
+    assignment (``scipy.optimize.linear_sum_assignment``) that maximises the
+    summed participation, so every coordinate names exactly one mode. A pure
+    "largest share" rule fails where aerodynamics couples modes strongly: the
+    MDART torsion mode in hover carries more flap than torsion kinetic energy
+    (torsion's modal inertia is tiny), yet it is the only mode with torsion.
+    A complex pair whose multipliers have become two real ones (frequency
+    locked to a multiple of 1/2 per rev, or overdamped) gives one mode more
+    than coordinates: the extra root takes the label of its partner — the
+    assigned mode locked at the same frequency (the closest one, ties by the
+    energy-weighted MAC) — with ``(locked)`` appended.
+    """
+    n = len(labels)
+    disp = vectors[:n] * np.sqrt(mass_diag)[:, None]
+    energy = np.abs(disp) ** 2
+    frac = energy / energy.sum(axis=0, keepdims=True)          # (coords, modes)
+    rows, cols = scipy.optimize.linear_sum_assignment(-frac)
+    out = [None] * frac.shape[1]
+    for r, c in zip(rows, cols, strict=True):
+        out[c] = labels[r]
+    unit = disp / np.linalg.norm(disp, axis=0, keepdims=True)
+    mac = np.abs(unit.conj().T @ unit) ** 2
+    for j, lab in enumerate(out):
+        if lab is None:
+            best = min(cols, key=lambda i: (round(abs(freqs[i] - freqs[j]), 6), -mac[i, j]))
+            out[j] = out[best] + " (locked)"
+    return out, frac
+
+
+def stability(cfg, *, trim_result: TrimResult | None = None, n_steps: int | None = None,
+              remode: bool = True) -> StabilityResult:
+    """Trim the configuration and compute its labelled stability modes.
+
+    Parameters
+    ----------
+    cfg : tefcore.config.Config
+    trim_result : TrimResult, optional
+        Warm start for the trim (e.g. the previous sweep point).
+    n_steps : int, optional
+        RK4 steps per revolution for Floquet (default ``cfg.model.n_floquet_steps``).
+    remode : bool
+        Recompute the blade modes at the trimmed collective and trim again
+        (the structural flap-lag coupling depends on pitch).
+
+    Returns
+    -------
+    StabilityResult
+        ``modes`` has one row per mode (positive-frequency member of each
+        complex pair): ``mode_id, label, kind, frequency_per_rev, real_part,
+        damping_ratio, participation`` — ``real_part`` is the damping rate
+        per radian of azimuth (negative: stable).
+    """
+    model = coupled_model(cfg)
+    tr = trim(model, initial=trim_result)
+    if remode:
+        model = coupled_model(cfg, collective=tr.controls.collective)
+        tr = trim(model, initial=tr)
+    n = model.n_dof
+    hover = cfg.flight.advance_ratio == 0.0
+    if hover:
+        m, c, k = (a[0] for a in linearize(tr, [0.0]))
+        res = floquet.constant_coefficient_modes(state_matrix(m, c, k))
+        mass_diag = np.abs(np.diag(m))
+    else:
+        n_lin = 2 * cfg.model.n_azimuth
+        psi_lin = np.linspace(0, 2 * np.pi, n_lin, endpoint=False)
+        m, c, k = linearize(tr, psi_lin)
+        a_samples = state_matrix(m, c, k)
+        a_flat = a_samples.reshape(n_lin, -1).T
+
+        def a_of_psi(psi):
+            return fourier_eval(a_flat, psi).T.reshape(-1, 2 * n, 2 * n)
+
+        res = floquet.floquet_modes(a_of_psi, n_steps=n_steps or cfg.model.n_floquet_steps,
+                                    method="magnus", shift_states=slice(0, n))
+        mass_diag = np.abs(np.einsum("mii->i", m)) / n_lin
+    keep = res.positive_frequency()
+    order = np.argsort(keep.frequencies, kind="stable")
+    vec = keep.eigenvectors[:, order]
+    labels, frac = _label_modes(vec, mass_diag, model.labels, keep.frequencies[order])
+    table = pd.DataFrame({
+        "mode_id": np.arange(len(labels)),
+        "label": labels,
+        "kind": [lab.split()[1] if lab.startswith("blade") else "TEF" for lab in labels],
+        "coordinate_share": [frac[model.labels.index(lab.split(" (")[0]), j]
+                             for j, lab in enumerate(labels)],
+        "frequency_per_rev": keep.frequencies[order],
+        "real_part": keep.damping_rates[order],
+        "damping_ratio": keep.damping_ratios[order],
+        "participation": frac.max(axis=0),
+    })
+    summary = tr.summary()
+    summary["reverse_flow_fraction"] = _reverse_flow_fraction(tr)
+    return StabilityResult(modes=table, eigenvectors=vec, trim=summary,
+                           trim_result=tr)
+
+
+def _reverse_flow_fraction(tr: TrimResult) -> float:
+    """Share of the aerodynamic stations and azimuths in reverse flow (U_T < 0)."""
+    model = tr.model
+    psi = np.linspace(0, 2 * np.pi, 72, endpoint=False)
+    ut = model.x[None, :] + model.cfg.flight.advance_ratio * np.sin(psi)[:, None]
+    return float(np.mean(ut < 0))
