@@ -1,0 +1,140 @@
+"""Coupled model, wind-tunnel trim, linearisation and Floquet stability (MDART)."""
+
+import numpy as np
+import pytest
+from numpy.testing import assert_allclose
+
+from tefcore import floquet
+from tefcore.blade import blade_modes
+from tefcore.calibration import mode_frequency
+from tefcore.config import load_config
+from tefcore.coupled import coupled_model
+from tefcore.flap_dynamics import flap_natural_frequency, flap_properties
+from tefcore.stability import linearize, stability, state_matrix
+from tefcore.trim import TrimError, fourier_eval, trim
+
+
+@pytest.fixture(scope="module")
+def mdart():
+    return load_config("mdart")
+
+
+@pytest.fixture(scope="module")
+def forward(mdart):
+    cfg = mdart.with_overrides({"flight.advance_ratio": 0.3})
+    return trim(coupled_model(cfg))
+
+
+def test_forward_flight_trim_meets_targets(forward):
+    # thrust and the first-harmonic tip flapping are trim equations solved
+    # to 1e-10 (rotor units); the azimuthal mean is exact on the grid
+    model = forward.model
+    assert_allclose(forward.ct_sigma, 0.075, atol=1e-9)
+    tip = model.modes.shapes([1.0])["w"][0] @ forward.q[: model.n_modes]
+    psi = forward.psi
+    assert abs(2 * np.mean(tip * np.cos(psi))) < 1e-9
+    assert abs(2 * np.mean(tip * np.sin(psi))) < 1e-9
+    # forward flight needs forward (negative theta_1s) cyclic, and the Newton
+    # iteration converged quadratically to the tolerance
+    assert forward.controls.cyclic_sin < 0
+    assert forward.history[-1]["max_residual"] < 1e-10
+    # hinge moments exist without actuator input, so the flap deflects in trim
+    assert abs(forward.summary()["delta_mean_deg"]) > 0.01
+
+
+def test_harmonic_balance_converges_with_azimuth_count(mdart):
+    # collocation converges spectrally: 16 -> 32 azimuths changes the controls
+    # by < 0.01 deg (the response is dominated by harmonics below 5/rev)
+    cfg = mdart.with_overrides({"flight.advance_ratio": 0.3})
+    out = []
+    for n in (16, 32):
+        tr = trim(coupled_model(cfg.with_overrides({"model.n_azimuth": n})))
+        out.append(tr.controls.as_array())
+    assert_allclose(np.rad2deg(out[0]), np.rad2deg(out[1]), atol=1e-2)
+
+
+def test_hover_collective_trim_and_prescribed_collective(mdart):
+    tr = trim(coupled_model(mdart.with_overrides({"flight.advance_ratio": 0.0})))
+    assert tr.q.shape[1] == 1 and tr.controls.cyclic_cos == 0.0
+    theta = tr.controls.collective
+    # the same collective prescribed reproduces the thrust (consistency)
+    tr2 = trim(coupled_model(mdart.with_overrides(
+        {"flight.advance_ratio": 0.0, "flight.collective": float(theta)})))
+    assert_allclose(tr2.ct_sigma, 0.075, rtol=1e-8)
+
+
+def test_non_converging_trim_raises_with_history(mdart):
+    model = coupled_model(mdart.with_overrides({"flight.advance_ratio": 0.3}))
+    with pytest.raises(TrimError) as err:
+        trim(model, max_iter=2)
+    assert len(err.value.history) == 2
+    assert err.value.history[0]["max_residual"] > err.value.history[-1]["max_residual"]
+
+
+def test_linearisation_matches_the_nonlinear_residual(forward):
+    # R(q + e v) - R(q) = e J v + O(e^2): with e = 1e-5 the quadratic remainder
+    # is ~1e-10 (second derivatives O(1)) against linear changes of 1e-6..1e-4,
+    # hence atol 1e-9 with a 1e-4 relative gate
+    model = forward.model
+    psi = np.array([0.3, 2.1, 4.4])
+    m, c, k = linearize(forward, psi)
+    q, qd, qdd = forward.motion(psi)
+    rng = np.random.default_rng(0)
+    v = [rng.standard_normal(q.shape) * 1e-5 for _ in range(3)]
+    r0, _ = model.evaluate(psi, q, qd, qdd, forward.controls, forward.inflow)
+    r1, _ = model.evaluate(psi, q + v[0], qd + v[1], qdd + v[2], forward.controls,
+                           forward.inflow)
+    lin = (np.einsum("mij,jm->im", k, v[0]) + np.einsum("mij,jm->im", c, v[1])
+           + np.einsum("mij,jm->im", m, v[2]))
+    assert_allclose(r1 - r0, lin, rtol=1e-4, atol=1e-9)
+
+
+def test_hover_floquet_equals_eigenanalysis(mdart):
+    # constant coefficients: the Floquet machinery must reproduce the direct
+    # eigenvalues (Magnus is exact for constant A; lifting keeps the damped
+    # roots): 1e-8 on exponents
+    tr = trim(coupled_model(mdart.with_overrides({"flight.advance_ratio": 0.0})))
+    a = state_matrix(*(x[0] for x in linearize(tr, [0.0])))
+    direct = floquet.constant_coefficient_modes(a)
+    per = floquet.floquet_modes(lambda p: np.broadcast_to(a, (len(p), *a.shape)), n_steps=36,
+                                method="magnus", shift_states=slice(0, a.shape[0] // 2))
+    assert per.exponents.size == direct.exponents.size == a.shape[0]
+    gap = np.abs(per.exponents[:, None] - direct.exponents[None, :]).min(axis=1)
+    assert gap.max() < 1e-8
+
+
+def test_vacuum_modes_are_the_structural_modes(mdart):
+    # with (almost) no air the coupled frequencies are the blade modes and the
+    # flap on its actuator; damping is only the lag damper.  The flap couples
+    # inertially through I_h Theta** (balanced flap), a relative shift < 1e-3
+    cfg = mdart.with_overrides({"flight.advance_ratio": 0.0, "flight.collective": 0.1,
+                                "rotor.air_density": 1e-9})
+    res = stability(cfg)
+    t = res.modes.set_index("label")
+    struct = blade_modes(cfg, collective=0.1)
+    for lab in ("flap 1", "lag 1", "flap 2", "torsion 1"):
+        assert_allclose(t.loc[f"blade {lab}", "frequency_per_rev"],
+                        mode_frequency(struct, lab), rtol=2e-3)
+    flap = flap_natural_frequency(flap_properties(cfg), cfg.rotor.rotor_speed, 0.1)
+    assert_allclose(t.loc["TEF", "frequency_per_rev"], flap / cfg.rotor.rotor_speed, rtol=2e-2)
+    # flap damping only from the lag damper through the pretwist flap-lag
+    # coupling (measured -5e-6 per rev), against -0.9 in air
+    assert abs(t.loc["blade flap 1", "real_part"]) < 1e-4
+
+
+def test_stability_tables_are_labelled(mdart):
+    for mu in (0.0, 0.3):
+        res = stability(mdart.with_overrides({"flight.advance_ratio": mu}))
+        labels = set(res.modes["label"])
+        assert {"blade lag 1", "blade flap 1", "blade torsion 1", "TEF"} <= labels
+        assert res.eigenvectors.shape[1] == len(res.modes)
+        assert np.all(np.isfinite(res.modes[["frequency_per_rev", "real_part"]].to_numpy()))
+        assert "collective_deg" in res.trim
+
+
+def test_fourier_interpolation_is_exact_for_band_limited():
+    psi = np.linspace(0, 2 * np.pi, 12, endpoint=False)
+    f = 1 + np.cos(psi) - 0.3 * np.sin(4 * psi)
+    p = np.array([0.1, 1.7, 5.0])
+    assert_allclose(fourier_eval(f, p), 1 + np.cos(p) - 0.3 * np.sin(4 * p), atol=1e-13)
+    assert_allclose(fourier_eval(f, p, 1), -np.sin(p) - 1.2 * np.cos(4 * p), atol=1e-12)
