@@ -65,6 +65,47 @@ def cmd_fanplot(args) -> int:
     return 0
 
 
+def cmd_stability(args) -> int:
+    from .stability import stability
+
+    cfg = _load(args)
+    res = stability(cfg)
+    table = res.modes
+    if args.csv:
+        table.to_csv(args.csv, index=False)
+    print(table.to_string(index=False, float_format=lambda v: f"{v:.4f}"))
+    print("trim: " + ", ".join(f"{k}={v:.4g}" for k, v in res.trim.items()))
+    return 0
+
+
+def cmd_sweep(args) -> int:
+    from .sweep import sweep
+
+    cfg = _load(args)
+    if args.range:
+        start, stop, num = args.range
+        values = np.linspace(float(start), float(stop), int(num)).tolist()
+    elif args.values:
+        values = [_number_or_text(v) for v in args.values]
+    else:
+        raise SystemExit("tefcore sweep: give --values or --range")
+    result = sweep(cfg, args.parameter, values, n_jobs=args.jobs, out=args.out,
+                   progress=False if args.quiet else None)
+    path = result.to_csv(args.csv)
+    n_bad = len(result.failed)
+    print(f"wrote {path}: {len(values)} points, {n_bad} failed")
+    if n_bad:
+        print(result.failed.to_string(index=False))
+    return 0
+
+
+def _number_or_text(text: str):
+    try:
+        return float(text)
+    except ValueError:
+        return text
+
+
 def cmd_reproduce(args) -> int:
     from .reproduce import reproduce
 
@@ -85,6 +126,22 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--n-modes", type=int, default=None)
     p.add_argument("--out", default="fanplot.png")
     p.set_defaults(func=cmd_fanplot)
+    p = sub.add_parser("stability", help="trim + Floquet stability, one row per mode")
+    _common(p)
+    p.add_argument("--csv", default=None, help="also write the mode table to this CSV file")
+    p.set_defaults(func=cmd_stability)
+    p = sub.add_parser("sweep", help="stability over one parameter, tidy CSV")
+    _common(p)
+    p.add_argument("parameter", help="dotted field, e.g. flap.cg_offset")
+    p.add_argument("--values", nargs="+", help="values (numbers or 'value unit')")
+    p.add_argument("--range", nargs=3, metavar=("START", "STOP", "NUM"),
+                   help="evenly spaced numeric values (SI or dimensionless)")
+    p.add_argument("--csv", default="sweep.csv", help="tidy table (default: sweep.csv)")
+    p.add_argument("--out", default=None,
+                   help="stream points to this JSON-lines file; re-running resumes it")
+    p.add_argument("--jobs", type=int, default=1, help="parallel processes (joblib)")
+    p.add_argument("--quiet", action="store_true", help="no progress bar")
+    p.set_defaults(func=cmd_sweep)
     p = sub.add_parser("reproduce", help="reproduce the paper's results into a folder")
     p.add_argument("--out", default="output", help="output folder (default: output)")
     p.set_defaults(func=cmd_reproduce)

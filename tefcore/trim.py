@@ -28,7 +28,7 @@ import scipy.linalg
 
 from .coupled import Controls, CoupledModel
 from .flap_dynamics import spectral_derivative
-from .inflow import Inflow, drees_gradients
+from .inflow import Inflow, drees_gradients, momentum_inflow
 
 
 class TrimError(RuntimeError):
@@ -110,6 +110,22 @@ def _inflow(model, lam_i):
     return Inflow(mean_induced=lam_i, freestream=fs, kx=kx, ky=ky)
 
 
+def initial_collective(cfg) -> float:
+    """First estimate of the collective [rad]: the prescribed one, or blade
+    element momentum theory for a linearly twisted blade,
+    ``C_T/sigma = a/6 [theta_75 (1 + 3/2 mu^2) - 3/2 lambda]`` with momentum
+    inflow (Johnson, *Helicopter Theory*, ch. 5)."""
+    f = cfg.flight
+    if f.collective is not None:
+        return float(f.collective)
+    sigma = cfg.rotor.solidity
+    lam = (momentum_inflow(f.ct_sigma * sigma, f.advance_ratio, f.shaft_angle)
+           + f.advance_ratio * np.tan(f.shaft_angle))
+    mu2 = f.advance_ratio**2
+    # C_T/sigma = a/6 [theta_75 (1 + 3/2 mu^2) - 3/2 lambda] (Johnson, eq. 5.x)
+    return float((6 * f.ct_sigma / cfg.rotor.lift_slope + 1.5 * lam) / (1 + 1.5 * mu2))
+
+
 def trim(model: CoupledModel, *, tol: float = 1e-10, max_iter: int = 40,
          initial: TrimResult | None = None) -> TrimResult:
     """Trim the coupled model (wind-tunnel trim in forward flight).
@@ -152,9 +168,7 @@ def trim(model: CoupledModel, *, tol: float = 1e-10, max_iter: int = 40,
         q0, ctl, lam = initial.q.copy(), initial.controls, initial.inflow.mean_induced
     else:
         q0 = np.zeros((n, n_psi))
-        ctl = Controls(collective=f.collective if f.collective is not None
-                       else 6 * f.ct_sigma / cfg.rotor.lift_slope + 0.75 * np.sqrt(
-                           f.ct_sigma * sigma / 2))
+        ctl = Controls(collective=initial_collective(cfg))
         lam = np.sqrt(max(f.ct_sigma * sigma, 1e-6) / 2)
     ctl_names = (["collective"] if free_collective else []) + ([] if hover else
                                                                ["cyclic_cos", "cyclic_sin"])
