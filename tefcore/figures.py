@@ -1,0 +1,212 @@
+"""The paper's figures as analyses: one definition per figure, tidy tables out.
+
+Each stability figure (3-4, 8-17) is a sweep of one configuration field about
+the MDART baseline with the fixed parameters of its caption
+(:data:`FIGURES`); :func:`run_figure` runs it with :func:`tefcore.sweep.sweep`.
+Figures 5-7 are flap-response analyses about a trimmed forward-flight state
+(:func:`hinge_moment_figure`, :func:`flap_response_figure`,
+:func:`overhang_actuation_figure`). Notebooks and :mod:`tefcore.validation`
+both call these, so a figure is computed the same way everywhere.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+import pandas as pd
+
+from .config import load_config
+from .coupled import coupled_model
+from .flap_dynamics import SectionMotion, aerodynamic_hinge_moment, flap_properties
+from .sweep import sweep
+from .trim import fourier_eval, trim
+
+#: the mass-imbalanced flap of Figs. 10-17 and Fig. 9's overhang
+IMBALANCED = {"flap.overhang": 0.29, "flap.cg_offset": 0.33}
+FORWARD_03 = {"flight.advance_ratio": 0.30}
+#: Figs. 5-7: "mu = 0.2, C_T/sigma = 0.0774, c_cg/c_f = 0"
+FIG5_FLIGHT = {"flight.advance_ratio": 0.2, "flight.ct_sigma": 0.0774, "flap.cg_offset": 0.0}
+
+
+@dataclass(frozen=True)
+class Figure:
+    """A stability figure: the swept field, its values and the fixed parameters."""
+
+    name: str
+    caption: str
+    parameter: str
+    values: tuple
+    fixed: dict = field(default_factory=dict)
+    unit: str = ""
+
+
+FIGURES = {f.name: f for f in (
+    Figure("fig3", "Blade inplane stability in hover, baseline rotor without TEF",
+           "flight.collective", tuple(np.deg2rad(np.arange(0.0, 11.0, 1.0))),
+           {"model.tef": "none", "flight.advance_ratio": 0.0}, "rad"),
+    Figure("fig4", "Blade inplane stability, mu = 0.25, forward shaft tilt 7.3 deg, no TEF",
+           "flight.collective", tuple(np.deg2rad(np.arange(0.0, 11.0, 1.0))),
+           {"model.tef": "none", "flight.advance_ratio": 0.25,
+            "flight.shaft_angle": float(np.deg2rad(7.3))}, "rad"),
+    Figure("fig8", "Effect of overhang length on stability in hover, c_cg/c_f = 0",
+           "flap.overhang", tuple(np.round(np.arange(0.0, 0.71, 0.05), 2)),
+           {"flight.advance_ratio": 0.0, "flap.cg_offset": 0.0}),
+    Figure("fig9", "Effect of flap CG offset, c_b/c_f = 0.29, mu = 0.30",
+           "flap.cg_offset", tuple(np.round(np.arange(0.0, 0.41, 0.04), 2)),
+           {**FORWARD_03, "flap.overhang": 0.29}),
+    Figure("fig10", "Effect of pitch link stiffness, mu = 0.30, c_b/c_f = 0.29, c_cg/c_f = 0.33",
+           "hub.pitch_link_stiffness", tuple(f"{k} lb/in" for k in range(150, 801, 50)),
+           {**FORWARD_03, **IMBALANCED}),
+    Figure("fig11", "Effect of blade torsional stiffness (GJ factor), mu = 0.30, imbalanced flap",
+           "blade.gj_scale", (0.75, 1.0, 1.25, 1.5, 1.75, 2.0), {**FORWARD_03, **IMBALANCED}),
+    Figure("fig12", "Effect of actuator stiffness (factor on 81.52 ft-lb/rad), mu = 0.30",
+           "actuator.stiffness", tuple(f"{81.52 * k:.3f} ft-lb/rad"
+                                       for k in (0.5, 0.75, 1.0, 1.25, 1.5, 1.75, 2.0)),
+           {**FORWARD_03, **IMBALANCED}),
+    Figure("fig13", "Effect of flap spanwise location, mu = 0.30, imbalanced flap",
+           "flap.midspan", (0.65, 0.70, 0.75, 0.80, 0.83, 0.86, 0.90),
+           {**FORWARD_03, **IMBALANCED}),
+    Figure("fig14", "Effect of flap length, mu = 0.30, imbalanced flap",
+           "flap.span", (0.06, 0.08, 0.10, 0.12, 0.14, 0.16, 0.18, 0.20, 0.22),
+           {**FORWARD_03, **IMBALANCED, "flap.midspan": 0.80}),
+    Figure("fig15", "Effect of flap chord size, mu = 0.30, imbalanced flap",
+           "flap.chord_ratio", (0.10, 0.15, 0.20, 0.25, 0.30, 0.35, 0.40, 0.45, 0.50),
+           {**FORWARD_03, **IMBALANCED}),
+    Figure("fig16a", "Effect of collective pitch in hover, imbalanced flap",
+           "flight.collective", tuple(np.deg2rad(np.arange(0.0, 13.0, 2.0))),
+           {"flight.advance_ratio": 0.0, **IMBALANCED}, "rad"),
+    Figure("fig16b", "Effect of collective pitch, mu = 0.30, imbalanced flap",
+           "flight.collective", tuple(np.deg2rad(np.arange(0.0, 13.0, 2.0))),
+           {**FORWARD_03, **IMBALANCED}, "rad"),
+    Figure("fig17", "Effect of forward speed, imbalanced flap",
+           "flight.advance_ratio", (0.0, 0.05, 0.1, 0.15, 0.2, 0.25, 0.3, 0.35),
+           IMBALANCED),
+)}
+
+
+def figure_config(name: str, cfg=None):
+    """Baseline configuration with the figure's fixed parameters applied."""
+    fig = FIGURES[name]
+    return (cfg or load_config("mdart")).with_overrides(fig.fixed)
+
+
+def run_figure(name: str, cfg=None, values=None, **sweep_kw):
+    """Run a stability figure's sweep; ``values`` override the default range.
+
+    Returns the :class:`tefcore.sweep.SweepResult` (``.table`` is tidy).
+    """
+    if name not in FIGURES:
+        raise ValueError(f"unknown figure {name!r}; known: {', '.join(FIGURES)}")
+    fig = FIGURES[name]
+    sweep_kw.setdefault("progress", False)
+    return sweep(figure_config(name, cfg), fig.parameter,
+                 list(fig.values if values is None else values), **sweep_kw)
+
+
+def trimmed_section_motion(tr, x: float) -> SectionMotion:
+    """Section motion at station ``x`` (fraction of R) of a trimmed coupled model.
+
+    Includes the elastic twist and flap bending of the trimmed response, so
+    the flap sees the same angle of attack as in the coupled analysis.
+    """
+    model = tr.model
+    sh = model.modes.shapes([x])
+    nm = model.n_modes
+    rad, om = model.cfg.rotor.radius, model.cfg.rotor.rotor_speed
+    tw = np.interp(x, model.x, model.twist)
+    mu = model.cfg.flight.advance_ratio
+    c = tr.controls
+
+    def field(name, psi, d=0):
+        return fourier_eval(tr.q[:nm], psi, d).T @ sh[name][0]
+
+    def pitch(psi, d=0):
+        cyc = [c.cyclic_cos * np.cos(psi) + c.cyclic_sin * np.sin(psi),
+               -c.cyclic_cos * np.sin(psi) + c.cyclic_sin * np.cos(psi),
+               -(c.cyclic_cos * np.cos(psi) + c.cyclic_sin * np.sin(psi))][d]
+        return (c.collective + tw if d == 0 else 0.0) + cyc + field("phi", psi, d)
+
+    def ut(psi):
+        return x + mu * np.sin(psi) + field("v", psi, 1)
+
+    def up(psi):
+        return (tr.inflow(x, psi) + field("w", psi, 1)
+                + mu * (field("dw", psi) + model.cfg.rotor.precone) * np.cos(psi))
+
+    def alpha(psi):
+        return pitch(psi) - np.arctan(up(psi) / ut(psi))
+
+    return SectionMotion(
+        velocity=lambda p: np.hypot(ut(p), up(p)) * om * rad, alpha=alpha,
+        alpha_rate=lambda p: pitch(p, 1) * om, alpha_accel=lambda p: pitch(p, 2) * om**2,
+        plunge_rate=lambda p: np.zeros_like(np.asarray(p, float)),
+        plunge_accel=lambda p: field("w", p, 2) * om**2 * rad,
+        pitch=pitch, pitch_accel=lambda p: pitch(p, 2) * om**2,
+        flap_slope=lambda p: field("dw", p), flap_accel=lambda p: field("w", p, 2) * om**2 * rad)
+
+
+def _fig5_trim(cfg, **over):
+    cfg = (cfg or load_config("mdart")).with_overrides({**FIG5_FLIGHT, **over})
+    return cfg, trim(coupled_model(cfg))
+
+
+def hinge_moment_figure(cfg=None, aero=None, n_psi: int = 72) -> pd.DataFrame:
+    """Fig. 5: aerodynamic hinge moment over a revolution, prescribed flap motion.
+
+    ``delta_f = 2 deg cos(4 psi - 240 deg)`` on the trimmed blade at
+    ``mu = 0.2, C_T/sigma = 0.0774``; ``aero`` is a section model (default:
+    the configured one). Returns ``psi_deg, delta_deg, hinge_moment`` [N m].
+    """
+    cfg, tr = _fig5_trim(cfg)
+    props = flap_properties(cfg)
+    aero = aero or tr.model.aero
+    psi = np.linspace(0, 2 * np.pi, n_psi, endpoint=False)
+    amp, ph = np.deg2rad(2.0), np.deg2rad(240.0)
+    om = cfg.rotor.rotor_speed
+    delta = amp * np.cos(4 * psi - ph)
+    rate = -4 * om * amp * np.sin(4 * psi - ph)
+    accel = -16 * om**2 * delta
+    h = aerodynamic_hinge_moment(aero, props, lambda r: trimmed_section_motion(
+        tr, r / cfg.rotor.radius), psi, delta, rate, accel, density=cfg.rotor.air_density,
+        speed_of_sound=cfg.rotor.speed_of_sound)
+    return pd.DataFrame({"psi_deg": np.rad2deg(psi), "delta_deg": np.rad2deg(delta),
+                         "hinge_moment": h})
+
+
+def flap_response_figure(cfg=None, **over) -> dict:
+    """Fig. 6: coupled trimmed flap response to ``delta_a = 2 deg cos(4 psi - 240 deg)``.
+
+    The actuator input enters the coupled blade/flap trim (as in the paper);
+    returns the azimuthal histories and the half peak-to-peak response, the
+    actuator torque ``k_a (delta_a - delta_f) + c_a (...)*`` and the power it
+    delivers ``T_a delta_a*`` [W].
+    """
+    act = {"flight.actuator_amplitude": float(np.deg2rad(2.0)),
+           "flight.actuator_harmonic": 4, "flight.actuator_phase": float(np.deg2rad(240.0))}
+    cfg, tr = _fig5_trim(cfg, **act, **over)
+    model = tr.model
+    psi = np.linspace(0, 2 * np.pi, 144, endpoint=False)
+    delta_f = fourier_eval(tr.q[-1], psi)
+    delta_fd = fourier_eval(tr.q[-1], psi, 1)
+    da, da_d = model.actuator_input(psi)
+    om = cfg.rotor.rotor_speed
+    k_a, c_a = cfg.actuator.stiffness, cfg.actuator.damping
+    torque = k_a * (da - delta_f) + c_a * om * (da_d - delta_fd)
+    power = torque * da_d * om
+    table = pd.DataFrame({"psi_deg": np.rad2deg(psi), "delta_a_deg": np.rad2deg(da),
+                          "delta_f_deg": np.rad2deg(delta_f), "actuator_torque": torque,
+                          "power": power})
+    return {"table": table, "half_peak_to_peak_deg": 0.5 * np.ptp(np.rad2deg(delta_f)),
+            "input_half_peak_to_peak_deg": 2.0, "peak_power": float(np.abs(power).max()),
+            "mean_power": float(np.abs(power).mean()), "trim": tr.summary()}
+
+
+def overhang_actuation_figure(cfg=None, overhangs=(0.0, 0.1, 0.2, 0.29, 0.35, 0.4, 0.45, 0.5)):
+    """Fig. 7: actuation power and half peak-to-peak response versus overhang."""
+    rows = []
+    for ov in overhangs:
+        out = flap_response_figure(cfg, **{"flap.overhang": float(ov)})
+        rows.append({"overhang": ov, "half_peak_to_peak_deg": out["half_peak_to_peak_deg"],
+                     "peak_power": out["peak_power"], "mean_power": out["mean_power"]})
+    return pd.DataFrame(rows)
