@@ -376,10 +376,63 @@ def flap_response(aero, props: FlapProperties, motion_at, delta_a, *, rotor_spee
         h, torque, inert = parts(delta)
         return (inert - torque - h) / props.k_a       # in radians: well scaled
 
-    sol = scipy.optimize.root(residual, da.copy(), method="hybr", tol=tol)
+    def jacobian(delta, h=1e-7):
+        # forward differences with a step suited to radians (hybr's default
+        # step, ~1e-8 |delta|, is lost in round-off for sub-degree motions)
+        r0 = residual(delta)
+        return np.stack([(residual(delta + h * e) - r0) / h for e in np.eye(n_psi)], axis=1)
+
+    sol = scipy.optimize.root(residual, da.copy(), jac=jacobian, method="hybr", tol=tol)
     if not sol.success or np.max(np.abs(sol.fun)) > 1e-8:
         raise RuntimeError(f"flap response did not converge: {sol.message}; "
                            f"max residual {np.max(np.abs(sol.fun)):.3e} rad")
     h, torque, _ = parts(sol.x)
     return FlapResponse(psi=psi, delta_a=da, delta_f=sol.x, hinge_moment_aero=h,
                         actuator_torque=torque, power=torque * da_rate)
+
+
+def section_overhang_study(cfg, overhangs, delta_a, *, controls: dict, n_psi: int = 72,
+                           aero_factory=None) -> pd.DataFrame:
+    """Section-level actuation power and flap response versus overhang (Fig. 7).
+
+    The flap (at the configured station, rigid-blade section motion of
+    :func:`rotor_section_motion` with ``controls``) is driven by
+    ``delta_a(psi)``; for each overhang the periodic response is solved.
+
+    Parameters
+    ----------
+    cfg : tefcore.config.Config
+    overhangs : sequence of float
+        c_b / c_f values.
+    delta_a : callable
+        Actuator input [rad] versus azimuth.
+    controls : dict
+        Keyword arguments of :func:`rotor_section_motion` (advance_ratio,
+        collective, cyclic_cos, cyclic_sin, inflow, coning).
+    aero_factory : callable, optional
+        ``aero_factory(cfg) -> section model``; default the thin-airfoil model
+        with the configured lift slope.
+
+    Returns
+    -------
+    pandas.DataFrame
+        ``overhang, half_peak_to_peak_deg, peak_power, mean_power`` [W].
+    """
+    from .flap_aero import ThinAirfoilFlap
+
+    def default(c):
+        return ThinAirfoilFlap(c.flap.chord_ratio, c.flap.overhang,
+                               lift_slope=c.rotor.lift_slope)
+
+    aero_factory = aero_factory or default
+    motion = rotor_motion(cfg, **controls)
+    rows = []
+    for ov in overhangs:
+        c = cfg.with_overrides({"flap.overhang": float(ov)})
+        out = flap_response(aero_factory(c), flap_properties(c), motion, delta_a,
+                            rotor_speed=c.rotor.rotor_speed, density=c.rotor.air_density,
+                            speed_of_sound=c.rotor.speed_of_sound, n_psi=n_psi)
+        rows.append({"overhang": float(ov),
+                     "half_peak_to_peak_deg": np.rad2deg(out.half_peak_to_peak),
+                     "peak_power": out.peak_power, "mean_power": out.mean_power})
+    return pd.DataFrame(rows)

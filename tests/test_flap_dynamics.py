@@ -147,3 +147,19 @@ def test_mdart_flap_geometry():
     # 0.65 c + 0.1015 c = 0.7515 c from the leading edge, EA at 0.25 c
     assert_allclose(p.hinge_from_ea, (0.25 - 0.7515) * 0.254, rtol=1e-12)
     assert p.first_moment == 0.0                      # mass-balanced baseline
+
+
+def test_aerodynamic_balance_cuts_actuation_power_and_raises_response():
+    # Section level, thin-airfoil aerodynamics: the overhang moves the hinge
+    # toward the flap's centre of pressure, so for the same actuator input the
+    # hinge moment the actuator fights falls (less power) and the flap follows
+    # the aerodynamic load further (larger response) - the mechanism of Fig. 7.
+    from tefcore.flap_dynamics import section_overhang_study
+
+    cfg = load_config("mdart")
+    f = lambda q: np.deg2rad(2) * np.cos(4 * q - np.deg2rad(240))  # noqa: E731
+    out = section_overhang_study(cfg, [0.0, 0.15, 0.29], f, n_psi=48,
+                                 controls=dict(advance_ratio=0.2, collective=0.09,
+                                               cyclic_sin=-0.06, inflow=0.02))
+    assert np.all(np.diff(out["peak_power"]) < 0)
+    assert np.all(np.diff(out["half_peak_to_peak_deg"]) > 0)
