@@ -17,7 +17,7 @@ import pandas as pd
 import scipy.optimize
 
 from . import floquet
-from .coupled import coupled_model
+from .coupled import coupled_model, jacobian_blocks
 from .trim import TrimResult, fourier_eval, initial_collective, trim
 
 #: Re-mode threshold [deg] between the modes' collective and the trimmed one.
@@ -33,33 +33,11 @@ def linearize(tr: TrimResult, psi, step: float = 1e-6, scheme: str = "central"):
     2n evaluations per matrix; ``'forward'``: error ~``step`` (1e-6 relative,
     far below what moves a damping value), half the evaluations.
     """
-    if scheme not in ("central", "forward"):
-        raise ValueError(f"scheme must be 'central' or 'forward', got {scheme!r}")
-    model = tr.model
     psi = np.atleast_1d(np.asarray(psi, float))
     q, qd, qdd = tr.motion(psi)
-    infl = tr.inflow
-    n = model.n_dof
-    base = None
-    if scheme == "forward":
-        base, _ = model.evaluate(psi, q, qd, qdd, tr.controls, infl)
-    out = []
-    for which in (2, 1, 0):                     # M (q**), C (q*), K (q)
-        mat = np.empty((psi.size, n, n))
-        for j in range(n):
-            plus, minus = [q, qd, qdd], [q, qd, qdd]
-            for arr, sgn in ((plus, 1.0), (minus, -1.0)):
-                a = arr[which].copy()
-                a[j] += sgn * step
-                arr[which] = a
-            rp, _ = model.evaluate(psi, *plus, tr.controls, infl)
-            if base is None:
-                rm, _ = model.evaluate(psi, *minus, tr.controls, infl)
-                mat[:, :, j] = ((rp - rm) / (2 * step)).T
-            else:
-                mat[:, :, j] = ((rp - base) / step).T
-        out.append(mat)
-    return tuple(out)
+    jac, _, _ = jacobian_blocks(tr.model, psi, q, qd, qdd, tr.controls, tr.inflow,
+                                step=step, scheme=scheme)
+    return jac[2], jac[1], jac[0]
 
 
 def state_matrix(m, c, k):

@@ -26,7 +26,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import scipy.linalg
 
-from .coupled import Controls, CoupledModel
+from .coupled import Controls, CoupledModel, jacobian_blocks
 from .flap_dynamics import spectral_derivative
 from .inflow import Inflow, drees_gradients, momentum_inflow
 
@@ -245,22 +245,9 @@ def _jacobian(model, x, r0, c, li, residuals, scalars, psi, d1, d2, n, n_psi, nq
     q = x[:nq].reshape(n, n_psi)
     qd, qdd = q @ d1.T, q @ d2.T
     infl = _inflow(model, li)
-    base_res, base_thr = model.evaluate(psi, q, qd, qdd, c, infl)
-    blocks, tblocks = [], []
-    for arr_i in range(3):                      # d/dq, d/dq*, d/dq**
-        jb = np.empty((n_psi, n, n))
-        tb = np.empty((n_psi, n))
-        for j in range(n):
-            h = 1e-7
-            args = [q, qd, qdd]
-            pert = args[arr_i].copy()
-            pert[j] += h
-            args[arr_i] = pert
-            res, thr = model.evaluate(psi, *args, c, infl)
-            jb[:, :, j] = ((res - base_res) / h).T
-            tb[:, j] = (thr - base_thr) / h
-        blocks.append(jb)
-        tblocks.append(tb)
+    (jq, jqd, jqdd), tblocks, (base_res, base_thr) = jacobian_blocks(
+        model, psi, q, qd, qdd, c, infl, step=1e-7, scheme="forward")
+    blocks = [jq, jqd, jqdd]
     eye = np.eye(n_psi)
     # J[(i,m),(j,l)] = J0[m,i,j] I_ml + J1[m,i,j] D_ml + J2[m,i,j] D2_ml
     j4 = (blocks[0][:, None] * eye[:, :, None, None] + blocks[1][:, None] * d1[:, :, None, None]
