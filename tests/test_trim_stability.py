@@ -151,3 +151,23 @@ def test_forward_and_central_linearisation_agree(forward):
         assert_allclose(b, a, rtol=1e-4, atol=1e-6 * np.abs(a).max())
     with pytest.raises(ValueError, match="scheme"):
         linearize(forward, psi, scheme="backward")
+
+
+def test_sweep_gives_continuous_labelled_curves(mdart):
+    # pitch-link stiffness in hover: every labelled mode is present at every
+    # point, one track per label, and the torsion frequency rises smoothly
+    # (Fig. 10a's trend) while flap and lag barely move
+    from tefcore.sweep import sweep
+
+    cfg = mdart.with_overrides({"flight.advance_ratio": 0.0})
+    res = sweep(cfg, "hub.pitch_link_stiffness", ["158 lb/in", "400 lb/in", "800 lb/in"],
+                progress=False)
+    t = res.table
+    assert (t["status"] == "ok").all()
+    for lab in ("TEF", "blade lag 1", "blade flap 1", "blade torsion 1"):
+        curve = t[t["label"] == lab]
+        assert curve["track"].nunique() == 1 and len(curve) == 3, lab
+    torsion = t[t["label"] == "blade torsion 1"]["frequency_per_rev"].to_numpy()
+    assert np.all(np.diff(torsion) > 0)
+    lag = t[t["label"] == "blade lag 1"]["frequency_per_rev"].to_numpy()
+    assert np.ptp(lag) / lag.mean() < 0.02
