@@ -21,6 +21,8 @@ Default grid: ``n_steps = 144`` RK4 steps per period (2.5 deg) in
 ``n_sub = 8`` sub-intervals of 45 deg; see :data:`DEFAULT_N_STEPS`,
 :data:`DEFAULT_N_SUB` and the theory notes for why.
 
+Longer than ~400 lines because it is one algorithm, kept with its verification-oriented docs.
+
 Examples
 --------
 A damped oscillator (frequency 0.7/rev, damping rate -0.05/rev) seen through
