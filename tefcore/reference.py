@@ -1,0 +1,495 @@
+"""Reference data of the paper: claims, digitised curves and their checking.
+
+The paper's figures are not available, so the reference is what its Results
+text states (``reference_data/claims.toml``) plus curves a user digitises with
+WebPlotDigitizer (``reference_data/curves/*.toml`` sidecars beside the CSV
+exports).  The format is specified in ``reference_data/README.md``; this
+module loads it into :class:`Claim` records, checking every field and raising
+:class:`ReferenceDataError` naming the file and the record (or CSV row).
+:mod:`tefcore.validation` compares the claims with model results.
+
+Examples
+--------
+>>> claims = load_claims()
+>>> c = next(c for c in claims if c.id == "fig9b-tef-unstable-after-0.26")
+>>> c.kind, c.mode, c.expected, c.direction
+('threshold', 'TEF', 0.26, 'destabilising')
+>>> sorted({c.tag for c in claims})
+['calibration', 'validation']
+"""
+
+from __future__ import annotations
+
+import csv
+import io
+import math
+import os
+import re
+import tomllib
+from dataclasses import dataclass, field, replace
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+from .config import SECTIONS, resolve_field
+from .figures import FIGURES, figure_config
+from .units import to_si
+
+__all__ = ["KINDS", "QUANTITIES", "STATUSES", "Claim", "ReferenceDataError", "load_claims",
+           "parse_claim", "read_wpd_csv", "reference_dir", "x_to_si", "y_to_canonical"]
+
+KINDS = ("value", "threshold", "range", "trend", "comparison", "curve", "not_reproducible")
+TAGS = ("calibration", "validation")
+#: best first; a status later in the tuple is "worse"
+STATUSES = ("pass", "not reproducible", "fail")
+KNOWN_FIGURES = tuple(FIGURES) + ("fig5", "fig6", "fig7")
+_FT_LBF = 1.3558179483314004  # N m per ft-lbf
+_PER_REV = {"1/rev": 1.0, "/rev": 1.0, "": 1.0, "1/s": "1/s"}   # eigenvalue / Omega
+_FREQ = {"/rev": 1.0, "1/rev": 1.0, "": 1.0, "Hz": "Hz"}
+_POWER = {"W": 1.0, "hp": 745.6998715822702, "ft-lb/s": _FT_LBF}
+#: quantity -> (figures, canonical unit, {accepted unit: factor}); "1/s" and "Hz"
+#: are converted with the figure's rotor speed
+QUANTITIES = {
+    "real_part": ("stability", "1/rev", _PER_REV),
+    "damping": ("stability", "1/rev", _PER_REV),
+    "damping_ratio": ("stability", "1", {"1": 1.0, "": 1.0, "%": 0.01, "percent": 0.01}),
+    "frequency_per_rev": ("stability", "/rev", _FREQ),
+    "natural_frequency_per_rev": ("stability", "/rev", _FREQ),
+    "hinge_moment": (("fig5",), "N m", {"N m": 1.0, "N-m": 1.0, "Nm": 1.0, "ft-lb": _FT_LBF,
+                                        "in-lb": _FT_LBF / 12}),
+    "half_peak_to_peak_deg": (("fig6", "fig7"), "deg", {"deg": 1.0, "": 1.0}),
+    "peak_power": (("fig6", "fig7"), "W", _POWER),
+    "mean_power": (("fig6", "fig7"), "W", _POWER),
+}
+#: x of the response figures (fig6 has none): {unit: factor to the table's unit}
+_RESPONSE_X = {"fig5": {"": 1.0, "deg": 1.0, "rad": 180 / math.pi},
+               "fig7": {"": 1.0, "%": 0.01, "percent": 0.01}}
+_ID = re.compile(r"^[a-z0-9][a-z0-9._:-]*$")
+_COMMON = {"id", "figure", "panel", "statement", "condition", "kind", "tag", "recorded_status",
+           "notes"}
+_CHECKED = {"mode", "quantity", "x_unit", "overrides", "tolerance", "tolerance_reason"}
+_FIELDS = {  # kind -> allowed fields besides _COMMON
+    "value": _CHECKED | {"x", "relative_to", "expected", "lower", "upper", "tolerance_type"},
+    "threshold": _CHECKED | {"interval", "expected", "direction"},
+    "range": _CHECKED | {"state", "expected_interval"},
+    "trend": _CHECKED | {"interval", "direction", "method", "tolerance_type", "reference_mode"},
+    "comparison": _CHECKED | {"interval", "statistic", "relation", "other_figure", "other_mode",
+                              "other_quantity", "other_interval", "other_overrides"},
+    "curve": _CHECKED,
+    "not_reproducible": {"mode", "quantity", "reason"},
+}
+_RELATIONS = {"slope": ("less", "greater"), "abs_slope": ("less", "greater"),
+              "peak_to_peak": ("less", "greater"), "correlation": ("positive", "negative")}
+
+
+class ReferenceDataError(ValueError):
+    """A malformed reference file; the message names the file and record or row."""
+
+
+@dataclass(frozen=True)
+class Claim:
+    """One checkable statement (fields: ``reference_data/README.md``).
+
+    x values are in ``x_unit`` as written.  ``points`` (curves only) has
+    ``x`` (unit of the result table), ``y`` (canonical unit of ``quantity``),
+    ``band`` (y half-width) and ``x_band`` (x half-width).
+    """
+
+    id: str
+    figure: str
+    kind: str
+    tag: str
+    statement: str
+    source: str
+    panel: str = ""
+    condition: str = ""
+    recorded_status: str = ""
+    notes: str = ""
+    mode: str = ""
+    quantity: str = ""
+    x_unit: str = ""
+    overrides: dict = field(default_factory=dict)
+    tolerance: float | None = None
+    tolerance_reason: str = ""
+    tolerance_type: str = "absolute"
+    x: float | None = None
+    relative_to: float | None = None
+    expected: float | None = None
+    lower: float | None = None
+    upper: float | None = None
+    interval: tuple | None = None
+    expected_interval: tuple | None = None
+    state: str = ""
+    direction: str = ""
+    method: str = "slope"
+    reference_mode: str = ""
+    statistic: str = ""
+    relation: str = ""
+    other_figure: str = ""
+    other_mode: str = ""
+    other_quantity: str = ""
+    other_interval: tuple | None = None
+    other_overrides: dict = field(default_factory=dict)
+    reason: str = ""
+    example: bool = False
+    points: pd.DataFrame | None = field(default=None, repr=False, compare=False)
+
+
+def reference_dir() -> Path:
+    """The reference data folder: ``$TEFCORE_REFERENCE_DATA`` or the repository's."""
+    env = os.environ.get("TEFCORE_REFERENCE_DATA")
+    return Path(env) if env else Path(__file__).resolve().parents[1] / "reference_data"
+
+
+def _dimension(figure: str) -> str:
+    section, name = resolve_field(FIGURES[figure].parameter)
+    return next(p.dimension for p in SECTIONS[section].PARAMS if p.name == name)
+
+
+def x_to_si(figure: str, values, unit: str = ""):
+    """Convert x values of `figure` from `unit` to the unit of its result table.
+
+    Stability figures: SI of the swept field (``""``: already SI); fig5:
+    azimuth in deg; fig7: overhang fraction.  ``ValueError`` for a bad unit.
+    """
+    if figure in FIGURES:
+        return to_si(values, unit, _dimension(figure)) if unit else values
+    table = _RESPONSE_X.get(figure, {})
+    if unit not in table:
+        raise ValueError(f"x unit {unit!r} not accepted for {figure}; use one of {list(table)}")
+    return np.multiply(values, table[unit])
+
+
+def y_to_canonical(quantity: str, values, unit: str, rotor_speed: float | None = None):
+    """Convert `values` of `quantity` from `unit` to its canonical unit (:data:`QUANTITIES`)."""
+    table = QUANTITIES[quantity][2]
+    if unit not in table:
+        raise ValueError(f"unit {unit!r} not accepted for {quantity}; use one of {list(table)}")
+    factor = table[unit]
+    if isinstance(factor, str):  # per second / Hz -> per rev (rad of azimuth or cycles)
+        if rotor_speed is None:
+            raise ValueError(f"converting {quantity} from {unit!r} needs the rotor speed")
+        factor = (1.0 if factor == "1/s" else 2 * math.pi) / rotor_speed
+    return np.asarray(values, float) * factor
+
+
+# ------------------------------------------------------------------ record checks
+
+
+class _Record:
+    """Typed access to one raw TOML table; errors say where."""
+
+    def __init__(self, raw, where: str):
+        self.raw, self.where = raw, where
+        if not isinstance(raw, dict):
+            self.fail("a record must be a TOML table")
+
+    def fail(self, msg: str):
+        raise ReferenceDataError(f"{self.where}: {msg}")
+
+    def text(self, key, required=False, choices=None, default=""):
+        v = self.raw.get(key, default)
+        if not isinstance(v, str):
+            self.fail(f"field {key!r} must be a string, got {v!r}")
+        if required and not v.strip():
+            self.fail(f"missing required field {key!r}")
+        if choices is not None and v not in choices:
+            self.fail(f"field {key!r} = {v!r} is not one of {list(choices)}")
+        return v.strip()
+
+    def number(self, key, required=False):
+        if key not in self.raw:
+            return self.fail(f"missing required field {key!r}") if required else None
+        v = self.raw[key]
+        if isinstance(v, bool) or not isinstance(v, int | float) or not math.isfinite(v):
+            self.fail(f"field {key!r} must be a finite number, got {v!r}")
+        return float(v)
+
+    def pair(self, key, required=False):
+        if key not in self.raw:
+            return self.fail(f"missing required field {key!r}") if required else None
+        v = self.raw[key]
+        ok = isinstance(v, list) and len(v) == 2 and all(
+            isinstance(a, int | float) and not isinstance(a, bool) and math.isfinite(a) for a in v)
+        if not ok or not v[0] < v[1]:
+            self.fail(f"field {key!r} must be [low, high] numbers with low < high, got {v!r}")
+        return float(v[0]), float(v[1])
+
+    def overrides(self, key):
+        v = self.raw.get(key, {})
+        if not isinstance(v, dict):
+            self.fail(f"field {key!r} must be a table of configuration overrides")
+        for k in v:
+            try:
+                resolve_field(k)
+            except ValueError as err:
+                self.fail(f"field {key!r}: {err}")
+        return dict(v)
+
+
+def _quantity(r: _Record, key: str, figure: str, default: str = "") -> str:
+    q = r.text(key, required=not default, choices=tuple(QUANTITIES), default=default)
+    where = QUANTITIES[q][0]
+    if not (figure in FIGURES if where == "stability" else figure in where):
+        r.fail(f"quantity {q!r} does not exist for {figure}")
+    return q
+
+
+def parse_claim(raw: dict, where: str = "<claim>") -> Claim:
+    """Check one raw claim table (as read from TOML) and return the :class:`Claim`."""
+    r = _Record(raw, where)
+    cid = r.text("id", required=True)
+    if not _ID.match(cid):
+        r.fail(f"id {cid!r} must match {_ID.pattern}")
+    r.where = f"{where} (id {cid!r})"
+    kind = r.text("kind", required=True, choices=KINDS)
+    figure = r.text("figure", required=True, choices=KNOWN_FIGURES)
+    unknown = sorted(set(raw) - _COMMON - _FIELDS[kind])
+    if unknown:
+        r.fail(f"unknown field(s) {unknown} for kind {kind!r}")
+    kw = dict(id=cid, figure=figure, kind=kind, tag=r.text("tag", required=True, choices=TAGS),
+              statement=r.text("statement", required=True), source=r.where,
+              panel=r.text("panel"), condition=r.text("condition", required=True),
+              recorded_status=r.text("recorded_status", choices=("",) + STATUSES),
+              notes=r.text("notes"))
+    if kind == "not_reproducible":
+        return Claim(**kw, mode=r.text("mode"), quantity=r.text("quantity"),
+                     reason=r.text("reason", required=True))
+    stability = figure in FIGURES
+    q = _quantity(r, "quantity", figure, "real_part" if kind in ("threshold", "range") else "")
+    if kind in ("threshold", "range") and q != "real_part":
+        r.fail(f"a {kind} is a zero crossing of 'real_part', not of {q!r}")
+    mode = r.text("mode", required=stability)
+    if mode and not stability:
+        r.fail(f"{figure} has no modes; leave 'mode' out")
+    kw.update(mode=mode, quantity=q, x_unit=r.text("x_unit"), overrides=r.overrides("overrides"),
+              interval=r.pair("interval"), tolerance=r.number("tolerance"),
+              tolerance_reason=r.text("tolerance_reason"))
+    if figure != "fig6":
+        try:
+            x_to_si(figure, 1.0, kw["x_unit"])
+        except ValueError as err:
+            r.fail(f"x_unit: {err}")
+    if kw["overrides"] and not stability:
+        r.fail("overrides are only supported for the stability figures")
+    if kw["tolerance"] is not None and (kw["tolerance"] < 0 or not kw["tolerance_reason"]):
+        r.fail("a tolerance must be >= 0 and have its 'tolerance_reason'")
+
+    def need_tolerance(need=True):
+        if need and kw["tolerance"] is None:
+            r.fail(f"this {kind} claim needs 'tolerance' and 'tolerance_reason'")
+
+    if kind == "value":
+        kw.update({k: r.number(k, required=(k == "x" and figure != "fig6"))
+                   for k in ("x", "relative_to", "expected", "lower", "upper")})
+        kw["tolerance_type"] = r.text("tolerance_type", choices=("absolute", "relative"),
+                                      default="absolute")
+        if kw["expected"] is None and kw["lower"] is None and kw["upper"] is None:
+            r.fail("a value claim needs 'expected' (with tolerance) or 'lower'/'upper'")
+        need_tolerance(kw["expected"] is not None)
+    elif kind == "threshold":
+        kw.update(expected=r.number("expected"), direction=r.text(
+            "direction", required=True, choices=("destabilising", "stabilising")))
+        need_tolerance(kw["expected"] is not None)
+    elif kind == "range":
+        kw.update(state=r.text("state", required=True, choices=("unstable", "stable")),
+                  expected_interval=r.pair("expected_interval", required=True))
+        need_tolerance()
+    elif kind == "trend":
+        kw.update(direction=r.text("direction", required=True,
+                                   choices=("increasing", "decreasing", "constant")),
+                  method=r.text("method", choices=("slope", "net_change"), default="slope"),
+                  tolerance_type=r.text("tolerance_type", default="absolute", choices=(
+                      "absolute", "relative", "relative_to_mode")),
+                  reference_mode=r.text("reference_mode"))
+        need_tolerance(kw["direction"] == "constant")
+        if kw["tolerance_type"] == "relative_to_mode" and not kw["reference_mode"]:
+            r.fail("tolerance_type 'relative_to_mode' needs 'reference_mode'")
+    elif kind == "comparison":
+        stat = r.text("statistic", required=True, choices=tuple(_RELATIONS))
+        other = r.text("other_figure", choices=("",) + KNOWN_FIGURES) or figure
+        kw.update(statistic=stat, relation=r.text("relation", required=True,
+                                                   choices=_RELATIONS[stat]),
+                  other_figure=other, other_mode=r.text("other_mode") or mode,
+                  other_quantity=_quantity(r, "other_quantity", other, q),
+                  other_interval=r.pair("other_interval") or kw["interval"],
+                  other_overrides=r.overrides("other_overrides"))
+        need_tolerance(stat == "correlation")
+        if stat == "correlation" and other != figure:
+            r.fail("a correlation compares two curves of the same figure")
+        keys = ("figure", "mode", "quantity", "interval", "overrides")
+        if all(kw[k] == kw[f"other_{k}"] for k in keys):
+            r.fail("a comparison needs a second curve that differs (other_figure, other_mode, "
+                   "other_quantity, other_interval or other_overrides)")
+    return Claim(**kw)
+
+
+def _read_toml(path: Path) -> dict:
+    try:
+        with open(path, "rb") as f:
+            return tomllib.load(f)
+    except tomllib.TOMLDecodeError as err:
+        raise ReferenceDataError(f"{path}: not valid TOML: {err}") from None
+
+
+# ------------------------------------------------------------------ WebPlotDigitizer
+
+
+def _num(cell: str, where: str) -> float:
+    try:
+        v = float(cell)
+    except ValueError:
+        raise ReferenceDataError(f"{where}: {cell!r} is not a number") from None
+    if not math.isfinite(v):
+        raise ReferenceDataError(f"{where}: {cell!r} is not a finite number")
+    return v
+
+
+def read_wpd_csv(path) -> dict[str, pd.DataFrame]:
+    """Read a WebPlotDigitizer CSV export into ``{dataset name: DataFrame(x, y)}``.
+
+    Layouts (``,``, ``;`` or tab separated): *per dataset* -- two columns
+    ``x, y``, no header or one header line, returned under the name ``""``;
+    *export all* -- dataset names on row 1 (above each X column), ``X, Y``
+    pairs on row 2, then the points (shorter datasets leave cells empty).
+    Raises :class:`ReferenceDataError` naming the file and 1-based row.
+    """
+    path = Path(path)
+    text = path.read_text(encoding="utf-8-sig")
+    first = text.lstrip().split("\n", 1)[0]
+    delim = next((d for d in (",", ";", "\t") if d in first), ",")
+    rows = [(n, [c.strip() for c in row]) for n, row in
+            enumerate(csv.reader(io.StringIO(text), delimiter=delim), start=1) if any(
+                c.strip() for c in row)]
+    if not rows:
+        raise ReferenceDataError(f"{path}: no data")
+    xy = [c.upper() for c in (rows[1][1] if len(rows) > 1 else [])]
+    while xy and not xy[-1]:
+        xy.pop()
+    if xy and len(xy) % 2 == 0 and xy == ["X", "Y"] * (len(xy) // 2):
+        names, out = rows[0][1] + [""] * len(xy), {}
+        for j in range(0, len(xy), 2):
+            name = names[j]
+            if not name or name in out:
+                raise ReferenceDataError(f"{path}, row {rows[0][0]}: dataset name above column "
+                                         f"{j + 1} is {'repeated' if name else 'empty'}")
+            pts = []
+            for n, row in rows[2:]:
+                cx, cy = (row + ["", ""])[j:j + 2]
+                if cx or cy:
+                    if not (cx and cy):
+                        raise ReferenceDataError(f"{path}, row {n}: dataset {name!r} has only "
+                                                 "one of its X/Y cells")
+                    pts.append((_num(cx, f"{path}, row {n}"), _num(cy, f"{path}, row {n}")))
+            out[name] = pd.DataFrame(pts, columns=["x", "y"])
+        return out
+    try:
+        [float(c) for c in rows[0][1] if c]
+    except ValueError:
+        rows = rows[1:]  # one header line such as "x,y"
+    pts = []
+    for n, row in rows:
+        cells = [c for c in row if c]
+        if len(cells) != 2:
+            raise ReferenceDataError(f"{path}, row {n}: expected two columns x, y, got {row}")
+        pts.append((_num(cells[0], f"{path}, row {n}"), _num(cells[1], f"{path}, row {n}")))
+    if not pts:
+        raise ReferenceDataError(f"{path}: no data rows")
+    return {"": pd.DataFrame(pts, columns=["x", "y"])}
+
+
+_SIDECAR = {"id", "figure", "panel", "statement", "condition", "tag", "x_unit", "file",
+            "example", "source", "dataset", "notes"}
+_DATASET = {"name", "id", "file", "mode", "quantity", "y_unit", "uncertainty",
+            "x_uncertainty", "uncertainty_reason", "recorded_status"}
+
+
+def _load_sidecar(path: Path) -> list[Claim]:
+    side = _Record(_read_toml(path), str(path))
+    data = side.raw
+    if sorted(set(data) - _SIDECAR):
+        side.fail(f"unknown field(s) {sorted(set(data) - _SIDECAR)}")
+    if not isinstance(data.get("example", False), bool):
+        side.fail("'example' must be true or false")
+    if not isinstance(data.get("dataset"), list) or not data["dataset"]:
+        side.fail("needs at least one [[dataset]] table")
+    shared = read_wpd_csv(path.parent / side.text("file")) if "file" in data else None
+    base = {k: data[k] for k in ("figure", "panel", "statement", "condition", "tag", "x_unit",
+                                 "notes") if k in data}
+    claims = []
+    for i, ds in enumerate(data["dataset"], start=1):
+        r = _Record(ds, f"{path}: dataset {i}")
+        if sorted(set(ds) - _DATASET):
+            r.fail(f"unknown field(s) {sorted(set(ds) - _DATASET)}")
+        name = r.text("name", required=True)
+        if "file" in ds:
+            pts = next(iter(read_wpd_csv(path.parent / r.text("file")).values()))
+        elif shared is None:
+            r.fail("no CSV: give 'file' in the sidecar (export all) or in the dataset")
+        elif name not in shared:
+            r.fail(f"dataset {name!r} not in {data['file']} (it has {sorted(shared)})")
+        else:
+            pts = shared[name]
+        slug = re.sub(r"[^a-z0-9]+", "-", name.lower()).strip("-")
+        claim = parse_claim({**base, "kind": "curve", "id": ds.get("id") or
+                             f"{side.text('id', required=True)}-{slug}",
+                             **{k: ds[k] for k in ("mode", "quantity", "recorded_status")
+                                if k in ds}}, r.where)
+        dy, dx = r.number("uncertainty", required=True), r.number("x_uncertainty") or 0.0
+        if dy < 0 or dx < 0 or not r.text("uncertainty_reason", required=True):
+            r.fail("uncertainties must be >= 0, with their 'uncertainty_reason'")
+        omega = (figure_config(claim.figure).rotor.rotor_speed if claim.figure in FIGURES
+                 else None)
+        try:
+            unit = r.text("y_unit", default=QUANTITIES[claim.quantity][1])
+            y = y_to_canonical(claim.quantity, pts["y"], unit, omega)
+            band = float(y_to_canonical(claim.quantity, dy, unit, omega))
+            fx = float(x_to_si(claim.figure, 1.0, claim.x_unit))
+        except ValueError as err:
+            r.fail(str(err))
+        points = pd.DataFrame({"x": pts["x"] * fx, "y": y, "band": band, "x_band": dx * fx})
+        claims.append(replace(claim, example=data.get("example", False), tolerance=band,
+                              tolerance_reason=ds["uncertainty_reason"],
+                              points=points.sort_values("x", ignore_index=True)))
+    return claims
+
+
+def load_claims(root=None, include_examples: bool = False) -> list[Claim]:
+    """Load and check ``claims.toml`` and the curve sidecars ``curves/*.toml``.
+
+    Parameters
+    ----------
+    root : path, optional
+        Reference data folder (default :func:`reference_dir`).
+    include_examples : bool
+        Also return the curves of sidecars with ``example = true``
+        (synthetic demonstration data, never a claim of the paper).
+
+    Raises
+    ------
+    ReferenceDataError
+        A malformed file, record or CSV row (named), or a duplicate id.
+    """
+    root = Path(root) if root is not None else reference_dir()
+    files = sorted(root.glob("*.toml")) + sorted((root / "curves").glob("*.toml"))
+    if not files:
+        raise ReferenceDataError(f"{root}: no reference data (claims.toml) found")
+    claims, seen = [], {}
+    for path in files:
+        if path.parent.name == "curves":
+            loaded = _load_sidecar(path)
+        else:
+            data = _read_toml(path)
+            if set(data) - {"claim", "format"} or not isinstance(data.get("claim", []), list):
+                raise ReferenceDataError(f"{path}: expected only [[claim]] tables and 'format'")
+            loaded = [parse_claim(raw, f"{path}: record {i}")
+                      for i, raw in enumerate(data.get("claim", []), start=1)]
+        for c in loaded:
+            if c.id in seen:
+                raise ReferenceDataError(f"{c.source}: duplicate id {c.id!r} (first in "
+                                         f"{seen[c.id]})")
+            seen[c.id] = c.source
+            if include_examples or not c.example:
+                claims.append(c)
+    return claims
