@@ -1,7 +1,7 @@
-"""Command line: ``tefcore modes | fanplot | reproduce``.
+"""Command line: ``tefcore modes | fanplot | stability | sweep | reproduce``.
 
-``tefcore reproduce`` runs everything that reproduces the paper so far and
-writes it to an output folder; it grows as the analyses are added.
+``tefcore reproduce`` executes the numbered notebooks with papermill and
+writes the claims report (:mod:`tefcore.reproduce`).
 """
 
 from __future__ import annotations
@@ -107,9 +107,13 @@ def _number_or_text(text: str):
 
 
 def cmd_reproduce(args) -> int:
-    from .reproduce import reproduce
+    from .reproduce import load_params_file, parse_cli_params, reproduce
 
-    return reproduce(Path(args.out))
+    # later layers win: file "all" < file notebook < -p all < -p notebook
+    layers = [load_params_file(args.params)] if args.params else []
+    layers.append(parse_cli_params([tuple(p) for p in args.param or ()]))
+    return reproduce(Path(args.out), params=layers, notebooks=args.only,
+                     progress=not args.no_progress)
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -142,8 +146,20 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--jobs", type=int, default=1, help="parallel processes (joblib)")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
     p.set_defaults(func=cmd_sweep)
-    p = sub.add_parser("reproduce", help="reproduce the paper's results into a folder")
+    p = sub.add_parser(
+        "reproduce", help="run the notebooks (papermill) and write the claims report",
+        description="Execute notebooks/01-07 with papermill into OUT, then write "
+                    "OUT/report.md and a self-contained OUT/report.html listing every claim. "
+                    "Exit status 1 when a notebook fails or a claim is worse than recorded.")
     p.add_argument("--out", default="output", help="output folder (default: output)")
+    p.add_argument("--params", default=None, metavar="FILE.yaml",
+                   help="YAML parameters: {all: {...}, 03_overhang: {...}, ...}")
+    p.add_argument("-p", "--param", nargs=2, action="append", metavar=("NAME", "VALUE"),
+                   help="notebook parameter for all notebooks, or NOTEBOOK:NAME for one "
+                        "(e.g. -p n_jobs 2 -p 03_overhang:n_points 8); VALUE is YAML")
+    p.add_argument("--only", nargs="+", metavar="NOTEBOOK", default=None,
+                   help="run only these notebooks (e.g. 03 04_cg_offset)")
+    p.add_argument("--no-progress", action="store_true", help="no progress bar")
     p.set_defaults(func=cmd_reproduce)
     return parser
 

@@ -79,7 +79,12 @@ def _label_modes(vectors, mass_diag, labels, freqs):
     disp = vectors[:n] * np.sqrt(mass_diag)[:, None]
     energy = np.abs(disp) ** 2
     frac = energy / energy.sum(axis=0, keepdims=True)          # (coords, modes)
-    rows, cols = scipy.optimize.linear_sum_assignment(-frac)
+    # maximise the product of the shares (sum of logs): a coordinate must
+    # participate materially in the mode that carries its name.  Maximising
+    # the plain sum can hand a coordinate a mode where its share is 1e-4
+    # (seen: the TEF label on a flap mode while the TEF flutter mode took a
+    # blade label)
+    rows, cols = scipy.optimize.linear_sum_assignment(-np.log(frac + 1e-300))
     out = [None] * frac.shape[1]
     for r, c in zip(rows, cols, strict=True):
         out[c] = labels[r]

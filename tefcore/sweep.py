@@ -287,6 +287,9 @@ def _build_table(parameter, values, records, vectors):
     for k, i in enumerate(ok):
         si = records[i]["value_si"]
         xs.append(float(si) if isinstance(si, numbers.Real) else float(k))
+    # label_weight stays 0: where TEF and torsion coalesce in flutter the
+    # participation labels flip between points and a label-following track
+    # jumps between the two branches (measured on Figs. 10 and 12)
     tracked = track_modes([(modes[i], vectors.get(i)) for i in ok], values=xs)
     tracked.insert(0, "point", np.asarray(ok, dtype=int)[tracked.pop("step").to_numpy(int)])
     info = pd.DataFrame({

@@ -194,6 +194,7 @@ class _Track:
     label: str
     eig: list = field(default_factory=list)  # last two (x, eigenvalue)
     vec: np.ndarray | None = None
+    last_label: str = ""
 
     def predict(self, x, use: bool) -> complex:
         (x1, e1) = self.eig[-1]
@@ -203,14 +204,16 @@ class _Track:
                 return e1 + (e1 - e0) * (x - x1) / (x1 - x0)
         return e1
 
-    def update(self, x, eig, vec):
+    def update(self, x, eig, vec, label=""):
         self.eig = [*self.eig[-1:], (x, eig)]
+        self.last_label = label
         if vec is not None:
             self.vec = vec
 
 
 def track_modes(points: Sequence, values=None, *, mac_weight: float = 1.0,
-                eig_weight: float = 1.0, predict: bool = True) -> pd.DataFrame:
+                eig_weight: float = 1.0, predict: bool = True,
+                label_weight: float = 0.0) -> pd.DataFrame:
     """Order the modes of successive sweep points into continuous tracks.
 
     Parameters
@@ -234,6 +237,16 @@ def track_modes(points: Sequence, values=None, *, mac_weight: float = 1.0,
     predict : bool
         Extrapolate each track's eigenvalue linearly from its last two
         points (default) instead of comparing with its last value.
+    label_weight : float
+        Cost added when a mode's own label (participation-based, without a
+        ``(locked)`` suffix) differs from the label the track carried at the
+        previous point. Where two modes coalesce in flutter their shapes mix
+        and the extrapolated eigenvalues mislead, while the participation
+        still tells which one the flap drives; with weight 1 a track follows
+        its label unless MAC and eigenvalue together disagree by more than
+        one unit of cost. Default 0: labels assigned by frequency order, as
+        some solvers do, would mislead, and even participation labels flip
+        between points where two modes coalesce.
 
     Returns
     -------
@@ -264,16 +277,20 @@ def track_modes(points: Sequence, values=None, *, mac_weight: float = 1.0,
         eig = _eig(modes)
         col_vec = [None if vecs is None else vecs[:, j] for j in range(len(modes))]
         assigned = np.full(len(modes), -1)
+        base = [str(lab).split(" (")[0] for lab in modes["label"]]
         if tracks and len(modes):
             pred = np.array([t.predict(x, predict) for t in tracks])
             cost = _cost(pred, [t.vec for t in tracks], eig, vecs, mac_weight, eig_weight)
+            if label_weight:
+                last = np.array([t.last_label for t in tracks], dtype=object)
+                cost = cost + label_weight * (last[:, None] != np.array(base, dtype=object))
             rows, cols = linear_sum_assignment(cost)
             assigned[cols] = rows
         for j in np.flatnonzero(assigned < 0):
             tracks.append(_Track(label=str(modes["label"].iloc[j])))
             assigned[j] = len(tracks) - 1
         for j, t in enumerate(assigned):
-            tracks[t].update(x, eig[j], col_vec[j])
+            tracks[t].update(x, eig[j], col_vec[j], base[j])
         frame = modes.drop(columns="label")
         frame.insert(0, "label_here", modes["label"])
         frame.insert(0, "label", [tracks[t].label for t in assigned])

@@ -23,13 +23,6 @@ def test_bad_override_is_a_clear_error_not_a_traceback(capsys):
     assert "flap.overhang" in err and "[0, 1)" in err and "Traceback" not in err
 
 
-def test_reproduce_writes_report(tmp_path):
-    assert main(["reproduce", "--out", str(tmp_path)]) == 0
-    for name in ("report.md", "mdart_modes.csv", "mdart_fanplot.png",
-                 "mdart_frequency_checks.csv"):
-        assert (tmp_path / name).stat().st_size > 0
-
-
 def test_python_m_entry_point():
     r = subprocess.run([sys.executable, "-m", "tefcore", "--help"], capture_output=True,
                        text=True, check=True)

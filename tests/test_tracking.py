@@ -205,3 +205,21 @@ def test_match_modes():
     assert match_modes(a, b).tolist() == [1, 0, 2]
     fewer = (b[0].iloc[:2], b[1][:, :2])
     assert match_modes(a, fewer).tolist() == [1, 0, -1]
+
+
+def test_label_weight_follows_participation_labels_through_coalescence():
+    # two modes coalesce: at the third point each lands next to the other's
+    # extrapolated eigenvalue (no vectors), so proximity alone swaps them;
+    # physical (participation) labels keep each track whole
+    import pandas as pd
+
+    def pt(lam_a, lam_b):
+        return pd.DataFrame({"mode_id": [0, 1], "label": ["TEF", "torsion"],
+                             "frequency_per_rev": [lam_a.imag, lam_b.imag],
+                             "real_part": [lam_a.real, lam_b.real]})
+
+    pts = [pt(-1 + 9j, -1 + 4j), pt(-0.5 + 7j, -2 + 5j), pt(-3.2 + 6.1j, 0.1 + 5.0j)]
+    plain = track_modes(pts, values=[0, 1, 2])
+    labelled = track_modes(pts, values=[0, 1, 2], label_weight=1.0)
+    assert (labelled["label"] == labelled["label_here"]).all()
+    assert not (plain["label"] == plain["label_here"]).all()
