@@ -202,20 +202,24 @@ def trim(model: CoupledModel, *, tol: float = 1e-10, max_iter: int = 40,
             initial.jacobian.shape == (x.size, x.size):
         lu = scipy.linalg.lu_factor(initial.jacobian)
         jac = initial.jacobian
-    prev = np.inf
-    for it in range(max_iter):
-        res, thrust, c, li = residuals(x)
-        q = x[:nq].reshape(n, n_psi)
+    def full(vec):
+        res, thrust, c, li = residuals(vec)
+        q = vec[:nq].reshape(n, n_psi)
         r = np.concatenate([res.ravel(), scalars(q, thrust, li)])
-        norm = float(np.max(np.abs(r)))
+        return r, float(np.max(np.abs(r))), thrust, c, li
+
+    prev = np.inf
+    r, norm, thrust, c, li = full(x)
+    for it in range(max_iter):
         history.append({"iteration": it, "max_residual": norm, "collective_deg":
                         np.rad2deg(c.collective), "cyclic_cos_deg": np.rad2deg(c.cyclic_cos),
                         "cyclic_sin_deg": np.rad2deg(c.cyclic_sin), "inflow": li})
         if not np.isfinite(norm):
             raise TrimError("trim residual became non-finite", history)
         if norm < tol:
-            return TrimResult(model=model, psi=psi, q=q, controls=c, inflow=_inflow(model, li),
-                              ct_sigma=float(thrust.mean()), history=history, jacobian=jac)
+            return TrimResult(model=model, psi=psi, q=x[:nq].reshape(n, n_psi), controls=c,
+                              inflow=_inflow(model, li), ct_sigma=float(thrust.mean()),
+                              history=history, jacobian=jac)
         # chord method: keep the factorised Jacobian while it converges fast,
         # refresh it when the residual falls by less than 10x per iteration
         if lu is None or norm > 0.1 * prev:
@@ -224,17 +228,16 @@ def trim(model: CoupledModel, *, tol: float = 1e-10, max_iter: int = 40,
             lu = scipy.linalg.lu_factor(jac)
         prev = norm
         step = scipy.linalg.lu_solve(lu, -r)
-        # damped Newton: halve the step while the residual grows
+        # damped Newton: halve the step while the residual grows; the accepted
+        # trial's residual is the next iteration's (no re-evaluation)
         alpha = 1.0
         for _ in range(8):
-            trial = x + alpha * step
-            rt, tt, _, lt = residuals(trial)
-            qt = trial[:nq].reshape(n, n_psi)
-            if np.max(np.abs(np.concatenate([rt.ravel(), scalars(qt, tt, lt)]))) <= norm \
-                    or norm < 1e-6:
+            trial = full(x + alpha * step)
+            if trial[1] <= norm or norm < 1e-6:
                 break
             alpha *= 0.5
         x = x + alpha * step
+        r, norm, thrust, c, li = trial
     raise TrimError(f"trim did not converge in {max_iter} iterations "
                     f"(last max residual {history[-1]['max_residual']:.3e})", history)
 
