@@ -171,3 +171,24 @@ def test_sweep_gives_continuous_labelled_curves(mdart):
     assert np.all(np.diff(torsion) > 0)
     lag = t[t["label"] == "blade lag 1"]["frequency_per_rev"].to_numpy()
     assert np.ptp(lag) / lag.mean() < 0.02
+
+
+def test_c81_table_aerodynamics_runs_the_coupled_analysis(mdart):
+    # the shipped deck is generated from the thin-airfoil model with a = 2 pi,
+    # so the trim collective must sit close to a thin-airfoil model with the
+    # same lift slope (within 0.3 deg: table interpolation and clipping)
+    import warnings
+
+    from tefcore.c81 import C81RangeWarning, example_deck_path
+
+    base = mdart.with_overrides({"flight.advance_ratio": 0.0,
+                                 "rotor.lift_slope": float(2 * np.pi)})
+    table_cfg = base.with_overrides({"model.aero_model": "c81",
+                                     "model.c81_deck": str(example_deck_path())})
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", C81RangeWarning)
+        tab = trim(coupled_model(table_cfg))
+        res = stability(table_cfg)
+    thin = trim(coupled_model(base))
+    assert abs(np.rad2deg(tab.controls.collective - thin.controls.collective)) < 0.3
+    assert "TEF" in set(res.modes["label"])
