@@ -293,7 +293,10 @@ def section_loads(static_model, *, alpha, alpha_rate, alpha_accel, plunge_rate, 
     arrs = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in vals.values()))
     # one finiteness test for all inputs (this sits in the trim's inner loop);
     # the per-name checks run only to word the error
-    if not np.isfinite(np.stack(arrs)).all():
+    total = np.zeros(arrs[0].shape)
+    for a in arrs:                  # NaN or inf anywhere makes the sum non-finite
+        total += a
+    if not np.isfinite(total).all():
         for k, v in vals.items():
             _finite(k, v)
     for k in ("velocity", "density", "chord"):

@@ -59,7 +59,7 @@ class StabilityResult:
     trim_result: TrimResult
 
 
-def _label_modes(vectors, mass_diag, labels, freqs):
+def _label_modes(vectors, mass_diag, labels, freqs, rates):
     """Label modes by the coordinate they carry, one coordinate per mode.
 
     Kinetic-energy fractions ``|q_k|^2 M_kk`` of each eigenvector's
@@ -71,9 +71,10 @@ def _label_modes(vectors, mass_diag, labels, freqs):
     (torsion's modal inertia is tiny), yet it is the only mode with torsion.
     A complex pair whose multipliers have become two real ones (frequency
     locked to a multiple of 1/2 per rev, or overdamped) gives one mode more
-    than coordinates: the extra root takes the label of its partner — the
-    assigned mode locked at the same frequency (the closest one, ties by the
-    energy-weighted MAC) — with ``(locked)`` appended.
+    than coordinates: the pair shares its coordinate's label, the less damped
+    root carrying it plainly and the other with ``(locked)`` appended (the
+    partner is the assigned mode at the closest frequency, ties by the
+    energy-weighted MAC).
     """
     n = len(labels)
     disp = vectors[:n] * np.sqrt(mass_diag)[:, None]
@@ -93,7 +94,14 @@ def _label_modes(vectors, mass_diag, labels, freqs):
     for j, lab in enumerate(out):
         if lab is None:
             best = min(cols, key=lambda i: (round(abs(freqs[i] - freqs[j]), 6), -mac[i, j]))
-            out[j] = out[best] + " (locked)"
+            # the two roots of a locked pair have nearly the same shape, so
+            # which one the assignment named is decided by round-off; name the
+            # less damped root (the one that matters for stability) after the
+            # coordinate, deterministically
+            if rates[j] > rates[best]:
+                out[j], out[best] = out[best], out[best] + " (locked)"
+            else:
+                out[j] = out[best] + " (locked)"
     return out, frac
 
 
@@ -156,7 +164,8 @@ def stability(cfg, *, trim_result: TrimResult | None = None, n_steps: int | None
     keep = res.positive_frequency()
     order = np.argsort(keep.frequencies, kind="stable")
     vec = keep.eigenvectors[:, order]
-    labels, frac = _label_modes(vec, mass_diag, model.labels, keep.frequencies[order])
+    labels, frac = _label_modes(vec, mass_diag, model.labels, keep.frequencies[order],
+                                keep.damping_rates[order])
     table = pd.DataFrame({
         "mode_id": np.arange(len(labels)),
         "label": labels,

@@ -223,7 +223,7 @@ def trim(model: CoupledModel, *, tol: float = 1e-10, max_iter: int = 40,
         # chord method: keep the factorised Jacobian while it converges fast,
         # refresh it when the residual falls by less than 10x per iteration
         if lu is None or norm > 0.1 * prev:
-            jac = _jacobian(model, x, r, c, li, residuals, scalars, psi, d1, d2, n, n_psi, nq,
+            jac = _jacobian(model, x, r, c, li, unpack, scalars, psi, d1, d2, n, n_psi, nq,
                             tip, hover, free_collective, sigma, mu, fs)
             lu = scipy.linalg.lu_factor(jac)
         prev = norm
@@ -242,7 +242,7 @@ def trim(model: CoupledModel, *, tol: float = 1e-10, max_iter: int = 40,
                     f"(last max residual {history[-1]['max_residual']:.3e})", history)
 
 
-def _jacobian(model, x, r0, c, li, residuals, scalars, psi, d1, d2, n, n_psi, nq, tip, hover,
+def _jacobian(model, x, r0, c, li, unpack, scalars, psi, d1, d2, n, n_psi, nq, tip, hover,
               free_collective, sigma, mu, fs):
     """Newton Jacobian using the per-azimuth block structure."""
     q = x[:nq].reshape(n, n_psi)
@@ -273,13 +273,28 @@ def _jacobian(model, x, r0, c, li, residuals, scalars, psi, d1, d2, n, n_psi, nq
         row += 2
     denom = 2 * np.hypot(mu, fs + li)
     jac[nq + row, :nq] = -sigma * dct.ravel() / denom
-    # control and inflow columns by forward differences of the whole residual
-    for k in range(nq, x.size):
-        h = 1e-7
-        xp = x.copy()
-        xp[k] += h
-        res, thr, _, lp = residuals(xp)
-        qp = xp[:nq].reshape(n, n_psi)
-        jac[:, k] = (np.concatenate([res.ravel(), scalars(qp, thr, lp)]) - r0) / h
+    # control and inflow columns by forward differences, all perturbed
+    # controls stacked along the azimuth axis in one evaluation (controls and
+    # inflow fields become per-azimuth columns, which broadcast in evaluate)
+    h = 1e-7
+    cols = np.arange(nq, x.size)
+    xs = np.repeat(x[None], cols.size, axis=0)
+    xs[np.arange(cols.size), cols] += h
+    parts = [unpack(v) for v in xs]
+
+    def stacked(values):
+        return np.repeat(np.asarray(values, float), n_psi)[:, None]
+
+    ctl = Controls(*(stacked([getattr(p[1], f) for p in parts])
+                     for f in ("collective", "cyclic_cos", "cyclic_sin")))
+    flows = [_inflow(model, p[2]) for p in parts]
+    infl = Inflow(*(stacked([getattr(fl, f) for fl in flows])
+                    for f in ("mean_induced", "freestream", "kx", "ky")))
+    res, thr = model.evaluate(np.tile(psi, cols.size), np.tile(q, cols.size),
+                              np.tile(qd, cols.size), np.tile(qdd, cols.size), ctl, infl)
+    for b, k in enumerate(cols):
+        sl = slice(b * n_psi, (b + 1) * n_psi)
+        rk = np.concatenate([res[:, sl].ravel(), scalars(q, thr[sl], parts[b][2])])
+        jac[:, k] = (rk - r0) / h
     assert n_s == row + 1
     return jac
