@@ -20,12 +20,11 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 import scipy.optimize
-from scipy.constants import g as g0
-from scipy.constants import inch, pound
 
 from .blade import blade_modes
+from .units import to_si
 
-LBF_PER_IN = pound * g0 / inch          # N/m per lb/in
+LBF_PER_IN = to_si(1.0, "lbf/in")        # N/m per lb/in
 
 #: (description, overrides, stated first-torsion frequency /rev, source)
 TORSION_TARGETS = [

@@ -24,7 +24,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .blade import blade_modes, pitch_function, rotor_units
-from .flap_dynamics import flap_properties
+from .flap_dynamics import flap_properties, propeller_moment
 
 
 def section_model(cfg):
@@ -206,11 +206,10 @@ class CoupledModel:
         f = self.flap
         ih, sf, eta = f["inertia_hinge"], f["first_moment"], f["hinge_from_ea"]
         c, s = np.cos(th), np.sin(th)
-        phi_f = th + dl
         x = self.x[None, :]
         ipe = ih - sf * eta
         per_span = (ih * (dldd + th_dd) - sf * eta * th_dd - sf * (wdd * c - vdd * s)
-                    + ih * np.sin(phi_f) * np.cos(phi_f) - sf * eta * c * np.sin(phi_f)
+                    + propeller_moment(ih, sf, eta, th, dl)
                     - sf * x * (slope * c - dv * s) - sf * v * s
                     + ipe * (dvd * np.sin(2 * th) + dwd * (1 - np.cos(2 * th))) - hinge)
         da, da_d = self.actuator_input(psi)

@@ -102,17 +102,24 @@ def flap_properties(cfg) -> FlapProperties:
                           k_a=cfg.actuator.stiffness, c_a=cfg.actuator.damping)
 
 
-def centrifugal_hinge_moment(props: FlapProperties, rotor_speed, pitch, delta):
-    """Centrifugal (propeller) moment on the flap per unit span [N m/m].
+def propeller_moment(inertia_hinge, first_moment, hinge_from_ea, pitch, delta):
+    """Centrifugal (propeller) moment on the flap per unit span and per Omega^2.
 
-    ``Omega^2 [I_h sin Phi cos Phi - S_f eta_h cos Theta sin Phi]`` with
-    ``Phi = Theta + delta``; it sits on the inertial side of the equation, so
-    it restores the flap toward the plane of rotation.
+    ``I_h sin Phi cos Phi - S_f eta_h cos Theta sin Phi`` with
+    ``Phi = Theta + delta``, in whatever consistent units the inertias carry
+    (SI here, rotor units in :mod:`tefcore.coupled`). It sits on the inertial
+    side of the flap equation, so it restores the flap toward the plane of
+    rotation.
     """
     phi = pitch + delta
-    return rotor_speed**2 * (props.inertia_hinge * np.sin(phi) * np.cos(phi)
-                             - props.first_moment * props.hinge_from_ea
-                             * np.cos(pitch) * np.sin(phi))
+    return (inertia_hinge * np.sin(phi) * np.cos(phi)
+            - first_moment * hinge_from_ea * np.cos(pitch) * np.sin(phi))
+
+
+def centrifugal_hinge_moment(props: FlapProperties, rotor_speed, pitch, delta):
+    """Centrifugal (propeller) moment on the flap per unit span [N m/m]."""
+    return rotor_speed**2 * propeller_moment(props.inertia_hinge, props.first_moment,
+                                             props.hinge_from_ea, pitch, delta)
 
 
 def flap_natural_frequency(props: FlapProperties, rotor_speed: float, pitch: float = 0.0):

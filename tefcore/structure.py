@@ -23,7 +23,6 @@ import scipy.linalg
 
 from .beam_element import element_matrices, field_operators
 
-NODE_DOFS = ("u", "v", "dv", "w", "dw", "phi")
 FIELD_GROUPS = ("axial", "lag", "flap", "torsion")
 
 

@@ -181,7 +181,7 @@ def trim(model: CoupledModel, *, tol: float = 1e-10, max_iter: int = 40,
             setattr(c, k, float(val))
         return vec[:nq].reshape(n, n_psi), c, float(vec[-1])
 
-    def residuals(vec, per_psi=False):
+    def residuals(vec):
         q, c, li = unpack(vec)
         res, thrust = model.evaluate(psi, q, q @ d1.T, q @ d2.T, c, _inflow(model, li))
         return res, thrust, c, li
