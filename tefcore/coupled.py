@@ -103,14 +103,52 @@ class CoupledModel:
         return (f.actuator_amplitude * np.cos(arg),
                 -f.actuator_amplitude * f.actuator_harmonic * np.sin(arg))
 
-    def pitch(self, psi, controls: Controls):
+    def pitch(self, psi, controls: Controls, twist=None):
         """Geometric pitch theta(x, psi) at the stations and its psi-derivatives."""
+        twist = self.twist if twist is None else np.atleast_1d(twist)
         c, s = np.cos(psi)[:, None], np.sin(psi)[:, None]
         cyc = controls.cyclic_cos * c + controls.cyclic_sin * s
         cyc_d = -controls.cyclic_cos * s + controls.cyclic_sin * c
-        shape = (psi.size, self.x.size)
-        return (controls.collective + self.twist[None, :] + cyc,
+        shape = (psi.size, twist.size)
+        return (controls.collective + twist[None, :] + cyc,
                 np.broadcast_to(cyc_d, shape), np.broadcast_to(-cyc, shape))
+
+    def kinematics(self, psi, q, qd, qdd, controls: Controls, inflow, x=None) -> dict:
+        """Section motion and velocities at azimuths ``psi`` and stations ``x``.
+
+        Blade fields and their psi-derivatives, the section pitch
+        ``Theta = theta + phi`` and rates, and (units of Omega R)
+        ``U_T = x + mu sin psi + v*``, ``U_P = lambda + w* + mu (w' + beta_p) cos psi``,
+        the inflow angle ``arctan(U_P/U_T)`` (kept in (-pi/2, pi/2) for
+        reverse flow) and the speed. Arrays are (len(psi), len(x)); ``x``
+        defaults to the model's aerodynamic stations.
+        """
+        if x is None:
+            x, sh, twist = self.x, self.shapes, None
+        else:
+            x = np.atleast_1d(np.asarray(x, float))
+            full = self.modes.shapes(x)
+            sh = {k: full[k] for k in self.shapes}
+            twist = np.interp(x, self.x, self.twist)
+        nm = self.n_modes
+        psi = np.asarray(psi, float)
+        qb, qbd, qbdd = q[:nm], qd[:nm], qdd[:nm]
+        k = {}
+        k["w"], k["wd"], k["wdd"] = (a.T @ sh["w"].T for a in (qb, qbd, qbdd))
+        k["dw"], k["dwd"] = (a.T @ sh["dw"].T for a in (qb, qbd))
+        k["v"], k["vd"], k["vdd"] = (a.T @ sh["v"].T for a in (qb, qbd, qbdd))
+        k["dv"], k["dvd"] = (a.T @ sh["dv"].T for a in (qb, qbd))
+        ph, phd, phdd = (a.T @ sh["phi"].T for a in (qb, qbd, qbdd))
+        theta, theta_d, theta_dd = self.pitch(psi, controls, twist)
+        k["theta"], k["theta_d"], k["theta_dd"] = theta + ph, theta_d + phd, theta_dd + phdd
+        mu = self.cfg.flight.advance_ratio
+        k["slope"] = k["dw"] + self.cfg.rotor.precone
+        k["ut"] = x[None, :] + mu * np.sin(psi)[:, None] + k["vd"]
+        k["up"] = (inflow(x[None, :], psi[:, None]) + k["wd"]
+                   + mu * k["slope"] * np.cos(psi)[:, None])
+        k["inflow_angle"] = np.arctan(k["up"] / k["ut"])
+        k["speed"] = np.hypot(k["ut"], k["up"])
+        return k
 
     def evaluate(self, psi, q, qd, qdd, controls: Controls, inflow):
         """Residual and section loads for motions at azimuths ``psi``.
@@ -133,30 +171,19 @@ class CoupledModel:
         """
         cfg, sh, nm = self.cfg, self.shapes, self.n_modes
         psi = np.asarray(psi, float)
+        kin = self.kinematics(psi, q, qd, qdd, controls, inflow)
+        w, wdd, v, vdd = kin["w"], kin["wdd"], kin["v"], kin["vdd"]
+        dv, dvd, dwd, slope = kin["dv"], kin["dvd"], kin["dwd"], kin["slope"]
+        big_theta, big_theta_d, big_theta_dd = kin["theta"], kin["theta_d"], kin["theta_dd"]
         qb, qbd, qbdd = q[:nm], qd[:nm], qdd[:nm]
-        # blade fields at (azimuth, station)
-        w, wd, wdd = (a.T @ sh["w"].T for a in (qb, qbd, qbdd))
-        dw, dwd = (a.T @ sh["dw"].T for a in (qb, qbd))
-        v, vd, vdd = (a.T @ sh["v"].T for a in (qb, qbd, qbdd))
-        dv, dvd = (a.T @ sh["dv"].T for a in (qb, qbd))
-        ph, phd, phdd = (a.T @ sh["phi"].T for a in (qb, qbd, qbdd))
-        theta, theta_d, theta_dd = self.pitch(psi, controls)
-        big_theta, big_theta_d, big_theta_dd = theta + ph, theta_d + phd, theta_dd + phdd
         if self.has_flap:
             dl = np.where(self.on_flap, q[nm][:, None], 0.0)
             dld = np.where(self.on_flap, qd[nm][:, None], 0.0)
             dldd = np.where(self.on_flap, qdd[nm][:, None], 0.0)
         else:
             dl = dld = dldd = np.zeros_like(w)
-
-        # velocities (units of Omega R) and angle of attack
-        mu = cfg.flight.advance_ratio
-        slope = dw + cfg.rotor.precone
-        ut = self.x[None, :] + mu * np.sin(psi)[:, None] + vd
-        up = inflow(self.x[None, :], psi[:, None]) + wd + mu * slope * np.cos(psi)[:, None]
-        inflow_angle = np.arctan(up / ut)          # keeps (-pi/2, pi/2): reverse flow below
-        sign = np.sign(ut)                         # reverse flow flips the loads
-        speed = np.hypot(ut, up)
+        inflow_angle, speed = kin["inflow_angle"], kin["speed"]
+        sign = np.sign(kin["ut"])                  # reverse flow flips the loads
         sc = self.scale
         out = self.aero.loads(alpha=big_theta - inflow_angle,
                               alpha_rate=big_theta_d * sc["omega"],

@@ -108,42 +108,27 @@ def trimmed_section_motion(tr, x: float) -> SectionMotion:
     """Section motion at station ``x`` (fraction of R) of a trimmed coupled model.
 
     Includes the elastic twist and flap bending of the trimmed response, so
-    the flap sees the same angle of attack as in the coupled analysis.
+    the flap sees the same angle of attack as in the coupled analysis (the
+    kinematics are the coupled model's own, :meth:`CoupledModel.kinematics`).
     """
     model = tr.model
-    sh = model.modes.shapes([x])
-    nm = model.n_modes
     rad, om = model.cfg.rotor.radius, model.cfg.rotor.rotor_speed
-    tw = np.interp(x, model.x, model.twist)
-    mu = model.cfg.flight.advance_ratio
-    c = tr.controls
 
-    def field(name, psi, d=0):
-        return fourier_eval(tr.q[:nm], psi, d).T @ sh[name][0]
-
-    def pitch(psi, d=0):
-        cyc = [c.cyclic_cos * np.cos(psi) + c.cyclic_sin * np.sin(psi),
-               -c.cyclic_cos * np.sin(psi) + c.cyclic_sin * np.cos(psi),
-               -(c.cyclic_cos * np.cos(psi) + c.cyclic_sin * np.sin(psi))][d]
-        return (c.collective + tw if d == 0 else 0.0) + cyc + field("phi", psi, d)
-
-    def ut(psi):
-        return x + mu * np.sin(psi) + field("v", psi, 1)
-
-    def up(psi):
-        return (tr.inflow(x, psi) + field("w", psi, 1)
-                + mu * (field("dw", psi) + model.cfg.rotor.precone) * np.cos(psi))
-
-    def alpha(psi):
-        return pitch(psi) - np.arctan(up(psi) / ut(psi))
+    def kin(psi, key):
+        psi = np.atleast_1d(np.asarray(psi, float))
+        q, qd, qdd = tr.motion(psi)
+        k = model.kinematics(psi, q, qd, qdd, tr.controls, tr.inflow, x=[x])
+        return k[key][:, 0]
 
     return SectionMotion(
-        velocity=lambda p: np.hypot(ut(p), up(p)) * om * rad, alpha=alpha,
-        alpha_rate=lambda p: pitch(p, 1) * om, alpha_accel=lambda p: pitch(p, 2) * om**2,
+        velocity=lambda p: kin(p, "speed") * om * rad,
+        alpha=lambda p: kin(p, "theta") - kin(p, "inflow_angle"),
+        alpha_rate=lambda p: kin(p, "theta_d") * om,
+        alpha_accel=lambda p: kin(p, "theta_dd") * om**2,
         plunge_rate=lambda p: np.zeros_like(np.asarray(p, float)),
-        plunge_accel=lambda p: field("w", p, 2) * om**2 * rad,
-        pitch=pitch, pitch_accel=lambda p: pitch(p, 2) * om**2,
-        flap_slope=lambda p: field("dw", p), flap_accel=lambda p: field("w", p, 2) * om**2 * rad)
+        plunge_accel=lambda p: kin(p, "wdd") * om**2 * rad,
+        pitch=lambda p: kin(p, "theta"), pitch_accel=lambda p: kin(p, "theta_dd") * om**2,
+        flap_slope=lambda p: kin(p, "slope"), flap_accel=lambda p: kin(p, "wdd") * om**2 * rad)
 
 
 def _fig5_trim(cfg, **over):
