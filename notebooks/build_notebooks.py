@@ -38,10 +38,10 @@ SETUP = '''\
 import matplotlib.pyplot as plt
 import pandas as pd
 
-from tefcore import reproduce as rp
+from tefcore import notebook_tools as nt
 
-out = rp.setup_notebook(output_dir)
-base = rp.base_config(aero_model)
+out = nt.setup_notebook(output_dir)
+base = nt.base_config(aero_model)
 claims_cfg = base.with_overrides(overrides) if overrides else base  # for runs validation adds
 results, variants = {}, {}
 '''
@@ -129,45 +129,45 @@ def stability_block(fig, stem_png, title, *, labels=None, panels=("damping",),
         flab = ", labels=blade_modes_a"
     elif freq_labels is not None:
         flab = f", labels={tuple(freq_labels)!r}".replace("'", '"')
-    nat = (f'\nnat_{fig} = rp.natural_frequencies("{fig}", vals_{fig}, base, overrides)'
+    nat = (f'\nnat_{fig} = nt.natural_frequencies("{fig}", vals_{fig}, base, overrides)'
            if natural else "")
     nat_kw = f",\n              natural=nat_{fig}" if natural else ""
     pre = "".join(line + "\n" for line in setup)
     cells = [code(f'''\
-{pre}vals_{fig} = rp.figure_values("{fig}", n_points, values.get("{fig}"))
-{var} = rp.run_stability_figure("{fig}", base, overrides, vals_{fig}, n_jobs){nat}
+{pre}vals_{fig} = nt.figure_values("{fig}", n_points, values.get("{fig}"))
+{var} = nt.run_stability_figure("{fig}", base, overrides, vals_{fig}, n_jobs){nat}
 results["{fig}"] = {var}
-rp.report_sweep("{fig}", {var})
+nt.report_sweep("{fig}", {var})
 ''')]
     if panels == ("damping",):
         cells.append(code(f'''\
 fig, ax = plt.subplots(figsize=(6.4, 4.4))
-rp.plot_modes(ax, "{fig}", {var}.table, measure=damping_measure{lab},
-              reference=rp.reference_curves("{fig}"))
+nt.plot_modes(ax, "{fig}", {var}.table, measure=damping_measure{lab},
+              reference=nt.reference_curves("{fig}"))
 ax.set_title({pystr(title, 13)},
              fontsize="medium")
 ax.legend()
-rp.savefig(fig, out, "{stem_png}");
+nt.savefig(fig, out, "{stem_png}");
 '''))
     else:
         cells.append(code(f'''\
 fig, (ax_a, ax_b) = plt.subplots(1, 2, figsize=(11, 4.4))
-rp.plot_modes(ax_a, "{fig}", {var}.table, quantity="frequency"{flab}{nat_kw})
+nt.plot_modes(ax_a, "{fig}", {var}.table, quantity="frequency"{flab}{nat_kw})
 ax_a.set_title("(a) {panels[0]}", fontsize="medium")
 ax_a.legend()
-rp.plot_modes(ax_b, "{fig}", {var}.table, measure=damping_measure{lab},
-              reference=rp.reference_curves("{fig}"))
+nt.plot_modes(ax_b, "{fig}", {var}.table, measure=damping_measure{lab},
+              reference=nt.reference_curves("{fig}"))
 ax_b.set_title("(b) blade and TEF damping", fontsize="medium")
 ax_b.legend()
 fig.suptitle({pystr(title, 13)},
              fontsize="medium")
-rp.savefig(fig, out, "{stem_png}");
+nt.savefig(fig, out, "{stem_png}");
 '''))
     cells.append(code(f'''\
 print("damping (" + damping_measure + ") of the tracked modes:")
-summary = rp.mode_summary("{fig}", {var}.table, measure=damping_measure{lab})
+summary = nt.mode_summary("{fig}", {var}.table, measure=damping_measure{lab})
 print(summary.to_string())
-changes = rp.sign_changes("{fig}", {var}.table, measure=damping_measure)
+changes = nt.sign_changes("{fig}", {var}.table, measure=damping_measure)
 print("TEF damping changes sign at:", changes or "nowhere in the range")
 '''))
     return cells
@@ -175,7 +175,7 @@ print("TEF damping changes sign at:", changes or "nowhere in the range")
 
 def claims_cells(figs, saved):
     figs_list = ", ".join(f'"{f}"' for f in figs)
-    saves = "\n".join(f'written.append(rp.save_csv({expr}, out, "{name}"))'
+    saves = "\n".join(f'written.append(nt.save_csv({expr}, out, "{name}"))'
                       for name, expr in saved)
     return [
         md('''\
@@ -187,14 +187,14 @@ the statement needs data we do not have). The full table, with the
 statement, the expected and computed values and the reason, is saved to
 `claims.csv`.'''),
         code(f'''\
-claims = pd.concat([rp.claims_table(name, results[name], cfg=claims_cfg, others=results,
+claims = pd.concat([nt.claims_table(name, results[name], cfg=claims_cfg, others=results,
                                    variants=variants.get(name))
                     for name in [{figs_list}]], ignore_index=True)
-rp.show_claims(claims)
+nt.show_claims(claims)
 '''),
         md(SAVE_NOTE),
         code(f'''\
-written = [rp.save_csv(claims, out, "claims")]
+written = [nt.save_csv(claims, out, "claims")]
 {saves}
 print(sorted(p.name for p in written + sorted(out.glob("*.png"))))
 '''),
@@ -252,16 +252,16 @@ modes["frequency_hz"] = modes["frequency_per_rev"] * base.rotor.rotor_speed / (2
 cols = ["mode", "label", "frequency_per_rev", "frequency_hz", "flap_fraction", "lag_fraction",
         "torsion_fraction"]
 print("coupled blade modes at 392 RPM, zero collective (fractions: share of kinetic energy)")
-print(rp.clean(modes[cols].round(3)).to_string(index=False))
+print(nt.clean(modes[cols].round(3)).to_string(index=False))
 '''),
         code('''\
 ax = fan_plot(base)
 ax.set_title("MDART blade (assumed properties): coupled modes vs rotor speed", fontsize="medium")
-rp.savefig(ax.figure, out, "blade_fanplot");
+nt.savefig(ax.figure, out, "blade_fanplot");
 '''),
         code('''\
 checks = frequency_checks(base)
-print(rp.clean(checks.drop(columns="source").round(3)).to_string(index=False))
+print(nt.clean(checks.drop(columns="source").round(3)).to_string(index=False))
 print("largest error against the stated frequencies: "
       f"{checks['error_percent'].abs().max():.2f} %")
 '''),
@@ -312,24 +312,24 @@ def stability_block_lag(fig, png, title):
     var = f"res_{fig}"
     return [
         code(f'''\
-{var} = rp.run_stability_figure("{fig}", base, overrides,
-                                rp.figure_values("{fig}", n_points, values.get("{fig}")), n_jobs)
+{var} = nt.run_stability_figure("{fig}", base, overrides,
+                                nt.figure_values("{fig}", n_points, values.get("{fig}")), n_jobs)
 results["{fig}"] = {var}
-rp.report_sweep("{fig}", {var})
+nt.report_sweep("{fig}", {var})
 '''),
         code(f'''\
 fig, (ax_a, ax_b) = plt.subplots(1, 2, figsize=(11, 4.2))
-rp.plot_modes(ax_a, "{fig}", {var}.table, labels=("blade lag 1",), measure=damping_measure)
+nt.plot_modes(ax_a, "{fig}", {var}.table, labels=("blade lag 1",), measure=damping_measure)
 ax_a.set_title("lag damping (tefcore prediction; no MDART test data)", fontsize="medium")
 ax_a.set_ylim(bottom=0)
-rp.plot_modes(ax_b, "{fig}", {var}.table, labels=("blade lag 1",), quantity="frequency")
+nt.plot_modes(ax_b, "{fig}", {var}.table, labels=("blade lag 1",), quantity="frequency")
 ax_b.set_title("lag frequency", fontsize="medium")
 fig.suptitle({pystr(title, 13)},
              fontsize="medium")
-rp.savefig(fig, out, "{png}");
+nt.savefig(fig, out, "{png}");
 '''),
         code(f'''\
-print(rp.mode_summary("{fig}", {var}.table, labels=("blade lag 1",), measure=damping_measure)
+print(nt.mode_summary("{fig}", {var}.table, labels=("blade lag 1",), measure=damping_measure)
       .rename(columns={{"blade lag 1": "lag damping"}}).to_string())
 '''),
     ]
@@ -374,13 +374,13 @@ The CAMRAD II curve is not available either.'''),
 from tefcore.figures import hinge_moment_figure
 
 cfg5 = base.with_overrides(overrides) if overrides else base
-with rp.counted_warnings("warnings (e.g. table inputs clipped to its edges)"):
-    hm_thin = hinge_moment_figure(cfg5, aero=rp.section_aero("thin_airfoil", cfg5), n_psi=n_psi)
-    hm_table = hinge_moment_figure(cfg5, aero=rp.section_aero("table", cfg5), n_psi=n_psi)
+with nt.counted_warnings("warnings (e.g. table inputs clipped to its edges)"):
+    hm_thin = hinge_moment_figure(cfg5, aero=nt.section_aero("thin_airfoil", cfg5), n_psi=n_psi)
+    hm_table = hinge_moment_figure(cfg5, aero=nt.section_aero("table", cfg5), n_psi=n_psi)
 fig5 = hm_thin.rename(columns={"hinge_moment": "thin_airfoil"}).assign(
     table_lookup=hm_table["hinge_moment"].to_numpy())
 results["fig5"] = fig5
-print(rp.clean(fig5[["thin_airfoil", "table_lookup"]].describe().loc[["mean", "min", "max"]]
+print(nt.clean(fig5[["thin_airfoil", "table_lookup"]].describe().loc[["mean", "min", "max"]]
                .round(3)).to_string())
 '''),
         code('''\
@@ -388,7 +388,7 @@ fig, ax = plt.subplots(figsize=(6.4, 4.4))
 ax.plot(fig5["psi_deg"], fig5["thin_airfoil"], "-", color="C0", label="thin airfoil (quasi-steady)")
 ax.plot(fig5["psi_deg"], fig5["table_lookup"], "--", color="C3",
         label="table look-up (generated deck)")
-ref = rp.reference_curves("fig5")
+ref = nt.reference_curves("fig5")
 if ref is not None:
     for lab, g in ref.groupby("label"):
         ax.plot(g["x"], g["y"], "kx", label=f"paper: {lab}")
@@ -398,7 +398,7 @@ ax.set_xticks(range(0, 361, 90))
 ax.set_title("Fig. 5: hinge moment, delta_f = 2 deg cos(4 psi - 240 deg), mu = 0.2",
              fontsize="medium")
 ax.legend()
-rp.savefig(fig, out, "fig05");
+nt.savefig(fig, out, "fig05");
 '''),
         md('''\
 The mean (negative) hinge moment comes from the steady angle of attack and
@@ -423,7 +423,7 @@ response is amplified in phase.'''),
         code('''\
 from tefcore.figures import flap_response_figure
 
-with rp.counted_warnings("warnings (e.g. table inputs clipped to its edges)"):
+with nt.counted_warnings("warnings (e.g. table inputs clipped to its edges)"):
     fig6 = flap_response_figure(base, **overrides)
 results["fig6"] = fig6
 ratio = fig6["half_peak_to_peak_deg"] / fig6["input_half_peak_to_peak_deg"]
@@ -437,7 +437,7 @@ t6 = fig6["table"]
 fig, ax = plt.subplots(figsize=(6.4, 4.4))
 ax.plot(t6["psi_deg"], t6["delta_a_deg"], "--", color="0.4", label="actuator input delta_a")
 ax.plot(t6["psi_deg"], t6["delta_f_deg"], "-", color="C3", label="flap response delta_f")
-ref = rp.reference_curves("fig6")
+ref = nt.reference_curves("fig6")
 if ref is not None:
     for lab, g in ref.groupby("label"):
         ax.plot(g["x"], g["y"], "kx", label=f"paper: {lab}")
@@ -447,7 +447,7 @@ ax.set_xticks(range(0, 361, 90))
 ax.set_title("Fig. 6: flap response, delta_a = 2 deg cos(4 psi - 240 deg), mu = 0.2",
              fontsize="medium")
 ax.legend()
-rp.savefig(fig, out, "fig06");
+nt.savefig(fig, out, "fig06");
 '''),
         md('''\
 **What the paper concludes:** the flap does not simply follow the actuator;
@@ -502,13 +502,13 @@ rate; we show its peak over a revolution and the mean of its magnitude.'''),
         code('''\
 from tefcore.figures import overhang_actuation_figure
 
-with rp.counted_warnings("warnings (e.g. table inputs clipped to its edges)"):
+with nt.counted_warnings("warnings (e.g. table inputs clipped to its edges)"):
     fig7 = overhang_actuation_figure(base.with_overrides(overrides) if overrides else base,
                                      overhangs=tuple(fig7_overhangs))
 results["fig7"] = fig7
 fig7 = fig7.assign(peak_power_rel=fig7["peak_power"] / fig7["peak_power"].iloc[0],
                    mean_power_rel=fig7["mean_power"] / fig7["mean_power"].iloc[0])
-print(rp.clean(fig7.round(3)).to_string(index=False))
+print(nt.clean(fig7.round(3)).to_string(index=False))
 '''),
         code('''\
 fig, (ax_a, ax_b) = plt.subplots(1, 2, figsize=(11, 4.2))
@@ -525,11 +525,11 @@ ax_b.set_ylabel("half peak-to-peak flap deflection [deg]")
 ax_b.set_title("(b) trailing-edge flap response", fontsize="medium")
 ax_b.legend()
 for ax, name in ((ax_a, "fig7a"), (ax_b, "fig7b")):
-    ref = rp.reference_curves(name)
+    ref = nt.reference_curves(name)
     if ref is not None:
         ax.plot(ref["x"], ref["y"], "kx", label="paper")
 fig.suptitle("Fig. 7: actuation power and flap response vs overhang, mu = 0.2", fontsize="medium")
-rp.savefig(fig, out, "fig07");
+nt.savefig(fig, out, "fig07");
 '''),
         md('''\
 **Paper:** the actuation power drops by 60 % at c_b/c_f = 0.29 compared with
@@ -570,7 +570,7 @@ moves this boundary noticeably -- a measure of how much the paper's
 test-data tables could move it.'''),
         code('''\
 for name in ["fig8"]:
-    rp.unsteadiness(name, results[name], base)
+    nt.unsteadiness(name, results[name], base)
 '''),
     ]
 
@@ -608,7 +608,7 @@ Conditions: forward flight, mu = 0.30, overhang 0.29 c_f.'''),
                          freq_labels=("TEF",)),
         code('''\
 print("TEF frequency [/rev] versus CG offset:")
-print(rp.mode_summary("fig9", res_fig9.table, labels=("TEF",), quantity="frequency").to_string())
+print(nt.mode_summary("fig9", res_fig9.table, labels=("TEF",), quantity="frequency").to_string())
 '''),
         md('''\
 **What the paper concludes:** the TEF frequency falls with CG offset; the TEF
@@ -631,7 +631,7 @@ them. The torsion mode shape at the flap (set by the assumed GJ and the
 equivalent pitch-link spring) sets how much the flap "sees" of the twist.'''),
         code('''\
 for name in ["fig9"]:
-    rp.unsteadiness(name, results[name], base)
+    nt.unsteadiness(name, results[name], base)
 '''),
     ]
 
@@ -683,7 +683,7 @@ decreases slightly and flap damping increases with GJ.'''),
         code('''\
 for name, nat in (("fig10", nat_fig10), ("fig11", nat_fig11)):
     print(f"{name} (a): blade natural frequencies [/rev]")
-    print(rp.mode_summary(name, None, labels=("blade flap 1", "blade lag 1", "blade torsion 1"),
+    print(nt.mode_summary(name, None, labels=("blade flap 1", "blade lag 1", "blade torsion 1"),
                           quantity="frequency", natural=nat).to_string())
 '''),
         md('''\
@@ -705,40 +705,40 @@ baseline stiffness**: raising the flap frequency moves it away from the blade
 modes it exchanges energy with. Blade flap damping increases with actuator
 stiffness, torsion damping decreases, lag is unaffected.'''),
         code('''\
-vals_fig12 = rp.figure_values("fig12", n_points, values.get("fig12"))
-res_fig12 = rp.run_stability_figure("fig12", base, overrides, vals_fig12, n_jobs)
-res_fig12_balanced = rp.run_stability_figure("fig12", base, overrides, vals_fig12, n_jobs,
+vals_fig12 = nt.figure_values("fig12", n_points, values.get("fig12"))
+res_fig12 = nt.run_stability_figure("fig12", base, overrides, vals_fig12, n_jobs)
+res_fig12_balanced = nt.run_stability_figure("fig12", base, overrides, vals_fig12, n_jobs,
                                              cg_offset=0.0)
 results["fig12"] = res_fig12
-variants["fig12"] = {rp.variant_key({"flap.cg_offset": 0.0}): res_fig12_balanced}
-rp.report_sweep("fig12", res_fig12)
-rp.report_sweep("fig12 (balanced)", res_fig12_balanced)
+variants["fig12"] = {nt.variant_key({"flap.cg_offset": 0.0}): res_fig12_balanced}
+nt.report_sweep("fig12", res_fig12)
+nt.report_sweep("fig12 (balanced)", res_fig12_balanced)
 '''),
         code('''\
 fig, (ax_a, ax_b) = plt.subplots(1, 2, figsize=(11, 4.4))
-rp.plot_modes(ax_a, "fig12", res_fig12_balanced.table, labels=("TEF",), quantity="frequency",
+nt.plot_modes(ax_a, "fig12", res_fig12_balanced.table, labels=("TEF",), quantity="frequency",
               label_suffix=", c_cg/c_f = 0", style={"TEF": ("C0", "s", "--")})
-rp.plot_modes(ax_a, "fig12", res_fig12.table, labels=("TEF",), quantity="frequency",
+nt.plot_modes(ax_a, "fig12", res_fig12.table, labels=("TEF",), quantity="frequency",
               label_suffix=", c_cg/c_f = 0.33")
 ax_a.set_title("(a) trailing-edge flap frequency", fontsize="medium")
 ax_a.legend()
-rp.plot_modes(ax_b, "fig12", res_fig12.table, measure=damping_measure,
+nt.plot_modes(ax_b, "fig12", res_fig12.table, measure=damping_measure,
               labels=("blade flap 1", "blade lag 1", "blade torsion 1", "TEF"),
-              reference=rp.reference_curves("fig12"))
+              reference=nt.reference_curves("fig12"))
 ax_b.set_title("(b) blade and TEF damping, c_cg/c_f = 0.33", fontsize="medium")
 ax_b.legend()
 fig.suptitle("Fig. 12: effect of actuator stiffness, mu = 0.30, c_b/c_f = 0.29", fontsize="medium")
-rp.savefig(fig, out, "fig12");
+nt.savefig(fig, out, "fig12");
 '''),
         code('''\
 print("TEF frequency [/rev]: balanced (c_cg = 0) and imbalanced (c_cg = 0.33)")
-print(pd.concat({"balanced": rp.mode_summary("fig12", res_fig12_balanced.table, labels=("TEF",),
+print(pd.concat({"balanced": nt.mode_summary("fig12", res_fig12_balanced.table, labels=("TEF",),
                                              quantity="frequency")["TEF"],
-                 "imbalanced": rp.mode_summary("fig12", res_fig12.table, labels=("TEF",),
+                 "imbalanced": nt.mode_summary("fig12", res_fig12.table, labels=("TEF",),
                                                quantity="frequency")["TEF"]}, axis=1).to_string())
 print("damping (" + damping_measure + "), imbalanced flap:")
-print(rp.mode_summary("fig12", res_fig12.table, measure=damping_measure).to_string())
-print("TEF damping changes sign at:", rp.sign_changes("fig12", res_fig12.table,
+print(nt.mode_summary("fig12", res_fig12.table, measure=damping_measure).to_string())
+print("TEF damping changes sign at:", nt.sign_changes("fig12", res_fig12.table,
                                                       measure=damping_measure) or "nowhere")
 '''),
         md('''\
@@ -759,7 +759,7 @@ matches the two stated torsion frequencies, but the flap-mode damping trend
 of Fig. 10, which the paper attributes to those couplings, may differ.'''),
         code('''\
 for name in ["fig10", "fig12"]:
-    rp.unsteadiness(name, results[name], base)
+    nt.unsteadiness(name, results[name], base)
 '''),
     ]
 
@@ -828,7 +828,7 @@ both. How the flap's mass and inertia scale with its chord is an assumption
 (`flap.mass` per unit length is kept).'''),
         code('''\
 for name in ["fig13", "fig15"]:
-    rp.unsteadiness(name, results[name], base)
+    nt.unsteadiness(name, results[name], base)
 '''),
     ]
 
@@ -861,35 +861,35 @@ Paper: in hover the **TEF mode becomes unstable at large collective**, though
 the variation is very small; at mu = 0.30 it is **unstable from 4 to 12 deg
 collective and increasingly so** with larger collective.'''),
         code('''\
-res_fig16a = rp.run_stability_figure("fig16a", base, overrides,
-                                     rp.figure_values("fig16a", n_points, values.get("fig16a")),
+res_fig16a = nt.run_stability_figure("fig16a", base, overrides,
+                                     nt.figure_values("fig16a", n_points, values.get("fig16a")),
                                      n_jobs)
-res_fig16b = rp.run_stability_figure("fig16b", base, overrides,
-                                     rp.figure_values("fig16b", n_points, values.get("fig16b")),
+res_fig16b = nt.run_stability_figure("fig16b", base, overrides,
+                                     nt.figure_values("fig16b", n_points, values.get("fig16b")),
                                      n_jobs)
 results.update(fig16a=res_fig16a, fig16b=res_fig16b)
-rp.report_sweep("fig16a", res_fig16a)
-rp.report_sweep("fig16b", res_fig16b)
+nt.report_sweep("fig16a", res_fig16a)
+nt.report_sweep("fig16b", res_fig16b)
 '''),
         code('''\
 fig, (ax_a, ax_b) = plt.subplots(1, 2, figsize=(11, 4.4), sharey=True)
-rp.plot_modes(ax_a, "fig16a", res_fig16a.table, measure=damping_measure,
-              reference=rp.reference_curves("fig16a"))
+nt.plot_modes(ax_a, "fig16a", res_fig16a.table, measure=damping_measure,
+              reference=nt.reference_curves("fig16a"))
 ax_a.set_title("(a) hover", fontsize="medium")
-rp.plot_modes(ax_b, "fig16b", res_fig16b.table, measure=damping_measure,
-              reference=rp.reference_curves("fig16b"))
+nt.plot_modes(ax_b, "fig16b", res_fig16b.table, measure=damping_measure,
+              reference=nt.reference_curves("fig16b"))
 ax_b.set_title("(b) forward flight, mu = 0.30", fontsize="medium")
 ax_b.legend()
 fig.suptitle("Fig. 16: effect of collective pitch, c_b/c_f = 0.29, c_cg/c_f = 0.33",
              fontsize="medium")
-rp.savefig(fig, out, "fig16");
+nt.savefig(fig, out, "fig16");
 '''),
         code('''\
 for name in ("fig16a", "fig16b"):
     print(f"{name}: damping (" + damping_measure + ")")
-    print(rp.mode_summary(name, results[name].table, measure=damping_measure).to_string())
+    print(nt.mode_summary(name, results[name].table, measure=damping_measure).to_string())
     print("TEF damping changes sign at:",
-          rp.sign_changes(name, results[name].table, measure=damping_measure) or "nowhere")
+          nt.sign_changes(name, results[name].table, measure=damping_measure) or "nowhere")
 '''),
         md('''\
 ## Figure 17: forward speed
@@ -917,7 +917,7 @@ means the sign of the hover TEF damping is within the uncertainty of any of
 these models.'''),
         code('''\
 for name in ["fig16b", "fig17"]:
-    rp.unsteadiness(name, results[name], base)
+    nt.unsteadiness(name, results[name], base)
 '''),
     ]
 
