@@ -33,6 +33,19 @@ PHI_DOF = slice(12, 15)
 N_GAUSS = 6
 
 
+@functools.lru_cache(maxsize=32)
+def gauss_legendre(n: int):
+    """Gauss-Legendre points and weights on [-1, 1] (cached, read-only).
+
+    numpy computes them from an eigenproblem each call (~0.3 ms), which
+    showed in the cost of one stability point.
+    """
+    g, w = np.polynomial.legendre.leggauss(n)
+    g.setflags(write=False)
+    w.setflags(write=False)
+    return g, w
+
+
 def hermite(xi, h):
     """Cubic Hermite shape functions and their x-derivatives.
 
@@ -162,17 +175,20 @@ def field_operators(xi, h):
     return ops
 
 
-def _sym(a, b):
-    """a b^T + b a^T over the trailing axis (energy term c*a*b -> matrix c*_sym)."""
-    return a[..., :, None] * b[..., None, :] + b[..., :, None] * a[..., None, :]
-
-
-def _sq(a):
-    return a[..., :, None] * a[..., None, :]
+#: Fields of the element energies, in the order of the quadratic-form index.
+_FIELDS = ("u", "du", "v", "dv", "w", "dw", "phi", "dphi", "kap_c", "kap_f", "slope_c", "slope_f")
+_F = {name: i for i, name in enumerate(_FIELDS)}
 
 
 def element_matrices(x0, h, sec, pitch, tension):
     """Mass, elastic stiffness and centrifugal stiffness of many elements at once.
+
+    Each energy density is a quadratic form ``f^T C(x) f`` in the fields
+    ``f = (u, u', v, v', w, w', phi, phi', kappa_c, kappa_f, v_c', w_f')``
+    (docs/theory.md section 2), and each field is a row ``B`` acting on the
+    15 element dofs, so an element matrix is ``sum_g w_g h B_g^T C_g B_g``
+    over the Gauss points: one batched product for all elements and all
+    four matrices.
 
     Parameters
     ----------
@@ -196,7 +212,7 @@ def element_matrices(x0, h, sec, pitch, tension):
         independent of rotor speed in rotor units); Coriolis (gyroscopic,
         per Omega, skew-symmetric).
     """
-    g, wg = np.polynomial.legendre.leggauss(N_GAUSS)
+    g, wg = gauss_legendre(N_GAUSS)
     xi = 0.5 * (g + 1.0)
     wg = 0.5 * wg
     x0 = np.asarray(x0, float)[:, None]
@@ -209,44 +225,59 @@ def element_matrices(x0, h, sec, pitch, tension):
     t = tension(x)
     m, eg, ea_off = p["mass"], p["cg_offset"], p["tension_offset"]
 
-    # curvatures and slopes in the section principal axes (chordwise / flapwise)
-    kap_c = c[..., None] * ops["ddv"] + s[..., None] * ops["ddw"]
-    kap_f = c[..., None] * ops["ddw"] - s[..., None] * ops["ddv"]
-    slope_c = c[..., None] * ops["dv"] + s[..., None] * ops["dw"]
-    slope_f = c[..., None] * ops["dw"] - s[..., None] * ops["dv"]
+    # field rows (n_el, n_g, n_fields, 15); curvatures and slopes in the
+    # section principal axes (chordwise / flapwise)
+    cc, ss = c[..., None], s[..., None]
+    b = np.stack([ops["u"], ops["du"], ops["v"], ops["dv"], ops["w"], ops["dw"], ops["phi"],
+                  ops["dphi"], cc * ops["ddv"] + ss * ops["ddw"],
+                  cc * ops["ddw"] - ss * ops["ddv"], cc * ops["dv"] + ss * ops["dw"],
+                  cc * ops["dw"] - ss * ops["dv"]], axis=-2)
+    coef = np.zeros((4,) + x.shape + (len(_FIELDS),) * 2)
+    mass_c, elastic, centrifugal, coriolis = coef
 
-    def co(a):
-        return a[..., None, None]
+    def sq(mat, a, value):                  # energy term value * a^2
+        mat[..., _F[a], _F[a]] += value
+
+    def sym(mat, a, bb, value):             # energy term 2 * value * a * b
+        mat[..., _F[a], _F[bb]] += value
+        mat[..., _F[bb], _F[a]] += value
 
     # elastic strain energy; bending stiffnesses are given about the tension
     # axis, so the elastic-axis value adds EA e_A^2 (parallel-axis theorem)
-    k_el = (co(p["ea"]) * _sq(ops["du"])
-            - co(p["ea"] * ea_off) * _sym(ops["du"], kap_c)
-            + co(p["ei_lag"] + p["ea"] * ea_off**2) * _sq(kap_c)
-            + co(p["ei_flap"]) * _sq(kap_f)
-            + co(p["gj"]) * _sq(ops["dphi"]))
+    sq(elastic, "du", p["ea"])
+    sym(elastic, "du", "kap_c", -p["ea"] * ea_off)
+    sq(elastic, "kap_c", p["ei_lag"] + p["ea"] * ea_off**2)
+    sq(elastic, "kap_f", p["ei_flap"])
+    sq(elastic, "dphi", p["gj"])
 
     # centrifugal terms: tension stiffening, in-plane/axial softening,
     # propeller moment, tension-torsion and CG / tension-axis couplings
-    im_diff = p["im_lag"] - p["im_flap"]
-    k_cf = (co(t) * (_sq(ops["dv"]) + _sq(ops["dw"]))
-            + co(t * p["ka"] ** 2) * _sq(ops["dphi"])
-            - co(m) * (_sq(ops["u"]) + _sq(ops["v"]))
-            + co(im_diff * np.cos(2 * th)) * _sq(ops["phi"])
-            - co(t * ea_off) * _sym(ops["phi"], kap_f)
-            + co(x * m * eg) * _sym(ops["phi"], slope_f)
-            + co(m * eg) * _sym(ops["u"], slope_c)
-            + co(m * eg * s) * _sym(ops["v"], ops["phi"]))
+    for f in ("dv", "dw"):
+        sq(centrifugal, f, t)
+    sq(centrifugal, "dphi", t * p["ka"] ** 2)
+    for f in ("u", "v"):
+        sq(centrifugal, f, -m)
+    sq(centrifugal, "phi", (p["im_lag"] - p["im_flap"]) * np.cos(2 * th))
+    sym(centrifugal, "phi", "kap_f", -t * ea_off)
+    sym(centrifugal, "phi", "slope_f", x * m * eg)
+    sym(centrifugal, "u", "slope_c", m * eg)
+    sym(centrifugal, "v", "phi", m * eg * s)
 
-    m_el = (co(m) * (_sq(ops["u"]) + _sq(ops["v"]) + _sq(ops["w"]))
-            + co(p["im_flap"] + p["im_lag"]) * _sq(ops["phi"])
-            + co(m * eg * c) * _sym(ops["w"], ops["phi"])
-            - co(m * eg * s) * _sym(ops["v"], ops["phi"]))
+    for f in ("u", "v", "w"):
+        sq(mass_c, f, m)
+    sq(mass_c, "phi", p["im_flap"] + p["im_lag"])
+    sym(mass_c, "w", "phi", m * eg * c)
+    sym(mass_c, "v", "phi", -m * eg * s)
 
     # Coriolis: T_kin contains m (v* u - u* v), so row v gets +2 m u* and
     # row u gets -2 m v* (skew-symmetric gyroscopic matrix)
-    vu = ops["v"][..., :, None] * ops["u"][..., None, :]
-    g_el = 2.0 * co(m) * (vu - np.swapaxes(vu, -1, -2))
+    coriolis[..., _F["v"], _F["u"]] = 2.0 * m
+    coriolis[..., _F["u"], _F["v"]] = -2.0 * m
 
-    weight = (wg[None, :] * h)[..., None, None]
-    return tuple((a * weight).sum(axis=1) for a in (m_el, k_el, k_cf, g_el))
+    coef *= (wg[None, :] * h)[None, ..., None, None]
+    # sum_g B_g^T (C_g B_g): the Gauss-point sum folded into one product per
+    # element, (15, n_g n_f) @ (n_g n_f, 15)
+    n_el, n_g = x.shape
+    cb = (coef @ b[None]).reshape(4, n_el, n_g * len(_FIELDS), N_DOF)
+    bt = np.swapaxes(b.reshape(n_el, n_g * len(_FIELDS), N_DOF), -1, -2)
+    return tuple(bt[None] @ cb)

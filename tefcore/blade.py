@@ -12,7 +12,14 @@ import numpy as np
 import pandas as pd
 
 from .scaling import RotorUnits
-from .structure import BeamModel, BladeModes, RootSprings, assemble_beam, beam_modes
+from .structure import (
+    BeamModel,
+    BladeModes,
+    RootSprings,
+    assemble_beam,
+    beam_modes,
+    tension_piecewise_linear,
+)
 
 #: Section arrays and how each is made nondimensional.
 _SECTION_SCALES = {
@@ -82,8 +89,12 @@ def blade_model(cfg, collective: float = 0.0, n_elements: int | None = None) -> 
     n = n_elements or cfg.model.n_elements
     x_nodes = np.linspace(cfg.rotor.root_offset, 1.0, n + 1)
     units = rotor_units(cfg)
-    return assemble_beam(x_nodes, section_function(cfg, units), pitch_function(cfg, collective),
-                         root_springs(cfg, units))
+    section = section_function(cfg, units)
+    # the section mass is linear between the blade stations: exact tension
+    stations = np.asarray(cfg.blade.stations, float)
+    tension = tension_piecewise_linear(stations, section(stations)["mass"])
+    return assemble_beam(x_nodes, section, pitch_function(cfg, collective),
+                         root_springs(cfg, units), tension=tension)
 
 
 def blade_modes(cfg, n_modes: int | None = None, collective: float = 0.0,

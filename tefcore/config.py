@@ -42,7 +42,6 @@ from types import MappingProxyType
 from typing import Any
 
 import numpy as np
-from scipy import integrate
 
 from .settings import REQUIRED, Param, _close, _fmt, _rebuild, _Section, _section, coerce_value
 
@@ -125,6 +124,9 @@ BLADE_PROPERTIES = (
     "mass", "ei_flap", "ei_lag", "gj", "ea", "im_flap", "im_lag",
     "cg_offset", "tension_offset", "ka", "twist",
 )  # fmt: skip
+#: 3-point Gauss-Legendre rule (numpy recomputes it on every call).
+_GAUSS3 = np.polynomial.legendre.leggauss(3)
+
 _SCALES = {"mass": "mass_scale", "im_flap": "mass_scale", "im_lag": "mass_scale",
            "ei_flap": "ei_flap_scale", "ei_lag": "ei_lag_scale", "gj": "gj_scale",
            "ea": "ea_scale"}  # fmt: skip
@@ -252,12 +254,16 @@ class BladeConfig(_Section):
         >>> blade.reference_mass()  # uniform blade from the axis: m0 = m
         2.0
         """
-        m = self.mass * self.mass_scale
-        # m x^2 is cubic on each linear segment: 3-point Gauss is exact there.
-        return 3.0 * math.fsum(
-            integrate.fixed_quad(lambda x: np.interp(x, self.stations, m) * x**2, a, b, n=3)[0]
-            for a, b in zip(self.stations[:-1], self.stations[1:], strict=True)
-        )
+        xs = np.asarray(self.stations, float)
+        m = np.broadcast_to(np.asarray(self.mass, float) * self.mass_scale, xs.shape)
+        # m x^2 is cubic on each linear segment: 3-point Gauss is exact there
+        # (all segments at once)
+        g, w = _GAUSS3
+        a, b = xs[:-1, None], xs[1:, None]
+        t = 0.5 * (g + 1.0)
+        x = a + (b - a) * t
+        mx = m[:-1, None] + (m[1:, None] - m[:-1, None]) * t
+        return 3.0 * math.fsum((0.5 * w * (b - a) * mx * x**2).ravel())
 
     def flapping_inertia(self, radius: float) -> float:
         """Blade flapping inertia I_b = int m r^2 dr = m0 R^3 / 3 [kg m^2].

@@ -23,6 +23,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from .beam_element import gauss_legendre
 from .blade import blade_modes, pitch_function, rotor_units
 from .flap_dynamics import flap_properties, propeller_moment
 
@@ -43,12 +44,16 @@ def section_model(cfg):
 
 
 def _gauss_segments(edges, n):
-    g, w = np.polynomial.legendre.leggauss(n)
+    g, w = gauss_legendre(n)
     xs, ws = [], []
     for a, b in zip(edges[:-1], edges[1:], strict=True):
         xs.append(0.5 * (a + b) + 0.5 * (b - a) * g)
         ws.append(0.5 * (b - a) * w)
     return np.concatenate(xs), np.concatenate(ws)
+
+
+#: Blade fields the aerodynamics and flap equations need, in ``shape_stack`` order.
+_FIELDS = ("w", "dw", "v", "dv", "phi")
 
 
 @dataclass
@@ -77,7 +82,10 @@ class CoupledModel:
     x: np.ndarray                 # aerodynamic stations (fractions of R)
     w: np.ndarray                 # their quadrature weights
     on_flap: np.ndarray           # mask of stations on the flap span
+    flap_stations: slice          # the same stations as a slice (contiguous)
     shapes: dict                  # mode shapes at x: w, dw, v, dv, phi (n_st, n_modes)
+    shape_stack: np.ndarray       # the same side by side, (n_modes, 5 n_st)
+    tip_flap: np.ndarray          # flap deflection w(1) of each mode
     twist: np.ndarray             # pretwist at x relative to 0.75 R [rad]
     m_s: np.ndarray
     c_s: np.ndarray
@@ -104,14 +112,13 @@ class CoupledModel:
                 -f.actuator_amplitude * f.actuator_harmonic * np.sin(arg))
 
     def pitch(self, psi, controls: Controls, twist=None):
-        """Geometric pitch theta(x, psi) at the stations and its psi-derivatives."""
+        """Geometric pitch theta(x, psi) at the stations and its psi-derivatives (columns)."""
         twist = self.twist if twist is None else np.atleast_1d(twist)
         c, s = np.cos(psi)[:, None], np.sin(psi)[:, None]
         cyc = controls.cyclic_cos * c + controls.cyclic_sin * s
         cyc_d = -controls.cyclic_cos * s + controls.cyclic_sin * c
-        shape = (psi.size, twist.size)
-        return (controls.collective + twist[None, :] + cyc,
-                np.broadcast_to(cyc_d, shape), np.broadcast_to(-cyc, shape))
+        # the rates do not depend on x: (len(psi), 1) columns that broadcast
+        return controls.collective + twist[None, :] + cyc, cyc_d, -cyc
 
     def kinematics(self, psi, q, qd, qdd, controls: Controls, inflow, x=None) -> dict:
         """Section motion and velocities at azimuths ``psi`` and stations ``x``.
@@ -124,21 +131,23 @@ class CoupledModel:
         defaults to the model's aerodynamic stations.
         """
         if x is None:
-            x, sh, twist = self.x, self.shapes, None
+            x, stack, twist = self.x, self.shape_stack, None
         else:
             x = np.atleast_1d(np.asarray(x, float))
             full = self.modes.shapes(x)
-            sh = {k: full[k] for k in self.shapes}
+            stack = np.concatenate([full[f] for f in _FIELDS], axis=0).T
             twist = np.interp(x, self.x, self.twist)
         nm = self.n_modes
         psi = np.asarray(psi, float)
-        qb, qbd, qbdd = q[:nm], qd[:nm], qdd[:nm]
+        # every field of q, q* and q** at every station: three products
+        # with the stacked shapes (n_modes, 5 n_x), then views per field
+        n_x = x.size
         k = {}
-        k["w"], k["wd"], k["wdd"] = (a.T @ sh["w"].T for a in (qb, qbd, qbdd))
-        k["dw"], k["dwd"] = (a.T @ sh["dw"].T for a in (qb, qbd))
-        k["v"], k["vd"], k["vdd"] = (a.T @ sh["v"].T for a in (qb, qbd, qbdd))
-        k["dv"], k["dvd"] = (a.T @ sh["dv"].T for a in (qb, qbd))
-        ph, phd, phdd = (a.T @ sh["phi"].T for a in (qb, qbd, qbdd))
+        for suffix, a in (("", q), ("d", qd), ("dd", qdd)):
+            vals = a[:nm].T @ stack
+            for i, f in enumerate(_FIELDS):
+                k[f + suffix] = vals[:, i * n_x:(i + 1) * n_x]
+        ph, phd, phdd = k.pop("phi"), k.pop("phid"), k.pop("phidd")
         theta, theta_d, theta_dd = self.pitch(psi, controls, twist)
         k["theta"], k["theta_d"], k["theta_dd"] = theta + ph, theta_d + phd, theta_dd + phdd
         mu = self.cfg.flight.advance_ratio
@@ -148,6 +157,10 @@ class CoupledModel:
                    + mu * k["slope"] * np.cos(psi)[:, None])
         k["inflow_angle"] = np.arctan(k["up"] / k["ut"])
         k["speed"] = np.hypot(k["ut"], k["up"])
+        # cos and sin of the inflow angle without trigonometry (it lies in
+        # (-pi/2, pi/2), so its cosine is positive)
+        k["cos_inflow"] = np.abs(k["ut"]) / k["speed"]
+        k["sin_inflow"] = np.sign(k["ut"]) * k["up"] / k["speed"]
         return k
 
     def evaluate(self, psi, q, qd, qdd, controls: Controls, inflow):
@@ -172,75 +185,87 @@ class CoupledModel:
         cfg, sh, nm = self.cfg, self.shapes, self.n_modes
         psi = np.asarray(psi, float)
         kin = self.kinematics(psi, q, qd, qdd, controls, inflow)
-        w, wdd, v, vdd = kin["w"], kin["wdd"], kin["v"], kin["vdd"]
-        dv, dvd, dwd, slope = kin["dv"], kin["dvd"], kin["dwd"], kin["slope"]
+        w, wdd = kin["w"], kin["wdd"]
         big_theta, big_theta_d, big_theta_dd = kin["theta"], kin["theta_d"], kin["theta_dd"]
         qb, qbd, qbdd = q[:nm], qd[:nm], qdd[:nm]
+        # flap deflection and rates: on the flap stations, zero elsewhere
+        dl, dld, dldd = (np.zeros_like(w) for _ in range(3))
+        fs = self.flap_stations
         if self.has_flap:
-            dl = np.where(self.on_flap, q[nm][:, None], 0.0)
-            dld = np.where(self.on_flap, qd[nm][:, None], 0.0)
-            dldd = np.where(self.on_flap, qdd[nm][:, None], 0.0)
-        else:
-            dl = dld = dldd = np.zeros_like(w)
-        inflow_angle, speed = kin["inflow_angle"], kin["speed"]
+            for arr, val in ((dl, q), (dld, qd), (dldd, qdd)):
+                arr[:, fs] = val[nm][:, None]
+        speed = kin["speed"]
         sign = np.sign(kin["ut"])                  # reverse flow flips the loads
         sc = self.scale
-        out = self.aero.loads(alpha=big_theta - inflow_angle,
+        out = self.aero.loads(alpha=big_theta - kin["inflow_angle"],
                               alpha_rate=big_theta_d * sc["omega"],
                               alpha_accel=big_theta_dd * sc["omega"] ** 2,
-                              plunge_rate=np.zeros_like(w), plunge_accel=wdd * sc["accel"],
+                              plunge_rate=0.0, plunge_accel=wdd * sc["accel"],
                               delta=dl, delta_rate=dld * sc["omega"],
                               delta_accel=dldd * sc["omega"] ** 2,
                               velocity=speed * sc["speed"], density=cfg.rotor.air_density,
                               chord=cfg.rotor.chord, axis=cfg.rotor.elastic_axis,
-                              mach=speed * sc["speed"] / cfg.rotor.speed_of_sound)
+                              mach=speed * (sc["speed"] / cfg.rotor.speed_of_sound))
         lift = sign * out["lift"] / sc["force"]
         drag = sign * out["drag"] / sc["force"]
         moment = sign * out["moment"] / sc["moment"]
-        cphi, sphi = np.cos(inflow_angle), np.sin(inflow_angle)
-        fz = lift * cphi - drag * sphi
-        fy = -(lift * sphi + drag * cphi)
+        cphi, sphi = kin["cos_inflow"], kin["sin_inflow"]
         wq = self.w[None, :]
-        q_aero = (fz * wq) @ sh["w"] + (fy * wq) @ sh["v"] + (moment * wq) @ sh["phi"]
+        fz = (lift * cphi - drag * sphi) * wq
+        fy = -(lift * sphi + drag * cphi) * wq
+        q_aero = fz @ sh["w"] + fy @ sh["v"] + (moment * wq) @ sh["phi"]
         res = np.empty((self.n_dof, psi.size))
         res[:nm] = self.m_s @ qbdd + self.c_s @ qbd + self.k_s @ qb - q_aero.T
-        thrust = (fz * wq).sum(axis=1) * sc["ct_sigma"]
+        thrust = fz.sum(axis=1) * sc["ct_sigma"]
         if self.has_flap:
-            hinge = sign * out["hinge_moment"] / sc["moment"]
-            res[:nm] += self._flap_reactions(big_theta, dl, dld, dldd, wq).T
-            res[nm] = self._flap_equation(psi, big_theta, big_theta_dd, dl, dldd, q[nm], qd[nm],
-                                          wdd, vdd, v, slope, dv, dvd, dwd, hinge, wq)
+            # the flap's inertial terms exist only on the flap span
+            hinge = sign[:, fs] * out["hinge_moment"][:, fs] / sc["moment"]
+            on = {k: kin[k][:, fs] for k in ("theta", "theta_dd", "wdd", "vdd", "v", "slope",
+                                             "dv", "dvd", "dwd")}
+            wf = wq[:, fs]
+            res[:nm] += self._flap_reactions(on["theta"], dl[:, fs], dld[:, fs], dldd[:, fs],
+                                             wf).T
+            res[nm] = self._flap_equation(psi, on, dl[:, fs], dldd[:, fs], q[nm], qd[nm],
+                                          hinge, wf)
         return res, thrust
 
-    def _flap_reactions(self, th, dl, dld, dldd, wq):
-        """delta-dependent inertial loads of the flap on the blade modes."""
-        f, sh, m = self.flap, self.shapes, self.on_flap[None, :] * wq
+    def _flap_reactions(self, th, dl, dld, dldd, wf):
+        """delta-dependent inertial loads of the flap on the blade modes.
+
+        Arrays are (azimuths, flap stations); ``wf`` the flap stations' weights.
+        """
+        f, fs = self.flap, self.flap_stations
+        sh = {k: v[fs] for k, v in self.shapes.items()}
         ih, sf, eta = f["inertia_hinge"], f["first_moment"], f["hinge_from_ea"]
         c, s = np.cos(th), np.sin(th)
         phi_f = th + dl
         m_cf = ih * (np.sin(phi_f) * np.cos(phi_f) - s * c) - eta * sf * (
             np.sin(th + phi_f) - np.sin(2 * th))
-        x = self.x[None, :]
+        x = self.x[None, fs]
         ipe = ih - sf * eta
-        return ((-sf * c * dldd * m) @ sh["w"] + ((sf * s * (dldd - dl)) * m) @ sh["v"]
-                + ((ipe * dldd + m_cf) * m) @ sh["phi"]
-                + ((-sf * x * c * dl - 2 * ipe * s * s * dld) * m) @ sh["dw"]
-                + ((sf * x * s * dl - 2 * ipe * s * c * dld) * m) @ sh["dv"])
+        return ((-sf * c * dldd * wf) @ sh["w"] + ((sf * s * (dldd - dl)) * wf) @ sh["v"]
+                + ((ipe * dldd + m_cf) * wf) @ sh["phi"]
+                + ((-sf * x * c * dl - 2 * ipe * s * s * dld) * wf) @ sh["dw"]
+                + ((sf * x * s * dl - 2 * ipe * s * c * dld) * wf) @ sh["dv"])
 
-    def _flap_equation(self, psi, th, th_dd, dl, dldd, delta, delta_d, wdd, vdd, v, slope, dv,
-                       dvd, dwd, hinge, wq):
-        """Flap equation residual (docs/theory.md section 4.1), integrated over the span."""
+    def _flap_equation(self, psi, on, dl, dldd, delta, delta_d, hinge, wf):
+        """Flap equation residual (docs/theory.md section 4.1), integrated over the span.
+
+        ``on`` holds the blade kinematics on the flap stations.
+        """
         f = self.flap
         ih, sf, eta = f["inertia_hinge"], f["first_moment"], f["hinge_from_ea"]
+        th, th_dd = on["theta"], on["theta_dd"]
         c, s = np.cos(th), np.sin(th)
-        x = self.x[None, :]
+        x = self.x[None, self.flap_stations]
         ipe = ih - sf * eta
-        per_span = (ih * (dldd + th_dd) - sf * eta * th_dd - sf * (wdd * c - vdd * s)
+        per_span = (ih * (dldd + th_dd) - sf * eta * th_dd - sf * (on["wdd"] * c - on["vdd"] * s)
                     + propeller_moment(ih, sf, eta, th, dl)
-                    - sf * x * (slope * c - dv * s) - sf * v * s
-                    + ipe * (dvd * np.sin(2 * th) + dwd * (1 - np.cos(2 * th))) - hinge)
+                    - sf * x * (on["slope"] * c - on["dv"] * s) - sf * on["v"] * s
+                    + ipe * (on["dvd"] * np.sin(2 * th) + on["dwd"] * (1 - np.cos(2 * th)))
+                    - hinge)
         da, da_d = self.actuator_input(psi)
-        return ((per_span * self.on_flap[None, :] * wq).sum(axis=1)
+        return ((per_span * wf).sum(axis=1)
                 + f["k_a"] * (delta - da) + f["c_a"] * (delta_d - da_d))
 
 
@@ -266,8 +291,8 @@ def coupled_model(cfg, collective: float = 0.0, modes=None) -> CoupledModel:
     n = cfg.model.n_gauss
     on_flap = np.zeros(x.size, bool)
     on_flap[n:2 * n] = True
-    s = modes.shapes(x)
-    shapes = {"w": s["w"], "dw": s["dw"], "v": s["v"], "dv": s["dv"], "phi": s["phi"]}
+    s = modes.shapes(np.append(x, 1.0))          # the stations and the tip
+    shapes = {k: s[k][:-1] for k in ("w", "dw", "v", "dv", "phi")}
     twist = pitch_function(cfg, 0.0)(x)
     om, rad, m0 = units.rotor_speed, units.radius, units.mass_per_length
     scale = {"omega": om, "speed": om * rad, "accel": om**2 * rad,
@@ -282,19 +307,34 @@ def coupled_model(cfg, collective: float = 0.0, modes=None) -> CoupledModel:
                 "hinge_from_ea": fp.hinge_from_ea / rad, "span": fl.span,
                 "k_a": units.spring(fp.k_a), "c_a": units.damper(fp.c_a)}
     return CoupledModel(cfg=cfg, modes=modes, n_modes=n_m, has_flap=has_flap, x=x, w=w,
-                        on_flap=on_flap, shapes=shapes, twist=twist, m_s=modes.modal_mass,
+                        on_flap=on_flap, flap_stations=slice(n, 2 * n),
+                        shape_stack=np.concatenate([shapes[f] for f in _FIELDS], axis=0).T,
+                        tip_flap=s["w"][-1], shapes=shapes, twist=twist,
+                        m_s=modes.modal_mass,
                         c_s=modes.modal_damping + modes.modal_gyroscopic,
                         k_s=modes.modal_stiffness, flap=flap, aero=section_model(cfg),
                         scale=scale)
 
 
+def _stack_fields(objs, cls, names, n_psi):
+    """One ``cls`` whose fields are per-azimuth columns, block after block."""
+    return cls(*(np.repeat(np.array([getattr(o, f) for o in objs], float), n_psi)[:, None]
+                 for f in names))
+
+
 def jacobian_blocks(model: CoupledModel, psi, q, qd, qdd, controls, inflow, *,
-                    step: float = 1e-7, scheme: str = "forward"):
+                    step: float = 1e-7, scheme: str = "forward", extra=()):
     """Per-azimuth derivatives of the residual and thrust w.r.t. ``q, q*, q**``.
 
     The residual at one azimuth depends only on the motion there, so every
     perturbed motion is stacked along the azimuth axis and the model is
     evaluated once for all of them (numpy overhead paid once, not 3n times).
+
+    Parameters
+    ----------
+    extra : sequence of (Controls, Inflow), optional
+        Further controls and inflows to evaluate at the unperturbed motion in
+        the same stacked call (the trim's control columns).
 
     Returns
     -------
@@ -303,14 +343,17 @@ def jacobian_blocks(model: CoupledModel, psi, q, qd, qdd, controls, inflow, *,
     dthrust : ndarray, shape (3, n_psi, n)
         The same for the thrust contribution.
     base : tuple
-        ``(R, thrust)`` at the unperturbed motion (forward scheme) or None.
+        ``(R, thrust)`` at the unperturbed motion (forward scheme) or None;
+        with ``extra``, a third item: the list of ``(R, thrust)`` for each.
     """
     if scheme not in ("central", "forward"):
         raise ValueError(f"scheme must be 'central' or 'forward', got {scheme!r}")
     psi = np.atleast_1d(np.asarray(psi, float))
     n, m = q.shape
     signs = (1.0,) if scheme == "forward" else (1.0, -1.0)
-    n_blk = 3 * n * len(signs) + (scheme == "forward")
+    n_pert = 3 * n * len(signs)
+    n_base = int(scheme == "forward") + len(extra)
+    n_blk = n_pert + n_base
     motion = [np.tile(a, (1, n_blk)) for a in (q, qd, qdd)]
     blk = 0
     for sgn in signs:
@@ -318,18 +361,30 @@ def jacobian_blocks(model: CoupledModel, psi, q, qd, qdd, controls, inflow, *,
             for j in range(n):
                 motion[which][j, blk * m:(blk + 1) * m] += sgn * step
                 blk += 1
+    if extra:
+        # controls and inflow become per-azimuth columns (they broadcast in
+        # evaluate): the base values for the perturbed motions, then extras
+        base_pairs = [(controls, inflow)] * (n_pert + int(scheme == "forward"))
+        pairs = base_pairs + list(extra)
+        controls = _stack_fields([p[0] for p in pairs], Controls,
+                                 ("collective", "cyclic_cos", "cyclic_sin"), m)
+        inflow = _stack_fields([p[1] for p in pairs], type(inflow),
+                               ("mean_induced", "freestream", "kx", "ky"), m)
     res, thr = model.evaluate(np.tile(psi, n_blk), *motion, controls, inflow)
     res = res.reshape(n, n_blk, m)
     thr = thr.reshape(n_blk, m)
     k = 3 * n
     if scheme == "forward":
-        r0, t0 = res[:, -1], thr[-1]
+        r0, t0 = res[:, k], thr[k]
         dres = (res[:, :k] - r0[:, None]) / step
         dthr = (thr[:k] - t0) / step
         base = (r0, t0)
     else:
-        dres = (res[:, :k] - res[:, k:]) / (2 * step)
-        dthr = (thr[:k] - thr[k:]) / (2 * step)
+        dres = (res[:, :k] - res[:, k:n_pert]) / (2 * step)
+        dthr = (thr[:k] - thr[k:n_pert]) / (2 * step)
         base = None
+    if extra:
+        first = n_blk - len(extra)
+        base = (base or (None, None)) + ([(res[:, b], thr[b]) for b in range(first, n_blk)],)
     jac = dres.reshape(n, 3, n, m).transpose(1, 3, 0, 2)      # (which, psi, i, j)
     return jac, dthr.reshape(3, n, m).transpose(0, 2, 1), base

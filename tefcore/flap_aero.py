@@ -77,7 +77,8 @@ def prandtl_glauert(mach) -> np.ndarray:
     True
     """
     m = np.asarray(mach, dtype=float)
-    if not np.all(np.isfinite(m)) or np.any(m < 0.0) or np.any(m > MACH_MAX):
+    # min/max propagate NaN, and every comparison with NaN is False
+    if m.size and not (m.min() >= 0.0 and m.max() <= MACH_MAX):
         raise ValueError(f"mach must lie in [0, {MACH_MAX}], got {mach}")
     m = np.minimum(m, MACH_CLIP)
     return (1.0 / np.sqrt(1.0 - m * m))[()]
@@ -124,11 +125,6 @@ def _influence(c: float):
     sm.setflags(write=False)
     n.setflags(write=False)
     return sm, n
-
-
-def _project(matrix, comps):
-    """``sum_i W_i M[i, k]`` for stacked components ``comps`` (4, ...)."""
-    return np.tensordot(matrix.T, comps, axes=1)
 
 
 def _finite(name, value, positive=False):
@@ -290,20 +286,19 @@ def section_loads(static_model, *, alpha, alpha_rate, alpha_accel, plunge_rate, 
     vals = dict(zip(names, (alpha, alpha_rate, alpha_accel, plunge_rate, plunge_accel, delta,
                             delta_rate, delta_accel, axis), strict=True))
     vals.update(velocity=velocity, density=density, chord=chord, mach=mach)
-    arrs = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in vals.values()))
-    # one finiteness test for all inputs (this sits in the trim's inner loop);
-    # the per-name checks run only to word the error
-    total = np.zeros(arrs[0].shape)
-    for a in arrs:                  # NaN or inf anywhere makes the sum non-finite
-        total += a
-    if not np.isfinite(total).all():
+    vals = {k: np.asarray(v, dtype=float) for k, v in vals.items()}
+    shape = np.broadcast_shapes(*(v.shape for v in vals.values()))
+    # one finiteness test for all inputs (this sits in the trim's inner loop):
+    # NaN or inf anywhere makes the sum non-finite; the per-name checks run
+    # only to word the error. Scalars stay scalars (no broadcast copies).
+    if not np.isfinite(sum(float(v.sum()) for v in vals.values())):
         for k, v in vals.items():
             _finite(k, v)
     for k in ("velocity", "density", "chord"):
         if np.any(vals[k] <= 0.0):
             _finite(k, vals[k], positive=True)
-    pg = prandtl_glauert(mach)
-    al, ar, aa, pr, pa, dl, dr, da, ax, u, rho, chd, m = arrs
+    pg = prandtl_glauert(vals["mach"])
+    al, ar, aa, pr, pa, dl, dr, da, ax, u, rho, chd, m = vals.values()
     if not getattr(static_model, "compressibility", True):
         pg = 1.0
     b = 0.5 * chd
@@ -311,27 +306,35 @@ def section_loads(static_model, *, alpha, alpha_rate, alpha_accel, plunge_rate, 
     q = 0.5 * rho * u * u
 
     # 1. static coefficients at the 3/4-chord angle of attack
-    alpha_eff = al - pr / u + b * (0.5 - a) * ar / u
+    alpha_eff = al - pr / u + (b * (0.5 - a)) * ar / u
     st = static_model.static_coefficients(alpha_eff, m, dl)
-    qc, qcc = q * chd, q * chd * chd
+    qc, qcc = q * chd, q * (chd * chd)
     lift = qc * st["cl"]
     moment = qcc * (st["cm"] + st["cl"] * (ax - 0.25))
     flap_lift = qc * st["clf"]
     hinge = qcc * st["ch"]
     drag = qc * st["cd"]
 
-    # 2./3. thin-airfoil increments, upwash components on e = (1, x, H, (x-c)H)
+    # 2./3. thin-airfoil increments. Upwash components on e = (1, x, H, (x-c)H):
+    # circulatory W = b (ar/2, -ar, d dr, -dr), apparent-mass
+    # W* = (pa + a b aa - u ar, -b aa, -u dr + b d da, -b da); the loads are
+    # the projections sum_i W_i S[i, k] (resp. N), written out per rate so
+    # that no (4, ...) stacks are built in the trim's inner loop
     sm, nm = _influence(c)
-    w_circ = np.stack([0.5 * b * ar, -b * ar, b * d * dr, -b * dr])
-    w_dot = np.stack([pa + a * b * aa - u * ar, -b * aa, -u * dr + b * d * da, -b * da])
-    # circulatory increments: Prandtl-Glauert and the model's lift-slope correction
-    pc = _project(sm, w_circ) * (pg * getattr(static_model, "circulatory_scale", 1.0)
-                                 * rho * u * b)
-    pn = _project(nm, w_dot) * (rho * b * b)
+    circ = pg * getattr(static_model, "circulatory_scale", 1.0) * rho * u * b * b
+    pc = [circ * (ar * (0.5 * sm[0, k] - sm[1, k]) + dr * (d * sm[2, k] - sm[3, k]))
+          for k in range(4)]
+    rb2 = rho * b * b
+    pn = [rb2 * ((pa - u * ar) * nm[0, k] + aa * (b * (a * nm[0, k] - nm[1, k]))
+                 + (b * d * nm[2, k] - b * nm[3, k]) * da - u * dr * nm[2, k])
+          for k in range(4)]
     lift = lift + pc[0] + pn[0]
     moment = moment - b * (pc[1] - a * pc[0]) - b * (pn[1] - a * pn[0])
     flap_lift = flap_lift + pc[2] + pn[2]
     hinge = hinge - b * (pc[3] - d * pc[2]) - b * (pn[3] - d * pn[2])
+    lift, drag, moment, flap_lift, hinge = (
+        v if np.shape(v) == shape else np.broadcast_to(v, shape).copy()
+        for v in (lift, drag, moment, flap_lift, hinge))
 
     out = {"lift": lift, "drag": drag, "moment": moment, "flap_lift": flap_lift,
            "hinge_moment": hinge}

@@ -22,11 +22,14 @@ analyses behind the paper's Figs. 5-7, with the section motion prescribed.
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass
 
 import numpy as np
 import pandas as pd
 import scipy.optimize
+
+from .beam_element import gauss_legendre
 
 
 @dataclass(frozen=True)
@@ -81,7 +84,7 @@ class FlapProperties:
 
     def stations(self, n: int = 3):
         """Gauss-Legendre stations [m] and weights [m] over the flap span."""
-        g, w = np.polynomial.legendre.leggauss(n)
+        g, w = gauss_legendre(n)
         return self.radius_mid + 0.5 * self.span * g, 0.5 * self.span * w
 
 
@@ -236,6 +239,11 @@ def spectral_derivative(n: int) -> np.ndarray:
     >>> bool(np.allclose(spectral_derivative(16) @ np.sin(3 * psi), 3 * np.cos(3 * psi)))
     True
     """
+    return _spectral_derivative(int(n)).copy()
+
+
+@functools.lru_cache(maxsize=16)
+def _spectral_derivative(n: int) -> np.ndarray:
     k = np.fft.fftfreq(n, 1.0 / n)
     if n % 2 == 0:
         k[n // 2] = 0.0

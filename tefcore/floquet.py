@@ -597,9 +597,43 @@ class FloquetResult:
         """One mode of each conjugate pair: those with ``omega >= -tol``.
 
         Meant for real ``A``, whose exponents come in pairs ``sigma +- i omega``;
-        non-oscillatory modes (``omega = 0``) are all kept.
+        non-oscillatory modes (``omega = 0``) are all kept. A root with
+        ``omega < -tol`` and no conjugate partner is kept too, conjugated
+        (``omega -> |omega|``): a real multiplier (a frequency locked to a
+        multiple of 1/2 per rev) is its own conjugate, and the sign the
+        integer shift gives it is arbitrary — dropping it would lose a mode.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> res = constant_coefficient_modes(np.array([[0.0, 1.0], [-4.0, -0.2]]))
+        >>> [round(float(w), 6) for w in res.positive_frequency().frequencies]
+        [1.997498]
         """
-        return self.select(self.frequencies >= -tol)
+        eta = self.exponents
+        keep = eta.imag >= -tol
+        pos = np.flatnonzero(keep)
+        unmatched = np.ones(pos.size, bool)
+        flip = []
+        for i in np.flatnonzero(~keep):
+            dist = np.abs(eta[pos] - np.conj(eta[i]))
+            dist[~unmatched] = np.inf
+            j = int(np.argmin(dist)) if pos.size else -1
+            if j >= 0 and dist[j] <= 1e-6 * max(1.0, abs(eta[i])):
+                unmatched[j] = False            # its partner is kept
+            else:
+                flip.append(i)
+        out = self.select(keep | np.isin(np.arange(eta.size), flip))
+        if flip:
+            sel = np.flatnonzero(keep | np.isin(np.arange(eta.size), flip))
+            conj = np.isin(sel, flip)
+            out = replace(out, exponents=np.where(conj, np.conj(out.exponents), out.exponents),
+                          multipliers=np.where(conj, np.conj(out.multipliers), out.multipliers),
+                          eigenvectors=np.where(conj, np.conj(out.eigenvectors),
+                                                out.eigenvectors),
+                          shapes=None if out.shapes is None else
+                          np.where(conj, np.conj(out.shapes), out.shapes))
+        return out
 
 
 def _normalise(v):

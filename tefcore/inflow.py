@@ -44,9 +44,12 @@ class Inflow:
         return self.freestream + self.mean_induced
 
     def __call__(self, x, psi):
-        x, psi = np.broadcast_arrays(np.asarray(x, float), np.asarray(psi, float))
-        return self.freestream + self.mean_induced * (
+        x, psi = np.asarray(x, float), np.asarray(psi, float)
+        shape = np.broadcast_shapes(x.shape, psi.shape)
+        # trigonometry on psi's own shape, then broadcast against x
+        out = self.freestream + self.mean_induced * (
             1.0 + self.kx * x * np.cos(psi) + self.ky * x * np.sin(psi))
+        return out if np.shape(out) == shape else np.broadcast_to(out, shape).copy()
 
 
 def momentum_inflow(ct: float, advance_ratio: float, shaft_angle: float = 0.0) -> float:

@@ -162,7 +162,9 @@ def stability(cfg, *, trim_result: TrimResult | None = None, n_steps: int | None
                                     n_sub=4, method="magnus", shift_states=slice(0, n))
         mass_diag = np.abs(np.einsum("mii->i", m)) / n_lin
     keep = res.positive_frequency()
-    order = np.argsort(keep.frequencies, kind="stable")
+    # by frequency; the two roots of a locked pair share it exactly, so ties
+    # (to 1e-9 /rev, round-off) go less damped first, not by round-off
+    order = np.lexsort((-keep.damping_rates, np.round(keep.frequencies, 9)))
     vec = keep.eigenvectors[:, order]
     labels, frac = _label_modes(vec, mass_diag, model.labels, keep.frequencies[order],
                                 keep.damping_rates[order])

@@ -73,6 +73,38 @@ def tension_from_mass(mass: Callable, x_root: float, n: int = 2001) -> Callable:
     return lambda x: np.interp(x, s, t)
 
 
+def tension_piecewise_linear(stations, mass) -> Callable:
+    """Exact centrifugal tension per Omega^2 for a piecewise-linear mass.
+
+    ``T(x) = int_x^1 m(s) s ds`` with ``m`` linear between ``stations``
+    (the last station is the tip): the integrand is quadratic on every
+    segment, so Simpson's rule on each segment (and on the partial segment
+    from ``x``) is exact.
+
+    Examples
+    --------
+    >>> t = tension_piecewise_linear([0.0, 1.0], [1.0, 1.0])   # uniform: (1 - x^2)/2
+    >>> round(float(t(0.5)), 12)
+    0.375
+    """
+    xs, ms = np.asarray(stations, float), np.asarray(mass, float)
+    slope = np.diff(ms) / np.diff(xs)
+
+    def integral(a, b, i):                  # int_a^b m s ds inside segment i
+        mid = 0.5 * (a + b)
+        m_a, m_m, m_b = (ms[i] + slope[i] * (p - xs[i]) for p in (a, mid, b))
+        return (b - a) / 6.0 * (m_a * a + 4.0 * m_m * mid + m_b * b)
+
+    seg = np.arange(xs.size - 1)
+    from_tip = np.concatenate([np.cumsum(integral(xs[:-1], xs[1:], seg)[::-1])[::-1], [0.0]])
+
+    def tension(x):
+        x = np.asarray(x, float)
+        i = np.clip(np.searchsorted(xs, x, side="right") - 1, 0, xs.size - 2)
+        return integral(x, xs[i + 1], i) + from_tip[i + 1]
+    return tension
+
+
 @dataclass
 class BeamModel:
     """Assembled rotating beam in rotor units (constraints not yet applied).
@@ -123,11 +155,12 @@ class BeamModel:
         h = xn[el + 1] - xn[el]
         ops = field_operators((x - xn[el]) / h, h)
         local = vec[_dof_map(self.n_elements)[el]]          # (nx, 15, k)
-        return {k: np.einsum("nd,ndk->nk", op, local) for k, op in ops.items()}
+        values = np.einsum("fnd,ndk->fnk", np.stack(list(ops.values())), local)
+        return dict(zip(ops, values, strict=True))
 
 
 def assemble_beam(x_nodes, section: Callable, pitch: Callable,
-                  root: RootSprings | None = None) -> BeamModel:
+                  root: RootSprings | None = None, tension: Callable | None = None) -> BeamModel:
     """Assemble a rotating beam clamped at ``x_nodes[0]`` with root springs.
 
     Parameters
@@ -143,6 +176,9 @@ def assemble_beam(x_nodes, section: Callable, pitch: Callable,
     root : RootSprings, optional
         Root restraints. ``u, v, w`` are fixed at the root; the slopes ``v'``,
         ``w'`` and the twist ``phi`` are held by these springs.
+    tension : callable, optional
+        Centrifugal tension per Omega^2, ``T(x)``; by default integrated from
+        the section mass (:func:`tension_from_mass`).
 
     Returns
     -------
@@ -154,7 +190,7 @@ def assemble_beam(x_nodes, section: Callable, pitch: Callable,
     root = root or RootSprings()
     n_el = len(xn) - 1
     n_dof = 6 * (n_el + 1) + 3 * n_el
-    tension = tension_from_mass(lambda s: section(s)["mass"], xn[0])
+    tension = tension or tension_from_mass(lambda s: section(s)["mass"], xn[0])
     elements = element_matrices(xn[:-1], np.diff(xn), section, pitch, tension)
     dmap = _dof_map(n_el)
     flat = (dmap[:, :, None] * n_dof + dmap[:, None, :]).ravel()
@@ -170,7 +206,7 @@ def assemble_beam(x_nodes, section: Callable, pitch: Callable,
         else:
             k_elastic[dof, dof] += k
     damp[2, 2] += root.lag_damper
-    free = np.setdiff1d(np.arange(n_dof), fixed)
+    free = np.delete(np.arange(n_dof), fixed)
     return BeamModel(xn, mass, k_elastic, k_cf_g, damp, gyro, free, pitch)
 
 
@@ -230,8 +266,14 @@ def classify(vectors: np.ndarray, mass: np.ndarray, n_el: int):
         mass matrix (CG offset) are left out so the fractions sum to one.
     """
     groups = _dof_groups(n_el)
-    energy = np.stack([np.einsum("im,ij,jm->m", vectors[g], mass[np.ix_(g, g)], vectors[g])
-                       for g in (groups[k] for k in FIELD_GROUPS)], axis=1)
+    # group of every dof; the mass restricted to same-group pairs drops the
+    # cross terms, and one product gives all four energies
+    owner = np.full(mass.shape[0], -1)
+    for i, kind in enumerate(FIELD_GROUPS):
+        owner[groups[kind]] = i
+    same = owner[:, None] == owner[None, :]
+    per_dof = vectors * (np.where(same, mass, 0.0) @ vectors)
+    energy = np.stack([per_dof[groups[kind]].sum(axis=0) for kind in FIELD_GROUPS], axis=1)
     fractions = energy / energy.sum(axis=1, keepdims=True)
     counts = dict.fromkeys(FIELD_GROUPS, 0)
     labels = []

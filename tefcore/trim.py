@@ -84,6 +84,9 @@ class TrimResult:
 
     def motion(self, psi):
         """``q, q*, q**`` at any azimuths, by Fourier interpolation."""
+        if self.q.shape[1] == 1:                # hover: constant motion
+            q = np.repeat(self.q, np.size(psi), axis=1)
+            return q, np.zeros_like(q), np.zeros_like(q)
         return tuple(fourier_eval(self.q, psi, d) for d in (0, 1, 2))
 
     def summary(self) -> dict:
@@ -161,7 +164,7 @@ def trim(model: CoupledModel, *, tol: float = 1e-10, max_iter: int = 40,
     free_collective = f.collective is None
     sigma = cfg.rotor.solidity
     mu, fs = f.advance_ratio, f.advance_ratio * np.tan(f.shaft_angle)
-    tip = model.modes.shapes([1.0])["w"][0]                  # tip flap of each mode
+    tip = model.tip_flap                                   # tip flap of each mode
 
     # unknowns: Q (n x N), [theta_0], [theta_1c, theta_1s], lambda_i
     if initial is not None and initial.q.shape == (n, n_psi):
@@ -209,7 +212,19 @@ def trim(model: CoupledModel, *, tol: float = 1e-10, max_iter: int = 40,
         return r, float(np.max(np.abs(r))), thrust, c, li
 
     prev = np.inf
-    r, norm, thrust, c, li = full(x)
+    if lu is None:
+        # cold start: the residual comes with the first Jacobian (its
+        # unperturbed block), not from a separate evaluation
+        _, c, li = unpack(x)
+        jac, (res0, thrust) = _jacobian(model, x, c, li, unpack, scalars, psi, d1, d2, n, n_psi,
+                                        nq, tip, hover, free_collective, sigma, mu, fs)
+        r = np.concatenate([res0.ravel(), scalars(x[:nq].reshape(n, n_psi), thrust, li)])
+        norm = float(np.max(np.abs(r)))
+        lu = scipy.linalg.lu_factor(jac)
+        fresh = True
+    else:
+        r, norm, thrust, c, li = full(x)
+        fresh = False
     for it in range(max_iter):
         history.append({"iteration": it, "max_residual": norm, "collective_deg":
                         np.rad2deg(c.collective), "cyclic_cos_deg": np.rad2deg(c.cyclic_cos),
@@ -222,10 +237,11 @@ def trim(model: CoupledModel, *, tol: float = 1e-10, max_iter: int = 40,
                               history=history, jacobian=jac)
         # chord method: keep the factorised Jacobian while it converges fast,
         # refresh it when the residual falls by less than 10x per iteration
-        if lu is None or norm > 0.1 * prev:
-            jac = _jacobian(model, x, r, c, li, unpack, scalars, psi, d1, d2, n, n_psi, nq,
-                            tip, hover, free_collective, sigma, mu, fs)
+        if not fresh and norm > 0.1 * prev:
+            jac, _ = _jacobian(model, x, c, li, unpack, scalars, psi, d1, d2, n, n_psi, nq,
+                               tip, hover, free_collective, sigma, mu, fs)
             lu = scipy.linalg.lu_factor(jac)
+        fresh = False
         prev = norm
         step = scipy.linalg.lu_solve(lu, -r)
         # damped Newton: halve the step while the residual grows; the accepted
@@ -242,14 +258,26 @@ def trim(model: CoupledModel, *, tol: float = 1e-10, max_iter: int = 40,
                     f"(last max residual {history[-1]['max_residual']:.3e})", history)
 
 
-def _jacobian(model, x, r0, c, li, unpack, scalars, psi, d1, d2, n, n_psi, nq, tip, hover,
+def _jacobian(model, x, c, li, unpack, scalars, psi, d1, d2, n, n_psi, nq, tip, hover,
               free_collective, sigma, mu, fs):
-    """Newton Jacobian using the per-azimuth block structure."""
+    """Newton Jacobian using the per-azimuth block structure.
+
+    Returns the Jacobian and ``(R, thrust)`` at ``x`` (its unperturbed block).
+    """
     q = x[:nq].reshape(n, n_psi)
     qd, qdd = q @ d1.T, q @ d2.T
     infl = _inflow(model, li)
-    (jq, jqd, jqdd), tblocks, (base_res, base_thr) = jacobian_blocks(
-        model, psi, q, qd, qdd, c, infl, step=1e-7, scheme="forward")
+    # control and inflow columns by forward differences, evaluated at the
+    # same motion in the same stacked call as the per-azimuth blocks
+    h = 1e-7
+    cols = np.arange(nq, x.size)
+    xs = np.repeat(x[None], cols.size, axis=0)
+    xs[np.arange(cols.size), cols] += h
+    parts = [unpack(v) for v in xs]
+    (jq, jqd, jqdd), tblocks, (res0, thr0, perturbed) = jacobian_blocks(
+        model, psi, q, qd, qdd, c, infl, step=1e-7, scheme="forward",
+        extra=[(p[1], _inflow(model, p[2])) for p in parts])
+    r0 = np.concatenate([res0.ravel(), scalars(q, thr0, li)])
     blocks = [jq, jqd, jqdd]
     eye = np.eye(n_psi)
     # J[(i,m),(j,l)] = J0[m,i,j] I_ml + J1[m,i,j] D_ml + J2[m,i,j] D2_ml
@@ -273,28 +301,8 @@ def _jacobian(model, x, r0, c, li, unpack, scalars, psi, d1, d2, n, n_psi, nq, t
         row += 2
     denom = 2 * np.hypot(mu, fs + li)
     jac[nq + row, :nq] = -sigma * dct.ravel() / denom
-    # control and inflow columns by forward differences, all perturbed
-    # controls stacked along the azimuth axis in one evaluation (controls and
-    # inflow fields become per-azimuth columns, which broadcast in evaluate)
-    h = 1e-7
-    cols = np.arange(nq, x.size)
-    xs = np.repeat(x[None], cols.size, axis=0)
-    xs[np.arange(cols.size), cols] += h
-    parts = [unpack(v) for v in xs]
-
-    def stacked(values):
-        return np.repeat(np.asarray(values, float), n_psi)[:, None]
-
-    ctl = Controls(*(stacked([getattr(p[1], f) for p in parts])
-                     for f in ("collective", "cyclic_cos", "cyclic_sin")))
-    flows = [_inflow(model, p[2]) for p in parts]
-    infl = Inflow(*(stacked([getattr(fl, f) for fl in flows])
-                    for f in ("mean_induced", "freestream", "kx", "ky")))
-    res, thr = model.evaluate(np.tile(psi, cols.size), np.tile(q, cols.size),
-                              np.tile(qd, cols.size), np.tile(qdd, cols.size), ctl, infl)
-    for b, k in enumerate(cols):
-        sl = slice(b * n_psi, (b + 1) * n_psi)
-        rk = np.concatenate([res[:, sl].ravel(), scalars(q, thr[sl], parts[b][2])])
+    for k, (p, (res_k, thr_k)) in zip(cols, zip(parts, perturbed, strict=True), strict=True):
+        rk = np.concatenate([res_k.ravel(), scalars(q, thr_k, p[2])])
         jac[:, k] = (rk - r0) / h
     assert n_s == row + 1
-    return jac
+    return jac, (res0, thr0)

@@ -517,3 +517,22 @@ def test_unresolvable_modes_degrade_gracefully(seed):
     # the resolved two: roundoff amplified by the non-normal coupling (observed
     # <= 7e-13 over these seeds; seeds 0 and 3 take the lifting's fallback path)
     assert_allclose(got[1:], [-1.0, -0.1], atol=1e-11)
+
+
+def test_positive_frequency_keeps_self_conjugate_roots():
+    """A real multiplier has no conjugate partner: whatever sign of omega
+    the integer shift gave it (it is arbitrary, e.g. -4 for an overdamped
+    pair locked at 4/rev), positive_frequency must keep it, conjugated.
+    Dropping such roots lost the MDART torsion mode from the Fig. 12 table."""
+    eta = np.array([-0.1 + 1.0j, -0.1 - 1.0j, -6.1 - 4.0j, -5.6 - 4.0j, -0.3 + 0.0j])
+    vec = np.eye(5, dtype=complex) + 0.1j
+    res = FloquetResult(exponents=eta, multipliers=np.exp(eta * 2 * np.pi),
+                        eigenvectors=vec, period=2 * np.pi)
+    pos = res.positive_frequency()
+    # the +-1 pair gives one mode, the two locked roots and the real root stay
+    assert_allclose(np.sort(pos.frequencies), [0.0, 1.0, 4.0, 4.0])
+    assert_allclose(np.sort(pos.damping_rates), [-6.1, -5.6, -0.3, -0.1])
+    # conjugated with their exponent: still eigenvectors of the conjugate multiplier
+    flipped = np.isclose(pos.frequencies, 4.0)
+    assert_allclose(pos.eigenvectors[:, flipped], np.conj(vec[:, 2:4]))
+    assert_allclose(pos.multipliers, np.exp(pos.exponents * 2 * np.pi))

@@ -12,7 +12,13 @@ import scipy.linalg
 import scipy.optimize
 from numpy.testing import assert_allclose
 
-from tefcore.structure import RootSprings, assemble_beam, beam_modes
+from tefcore.structure import (
+    RootSprings,
+    assemble_beam,
+    beam_modes,
+    tension_from_mass,
+    tension_piecewise_linear,
+)
 
 CLAMP = RootSprings(flap=np.inf, lag=np.inf, torsion=np.inf)
 
@@ -199,3 +205,20 @@ def test_shapes_at_nodes_match_dofs_and_normalisation():
     assert_allclose(s["w"][-1, flap1], 1.0)      # tip deflection normalised to +1
     with pytest.raises(ValueError, match="stations"):
         m.shapes([1.5])
+
+
+def test_tension_piecewise_linear_is_exact():
+    """T(x) = int_x^1 m s ds for a piecewise-linear mass: against scipy.integrate.quad
+    segment by segment (gate 1e-13: both are exact up to round-off), and the
+    fine-grid Simpson fallback agrees to its own error (~h^2 at the kinks)."""
+    import scipy.integrate
+
+    xs = np.array([0.05, 0.2, 0.23, 0.5, 0.9, 1.0])
+    ms = np.array([3.0, 1.5, 0.8, 1.0, 1.4, 0.6])
+    exact = tension_piecewise_linear(xs, ms)
+    x = np.array([0.05, 0.1, 0.2, 0.21, 0.4, 0.9, 0.95, 1.0])
+    ref = [sum(scipy.integrate.quad(lambda s: np.interp(s, xs, ms) * s, max(a, xi), b)[0]
+               for a, b in zip(xs[:-1], xs[1:], strict=True) if b > xi) for xi in x]
+    assert_allclose(exact(x), ref, rtol=0, atol=1e-13)
+    fallback = tension_from_mass(lambda s: np.interp(s, xs, ms), xs[0])
+    assert_allclose(fallback(x), ref, atol=1e-6)
