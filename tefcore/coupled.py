@@ -81,8 +81,7 @@ class CoupledModel:
     has_flap: bool
     x: np.ndarray                 # aerodynamic stations (fractions of R)
     w: np.ndarray                 # their quadrature weights
-    on_flap: np.ndarray           # mask of stations on the flap span
-    flap_stations: slice          # the same stations as a slice (contiguous)
+    flap_stations: slice          # the stations on the flap span (contiguous)
     shapes: dict                  # mode shapes at x: w, dw, v, dv, phi (n_st, n_modes)
     shape_stack: np.ndarray       # the same side by side, (n_modes, 5 n_st)
     tip_flap: np.ndarray          # flap deflection w(1) of each mode
@@ -289,8 +288,6 @@ def coupled_model(cfg, collective: float = 0.0, modes=None) -> CoupledModel:
     edges = [r.root_cutout, x_in, x_out, 1.0]
     x, w = _gauss_segments(edges, cfg.model.n_gauss)
     n = cfg.model.n_gauss
-    on_flap = np.zeros(x.size, bool)
-    on_flap[n:2 * n] = True
     s = modes.shapes(np.append(x, 1.0))          # the stations and the tip
     shapes = {k: s[k][:-1] for k in ("w", "dw", "v", "dv", "phi")}
     twist = pitch_function(cfg, 0.0)(x)
@@ -307,7 +304,7 @@ def coupled_model(cfg, collective: float = 0.0, modes=None) -> CoupledModel:
                 "hinge_from_ea": fp.hinge_from_ea / rad, "span": fl.span,
                 "k_a": units.spring(fp.k_a), "c_a": units.damper(fp.c_a)}
     return CoupledModel(cfg=cfg, modes=modes, n_modes=n_m, has_flap=has_flap, x=x, w=w,
-                        on_flap=on_flap, flap_stations=slice(n, 2 * n),
+                        flap_stations=slice(n, 2 * n),
                         shape_stack=np.concatenate([shapes[f] for f in _FIELDS], axis=0).T,
                         tip_flap=s["w"][-1], shapes=shapes, twist=twist,
                         m_s=modes.modal_mass,

@@ -613,27 +613,23 @@ class FloquetResult:
         eta = self.exponents
         keep = eta.imag >= -tol
         pos = np.flatnonzero(keep)
-        unmatched = np.ones(pos.size, bool)
-        flip = []
+        partnered = np.zeros(pos.size, bool)
+        flip = np.zeros(eta.size, bool)
         for i in np.flatnonzero(~keep):
-            dist = np.abs(eta[pos] - np.conj(eta[i]))
-            dist[~unmatched] = np.inf
+            dist = np.where(partnered, np.inf, np.abs(eta[pos] - np.conj(eta[i])))
             j = int(np.argmin(dist)) if pos.size else -1
             if j >= 0 and dist[j] <= 1e-6 * max(1.0, abs(eta[i])):
-                unmatched[j] = False            # its partner is kept
+                partnered[j] = True             # its partner is kept
             else:
-                flip.append(i)
-        out = self.select(keep | np.isin(np.arange(eta.size), flip))
-        if flip:
-            sel = np.flatnonzero(keep | np.isin(np.arange(eta.size), flip))
-            conj = np.isin(sel, flip)
-            out = replace(out, exponents=np.where(conj, np.conj(out.exponents), out.exponents),
-                          multipliers=np.where(conj, np.conj(out.multipliers), out.multipliers),
-                          eigenvectors=np.where(conj, np.conj(out.eigenvectors),
-                                                out.eigenvectors),
-                          shapes=None if out.shapes is None else
-                          np.where(conj, np.conj(out.shapes), out.shapes))
-        return out
+                flip[i] = True
+        out = self.select(keep | flip)
+        conj = flip[keep | flip]
+
+        def fix(a):
+            return np.where(conj, np.conj(a), a)
+        return replace(out, exponents=fix(out.exponents), multipliers=fix(out.multipliers),
+                       eigenvectors=fix(out.eigenvectors),
+                       shapes=None if out.shapes is None else fix(out.shapes))
 
 
 def _normalise(v):

@@ -84,9 +84,6 @@ class TrimResult:
 
     def motion(self, psi):
         """``q, q*, q**`` at any azimuths, by Fourier interpolation."""
-        if self.q.shape[1] == 1:                # hover: constant motion
-            q = np.repeat(self.q, np.size(psi), axis=1)
-            return q, np.zeros_like(q), np.zeros_like(q)
         return tuple(fourier_eval(self.q, psi, d) for d in (0, 1, 2))
 
     def summary(self) -> dict:
