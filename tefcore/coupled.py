@@ -204,7 +204,10 @@ class CoupledModel:
                               delta_accel=dldd * sc["omega"] ** 2,
                               velocity=speed * sc["speed"], density=cfg.rotor.air_density,
                               chord=cfg.rotor.chord, axis=cfg.rotor.elastic_axis,
-                              mach=speed * (sc["speed"] / cfg.rotor.speed_of_sound))
+                              mach=speed * (sc["speed"] / cfg.rotor.speed_of_sound),
+                              # a NaN here surfaces in the residual, which the
+                              # trim checks; the configuration is validated
+                              check_finite=False)
         lift = sign * out["lift"] / sc["force"]
         drag = sign * out["drag"] / sc["force"]
         moment = sign * out["moment"] / sc["moment"]
@@ -352,12 +355,13 @@ def jacobian_blocks(model: CoupledModel, psi, q, qd, qdd, controls, inflow, *,
     n_base = int(scheme == "forward") + len(extra)
     n_blk = n_pert + n_base
     motion = [np.tile(a, (1, n_blk)) for a in (q, qd, qdd)]
-    blk = 0
-    for sgn in signs:
+    # block (s, which, j) = (s * 3 + which) * n + j perturbs coordinate j of
+    # q, q* or q** by sign s: its m columns in row j
+    rows = np.arange(n)[:, None]
+    for s_i, sgn in enumerate(signs):
         for which in range(3):
-            for j in range(n):
-                motion[which][j, blk * m:(blk + 1) * m] += sgn * step
-                blk += 1
+            cols = ((s_i * 3 + which) * n + rows) * m + np.arange(m)
+            motion[which][rows, cols] += sgn * step
     if extra:
         # controls and inflow become per-azimuth columns (they broadcast in
         # evaluate): the base values for the perturbed motions, then extras

@@ -225,7 +225,7 @@ class ThinAirfoilFlap:
 
     def loads(self, *, alpha, alpha_rate, alpha_accel, plunge_rate, plunge_accel, delta,
               delta_rate, delta_accel, velocity, density, chord, axis=0.25,
-              mach=0.0) -> dict[str, np.ndarray]:
+              mach=0.0, check_finite=True) -> dict[str, np.ndarray]:
         """Per unit span (SI): 'lift','drag','moment' (about `axis`, fraction of chord
         from LE, nose-up +), 'flap_lift','hinge_moment' (about the hinge, positive in the
         delta-positive sense, TE down) and the coefficients 'cl','cd','cm','clf','ch'.
@@ -235,12 +235,13 @@ class ThinAirfoilFlap:
         return section_loads(self, alpha=alpha, alpha_rate=alpha_rate, alpha_accel=alpha_accel,
                              plunge_rate=plunge_rate, plunge_accel=plunge_accel, delta=delta,
                              delta_rate=delta_rate, delta_accel=delta_accel, velocity=velocity,
-                             density=density, chord=chord, axis=axis, mach=mach)
+                             density=density, chord=chord, axis=axis, mach=mach,
+                             check_finite=check_finite)
 
 
 def section_loads(static_model, *, alpha, alpha_rate, alpha_accel, plunge_rate, plunge_accel,
                   delta, delta_rate, delta_accel, velocity, density, chord, axis=0.25,
-                  mach=0.0) -> dict[str, np.ndarray]:
+                  mach=0.0, check_finite=True) -> dict[str, np.ndarray]:
     """Quasi-steady section loads from a static model plus thin-airfoil rate terms.
 
     ``static_model`` needs ``static_coefficients(alpha, mach, delta)`` (keys
@@ -273,12 +274,25 @@ def section_loads(static_model, *, alpha, alpha_rate, alpha_accel, plunge_rate, 
     ``C(k) = 1`` (circulatory part scaled by Prandtl-Glauert).  The drag is
     ``q chord C_d(alpha_eff)`` along ``U``; lift is normal to ``U``.
 
+    ``check_finite=False`` skips the finiteness test of every input and the
+    positivity test of ``velocity``, ``density`` and ``chord`` (as in
+    scipy.linalg): for callers that check their own results, such as the
+    coupled model, whose trim stops on a non-finite residual.  The Mach
+    range is always checked.
+
     Returns
     -------
     dict
         ``'lift', 'drag', 'moment', 'flap_lift', 'hinge_moment'`` per unit span
         and ``'cl', 'cd', 'cm', 'clf', 'ch'`` (``cm`` about ``axis``; all on the
         blade chord, ``q = rho U^2 / 2``).
+
+    Raises
+    ------
+    ValueError
+        A non-finite input, a non-positive ``velocity``, ``density`` or
+        ``chord`` (unless ``check_finite=False``), or a Mach number outside
+        [0, 0.99].
     """
     _, _, c, d = _geometry(static_model.chord_ratio, static_model.overhang)
     names = ("alpha", "alpha_rate", "alpha_accel", "plunge_rate", "plunge_accel", "delta",
@@ -291,10 +305,10 @@ def section_loads(static_model, *, alpha, alpha_rate, alpha_accel, plunge_rate, 
     # one finiteness test for all inputs (this sits in the trim's inner loop):
     # NaN or inf anywhere makes the sum non-finite; the per-name checks run
     # only to word the error. Scalars stay scalars (no broadcast copies).
-    if not np.isfinite(sum(float(v.sum()) for v in vals.values())):
+    if check_finite and not np.isfinite(sum(float(v.sum()) for v in vals.values())):
         for k, v in vals.items():
             _finite(k, v)
-    for k in ("velocity", "density", "chord"):
+    for k in ("velocity", "density", "chord") if check_finite else ():
         if np.any(vals[k] <= 0.0):
             _finite(k, vals[k], positive=True)
     pg = prandtl_glauert(vals["mach"])

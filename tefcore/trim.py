@@ -57,16 +57,24 @@ def fourier_eval(samples: np.ndarray, psi, derivative: int = 0) -> np.ndarray:
     >>> round(float(fourier_eval(np.sin(2 * grid), np.array([0.3]))[0]), 12)
     0.564642473395
     """
+    return _fourier_series(samples, psi, (derivative,))[0]
+
+
+def _fourier_series(samples, psi, derivatives):
+    """:func:`fourier_eval` for several derivatives from one FFT."""
     n = samples.shape[-1]
     c = fourier_coefficients(samples)
     k = np.arange(c.shape[-1])
     weight = np.where((k == 0) | ((n % 2 == 0) & (k == n // 2)), 1.0, 2.0)
     psi = np.atleast_1d(np.asarray(psi, float))
-    ik = (1j * k) ** derivative
-    if derivative and n % 2 == 0:
-        ik = np.where(k == n // 2, 0.0, ik)
     basis = np.exp(1j * np.outer(k, psi))                # (n_k, n_psi)
-    return np.real((c * weight * ik) @ basis)
+    out = []
+    for derivative in derivatives:
+        ik = (1j * k) ** derivative
+        if derivative and n % 2 == 0:
+            ik = np.where(k == n // 2, 0.0, ik)
+        out.append(np.real((c * weight * ik) @ basis))
+    return out
 
 
 @dataclass
@@ -84,7 +92,7 @@ class TrimResult:
 
     def motion(self, psi):
         """``q, q*, q**`` at any azimuths, by Fourier interpolation."""
-        return tuple(fourier_eval(self.q, psi, d) for d in (0, 1, 2))
+        return tuple(_fourier_series(self.q, psi, (0, 1, 2)))
 
     def summary(self) -> dict:
         """Scalars for tables: controls [deg], inflow, thrust, flap harmonics."""
@@ -200,7 +208,7 @@ def trim(model: CoupledModel, *, tol: float = 1e-10, max_iter: int = 40,
     lu = None
     if initial is not None and initial.jacobian is not None and \
             initial.jacobian.shape == (x.size, x.size):
-        lu = scipy.linalg.lu_factor(initial.jacobian)
+        lu = scipy.linalg.lu_factor(initial.jacobian, check_finite=False)
         jac = initial.jacobian
     def full(vec):
         res, thrust, c, li = residuals(vec)
@@ -217,7 +225,9 @@ def trim(model: CoupledModel, *, tol: float = 1e-10, max_iter: int = 40,
                                         nq, tip, hover, free_collective, sigma, mu, fs)
         r = np.concatenate([res0.ravel(), scalars(x[:nq].reshape(n, n_psi), thrust, li)])
         norm = float(np.max(np.abs(r)))
-        lu = scipy.linalg.lu_factor(jac)
+        # no finiteness checks in the LU calls: a NaN reaches the residual,
+        # and the loop below stops on it with a TrimError and its history
+        lu = scipy.linalg.lu_factor(jac, check_finite=False)
         fresh = True
     else:
         r, norm, thrust, c, li = full(x)
@@ -237,10 +247,10 @@ def trim(model: CoupledModel, *, tol: float = 1e-10, max_iter: int = 40,
         if not fresh and norm > 0.1 * prev:
             jac, _ = _jacobian(model, x, c, li, unpack, scalars, psi, d1, d2, n, n_psi, nq,
                                tip, hover, free_collective, sigma, mu, fs)
-            lu = scipy.linalg.lu_factor(jac)
+            lu = scipy.linalg.lu_factor(jac, check_finite=False)
         fresh = False
         prev = norm
-        step = scipy.linalg.lu_solve(lu, -r)
+        step = scipy.linalg.lu_solve(lu, -r, check_finite=False)
         # damped Newton: halve the step while the residual grows; the accepted
         # trial's residual is the next iteration's (no re-evaluation)
         alpha = 1.0

@@ -399,6 +399,23 @@ def test_loads_validation(name, value):
         _loads(m, motion, **extra)
 
 
+def test_check_finite_false_gives_the_same_loads_and_skips_only_the_input_checks():
+    # the coupled model's fast path: identical arithmetic on valid input
+    m = ThinAirfoilFlap(0.35, 0.29)
+    checked = section_loads(m, **MOTION, **FLOW, mach=0.3)
+    fast = section_loads(m, **MOTION, **FLOW, mach=0.3, check_finite=False)
+    for key in KEYS:
+        assert fast[key] == checked[key]
+    # a NaN input propagates to the loads instead of raising (an acceleration:
+    # the static model still checks its own alpha and delta) ...
+    out = section_loads(m, **{**MOTION, "alpha_accel": float("nan")}, **FLOW,
+                        check_finite=False)
+    assert np.isnan(out["lift"])
+    # ... but the Mach range is a physical limit and is always checked
+    with pytest.raises(ValueError, match="mach"):
+        section_loads(m, **MOTION, **FLOW, mach=1.0, check_finite=False)
+
+
 def test_section_loads_validates_model_geometry():
     rec = _Recorder()
     rec.overhang = 1.5
