@@ -10,7 +10,8 @@ each can be turned off with an environment variable set before the import.
   183-dof eigenproblem that takes 3.6 ms on one thread; parallel sweeps use
   processes instead.
 * glibc's heap trim threshold (``TEFCORE_MALLOC_TRIM``, bytes, default
-  ``134217728`` = 128 MiB; ``default`` leaves it alone).  A forward-flight
+  ``134217728`` = 128 MiB; ``default`` leaves it alone), and with it the
+  mmap threshold (the same, at most 32 MiB).  A forward-flight
   point allocates and frees tens of MB of temporaries per Jacobian; with
   glibc's default (dynamic, a few hundred kB) the freed top of the heap is
   returned to the kernel after every call and faulted back in on the next
@@ -28,8 +29,10 @@ import sys
 
 from threadpoolctl import threadpool_limits
 
-#: ``mallopt`` parameter number of M_TRIM_THRESHOLD (glibc ``malloc.h``).
-_M_TRIM_THRESHOLD = -1
+#: ``mallopt`` parameter numbers (glibc ``malloc.h``).
+_M_TRIM_THRESHOLD, _M_MMAP_THRESHOLD = -1, -3
+#: Largest mmap threshold glibc accepts on 64-bit systems (32 MiB).
+_MMAP_THRESHOLD_MAX = 32 * 2**20
 
 
 def limit_blas_threads(value: str) -> None:
@@ -59,7 +62,12 @@ def keep_freed_memory(value: str) -> bool:
         libc = ctypes.CDLL("libc.so.6")
     except OSError:
         return False
-    return bool(libc.mallopt(_M_TRIM_THRESHOLD, threshold))
+    # setting the trim threshold switches off glibc's dynamic mmap threshold,
+    # which would leave every array above 128 kB in a fresh mmap (faulted in
+    # page by page on each call: seen, 0.65 ms to zero and touch 691 kB), so
+    # the mmap threshold is raised too
+    return bool(libc.mallopt(_M_TRIM_THRESHOLD, threshold)
+                and libc.mallopt(_M_MMAP_THRESHOLD, min(threshold, _MMAP_THRESHOLD_MAX)))
 
 
 def apply_defaults() -> None:
