@@ -106,7 +106,7 @@ def _label_modes(vectors, mass_diag, labels, freqs, rates):
 
 
 def stability(cfg, *, trim_result: TrimResult | None = None, n_steps: int | None = None,
-              remode: bool = True) -> StabilityResult:
+              remode: bool = True, model=None) -> StabilityResult:
     """Trim the configuration and compute its labelled stability modes.
 
     Parameters
@@ -120,6 +120,11 @@ def stability(cfg, *, trim_result: TrimResult | None = None, n_steps: int | None
         Recompute the blade modes at the trimmed collective and trim again
         when it differs from the modes' collective by more than
         ``REMODE_DEG`` (the structural flap-lag coupling depends on pitch).
+    model : CoupledModel, optional
+        A model of ``cfg`` built beforehand with
+        :func:`tefcore.coupled.coupled_model`, e.g. to keep one set of blade
+        modes for several flight conditions; its modes are used as they are
+        (no re-moding).
 
     Returns
     -------
@@ -128,7 +133,18 @@ def stability(cfg, *, trim_result: TrimResult | None = None, n_steps: int | None
         complex pair): ``mode_id, label, kind, frequency_per_rev, real_part,
         damping_ratio, participation`` — ``real_part`` is the damping rate
         per radian of azimuth (negative: stable).
+
+    Raises
+    ------
+    ValueError
+        If ``model`` was built for another configuration.
+    tefcore.trim.TrimError
+        If the trim does not converge.
     """
+    if model is not None:
+        if model.cfg != cfg:
+            raise ValueError("model was built for another configuration than cfg")
+        return _stability_of(model, trim(model, initial=trim_result), n_steps)
     # modes at the collective of the warm start (or the first estimate);
     # re-mode and re-trim only when the trim lands far from it: the MDART
     # frequencies move < 0.3 % per degree of collective (measured)
@@ -139,6 +155,12 @@ def stability(cfg, *, trim_result: TrimResult | None = None, n_steps: int | None
     if remode and abs(tr.controls.collective - theta_modes) > np.deg2rad(REMODE_DEG):
         model = coupled_model(cfg, collective=tr.controls.collective)
         tr = trim(model, initial=tr)
+    return _stability_of(model, tr, n_steps)
+
+
+def _stability_of(model, tr: TrimResult, n_steps: int | None) -> StabilityResult:
+    """Linearise a trimmed model and label its (Floquet) modes."""
+    cfg = model.cfg
     n = model.n_dof
     hover = cfg.flight.advance_ratio == 0.0
     if hover:

@@ -132,6 +132,19 @@ def test_stability_tables_are_labelled(mdart):
         assert "collective_deg" in res.trim
 
 
+def test_stability_with_a_prebuilt_model(mdart):
+    # the same modes and trim as stability() builds itself (hover does not
+    # re-mode), so the tables agree exactly
+    from tefcore.trim import initial_collective
+    cfg = mdart.with_overrides({"flight.advance_ratio": 0.0})
+    model = coupled_model(cfg, collective=initial_collective(cfg))
+    own, given = stability(cfg), stability(cfg, model=model)
+    assert given.modes.equals(own.modes)
+    assert given.trim_result.model is model
+    with pytest.raises(ValueError, match="another configuration"):
+        stability(mdart, model=model)
+
+
 def test_fourier_interpolation_is_exact_for_band_limited():
     psi = np.linspace(0, 2 * np.pi, 12, endpoint=False)
     f = 1 + np.cos(psi) - 0.3 * np.sin(4 * psi)
