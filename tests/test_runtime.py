@@ -6,9 +6,20 @@ import subprocess
 import sys
 
 import pytest
+from hypothesis import given
+from hypothesis import strategies as st
 from threadpoolctl import threadpool_info
 
 from tefcore import runtime
+
+
+def _parses_as_int(text):
+    try:
+        int(text)
+    except ValueError:
+        return False
+    return True
+
 
 GLIBC = sys.platform.startswith("linux") and platform.libc_ver()[0] == "glibc"
 
@@ -34,6 +45,16 @@ def test_bad_trim_threshold_is_a_clear_error(bad):
     if not GLIBC:
         pytest.skip("the value is only read on glibc")
     with pytest.raises(ValueError):
+        runtime.keep_freed_memory(bad)
+
+
+@pytest.mark.skipif(not GLIBC, reason="the value is only read on glibc")
+@given(st.one_of(st.integers(max_value=-1).map(str),
+                 st.integers(min_value=2**31).map(str),
+                 st.text().filter(lambda t: t != "default" and not _parses_as_int(t))))
+def test_any_out_of_range_or_non_numeric_threshold_is_rejected(bad):
+    # rejected before mallopt is called, so the allocator keeps its settings
+    with pytest.raises(ValueError, match="TEFCORE_MALLOC_TRIM"):
         runtime.keep_freed_memory(bad)
 
 
