@@ -1,0 +1,365 @@
+"""Check the claims of one figure against its result (:func:`validate_figure`).
+
+Each claim kind of ``reference_data/README.md`` (kinds table) has one check
+here.  The claim's series is its mode (the track labelled ``mode`` or
+``mode + " (locked)"`` present at the most points) and quantity, sorted by
+x, failed points left out; values are interpolated linearly, never
+extrapolated; thresholds and ranges use the zero crossings of the real part
+(:func:`tefcore.curve_metrics.zero_crossings`); trends the sign of the
+least-squares slope; curves are compared at the digitised x
+(:func:`tefcore.curve_metrics.compare_curve`).  Running every figure is
+:func:`tefcore.validation.validate_all`.
+"""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pandas as pd
+
+from .curve_metrics import X_SLACK as _EPS
+from .curve_metrics import compare_curve, stability_intervals, zero_crossings
+from .figure_frames import compute_figure, figure_frame, natural_frequency_frame
+from .reference import FIGURES, QUANTITIES, Claim, load_claims, x_to_si
+
+__all__ = ["COLUMNS", "validate_figure", "variant_key"]
+
+COLUMNS = ["id", "figure", "panel", "kind", "tag", "mode", "quantity", "statement", "expected",
+           "computed", "computed_value", "status", "reason", "recorded_status",
+           "label_agreement"]
+
+
+class _Fail(Exception):
+    """The model result cannot support the claim (status ``fail``)."""
+
+
+class _NotEvaluated(Exception):
+    """A result the claim needs was not given (status ``not reproducible``)."""
+
+
+def variant_key(overrides: dict) -> str:
+    """Canonical key of a configuration variant (``""`` for the figure itself)."""
+    return json.dumps(overrides, sort_keys=True) if overrides else ""
+
+
+def _g(v) -> str:
+    return f"{v:.4g}"
+
+
+def _is(labels: pd.Series, mode: str) -> pd.Series:
+    return (labels == mode) | (labels == f"{mode} (locked)")
+
+
+def _select(frame, mode, identify="track") -> pd.DataFrame:
+    """Rows of `mode`: its track (``identify="track"``), or at each point the mode
+    labelled `mode` there (``"label"``, the most participating one if several)."""
+    col = "label_here" if identify == "label" and "label_here" in frame else "label"
+    ok = _is(frame[col], mode)
+    if not ok.any():
+        raise _Fail(f"no mode {mode!r} in the result; labels: "
+                    f"{sorted(set(frame[col].dropna().astype(str)))}")
+    if col == "label_here":
+        t = frame[ok]
+        if "participation" in t:
+            t = t.sort_values("participation", ascending=False, kind="stable")
+        return t.drop_duplicates("x")
+    sizes = frame[ok].groupby("track", sort=False).agg(n=("x", "size"), label=("label", "first"))
+    sizes = sizes.assign(exact=sizes["label"] == mode).sort_values(
+        ["n", "exact"], ascending=False, kind="stable")
+    return frame[frame["track"] == sizes.index[0]]
+
+
+def _series(frame, mode, quantity, lo=None, hi=None, identify="track"):
+    """(x, y) of one mode and quantity, sorted by x, within [lo, hi]."""
+    if quantity not in frame:
+        raise _Fail(f"the result has no {quantity!r} column")
+    t = _select(frame, mode, identify) if mode else frame
+    t = t[np.isfinite(t[quantity].to_numpy(float))].sort_values("x")
+    x, y = t["x"].to_numpy(float), t[quantity].to_numpy(float)
+    if lo is not None:
+        slack = _EPS * max(abs(lo), abs(hi), 1e-300)
+        keep = (x >= lo - slack) & (x <= hi + slack)
+        x, y = x[keep], y[keep]
+    return x, y
+
+
+def _agreement(frame, mode) -> float:
+    """Share of the points of `mode`'s track where the point's own label is `mode`."""
+    if "label_here" not in frame:
+        return np.nan
+    return float(_is(_select(frame, mode)["label_here"], mode).mean())
+
+
+class _Context:
+    """Frames of the figure, its variants and other figures, built on demand."""
+
+    def __init__(self, name, result, cfg, variants, others, compute_missing, identify):
+        self.name, self.cfg, self.compute, self.identify = name, cfg, compute_missing, identify
+        self.results = {(name, ""): result}
+        for key, res in (variants or {}).items():
+            self.results[(name, key)] = res
+        for fig, res in (others or {}).items():
+            self.results.setdefault((fig, ""), res)
+        self.frames: dict = {}
+
+    def frame(self, fig, overrides=None, quantity=""):
+        key = (fig, variant_key(overrides or {}))
+        if key not in self.frames:
+            res = self.results.get(key)
+            if res is None:
+                if not self.compute:
+                    what = f"{fig} with {key[1]}" if key[1] else fig
+                    raise _NotEvaluated(f"needs the result of {what} (validate_all runs it)")
+                res = compute_figure(fig, self.cfg, overrides=overrides or {})
+            self.frames[key] = figure_frame(fig, res)
+        f = self.frames[key]
+        if quantity == "natural_frequency_per_rev" and quantity not in f:
+            nkey = key + ("natural",)
+            if nkey not in self.frames:
+                self.frames[nkey] = natural_frequency_frame(fig, f, self.cfg, overrides or {})
+            f = self.frames[nkey]
+        return f
+
+    def series(self, c: Claim, fig=None, mode=None, quantity=None, interval=None,
+               overrides=None):
+        fig, mode = fig or c.figure, c.mode if mode is None else mode
+        quantity = quantity or c.quantity
+        overrides = c.overrides if overrides is None else overrides
+        lo = hi = None
+        if interval is not None:
+            lo, hi = (float(v) for v in x_to_si(fig, np.asarray(interval, float), c.x_unit))
+        x, y = _series(self.frame(fig, overrides, quantity), mode, quantity, lo, hi,
+                       self.identify)
+        if len(x) == 0:
+            raise _Fail(f"no {mode or quantity} points" + (f" in {interval}" if lo else ""))
+        return x, y
+
+
+def _unit(c: Claim) -> str:
+    return QUANTITIES[c.quantity][1] if c.quantity else ""
+
+
+def _at(c, x, y, xv):
+    xs = float(x_to_si(c.figure, xv, c.x_unit))
+    slack = _EPS * max(abs(xs), 1e-300)
+    if not x[0] - slack <= xs <= x[-1] + slack:
+        raise _Fail(f"x = {_g(xv)} {c.x_unit} is outside the computed range")
+    return float(np.interp(xs, x, y))
+
+
+def _check_value(c: Claim, ctx: _Context):
+    if c.figure == "fig6":
+        computed = float(ctx.frame("fig6")[c.quantity].iloc[0])
+    else:
+        x, y = ctx.series(c)
+        computed = _at(c, x, y, c.x)
+        if c.relative_to is not None:
+            computed = computed / _at(c, x, y, c.relative_to) - 1
+    unit = "(relative change)" if c.relative_to is not None else _unit(c)
+    where = "" if c.x is None else f" at x = {_g(c.x)} {c.x_unit}".rstrip()
+    if c.expected is not None:
+        tol = c.tolerance * (abs(c.expected) if c.tolerance_type == "relative" else 1)
+        ok = abs(computed - c.expected) <= tol * (1 + _EPS)
+        expected = f"{_g(c.expected)} ± {_g(tol)} {unit}{where}"
+        why = f"off by {_g(computed - c.expected)}, more than {_g(tol)}"
+    else:
+        lo = -np.inf if c.lower is None else c.lower
+        hi = np.inf if c.upper is None else c.upper
+        ok = lo <= computed <= hi
+        expected = f"{_g(lo)} <= value <= {_g(hi)} {unit}{where}"
+        why = "outside the bounds"
+    return expected, f"{_g(computed)} {unit}", computed, ok, "" if ok else why
+
+
+def _fmt_x(c, xs, factor):
+    return ", ".join(f"{_g(v / factor)}" for v in xs) + (f" {c.x_unit}" if c.x_unit else "")
+
+
+def _check_threshold(c: Claim, ctx: _Context):
+    x, y = ctx.series(c, interval=c.interval)
+    f = float(x_to_si(c.figure, 1.0, c.x_unit))
+    cross = zero_crossings(x, y)
+    wanted = [x0 for x0, d in cross if d == c.direction]
+    desc = "; ".join(f"{d} at {_fmt_x(c, [x0], f)}" for x0, d in cross) or (
+        f"none (real part {_g(y.min())} to {_g(y.max())} 1/rev)")
+    if c.expected is None:
+        expected = f"a {c.direction} crossing"
+    else:
+        expected = f"{c.direction} at {_g(c.expected)} ± {_g(c.tolerance)} {c.x_unit}".rstrip()
+    if not wanted:
+        return expected, f"crossings: {desc}", np.nan, False, f"no {c.direction} crossing"
+    best = wanted[0] if c.expected is None else min(wanted, key=lambda v: abs(v / f - c.expected))
+    reasons = []
+    if cross[-1][1] != c.direction:
+        reasons.append(f"the last crossing is {cross[-1][1]}: the end state is not the claimed one")
+    if c.expected is not None and abs(best / f - c.expected) > c.tolerance * (1 + _EPS):
+        reasons.append("crossing outside the tolerance")
+    return expected, f"crossings: {desc}", best / f, not reasons, "; ".join(reasons)
+
+
+def _check_range(c: Claim, ctx: _Context):
+    x, y = ctx.series(c)
+    f = float(x_to_si(c.figure, 1.0, c.x_unit))
+    got = [(a / f, b / f) for a, b in stability_intervals(x, y, c.state)]
+    lo, hi = c.expected_interval
+    expected = f"{c.state} on [{_g(lo)}, {_g(hi)}] ± {_g(c.tolerance)} {c.x_unit}".rstrip()
+    computed = f"{c.state} on " + (" and ".join(f"[{_g(a)}, {_g(b)}]" for a, b in got) or "none")
+    if len(got) != 1:
+        return expected, computed, np.nan, False, f"{len(got)} {c.state} intervals, expected one"
+    err = max(abs(got[0][0] - lo), abs(got[0][1] - hi))
+    ok = err <= c.tolerance * (1 + _EPS) + _EPS * max(abs(lo), abs(hi))
+    return expected, computed, err, ok, "" if ok else (
+        f"an end is {_g(err)} {c.x_unit}".rstrip() + " off")
+
+
+def _stats(c, x, y, fig):
+    xd = x / float(x_to_si(fig, 1.0, c.x_unit))  # slopes per x_unit
+    slope = float(np.polyfit(xd, y, 1)[0]) if len(x) > 1 else np.nan
+    return slope, float(y[-1] - y[0]), float(np.ptp(y))
+
+
+def _check_trend(c: Claim, ctx: _Context):
+    x, y = ctx.series(c, interval=c.interval)
+    if len(x) < 2:
+        raise _Fail(f"a trend needs at least 2 points, got {len(x)}")
+    slope, net, p2p = _stats(c, x, y, c.figure)
+    span = "" if c.interval is None else f" over [{_g(c.interval[0])}, {_g(c.interval[1])}]"
+    computed = f"slope {_g(slope)}, net change {_g(net)}, peak-to-peak {_g(p2p)} {_unit(c)}"
+    if c.direction != "constant":
+        stat = slope if c.method == "slope" else net
+        ok = stat > 0 if c.direction == "increasing" else stat < 0
+        why = "" if ok else f"{c.method.replace('_', ' ')} has the opposite sign"
+        return f"{c.direction}{span} ({c.method})", computed, stat, ok, why
+    if c.tolerance_type == "absolute":
+        scale, what = c.tolerance, f"{_g(c.tolerance)} {_unit(c)}"
+    elif c.tolerance_type == "relative":
+        scale, what = c.tolerance * np.mean(np.abs(y)), f"{_g(c.tolerance)} x mean |value|"
+    else:
+        _, yr = ctx.series(c, mode=c.reference_mode, interval=c.interval)
+        scale = c.tolerance * float(np.ptp(yr))
+        what = f"{_g(c.tolerance)} x peak-to-peak of {c.reference_mode} ({_g(np.ptp(yr))})"
+    return (f"constant{span}: peak-to-peak <= {what}", computed, p2p, p2p <= scale * (1 + _EPS),
+            "" if p2p <= scale * (1 + _EPS) else f"varies by {_g(p2p)} > {_g(scale)}")
+
+
+def _check_comparison(c: Claim, ctx: _Context):
+    xa, ya = ctx.series(c, interval=c.interval)
+    xb, yb = ctx.series(c, fig=c.other_figure, mode=c.other_mode, quantity=c.other_quantity,
+                        interval=c.other_interval, overrides=c.other_overrides)
+    other = ", ".join(f"{k}={v}" for k, v in (
+        ("figure", c.other_figure if c.other_figure != c.figure else ""),
+        ("mode", c.other_mode if c.other_mode != c.mode else ""),
+        ("quantity", c.other_quantity if c.other_quantity != c.quantity else ""),
+        ("interval", c.other_interval if c.other_interval != c.interval else None),
+        ("overrides", c.other_overrides)) if v)
+    if c.statistic == "correlation":
+        inside = (xa >= xb[0]) & (xa <= xb[-1])
+        if inside.sum() < 3:
+            raise _Fail("fewer than 3 common x values to correlate")
+        r = float(np.corrcoef(ya[inside], np.interp(xa[inside], xb, yb))[0, 1])
+        ok = r >= c.tolerance if c.relation == "positive" else r <= -c.tolerance
+        return (f"{c.relation} correlation with ({other}), |r| >= {_g(c.tolerance)}",
+                f"r = {_g(r)}", r, ok, "" if ok else "correlation too weak or of the wrong sign")
+    k = {"slope": 0, "abs_slope": 0, "peak_to_peak": 2}[c.statistic]
+    a, b = _stats(c, xa, ya, c.figure)[k], _stats(c, xb, yb, c.other_figure)[k]
+    if c.statistic == "abs_slope":
+        a, b = abs(a), abs(b)
+    ok = a < b if c.relation == "less" else a > b
+    return (f"{c.statistic} {c.relation} than for ({other})",
+            f"{_g(a)} vs {_g(b)}", a, ok, "" if ok else f"{c.statistic} is not {c.relation}")
+
+
+def _check_curve(c: Claim, ctx: _Context):
+    x, y = ctx.series(c)
+    cmp = compare_curve(x, y, c.points)
+    n = int((~cmp["masked"]).sum())
+    expected = f"{len(cmp)} digitised points within their band"
+    if n == 0:
+        return (expected, "no point inside the model's x range", np.nan, None,
+                f"all {len(cmp)} points outside the computed range [{_g(x[0])}, {_g(x[-1])}]")
+    worst = float(cmp["deviation"][~cmp["masked"]].max())
+    inside = int(cmp["within"].sum())
+    computed = (f"{inside}/{n} compared points within band, max |dev| {_g(worst)} {_unit(c)}, "
+                f"{len(cmp) - n} masked")
+    return expected, computed, worst, inside == n, "" if inside == n else (
+        f"{n - inside} point(s) outside their band")
+
+
+_CHECKS = {"value": _check_value, "threshold": _check_threshold, "range": _check_range,
+           "trend": _check_trend, "comparison": _check_comparison, "curve": _check_curve}
+
+
+def _row(c: Claim, expected="", computed="", value=np.nan, status="", reason="", agree=np.nan):
+    return {"id": c.id, "figure": c.figure, "panel": c.panel, "kind": c.kind, "tag": c.tag,
+            "mode": c.mode, "quantity": c.quantity, "statement": c.statement,
+            "expected": expected, "computed": computed, "computed_value": value,
+            "status": status, "reason": reason, "recorded_status": c.recorded_status,
+            "label_agreement": agree}
+
+
+def validate_figure(name: str, result, claims=None, *, cfg=None, variants=None, others=None,
+                    compute_missing: bool = True, identify: str = "track") -> pd.DataFrame:
+    """Check the claims of one figure against its result.
+
+    Parameters
+    ----------
+    name : str
+        ``"fig3"`` ... ``"fig17"`` (stability figures of
+        :data:`tefcore.figures.FIGURES`) or ``"fig5"``, ``"fig6"``, ``"fig7"``.
+    result
+        The figure's output: SweepResult (or its table), the DataFrame of
+        figs. 5 and 7, or the dict of fig. 6.  ``None``: computed when needed.
+    claims : list of Claim, optional
+        Default: the claims of `name` in the reference data.
+    cfg : Config, optional
+        Base configuration (default MDART) for anything computed here.
+    variants : dict, optional
+        :func:`variant_key` of overrides -> result of the figure with them.
+    others : dict, optional
+        Figure name -> result, for comparisons with another figure.
+    compute_missing : bool
+        Compute a missing variant/other figure; if False such a claim is
+        ``not reproducible``.
+    identify : {"track", "label"}
+        How a claim's ``mode`` is found: the tracked curve whose label (where
+        it starts) is ``mode`` -- the default -- or, at each point, the mode
+        labelled ``mode`` there (``label_here``), which does not depend on
+        the tracking but may jump between physical modes.
+
+    Returns
+    -------
+    DataFrame
+        One row per claim, columns :data:`COLUMNS`; ``label_agreement`` is
+        the share of the points of the claim's track where the point's own
+        label is the claim's mode (low: the tracking may have lost the mode).
+    """
+    if identify not in ("track", "label"):
+        raise ValueError(f"identify must be 'track' or 'label', got {identify!r}")
+    if claims is None:
+        claims = [c for c in load_claims() if c.figure == name]
+    ctx = _Context(name, result, cfg, variants, others, compute_missing, identify)
+    rows = []
+    for c in claims:
+        if c.figure != name:
+            raise ValueError(f"claim {c.id} is about {c.figure}, not {name}")
+        if c.kind == "not_reproducible":
+            rows.append(_row(c, status="not reproducible", reason=c.reason))
+            continue
+        try:
+            expected, computed, value, ok, why = _CHECKS[c.kind](c, ctx)
+        except _Fail as err:
+            rows.append(_row(c, status="fail", reason=str(err)))
+            continue
+        except _NotEvaluated as err:
+            rows.append(_row(c, status="not reproducible", reason=str(err)))
+            continue
+        status = "not reproducible" if ok is None else ("pass" if ok else "fail")
+        agree = np.nan
+        if c.mode and c.figure in FIGURES and c.quantity != "natural_frequency_per_rev":
+            try:
+                agree = _agreement(ctx.frame(c.figure, c.overrides), c.mode)
+            except _Fail:
+                pass
+        rows.append(_row(c, expected, computed, value, status, why, agree))
+    return pd.DataFrame(rows, columns=COLUMNS)

@@ -1,0 +1,83 @@
+"""Figure results as tidy tables, and running one figure for the validation.
+
+:func:`figure_frame` turns any figure's result into one long table with an
+``x`` column (the figure's swept value); :func:`natural_frequency_frame`
+adds the blade's natural frequencies at the same x; :func:`compute_figure`
+runs a figure, optionally with configuration overrides (the variants some
+claims compare against).  Used by :mod:`tefcore.claim_checks`.
+"""
+
+from __future__ import annotations
+
+import inspect
+
+import numpy as np
+import pandas as pd
+
+from . import figures as _fig
+from .reference import FIGURES, KNOWN_FIGURES
+
+__all__ = ["FIG7_OVERHANGS", "compute_figure", "figure_frame", "natural_frequency_frame"]
+
+#: Overhangs of Fig. 7 when no claim asks for others.
+FIG7_OVERHANGS = inspect.signature(_fig.overhang_actuation_figure).parameters["overhangs"].default
+
+
+def figure_frame(name: str, result) -> pd.DataFrame:
+    """A figure's result as one long table with an ``x`` column.
+
+    Stability figures (SweepResult or its ``.table``): the ok rows with
+    ``x = value_si`` (``value`` if there is no ``value_si``), ``track``,
+    ``label`` and the quantities, plus ``damping = -real_part``.  Fig. 5:
+    ``x = psi_deg``; fig. 6: one row (``x`` NaN); fig. 7: ``x = overhang``.
+    """
+    if name in FIGURES:
+        t = getattr(result, "table", result)
+        if not isinstance(t, pd.DataFrame):
+            raise TypeError(f"{name}: expected a SweepResult or DataFrame, got {type(t)}")
+        if "status" in t:
+            t = t[t["status"] == "ok"]
+        t = t.assign(x=pd.to_numeric(t["value_si" if "value_si" in t else "value"]))
+        if "track" not in t:
+            t = t.assign(track=t["label"])
+        return t.assign(damping=-t["real_part"]) if "real_part" in t else t
+    if name == "fig5":
+        return result.assign(x=result["psi_deg"], label="", track=0)
+    if name == "fig6":
+        keys = ("half_peak_to_peak_deg", "peak_power", "mean_power")
+        return pd.DataFrame([{"x": np.nan, "label": "", "track": 0,
+                              **{k: float(result[k]) for k in keys}}])
+    if name == "fig7":
+        return result.assign(x=result["overhang"], label="", track=0)
+    raise ValueError(f"unknown figure {name!r}; known: {', '.join(KNOWN_FIGURES)}")
+
+
+def natural_frequency_frame(name, frame, cfg, overrides) -> pd.DataFrame:
+    """Blade natural frequencies (:func:`tefcore.blade.blade_modes`) at the frame's x."""
+    from .blade import blade_modes
+
+    base = _fig.figure_config(name, cfg).with_overrides(overrides)
+    rows = []
+    for x in np.unique(frame["x"].to_numpy(float)):
+        m = blade_modes(base.with_overrides({FIGURES[name].parameter: float(x)}))
+        rows += [{"x": x, "label": f"blade {lab}", "track": f"blade {lab}",
+                  "natural_frequency_per_rev": float(f)}
+                 for lab, f in zip(m.labels, m.frequencies, strict=True)]
+    return pd.DataFrame(rows)
+
+
+def compute_figure(name, cfg=None, values=None, overrides=None, n_jobs=1, progress=False):
+    """Run one figure (optionally with configuration overrides)."""
+    if name == "fig5":
+        return _fig.hinge_moment_figure(cfg)
+    if name == "fig6":
+        return _fig.flap_response_figure(cfg)
+    if name == "fig7":
+        return _fig.overhang_actuation_figure(cfg, overhangs=values or FIG7_OVERHANGS)
+    values = list(FIGURES[name].values if values is None else values)
+    if not overrides:
+        return _fig.run_figure(name, cfg, values=values, n_jobs=n_jobs, progress=progress)
+    from .sweep import sweep
+
+    base = _fig.figure_config(name, cfg).with_overrides(overrides)
+    return sweep(base, FIGURES[name].parameter, values, n_jobs=n_jobs, progress=progress)
