@@ -158,6 +158,34 @@ def stability(cfg, *, trim_result: TrimResult | None = None, n_steps: int | None
     return _stability_of(model, tr, n_steps)
 
 
+def periodic_state_matrix(tr: TrimResult):
+    """State matrix ``A(psi)`` of the system linearised about a forward-flight trim.
+
+    ``A`` is sampled on the trim's azimuth grid (``cfg.model.n_azimuth``) and
+    interpolated by Fourier series: the trim resolves harmonics below
+    ``n_azimuth / 2``, and twice the samples change the exponents by less
+    than 1e-3 /rev (measured on MDART at mu = 0.3).
+
+    Returns
+    -------
+    a_of_psi : callable
+        Vectorised ``A(psi)``, shape ``(len(psi), 2 n, 2 n)``, for
+        :func:`tefcore.floquet.floquet_modes`.
+    mass : ndarray, shape (n_azimuth, n, n)
+        The mass matrix samples.
+    """
+    n = tr.model.n_dof
+    n_lin = tr.model.cfg.model.n_azimuth
+    psi_lin = np.linspace(0, 2 * np.pi, n_lin, endpoint=False)
+    m, c, k = linearize(tr, psi_lin, scheme="forward")
+    a_flat = state_matrix(m, c, k).reshape(n_lin, -1).T
+
+    def a_of_psi(psi):
+        return fourier_eval(a_flat, psi).T.reshape(-1, 2 * n, 2 * n)
+
+    return a_of_psi, m
+
+
 def _stability_of(model, tr: TrimResult, n_steps: int | None) -> StabilityResult:
     """Linearise a trimmed model and label its (Floquet) modes."""
     cfg = model.cfg
@@ -168,21 +196,12 @@ def _stability_of(model, tr: TrimResult, n_steps: int | None) -> StabilityResult
         res = floquet.constant_coefficient_modes(state_matrix(m, c, k))
         mass_diag = np.abs(np.diag(m))
     else:
-        # the trim resolves harmonics below n_azimuth/2; sampling A(psi) on the
-        # same grid and interpolating it changes the exponents by < 1e-3/rev
-        # against twice the samples (measured on MDART at mu = 0.3)
-        n_lin = cfg.model.n_azimuth
-        psi_lin = np.linspace(0, 2 * np.pi, n_lin, endpoint=False)
-        m, c, k = linearize(tr, psi_lin, scheme="forward")
-        a_samples = state_matrix(m, c, k)
-        a_flat = a_samples.reshape(n_lin, -1).T
-
-        def a_of_psi(psi):
-            return fourier_eval(a_flat, psi).T.reshape(-1, 2 * n, 2 * n)
-
+        a_of_psi, m = periodic_state_matrix(tr)
+        # K = 4 sub-intervals to start with; floquet_modes raises K for
+        # heavily damped roots (seen: -7.2 /rev torsion at Fig. 14's 0.22 R span)
         res = floquet.floquet_modes(a_of_psi, n_steps=n_steps or cfg.model.n_floquet_steps,
                                     n_sub=4, method="magnus", shift_states=slice(0, n))
-        mass_diag = np.abs(np.einsum("mii->i", m)) / n_lin
+        mass_diag = np.abs(np.einsum("mii->i", m)) / m.shape[0]
     keep = res.positive_frequency()
     # by frequency; the two roots of a locked pair share it exactly, so ties
     # (to 1e-9 /rev, round-off) go less damped first, not by round-off

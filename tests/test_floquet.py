@@ -536,3 +536,31 @@ def test_positive_frequency_keeps_self_conjugate_roots():
     flipped = np.isclose(pos.frequencies, 4.0)
     assert_allclose(pos.eigenvectors[:, flipped], np.conj(vec[:, 2:4]))
     assert_allclose(pos.multipliers, np.exp(pos.exponents * 2 * np.pi))
+
+
+def test_sub_intervals_are_raised_for_heavily_damped_roots():
+    # exponents -0.05 +- 1i and -12 +- 3.5i (constant, non-normal): with
+    # K = 4 the -12 root of the lift is |mu| = exp(-12 pi / 2) ~ 7e-9, below
+    # MIN_ROOT, so K goes to the power of two that lifts it above the floor
+    # (K ln|mu| / ln 1e-3 ~ 11 -> 16); the light system keeps K = 4
+    from tefcore.floquet import MAX_SUB, MIN_ROOT
+
+    lam = np.array([-0.05 + 1j, -0.05 - 1j, -12 + 3.5j, -12 - 3.5j])
+    A = coupled(lam, seed=1)
+    res = floquet_modes(A, method="magnus", n_sub=4)
+    assert res.n_sub == MAX_SUB == 16
+    assert np.exp(-12 * TWO_PI / res.n_sub) >= MIN_ROOT
+    # constant A: the exponents are exactly eig(A) up to the resolved
+    # frequency shift; damping rates to Magnus/round-off accuracy
+    assert_allclose(np.sort(res.damping_rates), np.sort(lam.real), atol=1e-8)
+    light = floquet_modes(coupled(lam[:2], seed=1), method="magnus", n_sub=4)
+    assert light.n_sub == 4
+    # max_sub <= n_sub keeps K: the heavily damped root is then at the floor
+    fixed = floquet_modes(A, method="magnus", n_sub=4, max_sub=4)
+    assert fixed.n_sub == 4
+
+
+@pytest.mark.parametrize("bad", [0, -2, 1.5, "8"])
+def test_max_sub_validation(bad):
+    with pytest.raises((ValueError, TypeError), match="max_sub"):
+        floquet_modes(np.eye(2) * -0.1, max_sub=bad)

@@ -1,5 +1,7 @@
 """Coupled model, wind-tunnel trim, linearisation and Floquet stability (MDART)."""
 
+import warnings
+
 import numpy as np
 import pytest
 from numpy.testing import assert_allclose
@@ -190,8 +192,6 @@ def test_c81_table_aerodynamics_runs_the_coupled_analysis(mdart):
     # the shipped deck is generated from the thin-airfoil model with a = 2 pi,
     # so the trim collective must sit close to a thin-airfoil model with the
     # same lift slope (within 0.3 deg: table interpolation and clipping)
-    import warnings
-
     from tefcore.c81 import C81RangeWarning, example_deck_path
 
     base = mdart.with_overrides({"flight.advance_ratio": 0.0,
@@ -205,3 +205,43 @@ def test_c81_table_aerodynamics_runs_the_coupled_analysis(mdart):
     thin = trim(coupled_model(base))
     assert abs(np.rad2deg(tab.controls.collective - thin.controls.collective)) < 0.3
     assert "TEF" in set(res.modes["label"])
+
+
+def test_heavily_damped_root_resolved_by_raising_the_sub_intervals():
+    # Fig. 14 at 0.22 R flap span: a torsion root near -7.2 /rev with
+    # transition matrices of norm ~1e7. With K = 4 sub-intervals its lifted
+    # root is |mu| ~ 1e-6 and came out 1.4 /rev off (at the wrong frequency);
+    # floquet_modes raises K until |mu| >= MIN_ROOT. Reference: K = 16.
+    from tefcore.figures import figure_config
+    from tefcore.stability import periodic_state_matrix
+
+    cfg = figure_config("fig14").with_overrides({"flap.span": 0.22})
+    tr = stability(cfg).trim_result
+    a_of_psi, _ = periodic_state_matrix(tr)
+    n = tr.model.n_dof
+    kw = dict(n_steps=72, method="magnus", shift_states=slice(0, n))
+    with warnings.catch_warnings():          # K = 4 may also warn that roots do not split
+        warnings.simplefilter("ignore", RuntimeWarning)
+        fixed = floquet.floquet_modes(a_of_psi, n_sub=4, max_sub=4, **kw)
+    adaptive = floquet.floquet_modes(a_of_psi, n_sub=4, **kw)
+    eight = floquet.floquet_modes(a_of_psi, n_sub=8, max_sub=8, **kw)
+    reference = floquet.floquet_modes(a_of_psi, n_sub=16, max_sub=16, **kw)
+    assert fixed.n_sub == 4 and adaptive.n_sub > 4
+    ref = np.sort(reference.damping_rates)
+    assert ref[0] < -7.0
+    assert np.abs(np.sort(fixed.damping_rates) - ref).max() > 0.1
+    # converged in K: 8 against 16 agree to 2.4e-4 /rev on that root (observed)
+    assert_allclose(np.sort(eight.damping_rates), ref, atol=5e-4)
+    assert_allclose(np.sort(adaptive.damping_rates), ref, atol=5e-4)
+
+
+def test_lightly_damped_forward_flight_keeps_four_sub_intervals(forward):
+    # MDART at mu = 0.3: the most damped root (TEF, about -2 /rev) has
+    # |mu| = exp(-2 pi / 2) ~ 0.04 >= MIN_ROOT, so K stays at 4 (no extra cost)
+    from tefcore.stability import periodic_state_matrix
+
+    a_of_psi, _ = periodic_state_matrix(forward)
+    n = forward.model.n_dof
+    res = floquet.floquet_modes(a_of_psi, n_steps=72, n_sub=4, method="magnus",
+                                shift_states=slice(0, n))
+    assert res.n_sub == 4
