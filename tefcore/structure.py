@@ -325,13 +325,14 @@ def _uncoupled_blocks(k, m, owner) -> list[np.ndarray]:
     n_f = len(FIELD_GROUPS)
     ind = np.zeros((owner.size, n_f))
     ind[np.arange(owner.size), owner] = 1.0
-    link = ind.T @ ((k != 0) | (m != 0)) @ ind > 0        # field-field coupling
-    comp = list(range(n_f))                                 # union of linked fields
+    # |k| + |m| summed over field pairs: nonzero where any entry couples them
+    link = (ind.T @ (np.abs(k) + np.abs(m)) @ ind) > 0
+    comp = np.arange(n_f)                                   # union of linked fields
     for _ in range(n_f):
         for a, b in zip(*np.nonzero(link), strict=True):
             comp[a] = comp[b] = min(comp[a], comp[b])
-    blocks = [np.flatnonzero(np.isin(owner, [f for f in range(n_f) if comp[f] == c]))
-              for c in sorted(set(comp))]
+    of_dof = comp[owner]
+    blocks = [np.flatnonzero(of_dof == c) for c in np.unique(comp)]
     return [b for b in blocks if b.size]
 
 
@@ -345,7 +346,7 @@ def _lowest_modes(k, m, n, owner=None):
     ``lam_n`` the n-th lowest eigenvalue so far: by Sylvester's law of
     inertia it then has no eigenvalue below ``lam_n`` (the stiff axial block
     of a rotor blade, usually).  Each solved block is smaller and better
-    conditioned than the whole (MDART: 2.2 ms dense, 0.9 ms by blocks).
+    conditioned than the whole (MDART: 2.2-2.4 ms dense, 1.3-1.4 ms by blocks).
     """
     blocks = [np.arange(k.shape[0])] if owner is None else _uncoupled_blocks(k, m, owner)
     if len(blocks) == 1:
