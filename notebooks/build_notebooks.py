@@ -164,7 +164,8 @@ fig.suptitle({pystr(title, 13)},
 nt.savefig(fig, out, "{stem_png}");
 '''))
     cells.append(code(f'''\
-print("damping (" + damping_measure + ") of the tracked modes:")
+print("damping (" + damping_measure + ") of the tracked modes "
+      "(NaN: that track is absent at this x, e.g. after a locked pair unlocks):")
 summary = nt.mode_summary("{fig}", {var}.table, measure=damping_measure{lab})
 print(summary.to_string())
 changes = nt.sign_changes("{fig}", {var}.table, measure=damping_measure)
