@@ -305,12 +305,13 @@ def section_loads(static_model, *, alpha, alpha_rate, alpha_accel, plunge_rate, 
     # one finiteness test for all inputs (this sits in the trim's inner loop):
     # NaN or inf anywhere makes the sum non-finite; the per-name checks run
     # only to word the error. Scalars stay scalars (no broadcast copies).
-    if check_finite and not np.isfinite(sum(float(v.sum()) for v in vals.values())):
-        for k, v in vals.items():
-            _finite(k, v)
-    for k in ("velocity", "density", "chord") if check_finite else ():
-        if np.any(vals[k] <= 0.0):
-            _finite(k, vals[k], positive=True)
+    if check_finite:
+        if not np.isfinite(sum(float(v.sum()) for v in vals.values())):
+            for k, v in vals.items():
+                _finite(k, v)
+        for k in ("velocity", "density", "chord"):
+            if np.any(vals[k] <= 0.0):
+                _finite(k, vals[k], positive=True)
     pg = prandtl_glauert(vals["mach"])
     al, ar, aa, pr, pa, dl, dr, da, ax, u, rho, chd, m = vals.values()
     if not getattr(static_model, "compressibility", True):

@@ -21,6 +21,7 @@ import numpy as np
 import pandas as pd
 import scipy.integrate
 import scipy.linalg
+import scipy.sparse.csgraph
 
 from .beam_element import element_matrices, field_operators
 
@@ -327,12 +328,9 @@ def _uncoupled_blocks(k, m, owner) -> list[np.ndarray]:
     ind[np.arange(owner.size), owner] = 1.0
     # |k| + |m| summed over field pairs: nonzero where any entry couples them
     link = (ind.T @ (np.abs(k) + np.abs(m)) @ ind) > 0
-    comp = np.arange(n_f)                                   # union of linked fields
-    for _ in range(n_f):
-        for a, b in zip(*np.nonzero(link), strict=True):
-            comp[a] = comp[b] = min(comp[a], comp[b])
+    n_blocks, comp = scipy.sparse.csgraph.connected_components(link, directed=False)
     of_dof = comp[owner]
-    blocks = [np.flatnonzero(of_dof == c) for c in np.unique(comp)]
+    blocks = [np.flatnonzero(of_dof == c) for c in range(n_blocks)]
     return [b for b in blocks if b.size]
 
 
