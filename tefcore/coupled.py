@@ -52,6 +52,9 @@ def _gauss_segments(edges, n):
     return np.concatenate(xs), np.concatenate(ws)
 
 
+#: Stations of :meth:`CoupledModel.tracking_basis` (mid-points of equal spans).
+TRACKING_STATIONS = 12
+
 #: Blade fields the aerodynamics and flap equations need, in ``shape_stack`` order.
 _FIELDS = ("w", "dw", "v", "dv", "phi")
 
@@ -87,8 +90,10 @@ class CoupledModel:
     tip_flap: np.ndarray          # flap deflection w(1) of each mode
     twist: np.ndarray             # pretwist at x relative to 0.75 R [rad]
     m_s: np.ndarray
-    c_s: np.ndarray
+    c_s: np.ndarray               # d_s + g_s
     k_s: np.ndarray
+    d_s: np.ndarray = None        # structural (lag damper) damping
+    g_s: np.ndarray = None        # Coriolis (gyroscopic, skew)
     flap: dict = field(default_factory=dict)   # nondimensional flap properties
     aero: object = None
     scale: dict = field(default_factory=dict)
@@ -102,6 +107,38 @@ class CoupledModel:
         """Coordinate labels: ``blade flap 1`` ..., then ``TEF``."""
         out = [f"blade {lab}" for lab in self.modes.labels]
         return out + (["TEF"] if self.has_flap else [])
+
+    def tracking_basis(self, n_stations: int = TRACKING_STATIONS) -> np.ndarray:
+        """Map from coordinates to a physical shape in which modes are compared.
+
+        Rows: the flap and lag deflections ``w, v`` and the motion of the
+        section's edges by twist ``(c/2) phi`` at ``n_stations`` mid-points
+        of equal spans from the structural root to the tip, each times
+        ``sqrt(dx)``, then the flap's trailing-edge motion ``c_f delta``
+        times ``sqrt(b_f)`` (rotor units, lengths in R).  A kinematic norm:
+        it measures how far points of the blade and flap move, so a light
+        flap or a low-inertia twist is not hidden by heavy bending as in an
+        energy norm.  Unlike the modal coordinates, whose blade modes change
+        with the configuration, this basis is the same at every point of a
+        sweep of one blade, so the shapes of different points compare (MAC).
+
+        Returns
+        -------
+        ndarray, shape (3 n_stations + has_flap, n_dof)
+        """
+        r0 = self.cfg.rotor.root_offset
+        edges = np.linspace(r0, 1.0, n_stations + 1)
+        x = 0.5 * (edges[1:] + edges[:-1])
+        weight = np.sqrt(np.diff(edges))[:, None]
+        sh = self.modes.shapes(x)
+        half_chord = 0.5 * self.cfg.rotor.chord / self.cfg.rotor.radius
+        blocks = [weight * sh["w"], weight * sh["v"], half_chord * weight * sh["phi"]]
+        basis = np.zeros((3 * n_stations + int(self.has_flap), self.n_dof))
+        basis[:3 * n_stations, :self.n_modes] = np.concatenate(blocks, axis=0)
+        if self.has_flap:
+            flap_chord = self.cfg.flap.chord_ratio * self.cfg.rotor.chord / self.cfg.rotor.radius
+            basis[-1, -1] = flap_chord * np.sqrt(self.flap["span"])
+        return basis
 
     def actuator_input(self, psi):
         """Actuator base angle ``delta_a(psi)`` and its psi-derivative [rad]."""
@@ -181,6 +218,18 @@ class CoupledModel:
             Blade vertical force per azimuth, as C_T/sigma contribution
             (its azimuthal mean is the rotor C_T/sigma).
         """
+        pieces, thrust = self.residual_pieces(psi, q, qd, qdd, controls, inflow)
+        return sum(pieces.values()), thrust
+
+    def residual_pieces(self, psi, q, qd, qdd, controls: Controls, inflow):
+        """The residual as named physical pieces that add up to it (docs/theory.md 6.1).
+
+        Same arguments as :meth:`evaluate`. Returns ``(pieces, thrust)`` with
+        ``pieces`` a dict :data:`RESIDUAL_PIECES` -> ``(n_dof, n)`` array
+        (rows: blade modes, then the flap equation); their sum is the
+        residual of :meth:`evaluate`.  The mechanism diagnostics
+        (:mod:`tefcore.mechanism`) differentiate each piece separately.
+        """
         cfg, sh, nm = self.cfg, self.shapes, self.n_modes
         psi = np.asarray(psi, float)
         kin = self.kinematics(psi, q, qd, qdd, controls, inflow)
@@ -215,9 +264,22 @@ class CoupledModel:
         wq = self.w[None, :]
         fz = (lift * cphi - drag * sphi) * wq
         fy = -(lift * sphi + drag * cphi) * wq
-        q_aero = fz @ sh["w"] + fy @ sh["v"] + (moment * wq) @ sh["phi"]
-        res = np.empty((self.n_dof, psi.size))
-        res[:nm] = self.m_s @ qbdd + self.c_s @ qbd + self.k_s @ qb - q_aero.T
+        n_psi = psi.size
+
+        def blade_rows(values):
+            arr = np.zeros((self.n_dof, n_psi))
+            arr[:nm] = values
+            return arr
+
+        pieces = {
+            "blade inertia": blade_rows(self.m_s @ qbdd),
+            "blade stiffness": blade_rows(self.k_s @ qb),
+            "blade structural damping": blade_rows(self.d_s @ qbd),
+            "blade Coriolis": blade_rows(self.g_s @ qbd),
+            "airload normal force": blade_rows(-(fz @ sh["w"]).T),
+            "airload in-plane force": blade_rows(-(fy @ sh["v"]).T),
+            "airload pitching moment": blade_rows(-((moment * wq) @ sh["phi"]).T),
+        }
         thrust = fz.sum(axis=1) * sc["ct_sigma"]
         if self.has_flap:
             # the flap's inertial terms exist only on the flap span
@@ -225,16 +287,23 @@ class CoupledModel:
             on = {k: kin[k][:, fs] for k in ("theta", "theta_dd", "wdd", "vdd", "v", "slope",
                                              "dv", "dvd", "dwd")}
             wf = wq[:, fs]
-            res[:nm] += self._flap_reactions(on["theta"], dl[:, fs], dld[:, fs], dldd[:, fs],
-                                             wf).T
-            res[nm] = self._flap_equation(psi, on, dl[:, fs], dldd[:, fs], q[nm], qd[nm],
-                                          hinge, wf)
-        return res, thrust
+            react = self._flap_reactions(on["theta"], dl[:, fs], dld[:, fs], dldd[:, fs], wf)
+            flap = self._flap_equation(psi, on, dl[:, fs], dldd[:, fs], q[nm], qd[nm],
+                                       hinge, wf)
+            for name in FLAP_PIECES:
+                arr = np.zeros((self.n_dof, n_psi))
+                if name in react:
+                    arr[:nm] = react[name].T
+                if name in flap:
+                    arr[nm] = flap[name]
+                pieces[name] = arr
+        return pieces, thrust
 
     def _flap_reactions(self, th, dl, dld, dldd, wf):
-        """delta-dependent inertial loads of the flap on the blade modes.
+        """delta-dependent inertial loads of the flap on the blade modes, by piece.
 
         Arrays are (azimuths, flap stations); ``wf`` the flap stations' weights.
+        Returns a dict of piece name -> (azimuths, n_modes).
         """
         f, fs = self.flap, self.flap_stations
         sh = {k: v[fs] for k, v in self.shapes.items()}
@@ -245,15 +314,22 @@ class CoupledModel:
             np.sin(th + phi_f) - np.sin(2 * th))
         x = self.x[None, fs]
         ipe = ih - sf * eta
-        return ((-sf * c * dldd * wf) @ sh["w"] + ((sf * s * (dldd - dl)) * wf) @ sh["v"]
-                + ((ipe * dldd + m_cf) * wf) @ sh["phi"]
-                + ((-sf * x * c * dl - 2 * ipe * s * s * dld) * wf) @ sh["dw"]
-                + ((sf * x * s * dl - 2 * ipe * s * c * dld) * wf) @ sh["dv"])
+        return {
+            "flap inertial coupling to bending": ((-sf * c * dldd * wf) @ sh["w"]
+                                                  + ((sf * s * dldd) * wf) @ sh["v"]),
+            "flap inertial coupling to torsion": ((ipe * dldd) * wf) @ sh["phi"],
+            "flap centrifugal": (((-sf * s * dl) * wf) @ sh["v"] + (m_cf * wf) @ sh["phi"]
+                                 + ((-sf * x * c * dl) * wf) @ sh["dw"]
+                                 + ((sf * x * s * dl) * wf) @ sh["dv"]),
+            "flap Coriolis": (((-2 * ipe * s * s * dld) * wf) @ sh["dw"]
+                              + ((-2 * ipe * s * c * dld) * wf) @ sh["dv"]),
+        }
 
     def _flap_equation(self, psi, on, dl, dldd, delta, delta_d, hinge, wf):
-        """Flap equation residual (docs/theory.md section 4.1), integrated over the span.
+        """Flap equation residual (docs/theory.md section 4.1) over the span, by piece.
 
-        ``on`` holds the blade kinematics on the flap stations.
+        ``on`` holds the blade kinematics on the flap stations. Returns a
+        dict of piece name -> (azimuths,).
         """
         f = self.flap
         ih, sf, eta = f["inertia_hinge"], f["first_moment"], f["hinge_from_ea"]
@@ -261,14 +337,34 @@ class CoupledModel:
         c, s = np.cos(th), np.sin(th)
         x = self.x[None, self.flap_stations]
         ipe = ih - sf * eta
-        per_span = (ih * (dldd + th_dd) - sf * eta * th_dd - sf * (on["wdd"] * c - on["vdd"] * s)
-                    + propeller_moment(ih, sf, eta, th, dl)
-                    - sf * x * (on["slope"] * c - on["dv"] * s) - sf * on["v"] * s
-                    + ipe * (on["dvd"] * np.sin(2 * th) + on["dwd"] * (1 - np.cos(2 * th)))
-                    - hinge)
         da, da_d = self.actuator_input(psi)
-        return ((per_span * wf).sum(axis=1)
-                + f["k_a"] * (delta - da) + f["c_a"] * (delta_d - da_d))
+
+        def span(per_span):
+            return (per_span * wf).sum(axis=1)
+
+        return {
+            "flap inertia": span(ih * dldd),
+            "flap inertial coupling to torsion": span(ipe * th_dd),
+            "flap inertial coupling to bending": span(-sf * (on["wdd"] * c - on["vdd"] * s)),
+            "flap centrifugal": span(propeller_moment(ih, sf, eta, th, dl)
+                                     - sf * x * (on["slope"] * c - on["dv"] * s)
+                                     - sf * on["v"] * s),
+            "flap Coriolis": span(ipe * (on["dvd"] * np.sin(2 * th)
+                                         + on["dwd"] * (1 - np.cos(2 * th)))),
+            "airload hinge moment": span(-hinge),
+            "actuator spring": f["k_a"] * (delta - da),
+            "actuator damper": f["c_a"] * (delta_d - da_d),
+        }
+
+
+#: Pieces of the flap's own equation and of its reactions on the blade.
+FLAP_PIECES = ("flap inertia", "flap inertial coupling to bending",
+               "flap inertial coupling to torsion", "flap centrifugal", "flap Coriolis",
+               "airload hinge moment", "actuator spring", "actuator damper")
+#: Every piece of :meth:`CoupledModel.residual_pieces`, in its order.
+RESIDUAL_PIECES = ("blade inertia", "blade stiffness", "blade structural damping",
+                   "blade Coriolis", "airload normal force", "airload in-plane force",
+                   "airload pitching moment") + FLAP_PIECES
 
 
 def coupled_model(cfg, collective: float = 0.0, modes=None) -> CoupledModel:
@@ -312,7 +408,8 @@ def coupled_model(cfg, collective: float = 0.0, modes=None) -> CoupledModel:
                         tip_flap=s["w"][-1], shapes=shapes, twist=twist,
                         m_s=modes.modal_mass,
                         c_s=modes.modal_damping + modes.modal_gyroscopic,
-                        k_s=modes.modal_stiffness, flap=flap, aero=section_model(cfg),
+                        k_s=modes.modal_stiffness, d_s=modes.modal_damping,
+                        g_s=modes.modal_gyroscopic, flap=flap, aero=section_model(cfg),
                         scale=scale)
 
 
@@ -323,7 +420,7 @@ def _stack_fields(objs, cls, names, n_psi):
 
 
 def jacobian_blocks(model: CoupledModel, psi, q, qd, qdd, controls, inflow, *,
-                    step: float = 1e-7, scheme: str = "forward", extra=()):
+                    step: float = 1e-7, scheme: str = "forward", extra=(), pieces=False):
     """Per-azimuth derivatives of the residual and thrust w.r.t. ``q, q*, q**``.
 
     The residual at one azimuth depends only on the motion there, so every
@@ -335,16 +432,21 @@ def jacobian_blocks(model: CoupledModel, psi, q, qd, qdd, controls, inflow, *,
     extra : sequence of (Controls, Inflow), optional
         Further controls and inflows to evaluate at the unperturbed motion in
         the same stacked call (the trim's control columns).
+    pieces : bool
+        Differentiate each named piece of the residual
+        (:meth:`CoupledModel.residual_pieces`) separately: ``jac`` is then a
+        dict piece -> array, whose sum is the Jacobian of the residual.
 
     Returns
     -------
-    jac : ndarray, shape (3, n_psi, n, n)
+    jac : ndarray, shape (3, n_psi, n, n), or dict of them
         ``d R_i / d q_j`` for ``q`` (0), ``q*`` (1), ``q**`` (2) at each azimuth.
     dthrust : ndarray, shape (3, n_psi, n)
         The same for the thrust contribution.
     base : tuple
         ``(R, thrust)`` at the unperturbed motion (forward scheme) or None;
-        with ``extra``, a third item: the list of ``(R, thrust)`` for each.
+        with ``extra``, a third item: the list of ``(R, thrust)`` for each
+        (residuals summed over the pieces).
     """
     if scheme not in ("central", "forward"):
         raise ValueError(f"scheme must be 'central' or 'forward', got {scheme!r}")
@@ -371,21 +473,43 @@ def jacobian_blocks(model: CoupledModel, psi, q, qd, qdd, controls, inflow, *,
                                  ("collective", "cyclic_cos", "cyclic_sin"), m)
         inflow = _stack_fields([p[1] for p in pairs], type(inflow),
                                ("mean_induced", "freestream", "kx", "ky"), m)
-    res, thr = model.evaluate(np.tile(psi, n_blk), *motion, controls, inflow)
+    args = (np.tile(psi, n_blk), *motion, controls, inflow)
+    if pieces:
+        parts, thr = model.residual_pieces(*args)
+        jac = {name: _difference(r.reshape(n, n_blk, m), n, step, scheme)[0]
+               for name, r in parts.items()}
+        res = sum(parts.values())
+    else:
+        res, thr = model.evaluate(*args)
     res = res.reshape(n, n_blk, m)
     thr = thr.reshape(n_blk, m)
     k = 3 * n
+    if not pieces:
+        jac, r0 = _difference(res, n, step, scheme)
+    else:
+        r0 = res[:, k] if scheme == "forward" else None
     if scheme == "forward":
-        r0, t0 = res[:, k], thr[k]
-        dres = (res[:, :k] - r0[:, None]) / step
+        t0 = thr[k]
         dthr = (thr[:k] - t0) / step
         base = (r0, t0)
     else:
-        dres = (res[:, :k] - res[:, k:n_pert]) / (2 * step)
         dthr = (thr[:k] - thr[k:n_pert]) / (2 * step)
         base = None
     if extra:
         first = n_blk - len(extra)
         base = (base or (None, None)) + ([(res[:, b], thr[b]) for b in range(first, n_blk)],)
-    jac = dres.reshape(n, 3, n, m).transpose(1, 3, 0, 2)      # (which, psi, i, j)
     return jac, dthr.reshape(3, n, m).transpose(0, 2, 1), base
+
+
+def _difference(res, n, step, scheme):
+    """Finite-difference Jacobian blocks (3, n_psi, n, n) from stacked residuals
+    ``res`` (n, n_blocks, n_psi); also the unperturbed residual (forward)."""
+    m = res.shape[-1]
+    k = 3 * n
+    if scheme == "forward":
+        r0 = res[:, k]
+        dres = (res[:, :k] - r0[:, None]) / step
+    else:
+        r0 = None
+        dres = (res[:, :k] - res[:, k:2 * k]) / (2 * step)
+    return dres.reshape(n, 3, n, m).transpose(1, 3, 0, 2), r0

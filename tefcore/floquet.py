@@ -579,6 +579,9 @@ class FloquetResult:
     n_sub : int or None
         Sub-intervals of the lifting that gave the result (``floquet_modes``
         raises it for heavily damped modes); None for direct eigenanalysis.
+    participation : ndarray, shape (n, m) or None
+        Participation factors of the states in the modes, if computed
+        (:meth:`with_participation`).
     """
 
     exponents: np.ndarray
@@ -588,6 +591,7 @@ class FloquetResult:
     psi: np.ndarray | None = None
     shapes: np.ndarray | None = None
     n_sub: int | None = None
+    participation: np.ndarray | None = None
 
     @property
     def damping_rates(self):
@@ -609,9 +613,50 @@ class FloquetResult:
 
     def select(self, mask):
         """Result restricted to the entries ``mask`` (boolean or integer index)."""
+        pf = self.participation
         return replace(self, exponents=self.exponents[mask], multipliers=self.multipliers[mask],
                        eigenvectors=self.eigenvectors[:, mask],
-                       shapes=None if self.shapes is None else self.shapes[..., mask])
+                       shapes=None if self.shapes is None else self.shapes[..., mask],
+                       participation=None if pf is None else pf[:, mask])
+
+    def with_participation(self):
+        """The result with the participation factors of the states filled in.
+
+        The participation of state ``k`` in mode ``i`` is
+        ``p_ki = <y_ik(psi)* x_ik(psi)>``, the azimuthal mean of the product of
+        the mode's periodic shape and its dual (adjoint) shape, normalised so
+        that ``y_i(psi)^H x_i(psi) = 1`` [1]_ [2]_.  The duals are the rows of
+        the inverse of the matrix of all periodic shapes (Floquet solutions
+        and adjoint solutions are biorthogonal at every azimuth); for constant
+        coefficients the shapes are the eigenvectors and ``p_ki`` are the
+        classical participation factors ``l_ik r_ki / l_i^T r_i``.  Each
+        column sums to 1; unlike energy shares they do not depend on how the
+        coordinates are scaled, so a light flap coordinate is not hidden by
+        heavy blade modes.  Needs all modes and, for a periodic system, the
+        shapes (``floquet_modes(..., shapes=True)``).
+
+        References
+        ----------
+        .. [1] I. J. Perez-Arriaga, G. C. Verghese, F. C. Schweppe, "Selective
+           modal analysis with applications to electric power systems, part I",
+           IEEE Trans. Power App. Syst. PAS-101(9) (1982) 3117-3125.
+        .. [2] G. C. Verghese, I. J. Perez-Arriaga, F. C. Schweppe, "Selective
+           modal analysis ... part II", ibid. 3126-3134.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> res = constant_coefficient_modes(np.diag([-1.0, -2.0])).with_participation()
+        >>> np.abs(res.participation).round(6).tolist()
+        [[0.0, 1.0], [1.0, 0.0]]
+        """
+        per = self.shapes if self.shapes is not None else self.eigenvectors[None]
+        if per.shape[-1] != per.shape[-2]:
+            raise ValueError("participation factors need every mode of the system "
+                             f"({per.shape[-2]} states, {per.shape[-1]} modes)")
+        dual = np.linalg.inv(per)                       # (n_psi, modes, states)
+        pf = np.einsum("pik,pki->ki", dual, per) / per.shape[0]
+        return replace(self, participation=pf)
 
     def positive_frequency(self, tol=1e-9):
         """One mode of each conjugate pair: those with ``omega >= -tol``.
@@ -649,7 +694,9 @@ class FloquetResult:
             return np.where(conj, np.conj(a), a)
         return replace(out, exponents=fix(out.exponents), multipliers=fix(out.multipliers),
                        eigenvectors=fix(out.eigenvectors),
-                       shapes=None if out.shapes is None else fix(out.shapes))
+                       shapes=None if out.shapes is None else fix(out.shapes),
+                       participation=None if out.participation is None
+                       else fix(out.participation))
 
 
 def _normalise(v):
@@ -906,5 +953,6 @@ def constant_coefficient_modes(A, period=_TWO_PI):
     if not np.isfinite(a).all():
         raise ValueError("A has non-finite entries (NaN or inf)")
     eta, vectors = scipy.linalg.eig(a)
-    return _sorted_result(eta, np.exp(eta * period), vectors, period)
+    # a real A with real eigenvalues gives real vectors: complex, like every result
+    return _sorted_result(eta, np.exp(eta * period), vectors.astype(complex), period)
 

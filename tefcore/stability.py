@@ -1,11 +1,16 @@
 """Linearisation about the trim and Floquet stability with labelled modes.
 
 ``stability(cfg)`` is the paper's analysis in one call: coupled model, trim,
-``M(psi), C(psi), K(psi)`` of eq. (5) by central differences of the
-nonlinear residual about the trimmed periodic motion, and Floquet
+``M(psi), C(psi), K(psi)`` of eq. (5) by finite differences of the
+nonlinear residual about the trimmed periodic motion
+(:class:`tefcore.linear_system.SecondOrderSystem`), and Floquet
 eigenanalysis (direct eigenanalysis in hover, where the coefficients are
 constant).  Each mode is labelled by the coordinate that carries most of its
-modal kinetic energy.
+participation (participation factors,
+:meth:`tefcore.floquet.FloquetResult.with_participation`); its shares by
+kind (blade flap, lag, torsion, axial, TEF) and its physical shape
+(:meth:`tefcore.coupled.CoupledModel.tracking_basis`) go with it, so that
+modes can be followed along sweeps (:mod:`tefcore.tracking`).
 """
 
 from __future__ import annotations
@@ -16,9 +21,16 @@ import numpy as np
 import pandas as pd
 import scipy.optimize
 
-from . import floquet
 from .coupled import coupled_model, jacobian_blocks
-from .trim import TrimResult, fourier_eval, initial_collective, trim
+from .linear_system import SecondOrderSystem
+from .linear_system import state_matrix as state_matrix
+from .trim import TrimResult, initial_collective, trim
+
+__all__ = ["REMODE_DEG", "SHARE_KINDS", "StabilityResult", "linear_system", "linearize",
+           "periodic_state_matrix", "stability", "state_matrix"]
+
+#: Kinds of coordinates whose kinetic-energy shares the modes table reports.
+SHARE_KINDS = ("flap", "lag", "torsion", "axial", "TEF")
 
 #: Re-mode threshold [deg] between the modes' collective and the trimmed one.
 REMODE_DEG = 2.0
@@ -40,46 +52,57 @@ def linearize(tr: TrimResult, psi, step: float = 1e-6, scheme: str = "central"):
     return jac[2], jac[1], jac[0]
 
 
-def state_matrix(m, c, k):
-    """First-order ``A = [[0, I], [-M^-1 K, -M^-1 C]]`` for stacked matrices."""
-    n = m.shape[-1]
-    minv_k = np.linalg.solve(m, k)
-    minv_c = np.linalg.solve(m, c)
-    top = np.concatenate([np.zeros_like(m), np.broadcast_to(np.eye(n), m.shape)], axis=-1)
-    return np.concatenate([top, np.concatenate([-minv_k, -minv_c], axis=-1)], axis=-2)
-
-
 @dataclass
 class StabilityResult:
-    """Modes of the linearised blade/flap system and the trim they belong to."""
+    """Modes of the linearised blade/flap system and the trim they belong to.
+
+    Attributes
+    ----------
+    modes : DataFrame
+        One row per mode, see :func:`stability`.
+    eigenvectors : ndarray, shape (2 n, n_modes)
+        State eigenvectors ``[q; q*]`` at psi = 0 (columns as the rows of
+        ``modes``).
+    trim : dict
+        Trim scalars.
+    trim_result : TrimResult
+    vectors : ndarray, shape (n_phys, n_modes)
+        Physical shapes at psi = 0
+        (:meth:`tefcore.coupled.CoupledModel.tracking_basis` times the
+        displacements): the parameter-independent basis in which modes are
+        compared between sweep points.
+    periodic : bool
+        True for forward flight (Floquet), False for hover (constant
+        coefficients).
+    system : SecondOrderSystem
+        The linearised ``M, C, K`` the modes belong to.
+    """
 
     modes: pd.DataFrame
     eigenvectors: np.ndarray
     trim: dict
     trim_result: TrimResult
+    vectors: np.ndarray | None = None
+    periodic: bool = False
+    system: SecondOrderSystem | None = None
 
 
-def _label_modes(vectors, mass_diag, labels, freqs, rates):
+def _label_modes(frac, labels, freqs, rates, disp):
     """Label modes by the coordinate they carry, one coordinate per mode.
 
-    Kinetic-energy fractions ``|q_k|^2 M_kk`` of each eigenvector's
-    displacements give a participation matrix; the labels are the
-    assignment (``scipy.optimize.linear_sum_assignment``) that maximises the
-    summed participation, so every coordinate names exactly one mode. A pure
-    "largest share" rule fails where aerodynamics couples modes strongly: the
-    MDART torsion mode in hover carries more flap than torsion kinetic energy
-    (torsion's modal inertia is tiny), yet it is the only mode with torsion.
-    A complex pair whose multipliers have become two real ones (frequency
-    locked to a multiple of 1/2 per rev, or overdamped) gives one mode more
-    than coordinates: the pair shares its coordinate's label, the less damped
-    root carrying it plainly and the other with ``(locked)`` appended (the
-    partner is the assigned mode at the closest frequency, ties by the
-    energy-weighted MAC).
+    ``frac`` are the coordinates' shares of participation (coordinates x
+    modes); the labels are the assignment
+    (``scipy.optimize.linear_sum_assignment``) that maximises the product of
+    the shares, so every coordinate names exactly one mode, even where two
+    modes share one coordinate (flutter). Kinetic-energy shares would hide the
+    light coordinates: the MDART torsion mode in hover carries 0.5 % of its
+    kinetic energy in torsion but 65 % of its participation (measured). A complex pair whose multipliers have
+    become two real ones (frequency locked to a multiple of 1/2 per rev, or
+    overdamped) gives one mode more than coordinates: the pair shares its
+    coordinate's label, the less damped root carrying it plainly and the
+    other with ``(locked)`` appended (the partner is the assigned mode at the
+    closest frequency, ties by the MAC of the physical shapes ``disp``).
     """
-    n = len(labels)
-    disp = vectors[:n] * np.sqrt(mass_diag)[:, None]
-    energy = np.abs(disp) ** 2
-    frac = energy / energy.sum(axis=0, keepdims=True)          # (coords, modes)
     # maximise the product of the shares (sum of logs): a coordinate must
     # participate materially in the mode that carries its name.  Maximising
     # the plain sum can hand a coordinate a mode where its share is 1e-4
@@ -102,7 +125,7 @@ def _label_modes(vectors, mass_diag, labels, freqs, rates):
                 out[j], out[best] = out[best], out[best] + " (locked)"
             else:
                 out[j] = out[best] + " (locked)"
-    return out, frac
+    return out
 
 
 def stability(cfg, *, trim_result: TrimResult | None = None, n_steps: int | None = None,
@@ -130,9 +153,12 @@ def stability(cfg, *, trim_result: TrimResult | None = None, n_steps: int | None
     -------
     StabilityResult
         ``modes`` has one row per mode (positive-frequency member of each
-        complex pair): ``mode_id, label, kind, frequency_per_rev, real_part,
-        damping_ratio, participation`` — ``real_part`` is the damping rate
-        per radian of azimuth (negative: stable).
+        complex pair): ``mode_id, label, kind, coordinate_share,
+        frequency_per_rev, real_part, damping_ratio, participation`` and
+        ``share_flap, share_lag, share_torsion, share_axial, share_TEF``
+        (participation by kind of coordinate, summing to 1) --
+        ``real_part`` is the damping rate per radian of azimuth (negative:
+        stable).
 
     Raises
     ------
@@ -158,13 +184,30 @@ def stability(cfg, *, trim_result: TrimResult | None = None, n_steps: int | None
     return _stability_of(model, tr, n_steps)
 
 
+def linear_system(tr: TrimResult) -> SecondOrderSystem:
+    """The paper's eq. (5) linearised about a trim: ``M, C, K`` on the trim grid.
+
+    Hover: one sample (constant coefficients).  Forward flight: the trim's
+    ``cfg.model.n_azimuth`` equally spaced azimuths, interpolated by
+    trigonometric series (the trim resolves harmonics below
+    ``n_azimuth / 2``; twice the samples change the exponents by less than
+    1e-3 /rev, measured on MDART at mu = 0.3).  Forward differences (step
+    1e-6 relative, far below what moves a damping value).
+    """
+    if tr.model.cfg.flight.advance_ratio == 0.0:
+        psi = np.zeros(1)
+    else:
+        psi = np.linspace(0, 2 * np.pi, tr.model.cfg.model.n_azimuth, endpoint=False)
+    m, c, k = linearize(tr, psi, scheme="forward")
+    return SecondOrderSystem(m, c, k)
+
+
 def periodic_state_matrix(tr: TrimResult):
     """State matrix ``A(psi)`` of the system linearised about a forward-flight trim.
 
-    ``A`` is sampled on the trim's azimuth grid (``cfg.model.n_azimuth``) and
-    interpolated by Fourier series: the trim resolves harmonics below
-    ``n_azimuth / 2``, and twice the samples change the exponents by less
-    than 1e-3 /rev (measured on MDART at mu = 0.3).
+    ``M, C, K`` are sampled on the trim's azimuth grid, interpolated by
+    trigonometric series and ``A = [[0, I], [-M^-1 K, -M^-1 C]]`` formed at
+    each azimuth (:meth:`SecondOrderSystem.state_matrix`).
 
     Returns
     -------
@@ -174,56 +217,57 @@ def periodic_state_matrix(tr: TrimResult):
     mass : ndarray, shape (n_azimuth, n, n)
         The mass matrix samples.
     """
-    n = tr.model.n_dof
-    n_lin = tr.model.cfg.model.n_azimuth
-    psi_lin = np.linspace(0, 2 * np.pi, n_lin, endpoint=False)
-    m, c, k = linearize(tr, psi_lin, scheme="forward")
-    a_flat = state_matrix(m, c, k).reshape(n_lin, -1).T
+    system = linear_system(tr)
+    return system.state_matrix, system.m
 
-    def a_of_psi(psi):
-        return fourier_eval(a_flat, psi).T.reshape(-1, 2 * n, 2 * n)
 
-    return a_of_psi, m
+def _coordinate_shares(participation, n):
+    """Shares of the coordinates in each mode (n x modes), summing to 1.
+
+    The participation factors of a coordinate's displacement and velocity
+    states, in magnitude, added and normalised per mode.
+    """
+    mag = np.abs(participation[:n]) + np.abs(participation[n:])
+    return mag / mag.sum(axis=0, keepdims=True)
 
 
 def _stability_of(model, tr: TrimResult, n_steps: int | None) -> StabilityResult:
     """Linearise a trimmed model and label its (Floquet) modes."""
     cfg = model.cfg
     n = model.n_dof
-    hover = cfg.flight.advance_ratio == 0.0
-    if hover:
-        m, c, k = (a[0] for a in linearize(tr, [0.0], scheme="forward"))
-        res = floquet.constant_coefficient_modes(state_matrix(m, c, k))
-        mass_diag = np.abs(np.diag(m))
-    else:
-        a_of_psi, m = periodic_state_matrix(tr)
-        # K = 4 sub-intervals to start with; floquet_modes raises K for
-        # heavily damped roots (seen: -7.2 /rev torsion at Fig. 14's 0.22 R span)
-        res = floquet.floquet_modes(a_of_psi, n_steps=n_steps or cfg.model.n_floquet_steps,
-                                    n_sub=4, method="magnus", shift_states=slice(0, n))
-        mass_diag = np.abs(np.einsum("mii->i", m)) / m.shape[0]
+    system = linear_system(tr)
+    # K = 4 sub-intervals to start with; floquet_modes raises K for heavily
+    # damped roots (seen: -7.2 /rev torsion at Fig. 14's 0.22 R span)
+    res = system.modes(n_steps=n_steps or cfg.model.n_floquet_steps, n_sub=4,
+                       shapes=system.periodic).with_participation()
     keep = res.positive_frequency()
     # by frequency; the two roots of a locked pair share it exactly, so ties
     # (to 1e-9 /rev, round-off) go less damped first, not by round-off
     order = np.lexsort((-keep.damping_rates, np.round(keep.frequencies, 9)))
-    vec = keep.eigenvectors[:, order]
-    labels, frac = _label_modes(vec, mass_diag, model.labels, keep.frequencies[order],
-                                keep.damping_rates[order])
+    keep = keep.select(order)
+    vec = keep.eigenvectors
+    frac = _coordinate_shares(keep.participation, n)
+    shapes = model.tracking_basis() @ vec[:n]
+    labels = _label_modes(frac, model.labels, keep.frequencies, keep.damping_rates, shapes)
+    kinds = [lab.split()[1] if lab.startswith("blade") else "TEF" for lab in model.labels]
     table = pd.DataFrame({
         "mode_id": np.arange(len(labels)),
         "label": labels,
         "kind": [lab.split()[1] if lab.startswith("blade") else "TEF" for lab in labels],
         "coordinate_share": [frac[model.labels.index(lab.split(" (")[0]), j]
                              for j, lab in enumerate(labels)],
-        "frequency_per_rev": keep.frequencies[order],
-        "real_part": keep.damping_rates[order],
-        "damping_ratio": keep.damping_ratios[order],
+        "frequency_per_rev": keep.frequencies,
+        "real_part": keep.damping_rates,
+        "damping_ratio": keep.damping_ratios,
         "participation": frac.max(axis=0),
     })
+    for kind in SHARE_KINDS:
+        rows = [i for i, k in enumerate(kinds) if k == kind]
+        table[f"share_{kind}"] = frac[rows].sum(axis=0) if rows else 0.0
     summary = tr.summary()
     summary["reverse_flow_fraction"] = _reverse_flow_fraction(tr)
-    return StabilityResult(modes=table, eigenvectors=vec, trim=summary,
-                           trim_result=tr)
+    return StabilityResult(modes=table, eigenvectors=vec, trim=summary, trim_result=tr,
+                           vectors=shapes, periodic=system.periodic, system=system)
 
 
 def _reverse_flow_fraction(tr: TrimResult) -> float:

@@ -1,0 +1,147 @@
+"""The linearised rotor as a second-order periodic system, and its Floquet modes.
+
+The paper's eq. (5), ``M(psi) q** + C(psi) q* + K(psi) q = 0``, sampled on
+the trim's equally spaced azimuths (one sample: constant coefficients, as in
+hover).  :class:`SecondOrderSystem` interpolates ``M, C, K`` by trigonometric
+series (docs/theory.md section 8), forms the first-order state matrix
+``A = [[0, I], [-M^-1 K, -M^-1 C]]`` at any azimuth, and returns the Floquet
+modes -- the same system for the stability analysis
+(:mod:`tefcore.stability`), the mechanism diagnostics (:mod:`tefcore.mechanism`)
+and the homotopies that name the flap mode.
+
+Examples
+--------
+A constant single-dof oscillator ``q** + 0.2 q* + 4 q = 0``:
+
+>>> import numpy as np
+>>> sys = SecondOrderSystem(np.ones((1, 1, 1)), 0.2 * np.ones((1, 1, 1)), 4 * np.ones((1, 1, 1)))
+>>> res = sys.modes()
+>>> np.round(res.exponents, 6)
+array([-0.1-1.997498j, -0.1+1.997498j])
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from . import floquet
+
+__all__ = ["SecondOrderSystem", "trig_interpolate"]
+
+
+def trig_interpolate(samples, psi, derivative: int = 0) -> np.ndarray:
+    """Trigonometric interpolant of periodic samples and its exact derivatives.
+
+    ``samples`` has the equally spaced azimuths ``2 pi j / N`` on its first
+    axis; the interpolant is the unique trigonometric polynomial of degree
+    ``N/2`` through them with the Nyquist term (even ``N``) as a cosine, and
+    ``derivative`` differentiates that very function (so the derivative of
+    the Nyquist term is kept: it vanishes on the grid, not between).
+
+    Parameters
+    ----------
+    samples : array_like, shape (N, ...)
+    psi : array_like, shape (m,)
+    derivative : int
+
+    Returns
+    -------
+    ndarray, shape (m, ...)
+
+    Examples
+    --------
+    >>> grid = np.linspace(0, 2 * np.pi, 8, endpoint=False)
+    >>> f = np.cos(4 * grid) + np.sin(grid)
+    >>> psi = np.array([0.3])
+    >>> bool(np.allclose(trig_interpolate(f, psi, 1), -4 * np.sin(4 * psi) + np.cos(psi)))
+    True
+    """
+    s = np.asarray(samples, float)
+    n = s.shape[0]
+    psi = np.atleast_1d(np.asarray(psi, float))
+    c = np.fft.rfft(s, axis=0) / n
+    k = np.arange(c.shape[0])
+    weight = np.where((k == 0) | ((n % 2 == 0) & (k == n // 2)), 1.0, 2.0)
+    # the Nyquist coefficient of real samples is real: its term is the
+    # cosine c cos(k psi), and Re[(ik)^d c e^{ik psi}] its exact derivative
+    coef = c * (weight * (1j * k) ** derivative).reshape((-1,) + (1,) * (s.ndim - 1))
+    basis = np.exp(1j * np.outer(psi, k))                   # (m, n_k)
+    flat = coef.reshape(coef.shape[0], -1)
+    return np.real(basis @ flat).reshape((psi.size,) + s.shape[1:])
+
+
+@dataclass(frozen=True)
+class SecondOrderSystem:
+    """``M(psi) q** + C(psi) q* + K(psi) q = 0`` from equally spaced samples.
+
+    Attributes
+    ----------
+    m, c, k : ndarray, shape (N, n, n)
+        Samples at ``psi_j = 2 pi j / N`` (``N = 1``: constant coefficients).
+    """
+
+    m: np.ndarray
+    c: np.ndarray
+    k: np.ndarray
+
+    @property
+    def n_dof(self) -> int:
+        return self.m.shape[-1]
+
+    @property
+    def periodic(self) -> bool:
+        """True when the coefficients vary with azimuth (more than one sample)."""
+        return self.m.shape[0] > 1
+
+    def matrices(self, psi, derivative: int = 0):
+        """``M, C, K`` (or their psi-derivatives) at azimuths ``psi``, each (len(psi), n, n)."""
+        if not self.periodic:
+            psi = np.atleast_1d(psi)
+            if derivative:
+                return tuple(np.zeros((psi.size,) + a.shape[1:]) for a in (self.m, self.c, self.k))
+            return tuple(np.broadcast_to(a, (psi.size,) + a.shape[1:]) for a in
+                         (self.m, self.c, self.k))
+        return tuple(trig_interpolate(a, psi, derivative) for a in (self.m, self.c, self.k))
+
+    def state_matrix(self, psi) -> np.ndarray:
+        """``A(psi) = [[0, I], [-M^-1 K, -M^-1 C]]``, shape (len(psi), 2n, 2n)."""
+        m, c, k = self.matrices(psi)
+        return state_matrix(m, c, k)
+
+    def modes(self, n_steps: int = 72, n_sub: int = 4, shapes: bool = False):
+        """Floquet modes of the system (direct eigenanalysis if constant).
+
+        Forward flight: fourth-order Magnus steps, lifted sub-intervals and
+        the integer frequency shift decided by the displacements
+        (:func:`tefcore.floquet.floquet_modes`).  Returns a
+        :class:`tefcore.floquet.FloquetResult` with both members of each
+        conjugate pair.
+        """
+        if not self.periodic:
+            return floquet.constant_coefficient_modes(self.state_matrix([0.0])[0])
+        return floquet.floquet_modes(self.state_matrix, n_steps=n_steps, n_sub=n_sub,
+                                     method="magnus", shapes=shapes,
+                                     shift_states=slice(0, self.n_dof))
+
+    def scaled(self, parts, scales) -> SecondOrderSystem:
+        """The system ``sum_t s_t (M_t, C_t, K_t)`` of named parts.
+
+        ``parts`` maps a name to a system of the same shape; ``scales`` maps
+        a name to its factor (absent names: 1).
+        """
+        m = sum(scales.get(t, 1.0) * p.m for t, p in parts.items())
+        c = sum(scales.get(t, 1.0) * p.c for t, p in parts.items())
+        k = sum(scales.get(t, 1.0) * p.k for t, p in parts.items())
+        return SecondOrderSystem(np.asarray(m), np.asarray(c), np.asarray(k))
+
+
+def state_matrix(m, c, k):
+    """First-order ``A = [[0, I], [-M^-1 K, -M^-1 C]]`` for stacked matrices."""
+    n = m.shape[-1]
+    minv_k = np.linalg.solve(m, k)
+    minv_c = np.linalg.solve(m, c)
+    top = np.concatenate([np.zeros_like(minv_k), np.broadcast_to(np.eye(n), minv_k.shape)],
+                         axis=-1)
+    return np.concatenate([top, np.concatenate([-minv_k, -minv_c], axis=-1)], axis=-2)
