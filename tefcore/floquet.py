@@ -863,6 +863,9 @@ def floquet_modes(A, n_steps=None, n_sub=DEFAULT_N_SUB, period=_TWO_PI, method="
         # |mu| = |lambda|^(1/K): the K that lifts the most damped root to the
         # floor (from the computed root even when it is garbage: then it is
         # below round-off, and the true one smaller still)
+        if floor >= 1.0:        # ||Phi_k|| beyond 1/(1e6 eps): no K resolves it
+            k_sub = max_sub
+            continue
         need = k_sub * np.log(max(smallest, np.finfo(float).tiny)) / np.log(floor)
         k_sub = int(min(max_sub, max(2 * k_sub, 2 ** np.ceil(np.log2(need)))))
     if not split:

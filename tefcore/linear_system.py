@@ -28,7 +28,7 @@ import numpy as np
 
 from . import floquet
 
-__all__ = ["SecondOrderSystem", "trig_interpolate"]
+__all__ = ["SecondOrderSystem", "combine", "state_matrix", "trig_interpolate"]
 
 
 def trig_interpolate(samples, psi, derivative: int = 0) -> np.ndarray:
@@ -125,16 +125,28 @@ class SecondOrderSystem:
                                      method="magnus", shapes=shapes,
                                      shift_states=slice(0, self.n_dof))
 
-    def scaled(self, parts, scales) -> SecondOrderSystem:
-        """The system ``sum_t s_t (M_t, C_t, K_t)`` of named parts.
 
-        ``parts`` maps a name to a system of the same shape; ``scales`` maps
-        a name to its factor (absent names: 1).
-        """
-        m = sum(scales.get(t, 1.0) * p.m for t, p in parts.items())
-        c = sum(scales.get(t, 1.0) * p.c for t, p in parts.items())
-        k = sum(scales.get(t, 1.0) * p.k for t, p in parts.items())
-        return SecondOrderSystem(np.asarray(m), np.asarray(c), np.asarray(k))
+def combine(parts, scales=None) -> SecondOrderSystem:
+    """The system ``sum_t s_t (M_t, C_t, K_t)`` of named parts.
+
+    Parameters
+    ----------
+    parts : dict of str to SecondOrderSystem
+        Parts sampled on one grid.
+    scales : dict of str to float, optional
+        Factor of each part (absent names: 1).
+
+    Examples
+    --------
+    >>> one = SecondOrderSystem(np.ones((1, 1, 1)), np.zeros((1, 1, 1)), np.ones((1, 1, 1)))
+    >>> float(combine({"a": one, "b": one}, {"b": 0.5}).k[0, 0, 0])
+    1.5
+    """
+    scales = scales or {}
+    m = sum(scales.get(t, 1.0) * p.m for t, p in parts.items())
+    c = sum(scales.get(t, 1.0) * p.c for t, p in parts.items())
+    k = sum(scales.get(t, 1.0) * p.k for t, p in parts.items())
+    return SecondOrderSystem(np.asarray(m), np.asarray(c), np.asarray(k))
 
 
 def state_matrix(m, c, k):

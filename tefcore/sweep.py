@@ -55,12 +55,13 @@ from tqdm import tqdm
 
 from .config import SECTIONS, Config, resolve_field
 from .sweep_store import FORMAT, FORMAT_VERSION, _jsonable, _SweepFile, _value_key, config_hash
-from .tracking import label_changes, track_modes
+from .tracking import ambiguous_steps, label_changes, track_modes
 
 if TYPE_CHECKING:  # at run time re-exported by __getattr__ (end of the module)
     from .boundary import BoundaryResult, stability_boundary
 
-__all__ = ["BoundaryResult", "SweepResult", "config_hash", "stability_boundary", "sweep"]
+__all__ = ["MAX_REFINE", "BoundaryResult", "SweepResult", "config_hash", "decode_complex",
+           "encode_complex", "stability_boundary", "sweep"]
 
 #: Columns a point function's ``modes`` table must have.
 REQUIRED_MODE_COLUMNS = ("mode_id", "label", "frequency_per_rev", "real_part", "damping_ratio")
@@ -138,23 +139,64 @@ def _unpack(result) -> tuple[pd.DataFrame, np.ndarray | None, dict]:
     return modes, vecs, {str(k): _jsonable(v) for k, v in dict(trim).items()}
 
 
+def _shape_vectors(result, eigenvectors):
+    """The shapes tracking compares (``result.vectors``, else the eigenvectors)."""
+    vecs = getattr(result, "vectors", None)
+    vecs = eigenvectors if vecs is None else np.asarray(vecs)
+    if vecs is None:
+        return None
+    if not np.isfinite(vecs).all():
+        raise ValueError("point function returned non-finite mode shapes")
+    return vecs
+
+
+def _anchor_root(result) -> dict | None:
+    """The flap mode of a point by continuation from zero coupling
+    (:func:`tefcore.mechanism.tef_root`): ``{"row", "clear"}``, or None when
+    the result does not carry its linear system (other point functions)."""
+    system = getattr(result, "system", None)
+    tr = getattr(result, "trim_result", None)
+    if system is None or tr is None or not getattr(tr.model, "has_flap", False):
+        return None
+    from .mechanism import tef_root
+
+    eta, follow = tef_root(system, basis=tr.model.tracking_basis())
+    m = result.modes
+    eig = m["real_part"].to_numpy() + 1j * m["frequency_per_rev"].to_numpy()
+    return {"row": int(np.argmin(np.abs(eig - eta))), "clear": bool(follow.clear)}
+
+
 def _failed_record(key, value, err) -> dict:
     return {"key": key, "value": _jsonable(value), "value_si": None, "status": "failed",
             "error": f"{type(err).__name__}: {err}", "trim": {}, "modes": None}
 
 
-def _evaluate(index, point, cfg, parameter, value, key):
-    """Evaluate one sweep point; never raises an ``Exception`` (it is recorded)."""
+def _evaluate(index, point, cfg, parameter, value, key, anchor=False, depth=0):
+    """Evaluate one sweep point; never raises an ``Exception`` (it is recorded).
+
+    ``anchor``: also identify the flap mode by continuation from zero
+    coupling (the start of the TEF branch). ``depth``: 0 for a point the
+    caller asked for, k for a point added by the k-th refinement.
+    """
     start = time.perf_counter()
     rec: dict[str, Any] = {"key": key, "value": _jsonable(value), "value_si": None,
                            "status": "failed", "error": None, "trim": {}, "modes": None}
+    if depth:
+        rec["refinement"] = depth
     vecs = None
     try:
         cfg_v = cfg.with_overrides({parameter: value})
         rec["value_si"] = _jsonable(cfg_v.get(parameter))
-        modes, vecs, trim = _unpack(point(cfg_v))
+        result = point(cfg_v)
+        modes, vecs, trim = _unpack(result)
+        shapes = _shape_vectors(result, vecs)
         rec.update(status="ok", trim=trim,
-                   modes={c: _jsonable(modes[c].to_numpy()) for c in modes.columns})
+                   modes={c: _jsonable(modes[c].to_numpy()) for c in modes.columns},
+                   periodic=bool(getattr(result, "periodic", False)))
+        if shapes is not None:
+            rec["vectors"] = encode_complex(shapes)
+        if anchor:
+            rec["anchor"] = _anchor_root(result)
     except Exception as err:  # recorded, the sweep goes on
         rec["error"] = f"{type(err).__name__}: {err}"
         vecs = None
@@ -165,45 +207,49 @@ def _evaluate(index, point, cfg, parameter, value, key):
 # ------------------------------------------------------------------ backends
 
 
-def _run_serial(todo, args):
-    for i in todo:
-        yield _evaluate(i, *args(i))
+def _run_serial(jobs):
+    for i, args in jobs:
+        yield _evaluate(i, *args)
 
 
-def _run_joblib(todo, args, n_jobs):
+def _run_joblib(jobs, n_jobs):
     from joblib import Parallel, delayed
 
     par = Parallel(n_jobs=n_jobs, backend="loky", return_as="generator_unordered")
-    yield from par(delayed(_evaluate)(i, *args(i)) for i in todo)
+    yield from par(delayed(_evaluate)(i, *args) for i, args in jobs)
 
 
-def _run_dask(todo, args, n_jobs, client):
+def _dask_client(n_jobs, client):
+    """(client, cluster to close or None) for backend='dask'."""
     try:
-        from distributed import Client, LocalCluster, as_completed
+        from distributed import Client, LocalCluster
     except ImportError as err:
         raise ImportError("backend='dask' needs dask.distributed: pip install "
                           "'dask[distributed]' (or the tefcore[dask] extra)") from err
-    cluster = None
-    if client is None:
-        workers = os.cpu_count() if n_jobs < 0 else n_jobs
-        cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
-                               dashboard_address=None)
-        client = Client(cluster)
+    if client is not None:
+        return client, None
+    workers = os.cpu_count() if n_jobs < 0 else n_jobs
+    cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
+                           dashboard_address=None)
+    return Client(cluster), cluster
+
+
+def _run_dask(jobs, client):
+    from distributed import as_completed
+
     futures = {}
+    args_of = dict(jobs)
     try:
-        for i in todo:
-            futures[client.submit(_evaluate, i, *args(i), pure=False)] = i
+        for i, args in jobs:
+            futures[client.submit(_evaluate, i, *args, pure=False)] = i
         for fut in as_completed(list(futures)):
             try:
                 yield fut.result()
             except Exception as err:  # e.g. a worker died: record it, go on
                 i = futures[fut]
-                yield i, _failed_record(args(i)[4], args(i)[3], err), None
+                yield i, _failed_record(args_of[i][4], args_of[i][3], err), None
     finally:
         client.cancel(list(futures))
-        if cluster is not None:
-            client.close()
-            cluster.close()
 
 
 # ------------------------------------------------------------------ results
@@ -220,25 +266,39 @@ class SweepResult:
     values : list
         Values as given.
     table : DataFrame
-        One row per (value, mode), tracked: ``point`` (index in `values`),
+        One row per (value, mode), in the order of the parameter (SI), with
+        the points added by refinement between them: ``point`` (index in
+        `values`; refinement points follow, numbered by value),
         ``parameter``, ``value`` (as given), ``value_si`` (validated field
-        value, SI), ``status`` ("ok"/"failed"), ``error`` (None when ok),
-        ``track``, ``label`` (the track's label where it starts),
-        ``label_here`` (the point function's label at this point), the mode
-        columns (``mode_id``, ``frequency_per_rev``, ``real_part``,
-        ``damping_ratio``, ...) and the trim scalars as ``trim_<name>``.  A
+        value, SI), ``refinement`` (0 for the points asked for, k for a
+        point added by the k-th bisection of an ambiguous step), ``status``
+        ("ok"/"failed"), ``error`` (None when ok), ``track``, ``label`` (the
+        track's label where it starts), ``label_here`` (the point's own
+        label), ``identity`` (how the row continues its track:
+        :mod:`tefcore.tracking`), the mode columns (``mode_id``,
+        ``frequency_per_rev``, ``real_part``, ``damping_ratio``, ...), the
+        named roles ``tef_branch`` (the row is on the TEF branch: the track
+        of the flap mode at the sweep start), ``tef_branch_certain`` (no
+        undecided match on the branch between the start and this row) and
+        ``flutter_root`` (the least stable root of its point with a flap
+        participation >= 0.1), and the trim scalars as ``trim_<name>``.  A
         failed point is one row with its reason; its result columns are
-        NaN/NA.
+        NaN/NA.  A pure function of the points' results: fresh, resumed
+        and parallel runs give the same table.
     config_hash : str
         :func:`config_hash` of the base configuration without `parameter`.
     eigenvectors : dict of int to ndarray
-        Point index -> eigenvectors (columns as the rows of that point's
-        modes table); only for points computed in this run (not stored on
-        disk, so points loaded on resume are tracked by eigenvalue only).
+        Point index -> state eigenvectors (columns as the rows of that
+        point's modes table); only for points computed in this run.
     n_computed, n_loaded : int
-        Points evaluated in this run / loaded from the `out` file.
+        Points evaluated in this run / loaded from the `out` file (the
+        refinement points included).
     out : Path or None
         The sweep file.
+    anchor : dict
+        Where the TEF branch starts: ``point``, ``mode_id`` and ``method``
+        (``"zero coupling"``: the root the uncoupled flap mode becomes;
+        ``"largest flap participation"``; ``"label"``), or empty.
     """
 
     parameter: str
@@ -249,6 +309,7 @@ class SweepResult:
     n_computed: int = 0
     n_loaded: int = 0
     out: Path | None = None
+    anchor: dict = field(default_factory=dict)
     _modes: dict = field(default_factory=dict, repr=False)
 
     @property
@@ -268,9 +329,17 @@ class SweepResult:
         return label_changes(self.table)
 
     def curve(self, label: str) -> pd.DataFrame:
-        """Rows of the track(s) whose label is `label`, in sweep order."""
-        t = self.table
-        return t[(t["status"] == "ok") & (t["label"] == label)]
+        """Rows of the track(s) whose label is `label`, in sweep order.
+
+        ``"TEF branch"`` gives the TEF branch (the ``tef_branch`` rows) and
+        ``"flutter root"`` the flutter root of each point.
+        """
+        t = self.table[self.table["status"] == "ok"]
+        if label == "TEF branch":
+            return t[t["tef_branch"].fillna(False).astype(bool)]
+        if label == "flutter root":
+            return t[t["flutter_root"].fillna(False).astype(bool)]
+        return t[t["label"] == label]
 
     def to_csv(self, path, **kwargs) -> Path:
         """Write :attr:`table` as CSV (no index); return the path."""
@@ -278,46 +347,139 @@ class SweepResult:
         return Path(path)
 
 
-def _build_table(parameter, values, records, vectors):
-    """Tidy, tracked table from the records (index -> record)."""
+#: Bisections of an ambiguous step at most (a step of 1/8 of the original).
+MAX_REFINE = 3
+#: Flap participation of a flutter root (:data:`tefcore.mechanism.FLUTTER_PARTICIPATION`).
+FLUTTER_SHARE = 0.1
+
+
+def encode_complex(a) -> dict:
+    """A complex array as ``{"re": [...], "im": [...]}`` (exact in JSON)."""
+    a = np.asarray(a)
+    return {"re": np.real(a).tolist(), "im": np.imag(a).tolist()}
+
+
+def decode_complex(d) -> np.ndarray:
+    """Inverse of :func:`encode_complex`."""
+    return np.asarray(d["re"], float) + 1j * np.asarray(d["im"], float)
+
+
+def _ok_in_order(records: dict) -> list:
+    """Keys of the ok records in the order of the parameter (SI), ties by key."""
+    ok = [k for k, r in records.items() if r["status"] == "ok"
+          and isinstance(r["value_si"], numbers.Real)]
+    return sorted(ok, key=lambda k: (float(records[k]["value_si"]), str(k)))
+
+
+def _track(records: dict, order: list) -> pd.DataFrame:
+    """:func:`tefcore.tracking.track_modes` of the ok records in `order`."""
+    pts = []
+    for k in order:
+        r = records[k]
+        vec = decode_complex(r["vectors"]) if r.get("vectors") is not None else None
+        pts.append({"modes": pd.DataFrame(r["modes"]), "vectors": vec,
+                    "periodic": bool(r.get("periodic", False))})
+    return track_modes(pts, values=[float(records[k]["value_si"]) for k in order])
+
+
+def _refinements(records: dict, budget: int) -> list[tuple[float, int]]:
+    """Midpoints (SI value, depth) of the steps whose tracking is ambiguous."""
+    order = _ok_in_order(records)
+    if len(order) < 2:
+        return []
+    tracked = _track(records, order)
+    out = []
+    for step in ambiguous_steps(tracked):
+        a, b = records[order[step - 1]], records[order[step]]
+        depth = max(a.get("refinement", 0), b.get("refinement", 0)) + 1
+        if depth <= MAX_REFINE and len(out) < budget:
+            out.append((0.5 * (float(a["value_si"]) + float(b["value_si"])), depth))
+    return out
+
+
+def _roles(table: pd.DataFrame, records: dict, order: list, main_keys: set):
+    """Columns ``tef_branch``, ``tef_branch_certain``, ``flutter_root``; the anchor."""
+    table["tef_branch"] = False
+    table["tef_branch_certain"] = False
+    table["flutter_root"] = False
+    ok = table["status"] == "ok"
+    if "share_TEF" in table:
+        share = table["share_TEF"].where(ok, -1.0).fillna(-1.0)
+        cand = table[ok & (share >= FLUTTER_SHARE)]
+        if not cand.empty:
+            best = cand.groupby("point", sort=False)["real_part"].idxmax()
+            table.loc[best.to_numpy(), "flutter_root"] = True
+    first = next((k for k in order if k in main_keys), None)
+    if first is None:
+        return {}
+    rows = table[ok & (table["key"] == first)]
+    rec = records[first]
+    anchor = rec.get("anchor") or {}
+    if anchor.get("clear"):
+        row, method = rows.index[rows["mode_id"] == anchor["row"]], "zero coupling"
+    elif "share_TEF" in rows and rows["share_TEF"].max() > 0:
+        row, method = [rows["share_TEF"].idxmax()], "largest flap participation"
+    elif (rows["label_here"] == "TEF").any():
+        row, method = rows.index[rows["label_here"] == "TEF"], "label"
+    else:
+        return {}
+    row = row[0]
+    track = table.at[row, "track"]
+    branch = ok & (table["track"] == track)
+    table.loc[branch, "tef_branch"] = True
+    doubt = table[branch & ~table["identity"].isin(["clear", "start"])]
+    certain = branch.copy()
+    if not doubt.empty:
+        first_bad = table.loc[doubt.index, "value_si"].min()
+        certain &= table["value_si"] < first_bad
+    table.loc[certain, "tef_branch_certain"] = True
+    return {"point": int(table.at[row, "point"]), "mode_id": int(table.at[row, "mode_id"]),
+            "method": method}
+
+
+def _build_table(parameter, values, keys, records):
+    """Tidy, tracked table from the records (key -> record), in parameter order."""
     n = len(values)
-    ok = [i for i in range(n) if records[i]["status"] == "ok"]
-    modes = {i: pd.DataFrame(records[i]["modes"]) for i in ok}
-    xs = []
-    for k, i in enumerate(ok):
-        si = records[i]["value_si"]
-        xs.append(float(si) if isinstance(si, numbers.Real) else float(k))
-    # label_weight stays 0: where TEF and torsion coalesce in flutter the
-    # participation labels flip between points and a label-following track
-    # jumps between the two branches (measured on Figs. 10 and 12)
-    tracked = track_modes([(modes[i], vectors.get(i)) for i in ok], values=xs)
-    tracked.insert(0, "point", np.asarray(ok, dtype=int)[tracked.pop("step").to_numpy(int)])
+    main = {k: i for i, k in enumerate(keys)}
+    extra = [k for k in _ok_in_order(records) if k not in main]
+    index_of = dict(main)
+    index_of.update({k: n + r for r, k in enumerate(extra)})
+    order = _ok_in_order({k: records[k] for k in index_of})
+    tracked = _track(records, order)
+    tracked.insert(0, "key", np.asarray(order, dtype=object)[tracked.pop("step").to_numpy(int)])
+    all_keys = list(keys) + extra
     info = pd.DataFrame({
-        "point": range(n),
+        "key": pd.Series(all_keys, dtype=object),
+        "point": [index_of[k] for k in all_keys],
         "parameter": parameter,
-        "value": pd.Series(values, dtype=object),
-        "value_si": pd.Series([records[i]["value_si"] for i in range(n)], dtype=object),
-        "status": [records[i]["status"] for i in range(n)],
-        "error": pd.Series([records[i]["error"] for i in range(n)], dtype=object),
+        "value": pd.Series(list(values) + [records[k]["value"] for k in extra], dtype=object),
+        "value_si": pd.Series([records[k]["value_si"] for k in all_keys], dtype=object),
+        "refinement": [int(records[k].get("refinement", 0)) for k in all_keys],
+        "status": [records[k]["status"] for k in all_keys],
+        "error": pd.Series([records[k]["error"] for k in all_keys], dtype=object),
     })
     for col in ("value", "value_si"):  # numbers -> float column, else keep objects
         try:
             info[col] = pd.to_numeric(info[col])
         except (TypeError, ValueError):
             pass
-    trim = pd.DataFrame([records[i]["trim"] for i in range(n)]).add_prefix("trim_")
-    table = info.merge(tracked, on="point", how="left", validate="one_to_many")
-    table = table.merge(trim.assign(point=range(n)), on="point", how="left")
+    trim = pd.DataFrame([records[k]["trim"] for k in all_keys]).add_prefix("trim_")
+    table = info.merge(tracked, on="key", how="left", validate="one_to_many")
+    table = table.merge(trim.assign(key=all_keys), on="key", how="left")
     for col in ("track", "mode_id"):
         table[col] = table[col].astype("Int64")
-    table = table.sort_values(["point", "track"], kind="stable", ignore_index=True)
-    return table, modes
+    si = pd.to_numeric(table["value_si"], errors="coerce")
+    table = table.assign(_x=si.fillna(np.inf)).sort_values(
+        ["_x", "point", "track"], kind="stable", ignore_index=True).drop(columns="_x")
+    anchor = _roles(table, records, order, set(keys))
+    modes = {index_of[k]: pd.DataFrame(records[k]["modes"]) for k in order}
+    return table.drop(columns="key"), modes, anchor
 
 
 def sweep(cfg: Config, parameter: str, values, *, point: Callable | None = None,
           n_jobs: int = 1, backend: str = "joblib", progress: bool | None = None,
           out=None, resume: bool = True, extra_overrides: Mapping[str, Any] | None = None,
-          client=None, retry_failed: bool = False) -> SweepResult:
+          client=None, retry_failed: bool = False, refine: bool = True) -> SweepResult:
     """Evaluate `point` at each value of one configuration field.
 
     Parameters
@@ -329,15 +491,17 @@ def sweep(cfg: Config, parameter: str, values, *, point: Callable | None = None,
         ``"hub.pitch_link_stiffness"``, ``"flight.advance_ratio"``.
     values : sequence
         Numbers (SI) or ``"value unit"`` strings, e.g. ``["400 lb/in",
-        "800 lb/in"]``; no duplicates.  Point ``i`` is
+        "800 lb/in"]``; no duplicates; any order (the table is in the order
+        of the parameter).  Point ``i`` is
         ``point(cfg.with_overrides({parameter: values[i]}))``.
     point : callable, optional
         Config -> result with ``modes`` (DataFrame with columns
         ``mode_id``, ``label``, ``frequency_per_rev``, ``real_part``,
-        ``damping_ratio``), optional ``eigenvectors`` (n_states, n_modes)
-        and ``trim`` (dict of scalars).  Default
-        :func:`tefcore.stability.stability`.  Must be picklable for
-        ``n_jobs != 1``.
+        ``damping_ratio``), optional ``eigenvectors`` (n_states, n_modes),
+        ``vectors`` (shapes to compare between points, one column per
+        mode), ``periodic`` (Floquet exponents) and ``trim`` (dict of
+        scalars).  Default :func:`tefcore.stability.stability`.  Must be
+        picklable for ``n_jobs != 1``.
     n_jobs : int
         Parallel processes (joblib/loky) or dask workers of an own
         LocalCluster; ``-1``: all cores.  ``1`` runs serially in-process.
@@ -360,6 +524,12 @@ def sweep(cfg: Config, parameter: str, values, *, point: Callable | None = None,
         Existing dask client for ``backend="dask"``.
     retry_failed : bool
         On resume, recompute points recorded as failed.
+    refine : bool
+        Where the identity of a mode between two neighbouring points is
+        ambiguous (:mod:`tefcore.tracking`), evaluate the midpoint and track
+        again, up to :data:`MAX_REFINE` bisections and at most twice as
+        many added points as asked for; the added points are rows with
+        ``refinement > 0``.
 
     Returns
     -------
@@ -392,8 +562,7 @@ def sweep(cfg: Config, parameter: str, values, *, point: Callable | None = None,
         raise ValueError(f"point must be callable, got {point!r}")
 
     chash = config_hash(cfg, exclude=[parameter])
-    records: dict[int, dict] = {}
-    vectors: dict[int, np.ndarray] = {}
+    records: dict[str, dict] = {}
     store = None
     if out is not None:
         from . import __version__
@@ -403,49 +572,105 @@ def sweep(cfg: Config, parameter: str, values, *, point: Callable | None = None,
                   "tefcore_version": __version__,
                   "created": datetime.datetime.now(datetime.UTC).isoformat(timespec="seconds")}
         store = _SweepFile(out, header, resume)
-        for i, k in enumerate(keys):
-            rec = store.records.get(k)
-            if rec is not None and not (retry_failed and rec["status"] != "ok"):
-                records[i] = rec
-    n_loaded = len(records)
-    todo = [i for i in range(len(values)) if i not in records]
-
-    def args(i):
-        return point, cfg, parameter, values[i], keys[i]
-
-    if backend == "dask":
-        runner = _run_dask(todo, args, n_jobs, client)
-    elif n_jobs == 1 or len(todo) <= 1:
-        runner = _run_serial(todo, args)
-    else:
-        runner = _run_joblib(todo, args, n_jobs)
+        for k, rec in store.records.items():
+            if not (retry_failed and rec["status"] != "ok"):
+                records[k] = rec
+    main = set(keys)
+    n_loaded = sum(k in records for k in keys)
+    anchor_key = _anchor_key(cfg, parameter, values, keys)
+    if anchor_key in records and records[anchor_key]["status"] == "ok" and \
+            "anchor" not in records[anchor_key]:
+        del records[anchor_key]     # computed before as an ordinary point: again, as the start
+        n_loaded -= 1
+    jobs = [(i, (point, cfg, parameter, values[i], keys[i], keys[i] == anchor_key, 0))
+            for i, k in enumerate(keys) if k not in records]
 
     if progress is None:
         progress = bool(getattr(sys.stderr, "isatty", lambda: False)())
-    n_failed = sum(r["status"] != "ok" for r in records.values())
+    n_failed = sum(records[k]["status"] != "ok" for k in keys if k in records)
     bar = tqdm(total=len(values), initial=n_loaded, disable=not progress, file=sys.stderr,
                desc=f"sweep {parameter}", unit="pt")
+    vectors: dict[str, np.ndarray] = {}
+    client_own = cluster = None
+    n_computed = 0
+    wanted: dict[str, int] = {}        # refinement key -> depth, as this run decides them
+
+    def active():
+        out = {k: records[k] for k in keys if k in records}
+        out.update({k: {**records[k], "refinement": d} for k, d in wanted.items()
+                    if k in records})
+        return out
+
     try:
-        if todo:
-            for i, rec, vecs in runner:
-                records[i] = rec
-                if vecs is not None:
-                    vectors[i] = vecs
-                if store is not None:
-                    store.append(rec)
-                n_failed += rec["status"] != "ok"
-                bar.set_postfix(failed=n_failed, refresh=False)
-                bar.update()
+        budget = 2 * len(values) if refine else 0
+        while True:
+            if jobs:
+                if backend == "dask":
+                    if client_own is None:
+                        client_own, cluster = _dask_client(n_jobs, client)
+                    runner = _run_dask(jobs, client_own)
+                elif n_jobs == 1 or len(jobs) <= 1:
+                    runner = _run_serial(jobs)
+                else:
+                    runner = _run_joblib(jobs, n_jobs)
+                key_of = {i: args[4] for i, args in jobs}
+                try:
+                    for i, rec, vecs in runner:
+                        records[key_of[i]] = rec
+                        if vecs is not None:
+                            vectors[key_of[i]] = vecs
+                        if store is not None:
+                            store.append(rec)
+                        n_failed += rec["status"] != "ok"
+                        n_computed += 1
+                        bar.set_postfix(failed=n_failed, refresh=False)
+                        bar.update()
+                finally:
+                    runner.close()
+            # bisect the steps where a mode's identity is not decided; a
+            # midpoint already in the file (a resumed sweep) is reused
+            jobs = []
+            if budget <= 0:
+                break
+            mids = [(x, d) for x, d in _refinements(active(), budget)
+                    if _value_key(x) not in wanted and _value_key(x) not in main]
+            if not mids:
+                break
+            for x, depth in mids:
+                key = _value_key(x)
+                wanted[key] = depth
+                budget -= 1
+                if key not in records or (retry_failed and records[key]["status"] != "ok"):
+                    jobs.append((len(keys) + len(wanted),
+                                 (point, cfg, parameter, float(x), key, False, depth)))
+            bar.total += len(jobs)
     finally:
-        runner.close()
         bar.close()
         if store is not None:
             store.close()
+        if cluster is not None:
+            client_own.close()
+            cluster.close()
 
-    table, modes = _build_table(parameter, values, records, vectors)
+    table, modes, anchor = _build_table(parameter, values, keys, active())
+    index_of = {k: i for i, k in enumerate(keys)}
     return SweepResult(parameter=parameter, values=values, table=table, config_hash=chash,
-                       eigenvectors=vectors, n_computed=len(todo), n_loaded=n_loaded,
-                       out=None if out is None else Path(out), _modes=modes)
+                       eigenvectors={index_of[k]: v for k, v in vectors.items() if k in index_of},
+                       n_computed=n_computed, n_loaded=n_loaded,
+                       out=None if out is None else Path(out), anchor=anchor, _modes=modes)
+
+
+def _anchor_key(cfg, parameter, values, keys):
+    """Key of the value with the smallest SI value (the sweep start), or None."""
+    best = None
+    for v, k in zip(values, keys, strict=True):
+        try:
+            si = cfg.with_overrides({parameter: v}).get(parameter)
+        except Exception:  # a rejected value is a failed point, not the start
+            continue
+        if isinstance(si, numbers.Real) and (best is None or si < best[0]):
+            best = (float(si), k)
+    return None if best is None else best[1]
 
 
 # ------------------------------------------------------------------ re-exports

@@ -59,7 +59,7 @@ from .config import SECTIONS, Config
 __all__ = ["config_hash"]
 
 FORMAT = "tefcore.sweep"
-FORMAT_VERSION = 1
+FORMAT_VERSION = 2
 
 
 # ------------------------------------------------------------------ identities

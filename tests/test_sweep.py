@@ -143,9 +143,11 @@ def test_unit_strings_as_values():
     point = ToyPoint()
     res = sweep(MDART, "hub.pitch_link_stiffness", ["400 lb/in", "800 lb/in", 1.0e5],
                 point=point, progress=False)
+    # the table is in the order of the parameter, whatever the order given
     t = res.table.drop_duplicates("point")
-    np.testing.assert_allclose(t["value_si"], [70050.73, 140101.47, 1.0e5], rtol=1e-6)
-    assert t["value"].tolist() == ["400 lb/in", "800 lb/in", 1.0e5]
+    np.testing.assert_allclose(t["value_si"], [70050.73, 1.0e5, 140101.47], rtol=1e-6)
+    assert t["value"].tolist() == ["400 lb/in", 1.0e5, "800 lb/in"]
+    assert t["point"].tolist() == [0, 2, 1]
 
 
 # ------------------------------------------------------------------ failures
@@ -186,7 +188,7 @@ def test_file_format_header_and_one_line_per_point(tmp_path):
     out = tmp_path / "s.jsonl"
     res = run(XS[:4], out=out)
     head, *recs = read_lines(out)
-    assert head["format"] == "tefcore.sweep" and head["version"] == 1
+    assert head["format"] == "tefcore.sweep" and head["version"] == 2
     assert head["parameter"] == PARAM
     assert head["config_hash"] == config_hash(MDART, [PARAM]) == res.config_hash
     assert head["point"].endswith(":ToyPoint")

@@ -7,7 +7,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from hypothesis.extra import numpy as hnp
 
-from tefcore.tracking import label_changes, mac, match_modes, track_modes
+from tefcore.tracking import ambiguous_steps, label_changes, mac, match_modes, track_modes
 
 # ------------------------------------------------------------------ MAC
 
@@ -105,7 +105,9 @@ def assert_follows_laws(t, xs=XS, key="label"):
 
 def test_tracks_follow_modes_through_the_crossing():
     t = track_modes([point(x) for x in XS], values=XS)
-    assert list(t.columns[:5]) == ["step", "track", "label", "label_here", "mode_id"]
+    assert list(t.columns[:6]) == ["step", "track", "label", "label_here", "identity",
+                                   "mode_id"]
+    assert t["identity"].isin(["start", "clear"]).all()
     assert len(t) == 3 * len(XS)
     assert_follows_laws(t)
     assert (t["label"] == t["label_here"]).all()
@@ -127,9 +129,11 @@ def test_first_label_is_kept_and_label_changes_are_reported():
     assert t.loc[changes["row"], "step"].tolist() == [6, 6]
 
 
-def test_mac_alone_tracks_the_crossing():
-    t = track_modes([point(x) for x in XS], eig_weight=0.0, predict=False)
+def test_mac_decides_at_the_crossing_without_prediction():
+    # at x = 0.5 both modes have one frequency: only the shapes tell them apart
+    t = track_modes([point(x) for x in XS], predict=False)
     assert_follows_laws(t)
+    assert t["identity"].isin(["start", "clear"]).all()
 
 
 def test_extrapolated_eigenvalues_alone_track_a_straight_crossing():
@@ -169,9 +173,13 @@ def test_appearing_and_disappearing_modes():
     m1, v1 = point(0.1)
     fewer = (m1.iloc[:2].reset_index(drop=True), v1[:, :2])  # mode C absent
     t = track_modes([(m0.iloc[:2], v0[:, :2]), point(0.05), fewer, point(0.15)])
-    assert sorted(t["track"].unique()) == [0, 1, 2]
-    assert t.loc[t["track"] == 2, "step"].tolist() == [1, 3]  # C: new track, kept
-    assert t.loc[t["track"] == 2, "label"].eq("C").all()
+    # C appears at step 1 (a new track), is absent at step 2 and comes back at
+    # step 3 as another new track: a mode is not revived across a point where
+    # it was missing -- its identity there is unknown
+    assert sorted(t["track"].unique()) == [0, 1, 2, 3]
+    assert t.loc[t["track"] == 2, "step"].tolist() == [1]
+    assert t.loc[t["track"] == 3, "step"].tolist() == [3]
+    assert t.loc[t["track"].isin([2, 3]), "identity"].eq("start").all()
 
 
 def test_missing_or_mismatched_eigenvectors_fall_back_to_eigenvalues():
@@ -195,8 +203,6 @@ def test_point_formats_and_errors():
         track_modes([42])
     with pytest.raises(ValueError, match="2 values for 1 points"):
         track_modes([m], values=[0, 1])
-    with pytest.raises(ValueError, match="weight"):
-        track_modes([m], mac_weight=0, eig_weight=0)
     assert track_modes([None, None]).empty
 
 
@@ -207,19 +213,27 @@ def test_match_modes():
     assert match_modes(a, fewer).tolist() == [1, 0, -1]
 
 
-def test_label_weight_follows_participation_labels_through_coalescence():
-    # two modes coalesce: at the third point each lands next to the other's
-    # extrapolated eigenvalue (no vectors), so proximity alone swaps them;
-    # physical (participation) labels keep each track whole
-    import pandas as pd
-
+def test_undecidable_match_is_flagged_not_silently_swapped():
+    # two modes coalesce: at the third point both roots lie as far from either
+    # extrapolated eigenvalue and there are no shapes; the match cannot be
+    # decided, and the table says so instead of passing it off as a track
     def pt(lam_a, lam_b):
         return pd.DataFrame({"mode_id": [0, 1], "label": ["TEF", "torsion"],
                              "frequency_per_rev": [lam_a.imag, lam_b.imag],
                              "real_part": [lam_a.real, lam_b.real]})
 
-    pts = [pt(-1 + 9j, -1 + 4j), pt(-0.5 + 7j, -2 + 5j), pt(-3.2 + 6.1j, 0.1 + 5.0j)]
-    plain = track_modes(pts, values=[0, 1, 2])
-    labelled = track_modes(pts, values=[0, 1, 2], label_weight=1.0)
-    assert (labelled["label"] == labelled["label_here"]).all()
-    assert not (plain["label"] == plain["label_here"]).all()
+    pts = [pt(-1 + 9j, -1 + 4j), pt(-0.5 + 7j, -2 + 5j), pt(-1.4 + 5.5j, -1.6 + 5.5j)]
+    t = track_modes(pts, values=[0, 1, 2])
+    assert t.loc[t["step"] == 2, "identity"].eq("ambiguous").all()
+    # a root on the extrapolated path of one track is a clear continuation
+    clear = track_modes(pts[:2] + [pt(0.05 + 5.02j, -3.0 + 6.0j)], values=[0, 1, 2])
+    assert clear.loc[clear["step"] == 2, "identity"].eq("clear").all()
+    assert 2 in ambiguous_steps(t)
+
+
+def test_track_table_is_a_pure_function_of_the_points():
+    # the same points give the same table, row for row
+    pts = [point(x) for x in XS]
+    a = track_modes(pts, values=XS)
+    b = track_modes([point(x) for x in XS], values=XS)
+    pd.testing.assert_frame_equal(a, b)

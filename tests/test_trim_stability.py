@@ -179,9 +179,12 @@ def test_sweep_gives_continuous_labelled_curves(mdart):
                 progress=False)
     t = res.table
     assert (t["status"] == "ok").all()
+    n_points = t["point"].nunique()          # the three asked for, and any refinement
+    assert (t.drop_duplicates("point")["refinement"] == 0).sum() == 3
     for lab in ("TEF", "blade lag 1", "blade flap 1", "blade torsion 1"):
         curve = t[t["label"] == lab]
-        assert curve["track"].nunique() == 1 and len(curve) == 3, lab
+        assert curve["track"].nunique() == 1 and len(curve) == n_points, lab
+    assert t.loc[t["tef_branch"], "label"].eq("TEF").all()
     torsion = t[t["label"] == "blade torsion 1"]["frequency_per_rev"].to_numpy()
     assert np.all(np.diff(torsion) > 0)
     lag = t[t["label"] == "blade lag 1"]["frequency_per_rev"].to_numpy()
