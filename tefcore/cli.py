@@ -1,4 +1,4 @@
-"""Command line: ``tefcore modes | fanplot | stability | sweep | reproduce``.
+"""Command line: ``tefcore modes | fanplot | stability | sweep | mechanism | reproduce``.
 
 ``tefcore reproduce`` executes the numbered notebooks with papermill and
 writes the claims report (:mod:`tefcore.reproduce`).
@@ -99,6 +99,22 @@ def cmd_sweep(args) -> int:
     return 0
 
 
+def cmd_mechanism(args) -> int:
+    from .mechanism import mechanism
+
+    cfg = _load(args)
+    res = mechanism(cfg, mode=args.mode, knockouts=not args.no_knockouts)
+    if args.csv:
+        res.table.to_csv(args.csv, index=False, float_format="%.10g")
+    print(res.summary())
+    doubtful = [t for t, f in res.knockouts.items() if not f.clear]
+    if doubtful:
+        print("knockouts through a coalescence (identity not certain): " + ", ".join(doubtful))
+    if args.csv:
+        print(f"wrote {args.csv}: {len(res.table)} rows")
+    return 0
+
+
 def _number_or_text(text: str):
     try:
         return float(text)
@@ -146,6 +162,21 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--jobs", type=int, default=1, help="parallel processes (joblib)")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
     p.set_defaults(func=cmd_sweep)
+    p = sub.add_parser(
+        "mechanism", help="why a root is (un)stable: work of each physical term, knockouts",
+        description="Decompose one root's growth rate into the work of the named terms of "
+                    "the linearised equations (they add up to its real part), and follow "
+                    "the root with each term knocked out. CSV columns: term, "
+                    "contribution_real, contribution_imag; rows: one per term, 'total' "
+                    "(the root's eigenvalue, /rev) and 'knockout <term>' (the root's "
+                    "eigenvalue with that term removed).")
+    _common(p)
+    p.add_argument("--mode", default="TEF",
+                   help="'TEF' (the root the flap mode becomes), 'flutter' (least stable "
+                        "root the flap takes part in) or a label, e.g. 'blade torsion 1'")
+    p.add_argument("--csv", default=None, help="write the decomposition to this CSV file")
+    p.add_argument("--no-knockouts", action="store_true", help="skip the knockouts (faster)")
+    p.set_defaults(func=cmd_mechanism)
     p = sub.add_parser(
         "reproduce", help="run the notebooks (papermill) and write the claims report",
         description="Execute notebooks/01-07 with papermill into OUT, then write "

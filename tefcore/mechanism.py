@@ -273,8 +273,11 @@ def energy_decomposition(parts: dict, exponent: complex, shape, psi):
             out[t] = complex(np.mean(work) / denom, omega * np.mean(stored) / denom)
         return out
     # real root: sigma (sigma <p M p> + <2 p M p' + p C p>) = -<p (M p'' + C p' + K p)>
-    dp = pv - sigma * pq
-    ddp = pa - sigma**2 * pq - 2 * sigma * dp
+    if periodic:
+        dp = pv - sigma * pq
+        ddp = pa - sigma**2 * pq - 2 * sigma * dp
+    else:          # constant coefficients: the shape is constant, p' = p'' = 0
+        dp = ddp = np.zeros_like(pq)
     denom = np.mean(sigma * _quad(pq, m, pq) + 2 * _quad(pq, m, dp) + _quad(pq, c, pq))
     return {t: complex(np.real(-np.mean(_quad(pq, mt, ddp) + _quad(pq, ct, dp)
                                         + _quad(pq, kt, pq)) / denom), 0.0)

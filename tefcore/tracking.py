@@ -38,7 +38,10 @@ and tracks again.  Where two roots have the same shape and eigenvalue
 (MAC >= :data:`COALESCED_MAC`, :func:`relative_distance` within
 :data:`COALESCED_DISTANCE`), or are the two real multipliers of one locked
 pair (equal frequency at a multiple of 1/2 per rev), no refinement can
-separate them: a coalescence, and the identity is ``"coalescence"``.  A track's first row is ``"start"``.
+separate them: a coalescence, and the identity is ``"coalescence"``.
+Two tracks whose eigenvalues pass closer in a step than they move may have
+crossed or veered; unless both kept their shapes (MAC >= :data:`CROSSING_MAC`),
+the match is ``"ambiguous"`` too and the step is refined.  A track's first row is ``"start"``.
 
 Each track keeps the ``label`` its mode had where the track starts; the
 point's own label at each point is ``label_here``, so a label that changes
@@ -76,7 +79,7 @@ import numpy as np
 import pandas as pd
 from scipy.optimize import linear_sum_assignment
 
-__all__ = ["CLEAR_COST", "COALESCED_DISTANCE", "COALESCED_MAC", "MARGIN", "FollowResult",
+__all__ = ["CLEAR_COST", "COALESCED_DISTANCE", "CROSSING_MAC", "COALESCED_MAC", "MARGIN", "FollowResult",
            "ambiguous_steps", "eigen_distance", "follow_root", "label_changes", "mac",
            "relative_distance",
            "match_cost", "match_modes", "track_modes"]
@@ -93,6 +96,11 @@ CLEAR_COST = 0.5
 #: scale): a lead that round-off or a smooth change over one step does not
 #: overturn; two candidates closer than that are a coin toss and refined.
 MARGIN = 0.25
+#: Two tracks passing close in one step keep their identity only when both
+#: shapes are kept at least this well (a crossing of uncoupled modes keeps
+#: them exactly; a veering turns them, e.g. MAC 0.87 over a step that spans
+#: a veering of a 2 x 2 family).
+CROSSING_MAC = 0.99
 #: Two roots of one point with a MAC above this ...
 COALESCED_MAC = 0.9
 #: ... and a :func:`relative_distance` below this are one coalesced pair.
@@ -428,6 +436,8 @@ def track_modes(points: Sequence, values=None, *, predict: bool = True) -> pd.Da
             for j, t in enumerate(assigned):
                 if t >= 0:
                     tracked_eig[j] = _unwrap(eig[j], tracks[t].predict(x, predict))
+        if alive and len(modes):
+            _flag_close_passes(identity, assigned, tracked_eig, tracks, vecs)
         for j in np.flatnonzero(assigned < 0):
             tracks.append(_Track(label=str(modes["label"].iloc[j])))
             assigned[j] = len(tracks) - 1
@@ -449,6 +459,42 @@ def track_modes(points: Sequence, values=None, *, predict: bool = True) -> pd.Da
                                      "mode_id", "frequency_per_rev", "real_part"])
     out = pd.concat(frames, ignore_index=True)
     return out.sort_values(["step", "track"], kind="stable", ignore_index=True)
+
+
+def _flag_close_passes(identity, assigned, eig, tracks, vecs) -> None:
+    """Mark ``ambiguous`` the clear matches of two tracks that pass close in a step.
+
+    Two roots whose eigenvalues, moving linearly over the step, come closer
+    than either moved may have crossed or veered; the end points cannot tell
+    which.  A crossing keeps both shapes (MAC >= :data:`CROSSING_MAC` with
+    the track's last shape), a veering turns them: unless both shapes are
+    kept, the step is bisected (:func:`tefcore.sweep.sweep`).
+    """
+    js = [j for j in range(len(assigned)) if assigned[j] >= 0 and identity[j] == "clear"]
+    if len(js) < 2:
+        return
+    p0 = np.array([tracks[assigned[j]].eig[-1][1] for j in js])
+    p1 = np.asarray([eig[j] for j in js])
+    kept = np.zeros(len(js), bool)
+    if vecs is not None:
+        for a, j in enumerate(js):
+            prev = tracks[assigned[j]].vec
+            if prev is not None and prev.shape[0] == vecs.shape[0]:
+                kept[a] = mac(prev, vecs[:, j])[0, 0] >= CROSSING_MAC
+    for a in range(len(js)):
+        for b in range(a + 1, len(js)):
+            if kept[a] and kept[b]:
+                continue
+            # one scale for the pair: damping rates and frequencies each
+            # relative to their size (as relative_distance)
+            pts = np.array([p0[a], p1[a], p0[b], p1[b]])
+            sc = (0.5 + 0.5 * np.abs(pts.real).mean()) + 1j * (1.0 + 0.5 * np.abs(pts.imag).mean())
+            x0a, x1a, x0b, x1b = (z.real / sc.real + 1j * z.imag / sc.imag for z in pts)
+            d0, dd = x0a - x0b, (x1a - x0a) - (x1b - x0b)
+            t = 0.0 if dd == 0 else float(np.clip(-(d0 * np.conj(dd)).real / abs(dd) ** 2,
+                                                   0.0, 1.0))
+            if abs(d0 + t * dd) < max(abs(x1a - x0a), abs(x1b - x0b)):
+                identity[js[a]] = identity[js[b]] = "ambiguous"
 
 
 def _unwrap(eig: complex, predicted: complex) -> complex:

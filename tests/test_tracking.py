@@ -225,9 +225,16 @@ def test_undecidable_match_is_flagged_not_silently_swapped():
     pts = [pt(-1 + 9j, -1 + 4j), pt(-0.5 + 7j, -2 + 5j), pt(-1.4 + 5.5j, -1.6 + 5.5j)]
     t = track_modes(pts, values=[0, 1, 2])
     assert t.loc[t["step"] == 2, "identity"].eq("ambiguous").all()
-    # a root on the extrapolated path of one track is a clear continuation
-    clear = track_modes(pts[:2] + [pt(0.05 + 5.02j, -3.0 + 6.0j)], values=[0, 1, 2])
+    # roots on the extrapolated paths of the tracks, which stay apart, are
+    # clear continuations ...
+    apart = [pt(-1 + 9j, -1 + 2j), pt(-0.5 + 8j, -2 + 2.5j), pt(0.02 + 7.01j, -3.0 + 3.0j)]
+    clear = track_modes(apart, values=[0, 1, 2])
     assert clear.loc[clear["step"] == 2, "identity"].eq("clear").all()
+    # ... but two tracks that cross within the step, with no shapes to show
+    # whether they crossed or veered, are not
+    crossing = [pt(-1 + 9j, -1.2 + 3j), pt(-1 + 7j, -1.2 + 5j), pt(-1 + 5.02j, -1.2 + 6.98j)]
+    cross = track_modes(crossing, values=[0, 1, 2])
+    assert cross.loc[cross["step"] == 2, "identity"].eq("ambiguous").all()
     assert 2 in ambiguous_steps(t)
 
 

@@ -1,0 +1,157 @@
+"""Mode identity along sweeps: synthetic families with known answers.
+
+* **Veering** ``A(x) = [[1 + 2x, g], [g, 2 - x]]``: the two eigenvalues come
+  within ``2g`` of each other at ``x = 1/3`` and exchange shapes.  The
+  continuous branches are the lower and the upper eigenvalue; a coarse sweep
+  is ambiguous across the veering, refinement (bisection) resolves it, and
+  the characters (labels) change along the branches.
+* **Crossing** (``g = 0``): the eigenvalues cross, the shapes do not change;
+  each track keeps its shape (and label) through the crossing.
+* **Coalescence**: the pair ``s^2 + 2 z s + 1`` as ``z`` passes 1 becomes two
+  real roots with one shape at ``z = 1``: no step separates them.
+
+The tables are pure functions of the points: the order the values are
+given (and computed), resuming, and parallel workers do not change them.
+"""
+
+from types import SimpleNamespace
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from tefcore.config import load_config
+from tefcore.sweep import sweep
+from tefcore.tracking import track_modes
+
+MDART = load_config("mdart")
+PARAM = "flap.cg_offset"
+
+
+class Veering:
+    """Picklable point function: the 2 x 2 veering family at x = flap.cg_offset."""
+
+    def __init__(self, g=0.05):
+        self.g = g
+
+    def __call__(self, cfg):
+        x = cfg.flap.cg_offset
+        w, v = np.linalg.eigh(np.array([[1 + 2 * x, self.g], [self.g, 2 - x]]))
+        labels = ["first" if abs(v[0, j]) >= abs(v[1, j]) else "second" for j in range(2)]
+        modes = pd.DataFrame({"mode_id": [0, 1], "label": labels, "frequency_per_rev": w,
+                              "real_part": [-0.01, -0.01], "damping_ratio": [0.01, 0.01]})
+        # a sign/phase per point, as a solver gives: MAC must not care
+        return SimpleNamespace(modes=modes, vectors=v * np.exp(1j * 3.0 * x), trim={})
+
+
+XS = [0.0, 0.2, 0.4, 0.6, 0.8, 1.0]
+
+
+def branch(table, track):
+    return table[table["track"] == track].sort_values("value_si")
+
+
+def test_veering_followed_as_continuous_branches_after_refinement():
+    res = sweep(MDART, PARAM, XS, point=Veering(), progress=False)
+    t = res.table
+    # the coarse step across the veering was ambiguous and got bisected
+    assert (t["refinement"] > 0).any()
+    assert t["identity"].isin(["start", "clear"]).all()
+    lower = branch(t, 0)
+    w = lower["frequency_per_rev"].to_numpy()
+    x = lower["value_si"].to_numpy()
+    exact = [np.linalg.eigvalsh([[1 + 2 * xi, 0.05], [0.05, 2 - xi]])[0] for xi in x]
+    np.testing.assert_allclose(w, exact, rtol=1e-12)          # always the lower root
+    # its character changes at the veering: first -> second
+    assert lower["label_here"].iloc[0] == "first" and lower["label_here"].iloc[-1] == "second"
+    assert len(res.label_changes) == 2
+
+
+def test_without_refinement_the_coarse_veering_is_flagged_ambiguous():
+    res = sweep(MDART, PARAM, XS, point=Veering(), progress=False, refine=False)
+    t = res.table
+    assert (t["refinement"] == 0).all()
+    assert (t["identity"] == "ambiguous").any()
+
+
+def test_crossing_without_coupling_keeps_shapes():
+    res = sweep(MDART, PARAM, XS, point=Veering(g=0.0), progress=False)
+    t = res.table
+    assert t["identity"].isin(["start", "clear"]).all()
+    for track, g in t.groupby("track"):
+        assert g["label_here"].nunique() == 1, track        # shape (label) kept
+    first = t[t["label_here"] == "first"].sort_values("value_si")
+    np.testing.assert_allclose(first["frequency_per_rev"], 1 + 2 * first["value_si"])
+
+
+def coalescing(z):
+    """Roots of s^2 + 2 z s + 1 with shapes [1, s] (first-order state)."""
+    roots = np.roots([1.0, 2 * z, 1.0]).astype(complex)
+    roots = roots[roots.imag >= -1e-12]
+    roots = roots[np.argsort(roots.real)]
+    vecs = np.array([np.ones_like(roots), roots])
+    modes = pd.DataFrame({"mode_id": range(len(roots)), "label": ["m"] * len(roots),
+                          "frequency_per_rev": np.abs(roots.imag), "real_part": roots.real})
+    return modes, vecs
+
+
+def test_coalescence_is_flagged():
+    # z = 0.9 (complex pair) -> 1.0 (double root) -> 1.1 (two real roots)
+    t = track_modes([coalescing(z) for z in (0.8, 0.9, 1.0, 1.1)], values=[0.8, 0.9, 1.0, 1.1])
+    assert (t["identity"] == "coalescence").any()
+
+
+# ------------------------------------------------------------------ invariance
+
+
+def csv_bytes(res, tmp_path, name):
+    path = tmp_path / name
+    res.table.drop(columns="point").to_csv(path, index=False)
+    return path.read_bytes()
+
+
+def test_order_of_values_does_not_change_the_table(tmp_path):
+    a = sweep(MDART, PARAM, XS, point=Veering(), progress=False)
+    b = sweep(MDART, PARAM, XS[::-1], point=Veering(), progress=False)
+    c = sweep(MDART, PARAM, [XS[i] for i in (3, 0, 5, 1, 4, 2)], point=Veering(),
+              progress=False)
+    ref = csv_bytes(a, tmp_path, "a.csv")
+    assert csv_bytes(b, tmp_path, "b.csv") == ref
+    assert csv_bytes(c, tmp_path, "c.csv") == ref
+
+
+def test_resumed_and_parallel_sweeps_write_identical_csv(tmp_path):
+    fresh = sweep(MDART, PARAM, XS, point=Veering(), progress=False)
+    out = tmp_path / "s.jsonl"
+    sweep(MDART, PARAM, XS[:3], point=Veering(), progress=False, out=out)   # interrupted
+    resumed = sweep(MDART, PARAM, XS, point=Veering(), progress=False, out=out)
+    again = sweep(MDART, PARAM, XS, point=Veering(), progress=False, out=out)
+    assert again.n_computed == 0                                # all reused, refinements too
+    parallel = sweep(MDART, PARAM, XS, point=Veering(), progress=False, n_jobs=2)
+    paths = [tmp_path / f"{k}.csv" for k in ("f", "r", "a", "p")]
+    for res, path in zip((fresh, resumed, again, parallel), paths, strict=True):
+        res.to_csv(path)
+    ref = paths[0].read_bytes()
+    assert all(p.read_bytes() == ref for p in paths[1:])
+
+
+@pytest.mark.parametrize("start", [0.0, 0.4])
+def test_tef_branch_anchored_at_the_sweep_start(start):
+    # the toy labels mark which root is "TEF"; without a linear system the
+    # anchor is the label (or the largest flap participation)
+    class Labelled(Veering):
+        def __call__(self, cfg):
+            r = super().__call__(cfg)
+            r.modes["label"] = ["TEF" if lab == "first" else "blade torsion 1"
+                                for lab in r.modes["label"]]
+            return r
+
+    xs = [x for x in XS if x >= start]
+    res = sweep(MDART, PARAM, xs, point=Labelled(), progress=False)
+    t = res.table
+    branch_rows = t[t["tef_branch"]]
+    assert branch_rows["value_si"].min() == pytest.approx(start)
+    assert branch_rows["track"].nunique() == 1
+    assert res.anchor["method"] == "label"
+    first = branch_rows.sort_values("value_si").iloc[0]
+    assert first["label_here"] == "TEF"
