@@ -84,6 +84,32 @@ are real, and a student should read every figure above with them in mind:
   actuator stiffness scale with it too.
 '''
 
+MECHANISM_NOTE = '''\
+### Why: the growth rate as work done by each term
+
+`tefcore.mechanism` writes the root's real part as an exact energy balance:
+each term of the linearised equations (blade inertia and stiffness, the
+blade's own airloads, the flap's lift and pitching moment on the blade, the
+hinge moments, the flap's inertial couplings, the actuator ...) does some net
+work on the mode per cycle; divided by twice the mode's energy, these add up
+to the real part (positive: the term feeds the mode). Conservative terms --
+the inertial couplings among them -- do no net work themselves: they shape
+the mode so that the aerodynamic terms can. That is what the **knockouts**
+show: the same root followed while one term is switched off.'''
+
+LOCUS_NOTE = '''\
+**Which root is which.** "The TEF mode" is the *TEF branch*: the root that the
+flap's own mode (the flap on its actuator spring, uncoupled from the blade)
+becomes when the coupling is switched on, at the start of the sweep, followed
+continuously along the sweep (by eigenvalue and shape; where a step is too
+coarse to tell, tefcore bisects it). Its character can change along the way
+-- it can turn into a torsion-like root, while another root becomes
+flap-dominated -- so the plots also show the *flutter root* at each point
+(the least stable root in which the flap participates by at least 10 %) and
+the participation of flap, torsion, bending and lag in the TEF branch. Two
+roots approaching in frequency while one turns towards the unstable side is
+the classic picture of coalescence flutter.'''
+
 SAVE_NOTE = '''\
 The results of this notebook are in `output_dir`: the tidy sweep tables
 (`*_modes.csv`: one row per point and tracked mode, with the trim), the
@@ -114,8 +140,23 @@ def params_cell(stem, measure="decay_rate", extra=""):
     return code(COMMON_PARAMS.format(stem=stem, measure=measure) + extra, "parameters")
 
 
+def locus_cells(fig, var, stem_png, lab=""):
+    """Root locus and TEF participation along the sweep, and how modes were identified."""
+    return [code(f'''\
+nt.report_identity("{fig}", {var})
+fig, (ax_l, ax_p) = plt.subplots(1, 2, figsize=(11, 4.2))
+nt.plot_root_locus(ax_l, "{fig}", {var}.table{lab})
+ax_l.set_title("root locus (square: start, arrows: increasing x)", fontsize="medium")
+ax_l.legend(fontsize="x-small")
+nt.plot_participation(ax_p, "{fig}", {var}.table)
+ax_p.set_title("participation in the TEF branch", fontsize="medium")
+ax_p.legend(fontsize="x-small", loc="upper right")
+nt.savefig(fig, out, "{stem_png}_locus");
+''')]
+
+
 def stability_block(fig, stem_png, title, *, labels=None, panels=("damping",),
-                    var=None, natural=False, freq_labels=None):
+                    var=None, natural=False, freq_labels=None, locus=True):
     """Compute, plot, tabulate one stability figure (natural: panel (a) shows the
     blade natural frequencies)."""
     var = var or f"res_{fig}"
@@ -163,6 +204,9 @@ fig.suptitle({pystr(title, 13)},
              fontsize="medium")
 nt.savefig(fig, out, "{stem_png}");
 '''))
+    if locus:
+        cells.append(md(LOCUS_NOTE))
+        cells.extend(locus_cells(fig, var, stem_png, lab))
     cells.append(code(f'''\
 print("damping (" + damping_measure + ") of the tracked modes "
       "(NaN: that track is absent at this x, e.g. after a locked pair unlocks):")
@@ -552,6 +596,15 @@ motion is **in phase with blade flap bending** -- blade flap damping
 damping stays about constant.'''),
         *stability_block("fig8", "fig08", "Fig. 8: effect of overhang on stability in hover, "
                          "c_cg/c_f = 0"),
+        md(MECHANISM_NOTE + '''
+For the over-balanced flap the paper's explanation is that "the flap becomes
+aerodynamically over-balanced ... and the flap mode diverges": a divergence
+would be a *real* root crossing zero, driven by the flap's own hinge moment
+(C_h_delta, a negative spring beyond the balance point). Here is the TEF
+branch at an overhang of 0.6, term by term:'''),
+        code('''\
+print(nt.explain("fig8", res_fig8, 0.6, base, overrides).to_string(index=False))
+'''),
         md('''\
 **What the paper concludes** (conclusion 1): aerodynamic balance is the key to
 small actuation requirements, but excessive overhang may lead to
@@ -610,6 +663,20 @@ Conditions: forward flight, mu = 0.30, overhang 0.29 c_f.'''),
         code('''\
 print("TEF frequency [/rev] versus CG offset:")
 print(nt.mode_summary("fig9", res_fig9.table, labels=("TEF",), quantity="frequency").to_string())
+'''),
+        md(MECHANISM_NOTE + '''
+The paper calls the instability of the mass-unbalanced flap "typical
+trailing-edge flap-blade torsion flutter", resulting "from the energy transfer
+between the trailing-edge flap mode and blade torsion mode". Here is the TEF
+branch and the flutter root at c_cg = 0.36 c_f, term by term: which terms do
+the destabilising work, and what happens when the flap-torsion couplings are
+knocked out:'''),
+        code('''\
+print(nt.explain("fig9", res_fig9, 0.36, base, overrides).to_string(index=False))
+'''),
+        code('''\
+print(nt.explain("fig9", res_fig9, 0.36, base, overrides, which="flutter root",
+                 knockouts=False).to_string(index=False))
 '''),
         md('''\
 **What the paper concludes:** the TEF frequency falls with CG offset; the TEF

@@ -51,10 +51,21 @@ def _is(labels: pd.Series, mode: str) -> pd.Series:
     return (labels == mode) | (labels == f"{mode} (locked)")
 
 
+class _Ambiguous(Exception):
+    """The claim's mode cannot be identified over its range (status ``ambiguous``)."""
+
+
 def _select(frame, mode, identify="track") -> pd.DataFrame:
-    """Rows of `mode`: its track (``identify="track"``), or at each point the mode
-    labelled `mode` there (``"label"``, the most participating one if several)."""
+    """Rows of `mode`: ``"TEF"`` is the TEF branch (the track of the flap mode
+    at the sweep start, :func:`tefcore.sweep.sweep`); another mode its track
+    (``identify="track"``), or at each point the mode labelled `mode` there
+    (``"label"``, the most participating one if several)."""
     col = "label_here" if identify == "label" and "label_here" in frame else "label"
+    if mode == "TEF" and identify == "track" and "tef_branch" in frame:
+        rows = frame[frame["tef_branch"].fillna(False).astype(bool)]
+        if rows.empty:
+            raise _Fail("the sweep has no TEF branch (no flap mode at its start)")
+        return rows
     ok = _is(frame[col], mode)
     if not ok.any():
         raise _Fail(f"no mode {mode!r} in the result; labels: "
@@ -70,11 +81,44 @@ def _select(frame, mode, identify="track") -> pd.DataFrame:
     return frame[frame["track"] == sizes.index[0]]
 
 
+def _doubtful(rows, mode, lo, hi) -> list[float]:
+    """x of the rows (within [lo, hi] and before) whose identity is not decided."""
+    if "identity" not in rows:
+        return []
+    x = rows["x"].to_numpy(float)
+    upto = np.ones(len(rows), bool) if hi is None else x <= hi * (1 + _EPS) + _EPS
+    if mode == "TEF" and "tef_branch_certain" in rows:
+        bad = ~rows["tef_branch_certain"].fillna(False).astype(bool).to_numpy()
+    else:
+        # a coalescence is followed by convention (the less stable root goes
+        # on, tefcore.tracking); only an undecided match is a doubt
+        bad = rows["identity"].astype(str).to_numpy() == "ambiguous"
+    inside = upto if lo is None else upto & (x >= lo * (1 - _EPS) - _EPS)
+    if mode == "TEF":
+        bad &= inside
+    else:
+        bad &= upto
+    return sorted(set(np.round(x[bad], 12).tolist()))
+
+
 def _series(frame, mode, quantity, lo=None, hi=None, identify="track"):
-    """(x, y) of one mode and quantity, sorted by x, within [lo, hi]."""
+    """(x, y) of one mode and quantity, sorted by x, within [lo, hi].
+
+    Only the points the figure asks for (``refinement == 0``); raises
+    :class:`_Ambiguous` when the mode's identity is undecided in the range.
+    """
     if quantity not in frame:
         raise _Fail(f"the result has no {quantity!r} column")
     t = _select(frame, mode, identify) if mode else frame
+    if mode and identify == "track":
+        doubt = _doubtful(t, mode, lo, hi)
+        if doubt:
+            raise _Ambiguous(f"the identity of {mode!r} is undecided at x = "
+                             + ", ".join(f"{v:.4g}" for v in doubt[:4])
+                             + (" ..." if len(doubt) > 4 else "")
+                             + " (a coalescence or an unresolved veering of its roots)")
+    if "refinement" in t:
+        t = t[t["refinement"] == 0]
     t = t[np.isfinite(t[quantity].to_numpy(float))].sort_values("x")
     x, y = t["x"].to_numpy(float), t[quantity].to_numpy(float)
     if lo is not None:
@@ -286,7 +330,64 @@ def _check_curve(c: Claim, ctx: _Context):
         f"{n - inside} point(s) outside their band")
 
 
-_CHECKS = {"value": _check_value, "threshold": _check_threshold, "range": _check_range,
+def _check_mechanism(c: Claim, ctx: _Context):
+    from .figures import FIGURES as FIGS
+    from .figures import figure_config
+    from .mechanism import mechanism
+
+    frame = ctx.frame(c.figure, c.overrides)
+    xs = float(x_to_si(c.figure, c.x, c.x_unit))
+    rows = _select(frame, c.mode, ctx.identify)
+    doubt = _doubtful(rows, c.mode, None, xs)
+    if doubt and ctx.identify == "track":
+        raise _Ambiguous(f"the identity of {c.mode!r} is undecided at x = {doubt[0]:.4g}")
+    at = rows[np.abs(rows["x"].to_numpy(float) - xs) <= _EPS * max(abs(xs), 1.0)]
+    if at.empty:
+        raise _Fail(f"no {c.mode} root at x = {_g(c.x)} {c.x_unit}".rstrip()
+                    + " (validate_all adds the x of mechanism claims to the sweep)")
+    root = complex(at["real_part"].iloc[0], at["frequency_per_rev"].iloc[0])
+    cfg = figure_config(c.figure, ctx.cfg).with_overrides(
+        {**c.overrides, FIGS[c.figure].parameter: xs})
+    res = mechanism(cfg, mode="root", root=root, knockouts=bool(c.knockout_terms))
+    terms = res.table[~res.table["term"].str.startswith(("total", "knockout"))]
+    contrib = dict(zip(terms["term"], terms["contribution_real"], strict=True))
+    found, reasons, wanted = [], [], []
+    found.append(f"{res.kind} at {res.eigenvalue.real:+.3g} {res.eigenvalue.imag:+.3g}i /rev")
+    if c.root_kind:
+        wanted.append(f"a {c.root_kind}")
+        if res.kind != c.root_kind:
+            reasons.append(f"the root is a {res.kind}, not a {c.root_kind}")
+    if c.driving_terms:
+        top = max(contrib, key=contrib.get)
+        found.append(f"driven most by {top} ({contrib[top]:+.3g} /rev)")
+        wanted.append("driven most by " + " or ".join(c.driving_terms))
+        if top not in c.driving_terms:
+            reasons.append(f"the largest destabilising work is done by {top}")
+    for kind, least in c.min_participation.items():
+        got = res.participation.get(kind, 0.0)
+        found.append(f"{kind} participation {got:.2f}")
+        wanted.append(f"{kind} participation >= {least:g}")
+        if got < least:
+            reasons.append(f"{kind} participates {got:.2f} < {least:g}")
+    if c.knockout_terms:
+        sigma = res.eigenvalue.real
+        cut = {t: sigma - res.knockouts[t].eigenvalue.real for t in c.knockout_terms
+               if t in res.knockouts}
+        best = max(cut, key=cut.get)
+        share = cut[best] / abs(sigma) if sigma else np.nan
+        found.append(f"knocking out {best} moves the real part by {-cut[best]:+.3g} /rev")
+        wanted.append(f"a knockout of {' or '.join(c.knockout_terms)} removes >= "
+                      f"{c.tolerance:.0%} of the growth rate")
+        if not share >= c.tolerance:
+            reasons.append(f"no knockout of {', '.join(c.knockout_terms)} removes "
+                           f"{c.tolerance:.0%} of the growth rate")
+        if not res.knockouts[best].clear:
+            raise _Ambiguous(f"the knockout of {best} passes a coalescence")
+    return ("; ".join(wanted) + f" at x = {_g(c.x)} {c.x_unit}".rstrip(), "; ".join(found),
+            res.eigenvalue.real, not reasons, "; ".join(reasons))
+
+
+_CHECKS = {"mechanism": _check_mechanism, "value": _check_value, "threshold": _check_threshold, "range": _check_range,
            "trend": _check_trend, "comparison": _check_comparison, "curve": _check_curve}
 
 
@@ -353,6 +454,9 @@ def validate_figure(name: str, result, claims=None, *, cfg=None, variants=None, 
             continue
         except _NotEvaluated as err:
             rows.append(_row(c, status="not reproducible", reason=str(err)))
+            continue
+        except _Ambiguous as err:
+            rows.append(_row(c, status="ambiguous", reason=str(err)))
             continue
         status = "not reproducible" if ok is None else ("pass" if ok else "fail")
         agree = np.nan

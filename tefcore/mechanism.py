@@ -3,7 +3,7 @@
 The linearised equations (the paper's eq. 5) are a sum of physical terms --
 blade inertia and stiffness, the flap's inertial couplings, the flap's
 pitching moment on the blade, the hinge moments, the actuator spring ...
-(:data:`TERMS`, docs/theory.md section 9).  :func:`mechanism` takes one root
+(:data:`TERMS`, docs/theory.md section 10).  :func:`mechanism` takes one root
 and
 
 * **decomposes its growth rate exactly** into the terms (an energy balance:
@@ -225,7 +225,7 @@ def _quad(x, a, y):
 
 
 def energy_decomposition(parts: dict, exponent: complex, shape, psi):
-    """Contributions of each term to one root's exponent (exact, docs/theory.md 9.2).
+    """Contributions of each term to one root's exponent (exact, docs/theory.md section 10).
 
     Parameters
     ----------
@@ -347,7 +347,7 @@ def _classify(eta: complex) -> str:
 
 
 def mechanism(cfg, mode: str = "TEF", *, knockouts: bool = True, stability_result=None,
-              n_steps: int | None = None) -> MechanismResult:
+              n_steps: int | None = None, root: complex | None = None) -> MechanismResult:
     """Diagnose one root of a configuration: energy balance, knockouts, kind.
 
     Parameters
@@ -355,8 +355,11 @@ def mechanism(cfg, mode: str = "TEF", *, knockouts: bool = True, stability_resul
     cfg : tefcore.config.Config
     mode : str
         ``"TEF"`` (the root the flap mode becomes, :func:`tef_root`),
-        ``"flutter"`` (:func:`flutter_root`) or a label of the stability
-        table (e.g. ``"blade torsion 1"``).
+        ``"flutter"`` (:func:`flutter_root`), ``"root"`` (the root nearest
+        `root`, e.g. the TEF branch of a sweep at this point) or a label of
+        the stability table (e.g. ``"blade torsion 1"``).
+    root : complex, optional
+        Eigenvalue (/rev) for ``mode="root"``.
     knockouts : bool
         Also follow the root with each removable term knocked out.
     stability_result : StabilityResult, optional
@@ -402,6 +405,11 @@ def mechanism(cfg, mode: str = "TEF", *, knockouts: bool = True, stability_resul
         if row is None:
             raise ValueError(f"no root with a flap participation >= {FLUTTER_PARTICIPATION}")
         how = f"least stable root with flap participation >= {FLUTTER_PARTICIPATION}"
+    elif mode == "root":
+        if root is None:
+            raise ValueError("mode 'root' needs the root's eigenvalue (root=...)")
+        row = int(np.argmin(np.abs(eig_table - complex(root))))
+        how = f"the root nearest {complex(root):.4g}"
     else:
         rows = np.flatnonzero(table["label"].to_numpy() == mode)
         if rows.size == 0:

@@ -178,7 +178,9 @@ def quiet_stability(cfg):
         res = stability(cfg)
     trim = dict(res.trim)
     trim["numerical_warnings"] = len(caught)
-    return SimpleNamespace(modes=res.modes, eigenvectors=res.eigenvectors, trim=trim)
+    return SimpleNamespace(modes=res.modes, eigenvectors=res.eigenvectors, trim=trim,
+                           vectors=res.vectors, periodic=res.periodic, system=res.system,
+                           trim_result=res.trim_result)
 
 
 def run_stability_figure(name: str, base=None, overrides: dict | None = None,
@@ -255,32 +257,49 @@ def curves(name: str, table: pd.DataFrame, labels=PAPER_MODES,
            measure: str = "decay_rate") -> pd.DataFrame:
     """One tracked curve per mode, for plotting and printing.
 
-    The track of mode ``m`` is the one labelled ``m`` or ``m (locked)`` that is
-    present at the most points (ties: the exact label) -- the same choice as
-    :mod:`tefcore.validation`.  Columns ``label, track, x, frequency_per_rev,
-    damping, same_character``; ``same_character`` is False where the mode's
-    own label at that point is another mode's (strong coupling: the modes
-    exchange character).
+    ``"TEF"`` is the TEF branch of the sweep (the track of the flap mode at
+    the sweep start, :func:`tefcore.sweep.sweep`); another mode ``m`` is the
+    track labelled ``m`` or ``m (locked)`` that is present at the most
+    points (ties: the exact label) -- the same choice as
+    :mod:`tefcore.validation`.  Columns ``label, track, x, frequency_per_rev``
+    (continued along the track: whole /rev of a Floquet frequency are not
+    allowed to jump), ``damping, same_character, certain, refinement``;
+    ``same_character`` is False where the mode's own label at that point is
+    another mode's (it exchanged character with it), ``certain`` is False
+    from the first point where its identity could not be decided.
     """
     _, fn = MEASURES[measure]
     ok = table[table["status"] == "ok"].copy()
     ok["base"] = _base_label(ok["label"])
     parts = []
     for lab in labels:
-        sub = ok[ok["base"] == lab]
-        if sub.empty:
-            continue
-        sizes = sub.groupby("track", sort=False).agg(n=("point", "size"),
-                                                     first=("label", "first"))
-        sizes = sizes.assign(exact=sizes["first"] == lab).sort_values(
-            ["n", "exact"], ascending=False, kind="stable")
-        g = sub[sub["track"] == sizes.index[0]].copy()
+        if lab == "TEF" and "tef_branch" in ok:
+            g = ok[ok["tef_branch"].fillna(False).astype(bool)].copy()
+            if g.empty:
+                continue
+            g["certain"] = g["tef_branch_certain"].fillna(False).astype(bool)
+        else:
+            sub = ok[ok["base"] == lab]
+            if sub.empty:
+                continue
+            sizes = sub.groupby("track", sort=False).agg(n=("point", "size"),
+                                                         first=("label", "first"))
+            sizes = sizes.assign(exact=sizes["first"] == lab).sort_values(
+                ["n", "exact"], ascending=False, kind="stable")
+            g = sub[sub["track"] == sizes.index[0]].copy()
+            ident = g["identity"] if "identity" in g else pd.Series("clear", index=g.index)
+            g["certain"] = (ident != "ambiguous").cummin().to_numpy()
         g["label"] = lab
         parts.append(g)
-    cols = ["label", "track", "x", "frequency_per_rev", "damping", "same_character"]
+    cols = ["label", "track", "x", "frequency_per_rev", "damping", "same_character",
+            "certain", "refinement"]
     if not parts:
         return pd.DataFrame(columns=cols)
     cv = pd.concat(parts, ignore_index=True)
+    if "frequency_tracked" in cv:
+        cv["frequency_per_rev"] = cv["frequency_tracked"]
+    if "refinement" not in cv:
+        cv["refinement"] = 0
     cv["x"] = x_values(name, cv)
     cv["damping"] = fn(cv)
     cv["same_character"] = _base_label(cv["label_here"]) == cv["label"]
@@ -313,7 +332,10 @@ def natural_frequencies(name: str, values, base=None, overrides: dict | None = N
     t["track"] = t["label"]
     t["damping"] = np.nan
     t["same_character"] = True
-    return t[["label", "track", "x", "frequency_per_rev", "damping", "same_character"]]
+    t["certain"] = True
+    t["refinement"] = 0
+    return t[["label", "track", "x", "frequency_per_rev", "damping", "same_character",
+              "certain", "refinement"]]
 
 
 def plot_modes(ax, name: str, table: pd.DataFrame, labels=PAPER_MODES,
@@ -322,24 +344,40 @@ def plot_modes(ax, name: str, table: pd.DataFrame, labels=PAPER_MODES,
                style=None, natural: pd.DataFrame | None = None):
     """Frequency or damping of the tracked modes against the paper's x axis.
 
-    Hollow markers: points where the mode has the character of another mode
-    (strong coupling).  ``natural``: plot these natural frequencies
-    (:func:`natural_frequencies`) instead of the table's.  ``reference``:
-    digitised curves (``label, x, y``) drawn as black crosses.
+    Lines through every computed point (refinement points included), markers
+    at the figure's own points. Hollow markers: the mode has the character of
+    another mode there (it exchanged character in a coupling); a dotted line
+    and grey markers: its identity is not certain there (a coalescence or an
+    unresolved veering on the way).  ``natural``: plot these natural
+    frequencies (:func:`natural_frequencies`) instead of the table's.
+    ``reference``: digitised curves (``label, x, y``) drawn as black crosses.
     """
     xlabel, _ = AXES[name]
     cv = natural if natural is not None else curves(name, table, labels, measure)
     ycol = "frequency_per_rev" if quantity == "frequency" else "damping"
+    doubt_shown = False
     for lab in labels:
         g = cv[cv["label"] == lab]
         if g.empty:
             continue
         color, marker, ls = (style or _STYLE).get(lab, ("0.3", "o", "-"))
-        ax.plot(g["x"], g[ycol], ls=ls, color=color, lw=1.4, label=f"{lab}{label_suffix}")
-        filled, hollow = g[g["same_character"]], g[~g["same_character"]]
+        sure, unsure = g[g["certain"]], g[~g["certain"]]
+        if not unsure.empty and not sure.empty:      # join the two parts
+            unsure = pd.concat([sure.iloc[[-1]], unsure])
+        ax.plot(sure["x"], sure[ycol], ls=ls, color=color, lw=1.4, label=f"{lab}{label_suffix}")
+        if not unsure.empty:
+            ax.plot(unsure["x"], unsure[ycol], ls=":", color=color, lw=1.4,
+                    label=None if doubt_shown else "identity uncertain (dotted)")
+            doubt_shown = True
+        main = g[g["refinement"] == 0]
+        filled = main[main["same_character"] & main["certain"]]
+        hollow = main[~main["same_character"] & main["certain"]]
+        grey = main[~main["certain"]]
         ax.plot(filled["x"], filled[ycol], ls="none", marker=marker, color=color, ms=5)
         ax.plot(hollow["x"], hollow[ycol], ls="none", marker=marker, ms=5,
                 markerfacecolor="white", markeredgecolor=color)
+        ax.plot(grey["x"], grey[ycol], ls="none", marker=marker, ms=5,
+                markerfacecolor="0.85", markeredgecolor=color)
     if reference is not None and not reference.empty:
         for lab, g in reference.groupby("label", sort=True):
             ax.plot(g["x"], g["y"], ls="none", marker="x", color="k", ms=6,
@@ -354,11 +392,101 @@ def plot_modes(ax, name: str, table: pd.DataFrame, labels=PAPER_MODES,
     return ax
 
 
+def plot_root_locus(ax, name: str, table: pd.DataFrame, labels=PAPER_MODES,
+                    flutter: bool = True, style=None):
+    """Root locus: real part against frequency of the tracked modes along the sweep.
+
+    The classic picture of coalescence flutter: two roots approach in
+    frequency and one of them turns towards (and across) the imaginary
+    axis.  Arrows point in the direction of the swept parameter; the first
+    point of each curve is a square.  ``flutter``: also mark the flutter
+    root of each point (the least stable root the flap takes part in) with
+    black dots.
+    """
+    cv = curves(name, table, labels)
+    for lab in labels:
+        g = cv[cv["label"] == lab]
+        if len(g) < 2:
+            continue
+        color, _, ls = (style or _STYLE).get(lab, ("0.3", "o", "-"))
+        x, y = g["frequency_per_rev"].to_numpy(float), -g["damping"].to_numpy(float)
+        ax.plot(x, y, ls=ls, color=color, lw=1.3, label=lab)
+        ax.plot(x[0], y[0], "s", color=color, ms=5)
+        step = max(1, len(x) // 5)
+        for i in range(0, len(x) - 1, step):
+            ax.annotate("", xy=(x[i + 1], y[i + 1]), xytext=(x[i], y[i]),
+                        arrowprops={"arrowstyle": "->", "color": color, "lw": 1.2})
+    if flutter and "flutter_root" in table:
+        fr = table[(table["status"] == "ok") & table["flutter_root"].fillna(False).astype(bool)]
+        freq = fr["frequency_tracked"] if "frequency_tracked" in fr else fr["frequency_per_rev"]
+        ax.plot(freq, fr["real_part"], "k.", ms=4, label="flutter root (each point)")
+    ax.axhline(0.0, color="k", lw=0.8)
+    ax.set_xlabel("frequency [/rev]")
+    ax.set_ylabel("real part Re(s)/Ω [1/rev]  (> 0 unstable)")
+    return ax
+
+
+def plot_participation(ax, name: str, table: pd.DataFrame, label: str = "TEF"):
+    """Participation by kind of coordinate along one tracked mode (stacked).
+
+    The shares are participation factors (:meth:`tefcore.floquet.FloquetResult.
+    with_participation`), summing to 1 at each point: how much of the mode's
+    dynamics is the flap's, the blade torsion's, flap bending's and lag's.
+    """
+    cv = curves(name, table, (label,))
+    ok = table[table["status"] == "ok"]
+    if label == "TEF" and "tef_branch" in ok:
+        rows = ok[ok["tef_branch"].fillna(False).astype(bool)]
+    else:
+        rows = ok[ok["track"].isin(cv["track"].unique())]
+    rows = rows.assign(x=x_values(name, rows)).sort_values("x")
+    kinds = [k for k in ("TEF", "torsion", "flap", "lag") if f"share_{k}" in rows]
+    colors = {"TEF": "C3", "torsion": "C1", "flap": "C0", "lag": "C2"}
+    ax.stackplot(rows["x"], *[rows[f"share_{k}"] for k in kinds],
+                 labels=[("flap (TEF)" if k == "TEF" else f"blade {k}") for k in kinds],
+                 colors=[colors[k] for k in kinds], alpha=0.8)
+    ax.set_ylim(0, 1)
+    ax.set_ylabel(f"participation in the {label} mode")
+    ax.set_xlabel(AXES[name][0])
+    return ax
+
+
+def mechanism_summary(cfg, x=None, name=None, root=None, knockouts=True,
+                      digits: int = 3) -> pd.DataFrame:
+    """:func:`tefcore.mechanism.mechanism` of one root, as a rounded table.
+
+    ``name``/``x``: the figure's configuration at that x (its swept value);
+    ``root``: the eigenvalue of the root (e.g. the TEF branch there), else
+    the root the flap mode becomes (``mode="TEF"``).  Prints the kind and
+    participation; returns ``term, contribution_real`` (terms with at least
+    0.001 /rev, largest first) and the knockouts.
+    """
+    from .figures import FIGURES, figure_config
+    from .mechanism import mechanism
+
+    if name is not None:
+        cfg = figure_config(name, cfg).with_overrides({FIGURES[name].parameter: x})
+    res = mechanism(cfg, mode="TEF" if root is None else "root", root=root,
+                    knockouts=knockouts)
+    print(f"{res.kind} at {res.eigenvalue.real:+.{digits}f} "
+          f"{res.eigenvalue.imag:+.{digits}f}i /rev; participation: "
+          + ", ".join(f"{k} {v:.2f}" for k, v in res.participation.items() if v >= 0.005))
+    t = res.table
+    terms = t[~t["term"].str.startswith(("total", "knockout"))]
+    terms = terms[terms["contribution_real"].abs() >= 10 ** -digits]
+    terms = terms.reindex(terms["contribution_real"].abs().sort_values(
+        ascending=False, kind="stable").index)
+    knock = t[t["term"].str.startswith("knockout")]
+    out = pd.concat([terms, knock], ignore_index=True)[["term", "contribution_real"]]
+    return clean(out.assign(contribution_real=out["contribution_real"].round(digits)))
+
+
 def mode_summary(name: str, table: pd.DataFrame | None, labels=PAPER_MODES,
                  measure: str = "decay_rate", quantity: str = "damping",
                  digits: int = 3, natural: pd.DataFrame | None = None) -> pd.DataFrame:
     """Wide table (x by mode), rounded, for printing in checked cells."""
     cv = natural if natural is not None else curves(name, table, labels, measure)
+    cv = cv[cv["refinement"] == 0]               # the figure's own points
     col = "frequency_per_rev" if quantity == "frequency" else "damping"
     wide = cv.pivot_table(index="x", columns="label", values=col, aggfunc="first",
                           sort=True)
@@ -376,17 +504,82 @@ def clean(df: pd.DataFrame) -> pd.DataFrame:
 
 def sign_changes(name: str, table: pd.DataFrame, label: str = "TEF",
                  measure: str = "decay_rate") -> list:
-    """Where a mode's damping changes sign (linear interpolation), paper units."""
+    """Where a mode's damping changes sign (:func:`tefcore.curve_metrics.zero_crossings`
+    of its real part, on the figure's own points), paper units."""
+    from .curve_metrics import zero_crossings
+
     cv = curves(name, table, (label,), measure)
+    cv = cv[cv["refinement"] == 0]
     out = []
     for _, g in cv.groupby("track", sort=True):
-        x, y = g["x"].to_numpy(), g["damping"].to_numpy()
-        for i in range(len(x) - 1):
-            if y[i] == 0 or y[i] * y[i + 1] < 0:
-                xc = x[i] - y[i] * (x[i + 1] - x[i]) / (y[i + 1] - y[i])
-                out.append((round(float(xc), 3),
-                            "stable -> unstable" if y[i] > 0 else "unstable -> stable"))
+        x, y = g["x"].to_numpy(), -g["damping"].to_numpy()
+        for x0, d in zero_crossings(x, y):
+            out.append((round(float(x0), 3),
+                        "stable -> unstable" if d == "destabilising" else "unstable -> stable"))
     return out
+
+
+def report_identity(name: str, result) -> None:
+    """A few deterministic lines on how the sweep's modes were identified.
+
+    Where the TEF branch starts and how it was anchored, how many points the
+    refinement added, where the branch's identity is undecided, and where
+    the flutter root (least stable root the flap takes part in) is a root
+    other than the TEF branch's.
+    """
+    t = result.table
+    ok = t[t["status"] == "ok"]
+    n_ref = ok.loc[ok["refinement"] > 0, "point"].nunique() if "refinement" in ok else 0
+    anchor = getattr(result, "anchor", {}) or {}
+    x = x_values(name, ok.assign(value=ok["value"])) if len(ok) else np.array([])
+    ok = ok.assign(x=x)
+    if not anchor:
+        print(f"{name}: no TEF branch (no flap mode at the sweep start)")
+        return
+    start = ok[(ok["point"] == anchor["point"])]["x"].iloc[0]
+    print(f"{name}: TEF branch anchored at x = {start:.4g} by {anchor['method']}; "
+          f"{n_ref} points added where identities were ambiguous")
+    branch = ok[ok["tef_branch"].fillna(False).astype(bool)]
+    unsure = branch[~branch["tef_branch_certain"].fillna(False).astype(bool)]
+    print("  TEF branch identity undecided from x = "
+          + (f"{unsure['x'].min():.4g}" if not unsure.empty else "nowhere (decided throughout)"))
+    fr = ok[ok["flutter_root"].fillna(False).astype(bool)]
+    other = fr[~fr["tef_branch"].fillna(False).astype(bool) & (fr["refinement"] == 0)]
+    if other.empty:
+        print("  the flutter root is the TEF branch's root at every point")
+    else:
+        labs = sorted(set(other["label_here"].astype(str)))
+        print(f"  the flutter root is another root at {len(other)} of "
+              f"{int((fr['refinement'] == 0).sum())} points (labelled {', '.join(labs)})")
+
+
+def explain(name: str, result, x: float, base=None, overrides: dict | None = None,
+            which: str = "TEF branch", knockouts: bool = True) -> pd.DataFrame:
+    """Why the TEF branch (or the flutter root) is (un)stable at the sweep point
+    nearest ``x`` (paper units): :func:`mechanism_summary` of that root.
+
+    ``which``: ``"TEF branch"`` or ``"flutter root"``.  Prints the point and
+    the root's kind and participation; returns the terms' work and the
+    knockouts (rounded, for checked cells).
+    """
+    from .figures import FIGURES, figure_config
+
+    t = result.table
+    col = "tef_branch" if which == "TEF branch" else "flutter_root"
+    rows = t[(t["status"] == "ok") & t[col].fillna(False).astype(bool) & (t["refinement"] == 0)]
+    if rows.empty:
+        print(f"{name}: no {which} in the sweep")
+        return pd.DataFrame(columns=["term", "contribution_real"])
+    xs = x_values(name, rows)
+    r = rows.iloc[int(np.argmin(np.abs(xs - x)))]
+    cfg = figure_config(name, base)
+    if overrides:
+        cfg = cfg.with_overrides(overrides)
+    cfg = cfg.with_overrides({FIGURES[name].parameter: r["value_si"]})
+    print(f"{name}, {which} at x = {float(xs[int(np.argmin(np.abs(xs - x)))]):.4g} "
+          f"(labelled {r['label_here']} there):")
+    return mechanism_summary(cfg, root=complex(r["real_part"], r["frequency_per_rev"]),
+                             knockouts=knockouts)
 
 
 def theodorsen_c(k: float) -> complex:

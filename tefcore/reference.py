@@ -36,13 +36,19 @@ from .config import SECTIONS, resolve_field
 from .figures import FIGURES, figure_config
 from .units import to_si
 
-__all__ = ["KINDS", "QUANTITIES", "STATUSES", "Claim", "ReferenceDataError", "load_claims",
+__all__ = ["KINDS", "QUANTITIES", "ROOT_KINDS", "STATUSES", "Claim", "ReferenceDataError",
+           "load_claims",
            "parse_claim", "read_wpd_csv", "reference_dir", "x_to_si", "y_to_canonical"]
 
-KINDS = ("value", "threshold", "range", "trend", "comparison", "curve", "not_reproducible")
+KINDS = ("value", "threshold", "range", "trend", "comparison", "mechanism", "curve",
+         "not_reproducible")
 TAGS = ("calibration", "validation")
-#: best first; a status later in the tuple is "worse"
-STATUSES = ("pass", "not reproducible", "fail")
+#: best first; a status later in the tuple is "worse".  ``ambiguous``: the
+#: model has a result, but which of its roots is the claim's mode cannot be
+#: decided over the claim's range (a coalescence or an unresolved veering)
+STATUSES = ("pass", "ambiguous", "not reproducible", "fail")
+#: kinds of root a mechanism claim can expect (:func:`tefcore.mechanism.mechanism`)
+ROOT_KINDS = ("flutter", "divergence")
 KNOWN_FIGURES = tuple(FIGURES) + ("fig5", "fig6", "fig7")
 _FT_LBF = 1.3558179483314004  # N m per ft-lbf
 _PER_REV = {"1/rev": 1.0, "/rev": 1.0, "": 1.0, "1/s": "1/s"}   # eigenvalue / Omega
@@ -76,6 +82,8 @@ _FIELDS = {  # kind -> allowed fields besides _COMMON
     "trend": _CHECKED | {"interval", "direction", "method", "tolerance_type", "reference_mode"},
     "comparison": _CHECKED | {"interval", "statistic", "relation", "other_figure", "other_mode",
                               "other_quantity", "other_interval", "other_overrides"},
+    "mechanism": _CHECKED | {"x", "root_kind", "driving_terms", "min_participation",
+                             "knockout_terms"},
     "curve": _CHECKED,
     "not_reproducible": {"mode", "quantity", "reason"},
 }
@@ -131,6 +139,10 @@ class Claim:
     other_quantity: str = ""
     other_interval: tuple | None = None
     other_overrides: dict = field(default_factory=dict)
+    root_kind: str = ""
+    driving_terms: tuple = ()
+    min_participation: dict = field(default_factory=dict)
+    knockout_terms: tuple = ()
     reason: str = ""
     example: bool = False
     points: pd.DataFrame | None = field(default=None, repr=False, compare=False)
@@ -257,6 +269,8 @@ def parse_claim(raw: dict, where: str = "<claim>") -> Claim:
         return Claim(**kw, mode=r.text("mode"), quantity=r.text("quantity"),
                      reason=r.text("reason", required=True))
     stability = figure in FIGURES
+    if kind == "mechanism":
+        return _mechanism_claim(r, kw, figure)
     q = _quantity(r, "quantity", figure, "real_part" if kind in ("threshold", "range") else "")
     if kind in ("threshold", "range") and q != "real_part":
         r.fail(f"a {kind} is a zero crossing of 'real_part', not of {q!r}")
@@ -322,6 +336,49 @@ def parse_claim(raw: dict, where: str = "<claim>") -> Claim:
         if all(kw[k] == kw[f"other_{k}"] for k in keys):
             r.fail("a comparison needs a second curve that differs (other_figure, other_mode, "
                    "other_quantity, other_interval or other_overrides)")
+    return Claim(**kw)
+
+
+def _names(r: _Record, key: str, choices) -> tuple:
+    v = r.raw.get(key, [])
+    if not isinstance(v, list) or not all(isinstance(t, str) for t in v):
+        r.fail(f"field {key!r} must be a list of term names")
+    bad = [t for t in v if t not in choices]
+    if bad:
+        r.fail(f"field {key!r}: unknown term(s) {bad}; terms are {list(choices)}")
+    return tuple(v)
+
+
+def _mechanism_claim(r: _Record, kw: dict, figure: str) -> Claim:
+    """A claim about why a root is unstable (:func:`tefcore.mechanism.mechanism`)."""
+    from .mechanism import TERMS
+
+    if figure not in FIGURES:
+        r.fail("a mechanism claim is about a root of a stability figure")
+    kw.update(mode=r.text("mode", required=True), x_unit=r.text("x_unit"),
+              overrides=r.overrides("overrides"), x=r.number("x", required=True),
+              root_kind=r.text("root_kind", choices=("",) + ROOT_KINDS),
+              driving_terms=_names(r, "driving_terms", TERMS),
+              knockout_terms=_names(r, "knockout_terms", TERMS),
+              tolerance=r.number("tolerance"), tolerance_reason=r.text("tolerance_reason"))
+    share = r.raw.get("min_participation", {})
+    kinds = ("flap", "lag", "torsion", "axial", "TEF")
+    if not isinstance(share, dict) or any(k not in kinds for k in share) or any(
+            isinstance(v, bool) or not isinstance(v, int | float) or not 0 <= v <= 1
+            for v in share.values()):
+        r.fail(f"field 'min_participation' must map kinds {list(kinds)} to shares in [0, 1]")
+    kw["min_participation"] = {k: float(v) for k, v in share.items()}
+    try:
+        x_to_si(figure, 1.0, kw["x_unit"])
+    except ValueError as err:
+        r.fail(f"x_unit: {err}")
+    if not (kw["root_kind"] or kw["driving_terms"] or kw["min_participation"]
+            or kw["knockout_terms"]):
+        r.fail("a mechanism claim needs root_kind, driving_terms, min_participation or "
+               "knockout_terms")
+    if kw["knockout_terms"] and (kw["tolerance"] is None or not kw["tolerance_reason"]):
+        r.fail("knockout_terms need 'tolerance' (the least share of the growth rate a "
+               "knockout removes) and 'tolerance_reason'")
     return Claim(**kw)
 
 

@@ -427,7 +427,9 @@ def _roles(table: pd.DataFrame, records: dict, order: list, main_keys: set):
     track = table.at[row, "track"]
     branch = ok & (table["track"] == track)
     table.loc[branch, "tef_branch"] = True
-    doubt = table[branch & ~table["identity"].isin(["clear", "start"])]
+    # a coalescence is a documented convention (the less stable root goes
+    # on), not a doubt; an undecided match is
+    doubt = table[branch & (table["identity"] == "ambiguous")]
     certain = branch.copy()
     if not doubt.empty:
         first_bad = table.loc[doubt.index, "value_si"].min()

@@ -38,7 +38,9 @@ and tracks again.  Where two roots have the same shape and eigenvalue
 (MAC >= :data:`COALESCED_MAC`, :func:`relative_distance` within
 :data:`COALESCED_DISTANCE`), or are the two real multipliers of one locked
 pair (equal frequency at a multiple of 1/2 per rev), no refinement can
-separate them: a coalescence, and the identity is ``"coalescence"``.
+separate them: a coalescence, and the identity is ``"coalescence"``; the
+track then goes on with the less stable root of the pair (the one that
+matters for stability), by convention -- the table says where.
 Two tracks whose eigenvalues pass closer in a step than they move may have
 crossed or veered; unless both kept their shapes (MAC >= :data:`CROSSING_MAC`),
 the match is ``"ambiguous"`` too and the step is refined.  A track's first row is ``"start"``.
@@ -263,9 +265,10 @@ def _coalesced(eig, vecs, j, k, periodic) -> bool:
     if periodic and abs(eig[j].imag - eig[k].imag) <= 1e-6 and abs(
             2 * eig[j].imag - round(2 * eig[j].imag)) <= 1e-6:
         return True
+    if vecs is None:        # without shapes two near roots may as well be two modes
+        return False
     d = relative_distance(eig[[j]], eig[[k]], periodic)[0, 0]
-    same_shape = vecs is None or mac(vecs[:, j], vecs[:, k])[0, 0] >= COALESCED_MAC
-    return bool(same_shape and d <= COALESCED_DISTANCE)
+    return bool(mac(vecs[:, j], vecs[:, k])[0, 0] >= COALESCED_MAC and d <= COALESCED_DISTANCE)
 
 
 def match_modes(prev, curr, *, predicted=None, periodic: bool | None = None) -> np.ndarray:
@@ -423,14 +426,24 @@ def track_modes(points: Sequence, values=None, *, predict: bool = True) -> pd.Da
                               periodic or prev_periodic)
             rows, cols = linear_sum_assignment(cost)
             clear, rival = _decide(cost, rows, cols)
+            partner = {}
             for r, c, ok, k in zip(rows, cols, clear, rival, strict=True):
                 assigned[c] = alive[r]
                 if ok:
                     identity[c] = "clear"
                 elif _coalesced(eig, vecs, c, k, periodic or prev_periodic):
                     identity[c] = "coalescence"
+                    partner[c] = k
                 else:
                     identity[c] = "ambiguous"
+            # a coalesced pair is one mode split into two roots: by convention
+            # the track goes on with the less stable one (the one that matters
+            # for stability), the other root takes the partner's track or a new one
+            for c, k in partner.items():
+                if eig[k].real > eig[c].real and identity[c] == "coalescence":
+                    assigned[c], assigned[k] = assigned[k], assigned[c]
+                    identity[k] = "coalescence"
+                    identity[c] = "coalescence" if assigned[c] >= 0 else "start"
         tracked_eig = eig.copy()
         if periodic or prev_periodic:
             for j, t in enumerate(assigned):

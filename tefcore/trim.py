@@ -32,7 +32,8 @@ from .inflow import Inflow, drees_gradients, momentum_inflow
 
 
 class TrimError(RuntimeError):
-    """The trim did not converge; ``history`` holds the residual per iteration."""
+    """The trim did not converge, or converged to a state beyond the model (a flap
+    diverged statically); ``history`` holds the residual per iteration."""
 
     def __init__(self, message: str, history: list[dict]):
         super().__init__(message)
@@ -239,7 +240,9 @@ def trim(model: CoupledModel, *, tol: float = 1e-10, max_iter: int = 40,
         if not np.isfinite(norm):
             raise TrimError("trim residual became non-finite", history)
         if norm < tol:
-            return TrimResult(model=model, psi=psi, q=x[:nq].reshape(n, n_psi), controls=c,
+            q_tr = x[:nq].reshape(n, n_psi)
+            _check_flap_deflection(model, q_tr, history)
+            return TrimResult(model=model, psi=psi, q=q_tr, controls=c,
                               inflow=_inflow(model, li), ct_sigma=float(thrust.mean()),
                               history=history, jacobian=jac)
         # chord method: keep the factorised Jacobian while it converges fast,
@@ -263,6 +266,30 @@ def trim(model: CoupledModel, *, tol: float = 1e-10, max_iter: int = 40,
         r, norm, thrust, c, li = trial
     raise TrimError(f"trim did not converge in {max_iter} iterations "
                     f"(last max residual {history[-1]['max_residual']:.3e})", history)
+
+
+#: Largest trimmed flap deflection [deg] accepted as a result.  Linear
+#: thin-airfoil flap theory and attached flow end well before it (real flaps
+#: separate beyond about 15-20 deg), and a trailing-edge flap travels a few
+#: degrees; a trim that needs more is a flap that diverges statically -- e.g.
+#: MDART's flap, aerodynamically over-balanced beyond 60 % overhang in hover,
+#: trims at 17 deg at 0.60 and at 215 deg at 0.63 (measured), with the
+#: collective running away to keep the thrust.
+MAX_FLAP_DEFLECTION_DEG = 20.0
+
+
+def _check_flap_deflection(model, q, history) -> None:
+    """Refuse a trim whose flap deflection is beyond :data:`MAX_FLAP_DEFLECTION_DEG`."""
+    if not model.has_flap:
+        return
+    peak = float(np.rad2deg(np.abs(q[-1]).max()))
+    if peak > MAX_FLAP_DEFLECTION_DEG:
+        raise TrimError(
+            f"the trimmed flap deflection reaches {peak:.3g} deg, beyond "
+            f"{MAX_FLAP_DEFLECTION_DEG:g} deg where the flap model holds: the flap diverges "
+            f"statically (its hinge-moment stiffness, actuator included, is near zero or "
+            f"negative: an aerodynamically over-balanced flap, flap.overhang = "
+            f"{model.cfg.flap.overhang:g})", history)
 
 
 def _jacobian(model, x, c, li, unpack, scalars, psi, d1, d2, n, n_psi, nq, tip, hover,

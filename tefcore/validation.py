@@ -46,7 +46,8 @@ def _sweep_values(name: str, claims) -> list:
     have = [_value_si(name, v) for v in values]
     strings = isinstance(values[0], str)
     for c in claims:
-        for xv in (c.x, c.relative_to) if c.kind == "value" and not c.overrides else ():
+        for xv in ((c.x, c.relative_to) if c.kind in ("value", "mechanism")
+                   and not c.overrides else ()):
             if xv is None:
                 continue
             si = float(x_to_si(name, xv, c.x_unit))
@@ -136,7 +137,8 @@ def claims_score(table: pd.DataFrame) -> tuple[int, int]:
 
 
 def worse_than_recorded(table: pd.DataFrame) -> pd.DataFrame:
-    """Rows whose status is worse than their ``recorded_status`` (pass > not reproducible > fail).
+    """Rows whose status is worse than their ``recorded_status``
+    (pass > ambiguous > not reproducible > fail).
 
     Examples
     --------

@@ -248,3 +248,19 @@ def test_lightly_damped_forward_flight_keeps_four_sub_intervals(forward):
     res = floquet.floquet_modes(a_of_psi, n_steps=72, n_sub=4, method="magnus",
                                 shift_states=slice(0, n))
     assert res.n_sub == 4
+
+
+def test_statically_diverged_flap_is_refused_not_trimmed(mdart):
+    # MDART's flap in hover is aerodynamically over-balanced beyond ~0.59
+    # overhang (its hinge-moment stiffness, actuator included, turns negative):
+    # the trim then runs away to flap deflections of hundreds of degrees (215
+    # deg at 0.63, measured) -- refused with the reason, not returned
+    from tefcore.trim import MAX_FLAP_DEFLECTION_DEG, TrimError
+
+    cfg = mdart.with_overrides({"flight.advance_ratio": 0.0, "flap.cg_offset": 0.0,
+                                "flap.overhang": 0.63})
+    with pytest.raises(TrimError, match="diverges statically") as err:
+        trim(coupled_model(cfg))
+    assert err.value.history                      # the Newton history is kept
+    ok = trim(coupled_model(cfg.with_overrides({"flap.overhang": 0.29})))
+    assert np.rad2deg(np.abs(ok.q[-1]).max()) < MAX_FLAP_DEFLECTION_DEG

@@ -8,7 +8,7 @@ import pandas as pd
 import pytest
 
 from tefcore.figures import run_figure
-from tefcore.reference import load_claims, parse_claim
+from tefcore.reference import ReferenceDataError, load_claims, parse_claim
 from tefcore.validation import (
     claims_score,
     compare_curve,
@@ -309,7 +309,7 @@ def test_validate_figure_on_a_real_fig8_sweep():
     table = validate_figure("fig8", res)
     claims = [c for c in load_claims() if c.figure == "fig8"]
     assert table["id"].tolist() == [c.id for c in claims]
-    assert set(table["status"]) <= {"pass", "fail", "not reproducible"}
+    assert set(table["status"]) <= {"pass", "fail", "not reproducible", "ambiguous"}
     checked = table[table["kind"] != "not_reproducible"]
     assert ((checked["computed"] != "") | (checked["reason"] != "")).all()
 
@@ -329,3 +329,74 @@ def test_identify_by_point_label_and_label_agreement():
     assert by_label["status"] == "pass" and by_label["computed_value"] == pytest.approx(0.175)
     with pytest.raises(ValueError, match="identify"):
         validate_figure("fig9", t, [c], identify="kind")
+
+
+# ------------------------------------------------------------------ identity and roles
+
+
+def branch_table(certain_until=np.inf):
+    """BASE with a TEF branch: the TEF track, certain up to ``certain_until``."""
+    t = BASE.copy()
+    t["label_here"] = t["label"]
+    t["identity"] = "clear"
+    t["tef_branch"] = t["label"] == "TEF"
+    t["tef_branch_certain"] = t["tef_branch"] & (t["value_si"] < certain_until)
+    t.loc[t["tef_branch"] & (t["value_si"] >= certain_until), "identity"] = "ambiguous"
+    return t
+
+
+def test_tef_claims_are_decided_on_the_tef_branch():
+    # the TEF branch is another track than the one labelled TEF where it starts:
+    # the claim follows the branch (here: torsion 1's numbers, stable throughout)
+    t = branch_table()
+    t["tef_branch"] = t["label"] == "blade torsion 1"
+    t["tef_branch_certain"] = t["tef_branch"]
+    c = claim(kind="threshold", mode="TEF", direction="destabilising")
+    status, row = check(c, t)
+    assert status == "fail" and "no destabilising crossing" in row["reason"]
+    status, _ = check(c, branch_table())
+    assert status == "pass"
+
+
+def test_undecided_identity_makes_a_claim_ambiguous():
+    c = claim(kind="threshold", mode="TEF", direction="destabilising")
+    # uncertain only beyond the claim's points of interest still counts: the
+    # claim is about the whole range (the end state must be the claimed one)
+    status, row = check(c, branch_table(certain_until=0.3))
+    assert status == "ambiguous" and "undecided" in row["reason"]
+    # a trend limited to an interval before the doubt is decided
+    trend = claim(kind="trend", mode="TEF", quantity="real_part", direction="increasing",
+                  interval=[0.0, 0.25])
+    assert check(trend, branch_table(certain_until=0.3))[0] == "pass"
+    # blade modes: an ambiguous match on their own track
+    t = branch_table()
+    t.loc[(t["label"] == "blade torsion 1") & (t["value_si"] > 0.2), "identity"] = "ambiguous"
+    tors = claim(kind="trend", mode="blade torsion 1", quantity="damping",
+                 direction="increasing")
+    assert check(tors, t)[0] == "ambiguous"
+
+
+def test_mechanism_claim_fields_are_checked():
+    ok = dict(kind="mechanism", mode="TEF", x=0.36, root_kind="flutter")
+    assert claim(**ok).root_kind == "flutter"
+    with pytest.raises(ReferenceDataError, match="unknown term"):
+        claim(**ok, driving_terms=["flap lift on the blade"])
+    with pytest.raises(ReferenceDataError, match="need 'tolerance'"):
+        claim(**ok, knockout_terms=["flap moment on blade torsion (C_m_delta)"])
+    with pytest.raises(ReferenceDataError, match="min_participation"):
+        claim(**ok, min_participation={"TEF": 1.5})
+    with pytest.raises(ReferenceDataError, match="needs root_kind"):
+        claim(kind="mechanism", mode="TEF", x=0.3)
+    with pytest.raises(ReferenceDataError, match="root_kind"):
+        claim(kind="mechanism", mode="TEF", x=0.3, root_kind="wobble")
+
+
+def test_mechanism_claim_on_a_real_hover_sweep():
+    # Fig. 16a (hover, imbalanced flap) at 0 deg collective: the TEF branch root
+    # there is decomposed; the claim passes or fails on its physics, never errs
+    res = run_figure("fig16a", values=[0.0, float(np.deg2rad(4.0))])
+    c = claim(kind="mechanism", figure="fig16a", mode="TEF", x=0.0,
+              min_participation={"TEF": 0.1}, root_kind="flutter")
+    status, row = check(c, res.table.assign(x=res.table["value_si"]))
+    assert status in ("pass", "fail", "ambiguous")
+    assert "participation" in row["computed"]
