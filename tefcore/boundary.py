@@ -36,7 +36,7 @@ import numpy as np
 from scipy.optimize import brentq
 
 from .config import Config
-from .sweep import SweepResult, _check_parameter, _default_point, _unpack, sweep
+from .sweep import SweepResult, _check_parameter, _default_point, _shape_vectors, _unpack, sweep
 from .tracking import match_modes
 
 __all__ = ["BoundaryResult", "stability_boundary"]
@@ -175,33 +175,41 @@ def stability_boundary(cfg: Config, parameter: str, bracket, mode: str = "TEF", 
     if t.empty:
         raise ValueError(f"every scan point of {parameter} failed: "
                          f"{res.failed['error'].iloc[0]}")
-    sizes = t[t["label"] == mode].groupby("track").size()
-    if sizes.empty:
-        raise ValueError(f"mode {mode!r} not found at any scan point of {parameter}; labels "
-                         f"present: {sorted(set(t['label_here'].astype(str)))}")
-    candidates = sizes.index[sizes.to_numpy() == sizes.max()].tolist()
-    crossing = [k for k in candidates
-                if np.ptp(np.sign(t.loc[t["track"] == k, "real_part"].to_numpy())) > 0]
-    track = (crossing or candidates)[0]
-    if len(sizes) > 1:
-        warnings.warn(f"{len(sizes)} tracks are labelled {mode!r}; following track {track} "
-                      "(present at the most scan points, preferring one whose real part "
-                      "changes sign)", UserWarning, stacklevel=2)
-    curve = t[t["track"] == track].sort_values("value_si")
+    if mode == "TEF" and res.anchor.get("method", "label") != "label":
+        # the TEF branch (tefcore.sweep): the flap mode followed from the scan
+        # start, anchored physically (zero coupling or participation); a
+        # point function that only labels its modes is followed by its labels
+        curve = t[t["tef_branch"].astype(bool)].sort_values("value_si")
+    else:
+        sizes = t[t["label"] == mode].groupby("track").size()
+        if sizes.empty:
+            raise ValueError(f"mode {mode!r} not found at any scan point of {parameter}; "
+                             f"labels present: {sorted(set(t['label_here'].astype(str)))}")
+        candidates = sizes.index[sizes.to_numpy() == sizes.max()].tolist()
+        crossing = [k for k in candidates
+                    if np.ptp(np.sign(t.loc[t["track"] == k, "real_part"].to_numpy())) > 0]
+        track = (crossing or candidates)[0]
+        if len(sizes) > 1:
+            warnings.warn(f"{len(sizes)} tracks are labelled {mode!r}; following track {track} "
+                          "(present at the most scan points, preferring one whose real part "
+                          "changes sign)", UserWarning, stacklevel=2)
+        curve = t[t["track"] == track].sort_values("value_si")
     cx = curve["value_si"].to_numpy(float)
     cr = curve["real_part"].to_numpy(float)
 
-    # evaluated points: x -> (modes, eigenvectors, row of the tracked mode)
+    # evaluated points: x -> (modes, shapes, row of the tracked mode)
     cache: dict[float, tuple] = {}
     for p, x, mid in zip(curve["point"], cx, curve["mode_id"], strict=True):
         m = res._modes[p]
-        cache[float(x)] = (m, res.eigenvectors.get(p), int(np.flatnonzero(m["mode_id"] == mid)[0]))
+        cache[float(x)] = (m, res.vectors.get(p), int(np.flatnonzero(m["mode_id"] == mid)[0]))
 
     def real_part(x: float) -> float:
         x = float(x)
         if x not in cache:
             try:
-                m, v, _ = _unpack(point(base.with_overrides({parameter: x})))
+                result = point(base.with_overrides({parameter: x}))
+                m, v, _ = _unpack(result)
+                v = _shape_vectors(result, v)
             except Exception as err:
                 raise RuntimeError(f"{parameter} = {x!r}: point failed while locating the "
                                    f"{mode!r} boundary: {type(err).__name__}: {err}") from err

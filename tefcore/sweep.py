@@ -290,6 +290,9 @@ class SweepResult:
     eigenvectors : dict of int to ndarray
         Point index -> state eigenvectors (columns as the rows of that
         point's modes table); only for points computed in this run.
+    vectors : dict of int to ndarray
+        Point index -> the shapes tracking compared (columns as the rows of
+        that point's modes table), for every ok point, loaded or computed.
     n_computed, n_loaded : int
         Points evaluated in this run / loaded from the `out` file (the
         refinement points included).
@@ -310,6 +313,7 @@ class SweepResult:
     n_loaded: int = 0
     out: Path | None = None
     anchor: dict = field(default_factory=dict)
+    vectors: dict = field(default_factory=dict, repr=False)
     _modes: dict = field(default_factory=dict, repr=False)
 
     @property
@@ -475,7 +479,9 @@ def _build_table(parameter, values, keys, records):
         ["_x", "point", "track"], kind="stable", ignore_index=True).drop(columns="_x")
     anchor = _roles(table, records, order, set(keys))
     modes = {index_of[k]: pd.DataFrame(records[k]["modes"]) for k in order}
-    return table.drop(columns="key"), modes, anchor
+    shapes = {index_of[k]: decode_complex(records[k]["vectors"]) for k in order
+              if records[k].get("vectors") is not None}
+    return table.drop(columns="key"), modes, anchor, shapes
 
 
 def sweep(cfg: Config, parameter: str, values, *, point: Callable | None = None,
@@ -654,12 +660,13 @@ def sweep(cfg: Config, parameter: str, values, *, point: Callable | None = None,
             client_own.close()
             cluster.close()
 
-    table, modes, anchor = _build_table(parameter, values, keys, active())
+    table, modes, anchor, shapes = _build_table(parameter, values, keys, active())
     index_of = {k: i for i, k in enumerate(keys)}
     return SweepResult(parameter=parameter, values=values, table=table, config_hash=chash,
                        eigenvectors={index_of[k]: v for k, v in vectors.items() if k in index_of},
                        n_computed=n_computed, n_loaded=n_loaded,
-                       out=None if out is None else Path(out), anchor=anchor, _modes=modes)
+                       out=None if out is None else Path(out), anchor=anchor, vectors=shapes,
+                       _modes=modes)
 
 
 def _anchor_key(cfg, parameter, values, keys):
