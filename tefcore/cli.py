@@ -1,4 +1,4 @@
-"""Command line: ``tefcore modes | fanplot | stability | sweep | mechanism | reproduce``.
+"""Command line: ``tefcore modes | fanplot | stability | sweep | map | mechanism | reproduce``.
 
 ``tefcore reproduce`` executes the numbered notebooks with papermill and
 writes the claims report (:mod:`tefcore.reproduce`).
@@ -115,6 +115,58 @@ def cmd_mechanism(args) -> int:
     return 0
 
 
+def _grid(cfg, field: str, start: str, stop: str, num: str) -> list:
+    """Evenly spaced SI values of ``field`` from ``start`` to ``stop`` (numbers or
+    'value unit' strings), ``num`` of them."""
+    try:
+        n = int(num)
+    except ValueError:
+        raise ValueError(f"{field}: the number of values must be an integer, got {num!r}") \
+            from None
+    if n < 1:
+        raise ValueError(f"{field}: the number of values must be >= 1, got {n}")
+    lo, hi = (cfg.with_overrides({field: _number_or_text(v)}).get(field) for v in (start, stop))
+    return np.linspace(float(lo), float(hi), n).tolist()
+
+
+def cmd_map(args) -> int:
+    from .stability_map import stability_map
+
+    cfg = _load(args)
+    xs = _grid(cfg, args.x_field, *args.x_range)
+    ys = _grid(cfg, args.y_field, *args.y_range)
+    client = None
+    if args.scheduler:
+        from distributed import Client
+
+        client = Client(args.scheduler)
+    try:
+        res = stability_map(cfg, args.x_field, xs, args.y_field, ys, n_jobs=args.jobs,
+                            backend="dask" if client is not None else "joblib", client=client,
+                            out=args.out, refine_boundary=not args.no_refine,
+                            progress=False if args.quiet else None)
+    finally:
+        if client is not None:
+            client.close()
+    res.table.to_csv(args.csv, index=False, float_format="%.10g")
+    written = [args.csv]
+    if args.netcdf:
+        res.dataset.to_netcdf(args.netcdf, engine="scipy")
+        written.append(args.netcdf)
+    if args.png:
+        import matplotlib
+
+        matplotlib.use("Agg")
+        ax = res.plot()
+        ax.set_title(f"{cfg.name}: flutter root growth", fontsize="medium")
+        ax.figure.savefig(args.png, dpi=110, bbox_inches="tight", metadata={"Software": None})
+        written.append(args.png)
+    n_bad = int((res.table["status"] != "ok").sum())
+    print(f"wrote {', '.join(written)}: {len(xs)} x {len(ys)} points, {n_bad} failed, "
+          f"{len(res.boundary)} boundary points")
+    return 0
+
+
 def _number_or_text(text: str):
     try:
         return float(text)
@@ -162,6 +214,28 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--jobs", type=int, default=1, help="parallel processes (joblib)")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
     p.set_defaults(func=cmd_sweep)
+    p = sub.add_parser(
+        "map", help="stability over a grid of two fields: flutter growth and boundary",
+        description="Stability map: one sweep of FIELD_X per value of FIELD_Y (resumable "
+                    "with --out), the flutter root's growth rate at every point and the "
+                    "flutter boundary refined between grid points. Ranges are START STOP "
+                    "NUM, numbers (SI or fractions) or 'value unit' strings.")
+    _common(p)
+    p.add_argument("x_field", help="dotted field on the x axis, e.g. flap.cg_offset")
+    p.add_argument("x_range", nargs=3, metavar=("X_START", "X_STOP", "X_NUM"))
+    p.add_argument("y_field", help="dotted field on the y axis, e.g. flap.overhang")
+    p.add_argument("y_range", nargs=3, metavar=("Y_START", "Y_STOP", "Y_NUM"))
+    p.add_argument("--csv", default="map.csv", help="tidy table (default: map.csv)")
+    p.add_argument("--png", default=None, help="also draw the map to this image")
+    p.add_argument("--netcdf", default=None, help="also write the xarray Dataset (netCDF3)")
+    p.add_argument("--out", default=None, help="folder for resumable sweep files")
+    p.add_argument("--jobs", type=int, default=1, help="parallel processes (joblib)")
+    p.add_argument("--scheduler", default=None, metavar="ADDRESS",
+                   help="dask.distributed scheduler, e.g. tcp://10.0.0.5:8786 (instead of "
+                        "local processes)")
+    p.add_argument("--no-refine", action="store_true", help="do not refine the boundary")
+    p.add_argument("--quiet", action="store_true", help="no progress bar")
+    p.set_defaults(func=cmd_map)
     p = sub.add_parser(
         "mechanism", help="why a root is (un)stable: work of each physical term, knockouts",
         description="Decompose one root's growth rate into the work of the named terms of "

@@ -60,8 +60,9 @@ from .tracking import ambiguous_steps, label_changes, track_modes
 if TYPE_CHECKING:  # at run time re-exported by __getattr__ (end of the module)
     from .boundary import BoundaryResult, stability_boundary
 
-__all__ = ["MAX_REFINE", "BoundaryResult", "SweepResult", "config_hash", "decode_complex",
-           "encode_complex", "stability_boundary", "sweep"]
+__all__ = ["FLUTTER_SHARE", "MAX_REFINE", "BoundaryResult", "SweepResult", "check_result",
+           "config_hash", "decode_complex", "default_point", "encode_complex",
+           "stability_boundary", "sweep"]
 
 #: Columns a point function's ``modes`` table must have.
 REQUIRED_MODE_COLUMNS = ("mode_id", "label", "frequency_per_rev", "real_part", "damping_ratio")
@@ -401,7 +402,8 @@ def _refinements(records: dict, budget: int) -> list[tuple[float, int]]:
     return out
 
 
-def _roles(table: pd.DataFrame, records: dict, order: list, main_keys: set):
+def _roles(table: pd.DataFrame, records: dict, order: list, main_keys: set,
+           use_anchor: bool = True):
     """Columns ``tef_branch``, ``tef_branch_certain``, ``flutter_root``; the anchor."""
     table["tef_branch"] = False
     table["tef_branch_certain"] = False
@@ -418,7 +420,7 @@ def _roles(table: pd.DataFrame, records: dict, order: list, main_keys: set):
         return {}
     rows = table[ok & (table["key"] == first)]
     rec = records[first]
-    anchor = rec.get("anchor") or {}
+    anchor = (rec.get("anchor") or {}) if use_anchor else {}
     if anchor.get("clear"):
         row, method = rows.index[rows["mode_id"] == anchor["row"]], "zero coupling"
     elif "share_TEF" in rows and rows["share_TEF"].max() > 0:
@@ -443,7 +445,7 @@ def _roles(table: pd.DataFrame, records: dict, order: list, main_keys: set):
             "method": method}
 
 
-def _build_table(parameter, values, keys, records):
+def _build_table(parameter, values, keys, records, anchor=True):
     """Tidy, tracked table from the records (key -> record), in parameter order."""
     n = len(values)
     main = {k: i for i, k in enumerate(keys)}
@@ -477,7 +479,7 @@ def _build_table(parameter, values, keys, records):
     si = pd.to_numeric(table["value_si"], errors="coerce")
     table = table.assign(_x=si.fillna(np.inf)).sort_values(
         ["_x", "point", "track"], kind="stable", ignore_index=True).drop(columns="_x")
-    anchor = _roles(table, records, order, set(keys))
+    anchor = _roles(table, records, order, set(keys), anchor)
     modes = {index_of[k]: pd.DataFrame(records[k]["modes"]) for k in order}
     shapes = {index_of[k]: decode_complex(records[k]["vectors"]) for k in order
               if records[k].get("vectors") is not None}
@@ -487,7 +489,8 @@ def _build_table(parameter, values, keys, records):
 def sweep(cfg: Config, parameter: str, values, *, point: Callable | None = None,
           n_jobs: int = 1, backend: str = "joblib", progress: bool | None = None,
           out=None, resume: bool = True, extra_overrides: Mapping[str, Any] | None = None,
-          client=None, retry_failed: bool = False, refine: bool = True) -> SweepResult:
+          client=None, retry_failed: bool = False, refine: bool = True,
+          anchor: bool = True) -> SweepResult:
     """Evaluate `point` at each value of one configuration field.
 
     Parameters
@@ -585,7 +588,7 @@ def sweep(cfg: Config, parameter: str, values, *, point: Callable | None = None,
                 records[k] = rec
     main = set(keys)
     n_loaded = sum(k in records for k in keys)
-    anchor_key = _anchor_key(cfg, parameter, values, keys)
+    anchor_key = _anchor_key(cfg, parameter, values, keys) if anchor else None
     if anchor_key in records and records[anchor_key]["status"] == "ok" and \
             "anchor" not in records[anchor_key]:
         del records[anchor_key]     # computed before as an ordinary point: again, as the start
@@ -660,12 +663,12 @@ def sweep(cfg: Config, parameter: str, values, *, point: Callable | None = None,
             client_own.close()
             cluster.close()
 
-    table, modes, anchor, shapes = _build_table(parameter, values, keys, active())
+    table, modes, start, shapes = _build_table(parameter, values, keys, active(), anchor)
     index_of = {k: i for i, k in enumerate(keys)}
     return SweepResult(parameter=parameter, values=values, table=table, config_hash=chash,
                        eigenvectors={index_of[k]: v for k, v in vectors.items() if k in index_of},
                        n_computed=n_computed, n_loaded=n_loaded,
-                       out=None if out is None else Path(out), anchor=anchor, vectors=shapes,
+                       out=None if out is None else Path(out), anchor=start, vectors=shapes,
                        _modes=modes)
 
 
@@ -680,6 +683,16 @@ def _anchor_key(cfg, parameter, values, keys):
         if isinstance(si, numbers.Real) and (best is None or si < best[0]):
             best = (float(si), k)
     return None if best is None else best[1]
+
+
+def default_point() -> Callable:
+    """The default point function, :func:`tefcore.stability.stability`."""
+    return _default_point()
+
+
+def check_result(result) -> tuple[pd.DataFrame, np.ndarray | None, dict]:
+    """Check a point function's result: ``(modes, eigenvectors, trim)`` or ``ValueError``."""
+    return _unpack(result)
 
 
 # ------------------------------------------------------------------ re-exports
