@@ -1,0 +1,289 @@
+"""The reproduction report: one model, rendered to markdown and HTML.
+
+:func:`build_report` gathers what a reproduction wrote -- the notebooks' runs,
+their figures with the captions they recorded (:func:`figure_caption`
+sidecars), the claims table and the stated blade frequencies -- into a
+:class:`Report` organised like the paper: a summary on top (score, figure
+thumbnails linking down), then one section per figure with its caption, its
+claims beside it and where the compact model departs from the paper's.
+:func:`render` turns the one model into markdown or a self-contained,
+responsive HTML page (figures embedded) with the jinja2 templates in
+``tefcore/paper/templates``.
+
+Examples
+--------
+>>> r = Report(title="t", intro="i", passed=1, total=2, counts={"pass": 1, "fail": 1},
+...            worse=[], notebooks=[], sections=[], checks=[], version="0")
+>>> "1 passed of 2" in render(r, "md")
+True
+"""
+
+from __future__ import annotations
+
+import base64
+import json
+import re
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import jinja2
+import pandas as pd
+
+__all__ = ["FIGURE_TITLES", "MARKERS", "Report", "Section", "build_report", "figure_caption",
+           "render", "write_report"]
+
+#: The paper's figure captions (its own words), by tefcore figure name.
+FIGURE_TITLES = {
+    "fig3": "Figure 3: Blade inplane stability in hover for the baseline rotor "
+            "(without trailing-edge flaps)",
+    "fig4": "Figure 4: Blade inplane stability in forward flight for the baseline rotor "
+            "(without trailing-edge flaps)",
+    "fig5": "Figure 5: Flap hinge moment in one complete revolution, with prescribed flap "
+            "motion",
+    "fig6": "Figure 6: Trailing-edge flap response with actuator input",
+    "fig7": "Figure 7: Trailing-edge flap actuation power and response (half peak-to-peak) "
+            "versus trailing-edge flap overhang length",
+    "fig8": "Figure 8: Effect of overhang length on blade and trailing-edge flap (TEF) "
+            "stability in hover",
+    "fig9": "Figure 9: Effect of flap CG offset on blade and trailing-edge flap (TEF) "
+            "stability in forward flight",
+    "fig10": "Figure 10: Effect of pitch link stiffness on blade and trailing-edge flap (TEF) "
+             "stability in forward flight",
+    "fig11": "Figure 11: Effect of blade torsional stiffness on blade and trailing-edge flap "
+             "(TEF) stability in forward flight",
+    "fig12": "Figure 12: Effect of actuator stiffness on blade and trailing-edge flap (TEF) "
+             "stability in forward flight",
+    "fig13": "Figure 13: Effect of flap spanwise location on blade and trailing-edge flap "
+             "(TEF) stability in forward flight",
+    "fig14": "Figure 14: Effect of flap length on blade and trailing-edge flap (TEF) "
+             "stability in forward flight",
+    "fig15": "Figure 15: Effect of flap chord size on blade and trailing-edge flap (TEF) "
+             "stability in forward flight",
+    "fig16a": "Figure 16(a): Effect of collective pitch on blade and trailing-edge flap (TEF) "
+              "stability, hover",
+    "fig16b": "Figure 16(b): Effect of collective pitch on blade and trailing-edge flap (TEF) "
+              "stability, forward flight",
+    "fig17": "Figure 17: Effect of forward speed on blade and trailing-edge flap (TEF) "
+             "stability",
+}
+#: What the plots' markers and lines mean (the same in every stability figure).
+MARKERS = ("Filled markers: the figure's own sweep points; hollow markers: the mode has the "
+           "character (largest participation) of another mode there; dotted line and grey "
+           "markers: its identity is undecided there (a coalescence or an unresolved veering). "
+           "Black crosses: digitised curves of the paper, where a user added them.")
+
+_STATUS_CLASS = {"pass": "pass", "fail": "fail", "ambiguous": "ambig",
+                 "not reproducible": "notrep"}
+
+
+@dataclass
+class Image:
+    """One figure file of a section."""
+
+    src: str            # path relative to the report (markdown link)
+    data: str           # base64 PNG (HTML embedding)
+    caption: str
+    anchor: str
+
+
+@dataclass
+class Section:
+    """One paper figure (or group) in the report."""
+
+    key: str
+    title: str
+    anchor: str
+    notebook: str
+    notebook_html: str
+    images: list = field(default_factory=list)
+    claims: list = field(default_factory=list)
+    departures: str = ""
+
+
+@dataclass
+class Report:
+    """Everything the report shows, rendered by :func:`render`."""
+
+    title: str
+    intro: str
+    passed: int
+    total: int
+    counts: dict
+    worse: list
+    notebooks: list
+    sections: list
+    checks: list
+    version: str
+    fanplot: Image | None = None
+    elapsed_s: float = 0.0
+
+
+def figure_caption(output_dir, stem: str, figure: str, caption: str) -> Path:
+    """Record the caption of ``<output_dir>/<stem>.png`` for the report.
+
+    A notebook writes it beside each figure it saves: the paper figure it
+    belongs to (``"fig9"``) and a caption built from the conditions actually
+    used (so it stays right when a user overrides a parameter).
+    """
+    path = Path(output_dir) / f"{stem}.json"
+    path.write_text(json.dumps({"figure": figure, "caption": caption}, sort_keys=True) + "\n",
+                    encoding="utf-8")
+    return path
+
+
+def _slug(text: str) -> str:
+    return re.sub(r"[^a-z0-9]+", "-", text.lower()).strip("-")
+
+
+def _plain(text: str) -> str:
+    """Markdown emphasis and code marks out of a string shown as plain text."""
+    text = re.sub(r"\*\*(.+?)\*\*", r"\1", str(text))
+    text = re.sub(r"(?<![\w*])\*(?!\s)(.+?)(?<!\s)\*(?![\w*])", r"\1", text)
+    return text.replace("`", "")
+
+
+def _image(path: Path, root: Path, caption: str) -> Image:
+    return Image(src=path.relative_to(root).as_posix(),
+                 data=base64.b64encode(path.read_bytes()).decode("ascii"),
+                 caption=_plain(caption), anchor=_slug(path.stem))
+
+
+def build_report(out, runs, claims: pd.DataFrame, worse: pd.DataFrame, *, figures_of,
+                 departures: str = "", checks: pd.DataFrame | None = None,
+                 version: str = "", elapsed_s: float = 0.0) -> Report:
+    """Collect a reproduction's outputs in ``out`` into a :class:`Report`.
+
+    Parameters
+    ----------
+    out : path
+        The reproduction folder (``<notebook>/`` with PNGs, JSON captions
+        and claims; ``notebooks/<notebook>.html``).
+    runs : list
+        Notebook runs (``name, status, error, seconds``).
+    claims, worse : DataFrame
+        All claims (with a ``notebook`` column) and those worse than recorded.
+    figures_of : dict
+        Notebook -> the paper figures it reproduces, in order.
+    departures : str
+        The shared "where the model departs" text (markdown).
+    """
+    out = Path(out)
+    status = claims.get("status", pd.Series(dtype=str))
+    validation = claims[claims.get("tag", "") == "validation"] if "tag" in claims else claims
+    passed = int((validation.get("status", pd.Series(dtype=str)) == "pass").sum())
+    counts = {s: int((status == s).sum()) for s in _STATUS_CLASS}
+    sections = []
+    for run in runs:
+        folder = out / run.name
+        captions = {}
+        for side in sorted(folder.glob("*.json")) if folder.exists() else []:
+            try:
+                meta = json.loads(side.read_text(encoding="utf-8"))
+                captions[side.stem] = meta
+            except (OSError, ValueError):
+                continue
+        pngs = sorted(folder.glob("*.png")) if folder.exists() else []
+        html_nb = f"notebooks/{run.name}.html"
+        for fig in figures_of.get(run.name, ()):
+            mine = [p for p in pngs if captions.get(p.stem, {}).get("figure") == fig]
+            cl = claims[claims["figure"] == fig] if "figure" in claims else claims.iloc[0:0]
+            if not mine and cl.empty:
+                continue
+            sec = Section(key=fig, title=FIGURE_TITLES.get(fig, fig), anchor=fig,
+                          notebook=run.name, notebook_html=html_nb,
+                          departures=departures)
+            sec.images = [_image(p, out, captions[p.stem]["caption"]) for p in mine]
+            sec.claims = [{k: _plain(v) for k, v in row.items()} | {
+                "css": _STATUS_CLASS.get(row.get("status", ""), "notrep")}
+                for row in cl.fillna("").astype(str).to_dict("records")]
+            sections.append(sec)
+        # figures a notebook saved without a paper figure (e.g. its own studies)
+        extra = [p for p in pngs if captions.get(p.stem, {}).get("figure") in (None, "")]
+        if extra:
+            sec = Section(key=run.name, title=f"Further results of {run.name}",
+                          anchor=_slug(run.name), notebook=run.name, notebook_html=html_nb)
+            sec.images = [_image(p, out, captions.get(p.stem, {}).get("caption", p.stem))
+                          for p in extra]
+            sections.append(sec)
+    fan = out / "mdart_fanplot.png"
+    return Report(
+        title="tefcore reproduction report",
+        intro=("Replication of *Aeroelastic Stability of Trailing-Edge Flap Helicopter "
+               "Rotors* with the compact tefcore model. Each section shows one figure of the "
+               "paper as tefcore computes it, the paper's statements about it checked against "
+               "the computation, and where the model departs from the paper's."),
+        passed=passed, total=len(validation), counts=counts,
+        worse=worse.fillna("").astype(str).to_dict("records") if not worse.empty else [],
+        notebooks=[{"name": r.name, "status": r.status, "error": r.error,
+                    "seconds": f"{r.seconds:.1f}", "html": f"notebooks/{r.name}.html"}
+                   for r in runs],
+        sections=sections,
+        checks=[] if checks is None else checks.drop(columns="source", errors="ignore")
+        .round(3).astype(str).to_dict("records"),
+        version=version,
+        fanplot=_image(fan, out, "MDART blade (assumed properties): fan plot of the coupled "
+                                 "modes") if fan.exists() else None,
+        elapsed_s=elapsed_s)
+
+
+def _environment() -> jinja2.Environment:
+    env = jinja2.Environment(
+        loader=jinja2.PackageLoader("tefcore.paper", "templates"),
+        autoescape=jinja2.select_autoescape(enabled_extensions=("html", "html.j2"),
+                                            default_for_string=False),
+        trim_blocks=True, lstrip_blocks=True, keep_trailing_newline=True,
+        undefined=jinja2.StrictUndefined)
+    env.filters["mdcell"] = lambda v: str(v).replace("|", "\\|").replace("\n", " ")
+    env.filters["md_to_html"] = _md_inline_to_html
+    return env
+
+
+def _md_inline_to_html(text: str):
+    """Minimal inline markdown (emphasis, code, paragraphs, bullets) to safe HTML."""
+    from markupsafe import Markup, escape
+
+    out, items = [], []
+    for block in re.split(r"\n\s*\n", str(text).strip()):
+        lines = block.strip().splitlines()
+        if all(ln.lstrip().startswith(("* ", "- ")) or not ln.strip() or ln.startswith("  ")
+               for ln in lines) and lines and lines[0].lstrip().startswith(("* ", "- ")):
+            items = []
+            for ln in lines:
+                if ln.lstrip().startswith(("* ", "- ")):
+                    items.append(ln.lstrip()[2:])
+                elif items:
+                    items[-1] += " " + ln.strip()
+            out.append("<ul>" + "".join(f"<li>{_inline(escape(i))}</li>" for i in items)
+                       + "</ul>")
+        else:
+            heading = re.match(r"^(#+)\s+(.*)$", lines[0]) if lines else None
+            if heading:
+                out.append(f"<h4>{_inline(escape(heading.group(2)))}</h4>")
+                lines = lines[1:]
+            if lines:
+                out.append(f"<p>{_inline(escape(' '.join(ln.strip() for ln in lines)))}</p>")
+    return Markup("\n".join(out))
+
+
+def _inline(text) -> str:
+    s = str(text)
+    s = re.sub(r"\*\*(.+?)\*\*", r"<strong>\1</strong>", s)
+    s = re.sub(r"(?<![\w*])\*(?!\s)(.+?)(?<!\s)\*(?![\w*])", r"<em>\1</em>", s)
+    s = re.sub(r"`([^`]+)`", r"<code>\1</code>", s)
+    return s
+
+
+def render(report: Report, fmt: str = "html") -> str:
+    """The report as ``"html"`` (self-contained, figures embedded) or ``"md"``."""
+    if fmt not in ("html", "md"):
+        raise ValueError(f"format must be 'html' or 'md', got {fmt!r}")
+    return _environment().get_template(f"report.{fmt}.j2").render(r=report)
+
+
+def write_report(report: Report, out) -> tuple[Path, Path]:
+    """Write ``report.md`` and ``report.html`` into ``out``; return their paths."""
+    out = Path(out)
+    paths = out / "report.md", out / "report.html"
+    for path, fmt in zip(paths, ("md", "html"), strict=True):
+        path.write_text(render(report, fmt), encoding="utf-8")
+    return paths
