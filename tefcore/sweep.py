@@ -39,7 +39,6 @@ ValueError: flap.cg_offset = 1.5 is outside the allowed range [-1, 1]
 
 from __future__ import annotations
 
-import datetime
 import numbers
 import os
 import sys
@@ -54,7 +53,9 @@ import pandas as pd
 from tqdm import tqdm
 
 from .config import SECTIONS, Config, resolve_field
-from .sweep_store import FORMAT, FORMAT_VERSION, _jsonable, _SweepFile, _value_key, config_hash
+from .errors import error_text
+from .safe_io import atomic_output
+from .sweep_store import _jsonable, _SweepFile, _value_key, config_hash, sweep_header
 from .tracking import label_changes, track_modes
 
 if TYPE_CHECKING:  # at run time re-exported by __getattr__ (end of the module)
@@ -140,7 +141,7 @@ def _unpack(result) -> tuple[pd.DataFrame, np.ndarray | None, dict]:
 
 def _failed_record(key, value, err) -> dict:
     return {"key": key, "value": _jsonable(value), "value_si": None, "status": "failed",
-            "error": f"{type(err).__name__}: {err}", "trim": {}, "modes": None}
+            "error": error_text(err), "trim": {}, "modes": None}
 
 
 def _evaluate(index, point, cfg, parameter, value, key):
@@ -156,7 +157,7 @@ def _evaluate(index, point, cfg, parameter, value, key):
         rec.update(status="ok", trim=trim,
                    modes={c: _jsonable(modes[c].to_numpy()) for c in modes.columns})
     except Exception as err:  # recorded, the sweep goes on
-        rec["error"] = f"{type(err).__name__}: {err}"
+        rec["error"] = error_text(err)
         vecs = None
     rec["elapsed_s"] = round(time.perf_counter() - start, 6)
     return index, rec, vecs
@@ -273,8 +274,9 @@ class SweepResult:
         return t[(t["status"] == "ok") & (t["label"] == label)]
 
     def to_csv(self, path, **kwargs) -> Path:
-        """Write :attr:`table` as CSV (no index); return the path."""
-        self.table.to_csv(path, index=False, **kwargs)
+        """Write :attr:`table` as CSV (no index), atomically; return the path."""
+        with atomic_output(path, newline="") as f:
+            self.table.to_csv(f, index=False, **kwargs)
         return Path(path)
 
 
@@ -396,12 +398,7 @@ def sweep(cfg: Config, parameter: str, values, *, point: Callable | None = None,
     vectors: dict[int, np.ndarray] = {}
     store = None
     if out is not None:
-        from . import __version__
-
-        header = {"format": FORMAT, "version": FORMAT_VERSION, "parameter": parameter,
-                  "config_hash": chash, "point": _point_name(point),
-                  "tefcore_version": __version__,
-                  "created": datetime.datetime.now(datetime.UTC).isoformat(timespec="seconds")}
+        header = sweep_header(cfg, parameter, chash, _point_name(point))
         store = _SweepFile(out, header, resume)
         for i, k in enumerate(keys):
             rec = store.records.get(k)
