@@ -2,6 +2,14 @@
 
 ``tefcore reproduce`` executes the numbered notebooks with papermill and
 writes the claims report (:mod:`tefcore.reproduce`).
+
+Values given with ``--set`` (and ``sweep --values/--range``) follow the
+units rules of :mod:`tefcore.text_input`: a dimensional field needs its
+unit.  Output files are checked before anything is computed and written
+atomically (:mod:`tefcore.safe_io`).  Exit status: 0 success; 1 the
+command ran but its result is not clean (failed sweep points, failing
+notebooks or claims); 2 an error, printed as one line
+(:mod:`tefcore.cli_errors`); 130 interrupted; 141 output pipe closed.
 """
 
 from __future__ import annotations
@@ -12,23 +20,25 @@ from pathlib import Path
 
 import numpy as np
 
+from .cli_errors import run_command
+from .safe_io import atomic_output, check_output_file
+from .text_input import sweep_values
+
 
 def _load(args):
     from .config import load_config
+    from .text_input import parse_overrides
 
     cfg = load_config(args.config)
     if args.set:
-        over = {}
-        for item in args.set:
-            key, sep, value = item.partition("=")
-            if not sep:
-                raise SystemExit(f"--set expects name=value, got {item!r}")
-            try:
-                over[key.strip()] = float(value)
-            except ValueError:
-                over[key.strip()] = value.strip()
-        cfg = cfg.with_overrides(over)
+        cfg = cfg.with_overrides(parse_overrides(args.set))
     return cfg
+
+
+def _write_csv(table, path) -> None:
+    """Write a table atomically (the destination was checked before computing)."""
+    with atomic_output(path, newline="", what="--csv") as f:
+        table.to_csv(f, index=False)
 
 
 def _common(p):
@@ -43,10 +53,12 @@ def cmd_modes(args) -> int:
     from .blade import blade_modes
 
     cfg = _load(args)
+    if args.csv:
+        check_output_file(args.csv, "--csv")
     table = blade_modes(cfg, n_modes=args.n_modes,
                         collective=np.deg2rad(args.collective)).table()
     if args.csv:
-        table.to_csv(args.csv, index=False)
+        _write_csv(table, args.csv)
     print(table.to_string(index=False, float_format=lambda v: f"{v:.4f}"))
     return 0
 
@@ -55,12 +67,19 @@ def cmd_fanplot(args) -> int:
     import matplotlib
 
     matplotlib.use("Agg")
+    import matplotlib.figure
+
     from .blade import fan_plot
 
     cfg = _load(args)
+    fmt = Path(args.out).suffix.lstrip(".").lower() or "png"
+    if fmt not in matplotlib.figure.Figure().canvas.get_supported_filetypes():
+        raise ValueError(f"--out {args.out}: unknown image format {fmt!r}")
+    check_output_file(args.out, "--out")
     ax = fan_plot(cfg, n_modes=args.n_modes)
     ax.set_title(cfg.name)
-    ax.figure.savefig(args.out, dpi=120, bbox_inches="tight")
+    with atomic_output(args.out, "wb", what="--out") as f:
+        ax.figure.savefig(f, format=fmt, dpi=120, bbox_inches="tight")
     print(f"wrote {args.out}")
     return 0
 
@@ -69,10 +88,12 @@ def cmd_stability(args) -> int:
     from .stability import stability
 
     cfg = _load(args)
+    if args.csv:
+        check_output_file(args.csv, "--csv")
     res = stability(cfg)
     table = res.modes
     if args.csv:
-        table.to_csv(args.csv, index=False)
+        _write_csv(table, args.csv)
     print(table.to_string(index=False, float_format=lambda v: f"{v:.4f}"))
     print("trim: " + ", ".join(f"{k}={v:.4g}" for k, v in res.trim.items()))
     return 0
@@ -82,13 +103,10 @@ def cmd_sweep(args) -> int:
     from .sweep import sweep
 
     cfg = _load(args)
-    if args.range:
-        start, stop, num = args.range
-        values = np.linspace(float(start), float(stop), int(num)).tolist()
-    elif args.values:
-        values = [_number_or_text(v) for v in args.values]
-    else:
-        raise SystemExit("tefcore sweep: give --values or --range")
+    values = sweep_values(args.parameter, args.values, args.range)
+    check_output_file(args.csv, "--csv")
+    if args.out:
+        check_output_file(args.out, "--out", create_folder=True)
     result = sweep(cfg, args.parameter, values, n_jobs=args.jobs, out=args.out,
                    progress=False if args.quiet else None)
     path = result.to_csv(args.csv)
@@ -96,14 +114,10 @@ def cmd_sweep(args) -> int:
     print(f"wrote {path}: {len(values)} points, {n_bad} failed")
     if n_bad:
         print(result.failed.to_string(index=False))
+        print(f"tefcore sweep: {n_bad} of {len(values)} point(s) failed (see {path}, column "
+              "'error')", file=sys.stderr)
+        return 1
     return 0
-
-
-def _number_or_text(text: str):
-    try:
-        return float(text)
-    except ValueError:
-        return text
 
 
 def cmd_reproduce(args) -> int:
@@ -137,10 +151,14 @@ def build_parser() -> argparse.ArgumentParser:
     p = sub.add_parser("sweep", help="stability over one parameter, tidy CSV")
     _common(p)
     p.add_argument("parameter", help="dotted field, e.g. flap.cg_offset")
-    p.add_argument("--values", nargs="+", help="values (numbers or 'value unit')")
+    p.add_argument("--values", nargs="+",
+                   help="values: numbers (dimensionless fields) or 'value unit' "
+                        "(dimensional fields need their unit, as with --set)")
     p.add_argument("--range", nargs=3, metavar=("START", "STOP", "NUM"),
-                   help="evenly spaced numeric values (SI or dimensionless)")
-    p.add_argument("--csv", default="sweep.csv", help="tidy table (default: sweep.csv)")
+                   help="NUM evenly spaced values; START and STOP take units like --set "
+                        "(e.g. '400 lb/in' '800 lb/in' 5)")
+    p.add_argument("--csv", default="sweep.csv",
+                   help="tidy table (default: sweep.csv); exit status 1 when points failed")
     p.add_argument("--out", default=None,
                    help="stream points to this JSON-lines file; re-running resumes it")
     p.add_argument("--jobs", type=int, default=1, help="parallel processes (joblib)")
@@ -165,12 +183,12 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def main(argv=None) -> int:
-    args = build_parser().parse_args(argv)
-    try:
+    """Run the ``tefcore`` command; errors are one line, exit 2 (:mod:`tefcore.cli_errors`)."""
+    def body():
+        args = build_parser().parse_args(argv)
         return args.func(args)
-    except ValueError as exc:      # configuration errors: say what, no traceback
-        print(f"tefcore: error: {exc}", file=sys.stderr)
-        return 2
+
+    return run_command(body, prog="tefcore")
 
 
 if __name__ == "__main__":
