@@ -140,6 +140,10 @@ def stability(cfg, *, trim_result: TrimResult | None = None, n_steps: int | None
         If ``model`` was built for another configuration.
     tefcore.trim.TrimError
         If the trim does not converge.
+    tefcore.floquet.FloquetAccuracyError
+        If the Floquet exponents do not meet the default tolerance of
+        :func:`tefcore.floquet.floquet_modes` even at 32 times the steps
+        (``n_steps`` is the starting value and is doubled as needed).
     """
     if model is not None:
         if model.cfg != cfg:
@@ -198,9 +202,12 @@ def _stability_of(model, tr: TrimResult, n_steps: int | None) -> StabilityResult
     else:
         a_of_psi, m = periodic_state_matrix(tr)
         # K = 4 sub-intervals to start with; floquet_modes raises K for
-        # heavily damped roots (seen: -7.2 /rev torsion at Fig. 14's 0.22 R span)
+        # heavily damped roots (seen: -7.2 /rev torsion at Fig. 14's 0.22 R span),
+        # and the steps until its error estimates meet the tolerance; a result
+        # it cannot trust is an error, never a spurious (in)stability
         res = floquet.floquet_modes(a_of_psi, n_steps=n_steps or cfg.model.n_floquet_steps,
-                                    n_sub=4, method="magnus", shift_states=slice(0, n))
+                                    n_sub=4, method="magnus", shift_states=slice(0, n),
+                                    on_inaccurate="raise")
         mass_diag = np.abs(np.einsum("mii->i", m)) / m.shape[0]
     keep = res.positive_frequency()
     # by frequency; the two roots of a locked pair share it exactly, so ties
