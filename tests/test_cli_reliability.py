@@ -108,7 +108,7 @@ def test_a_trim_error_is_one_line(monkeypatch, capsys):
 
 
 def test_a_missing_c81_deck_is_one_line(tmp_path, capsys):
-    assert main(["modes", "-s", "model.aero_model=c81", "-s",
+    assert main(["stability", "-s", "model.aero_model=c81", "-s",
                  f"model.c81_deck={tmp_path / 'nodeck.c81'}"]) == 2
     err = one_error_line(capsys)
     assert "model.c81_deck" in err and "no such file" in err

@@ -16,7 +16,6 @@ import pytest
 from test_sweep import MDART, PARAM, XS, ToyPoint, run
 
 from tefcore import reproduce as rp
-from tefcore.safe_io import FileLock, atomic_output, atomic_write_text, check_output_file
 from tefcore.sweep import sweep
 
 TESTS = Path(__file__).parent
@@ -55,6 +54,8 @@ def test_a_sweep_file_that_is_a_link_is_refused_untouched(tmp_path):
 
 
 def test_tables_and_text_are_never_written_through_links(tmp_path):
+    from tefcore.safe_io import atomic_write_text
+
     victim = tmp_path / "victim.txt"
     victim.write_text("precious\n")
     for name in ("t.csv", "r.md"):
@@ -67,6 +68,8 @@ def test_tables_and_text_are_never_written_through_links(tmp_path):
 
 
 def test_atomic_output_keeps_the_old_file_when_writing_fails(tmp_path):
+    from tefcore.safe_io import atomic_output, atomic_write_text
+
     target = tmp_path / "t.csv"
     target.write_text("old\n")
     os.chmod(target, 0o640)
@@ -84,6 +87,8 @@ def test_atomic_output_keeps_the_old_file_when_writing_fails(tmp_path):
     (lambda p: p.mkdir(parents=True), "is a folder"),
 ])
 def test_output_destinations_are_checked(tmp_path, make, match):
+    from tefcore.safe_io import check_output_file
+
     target = tmp_path / "nodir" / "x.csv"
     make(target)
     with pytest.raises(OSError, match=match):
@@ -178,6 +183,8 @@ def test_a_second_sweep_of_the_same_file_fails_clearly(tmp_path):
 
 
 def test_the_lock_is_released_after_a_sweep_and_on_errors(tmp_path):
+    from tefcore.safe_io import FileLock
+
     out = tmp_path / "s.jsonl"
     with FileLock(out), pytest.raises(OSError, match=r"another process \(lock .*process"):
         run([0.0], out=out)

@@ -14,8 +14,6 @@ import pytest
 from test_sweep import MDART, PARAM, XS, ToyPoint, run
 
 from tefcore.c81 import example_deck_path
-from tefcore.errors import SweepFileError
-from tefcore.provenance import model_stamp
 from tefcore.sweep import sweep
 
 
@@ -39,14 +37,14 @@ def test_resume_refuses_a_c81_deck_edited_in_place(tmp_path, c81_config):
     cfg, deck = c81_config
     out = tmp_path / "s.jsonl"
     sweep(cfg, PARAM, XS[:3], point=ToyPoint(), out=out, progress=False)
-    head = json.loads(out.read_text().splitlines()[0])
-    assert head["inputs"]["model.c81_deck"].startswith("sha256:")
     text = deck.read_text()
     deck.write_text(text.replace(" .01000", " .02000", 1))   # same path, new drag
     p = ToyPoint()
     with pytest.raises(ValueError, match=r"cannot resume .*model\.c81_deck has changed"):
         sweep(cfg, PARAM, XS[:3], point=p, out=out, progress=False)
     assert p.calls == 0
+    head = json.loads(out.read_text().splitlines()[0])
+    assert head["inputs"]["model.c81_deck"].startswith("sha256:")
     deck.write_text(text)                              # the same content again: resumes
     res = sweep(cfg, PARAM, XS[:3], point=p, out=out, progress=False)
     assert res.n_loaded == 3 and p.calls == 0
@@ -62,6 +60,9 @@ def test_resume_refuses_another_tefcore_version(tmp_path):
 
 
 def test_resume_refuses_another_model_code(tmp_path):
+    from tefcore.errors import SweepFileError
+    from tefcore.provenance import model_stamp
+
     out = tmp_path / "s.jsonl"
     run(XS[:2], out=out)
     assert json.loads(out.read_text().splitlines()[0])["model_stamp"] == model_stamp()

@@ -269,7 +269,7 @@ def test_an_untrustworthy_floquet_result_is_a_clear_error(mdart):
     """Finding 10: actuator.damping = 1e6 failed with scipy's 'array must not contain
     infs or NaNs'; now the transition matrices' accuracy is checked and the point fails
     naming the exponent, the estimate and what to raise."""
-    from tefcore.floquet import FloquetAccuracyError
-
-    with pytest.raises(FloquetAccuracyError, match=r"not converged at n_steps = 2304 \(magnus\)"):
+    with pytest.raises(Exception) as info:
         stability(mdart.with_overrides({"actuator.damping": 1e6}))
+    assert type(info.value).__name__ == "FloquetAccuracyError"
+    assert "not converged at n_steps = 2304 (magnus)" in str(info.value)
