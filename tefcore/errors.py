@@ -5,12 +5,15 @@ Every error tefcore raises on purpose is one of
 * ``ValueError`` -- invalid input: a configuration field (the message names
   the dotted field, its value and the allowed range), a unit, a sweep
   argument.  The named subclasses are :class:`tefcore.c81.C81FormatError`
-  (a malformed C81 deck, with file, line and column) and
-  :class:`SweepFileError` (a sweep file that cannot be resumed);
+  (a malformed C81 deck, with file, line and column),
+  :class:`tefcore.c81.C81RangeError` (inputs outside a C81 table),
+  :class:`tefcore.reference.ReferenceDataError` (the paper's reference
+  data) and :class:`SweepFileError` (a sweep file that cannot be resumed);
 * :class:`TefcoreError` subclasses that are not input errors:
   :class:`tefcore.trim.TrimError` (the trim did not converge),
   :class:`tefcore.floquet.FloquetAccuracyError` (the Floquet exponents
-  could not be computed to the requested accuracy) and
+  could not be computed to the requested accuracy; its subclass
+  ``FloquetOverflowError`` is also a ``ValueError``) and
   :class:`OutputError` (an output destination is unusable or locked);
 * ``OSError`` from the file system (a missing configuration file, a full
   disk), with the file name.
