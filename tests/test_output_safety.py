@@ -156,10 +156,10 @@ from tefcore.sweep import sweep
 
 class SlowPoint(ToyPoint):
     def __call__(self, cfg):
-        time.sleep(0.25)
+        time.sleep(0.2)
         return super().__call__(cfg)
 
-sweep(MDART, PARAM, XS[:8], point=SlowPoint(), out={out!r}, progress=False)
+sweep(MDART, PARAM, XS[:6], point=SlowPoint(), out={out!r}, progress=False)
 """
 
 
@@ -175,11 +175,11 @@ def test_a_second_sweep_of_the_same_file_fails_clearly(tmp_path):
             time.sleep(0.05)
         assert out.exists(), "the first sweep did not start"
         with pytest.raises(OSError, match="being written by another process"):
-            run(XS[:8], out=out)
+            run(XS[:6], out=out)
     finally:
         assert first.wait(timeout=120) == 0, first.stderr.read()
     keys = [rec["key"] for rec in lines(out)[1:]]
-    assert keys == [repr(float(x)) for x in XS[:8]]    # every point once, no duplicates
+    assert keys == [repr(float(x)) for x in XS[:6]]    # every point once, no duplicates
 
 
 def test_the_lock_is_released_after_a_sweep_and_on_errors(tmp_path):
