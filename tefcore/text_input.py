@@ -207,4 +207,9 @@ def sweep_values(parameter: str, values: Sequence[str] | None = None,
         return [float(x) for x in np.linspace(a, b, n)]
     if not values:
         raise ValueError("tefcore sweep: give --values or --range")
-    return [_value_of_text(parameter, v) for v in values]
+    out = [_value_of_text(parameter, v) for v in values]
+    if p is not None and p.kind in ("float", "int"):
+        for v in out:       # units checked now; a value out of range is a failed point later
+            if isinstance(v, str):
+                coerce_value(p, v, parameter)
+    return out

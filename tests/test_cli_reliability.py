@@ -88,6 +88,10 @@ def test_sweep_range_and_values_take_units(tmp_path, toy_default_point, capsys):
     assert "needs a unit" in one_error_line(capsys)
     assert main(["sweep", "flap.cg_offset", "--range", "0", "0.2", "2", "--csv", str(csv),
                  "--quiet"]) == 0
+    calls = toy_default_point.calls
+    assert main(["sweep", "hub.pitch_link_stiffness", "--values", "400 lb", "--csv",
+                 str(csv)]) == 2                       # a wrong unit: refused before computing
+    assert "force_per_length" in one_error_line(capsys) and toy_default_point.calls == calls
 
 
 # ------------------------------------------------------------------ finding 9 (tracebacks)
