@@ -374,6 +374,14 @@ def sweep(cfg: Config, parameter: str, values, *, point: Callable | None = None,
         message), empty or duplicate `values`, invalid `extra_overrides`,
         `n_jobs` or `backend`, or a sweep file that does not match.  A value
         that the configuration rejects is *not* raised: it is a failed point.
+        A sweep file that cannot be resumed is a
+        :class:`~tefcore.errors.SweepFileError` (a ``ValueError``) naming
+        what changed (configuration, input files, tefcore version, model
+        code) or the damaged line.
+    tefcore.errors.OutputError
+        `out` is a symbolic link, its folder cannot be created, or another
+        sweep is writing it (advisory lock, :mod:`tefcore.safe_io`);
+        raised before any point is computed.
     KeyboardInterrupt
         Propagated; the points finished so far are in `out`.
     """
