@@ -9,8 +9,14 @@ deflection (delta_f)".  This module holds the tables of that lookup:
   (C_l, C_d, C_m versus alpha and Mach) or a tefcore *flap deck* (the five
   coefficients versus alpha, Mach and delta) into a :class:`C81Deck`;
   :func:`write_c81` / :func:`format_c81` write one.  The accepted layout is
-  specified in ``docs/c81_format.md``.  Errors are :class:`C81FormatError`
-  naming the file, the 1-based line and column and what was expected.
+  specified in ``docs/c81_format.md``.  Every problem with a file's content
+  -- layout, numbers, counts, encoding (not UTF-8) -- is a
+  :class:`C81FormatError` naming the file, the 1-based line and column and
+  what was expected.  The counts on the title line are checked against the
+  number of lines in the file before anything is allocated.  Coefficients
+  far outside the physical range of airfoil data (:data:`PLAUSIBLE_MAX`,
+  e.g. ``.01000`` mistyped as ``01000``) give one
+  :class:`C81PlausibilityWarning` naming the first such number.
 * The table models :class:`C81Airfoil` and :class:`C81FlapTable` (inputs
   outside a table: :class:`C81RangeWarning` / :class:`C81RangeError`,
   defined here), :func:`generate_flap_deck`, the packaged example deck and
@@ -46,11 +52,14 @@ from __future__ import annotations
 import math
 import os
 import re
+import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING
 
 import numpy as np
+
+from .errors import TefcoreError
 
 if TYPE_CHECKING:  # at run time re-exported by __getattr__ (end of the module)
     from .c81_model import (
@@ -66,10 +75,12 @@ __all__ = [
     "BLADE_COEFFICIENTS",
     "COEFFICIENTS",
     "EXAMPLE_DECK_NAME",
+    "PLAUSIBLE_MAX",
     "C81Airfoil",
     "C81Deck",
     "C81FlapTable",
     "C81FormatError",
+    "C81PlausibilityWarning",
     "C81RangeError",
     "C81RangeWarning",
     "example_deck_path",
@@ -92,7 +103,13 @@ NAME_WIDTH = 30  # columns 1-30 of the title line
 DELTAS_KEY = "DELTAS"  # flap deck: the list of delta values
 DELTA_KEY = "DELTA"  # flap deck: start of the tables for one delta
 
-_NUMBER = re.compile(r"[+-]?(?:\d+\.?\d*|\.\d+)(?:[eEdD][+-]?\d+)?\Z")
+#: Largest plausible magnitude of a section coefficient.  Airfoil data over the
+#: full circle of angles of attack stay within about 2.5 (lift, and the drag of
+#: a flat plate broadside); 10 leaves room for any real deck and catches a
+#: number whose decimal point was lost (".4650" -> "4650").
+PLAUSIBLE_MAX = 10.0
+
+_NUMBER = re.compile(r"[+-]?(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eEdD][+-]?[0-9]+)?\Z")
 _NONFINITE = re.compile(r"[+-]?(?:nan|inf|infinity)\Z", re.IGNORECASE)
 _TOKEN = re.compile(r"\S+")
 
@@ -101,7 +118,7 @@ _TOKEN = re.compile(r"\S+")
 # errors and warnings
 
 
-class C81FormatError(ValueError):
+class C81FormatError(TefcoreError, ValueError):
     """A malformed C81 deck: ``"<file> line L, column C: <what was expected>"``.
 
     Attributes ``filename``, ``line`` and ``column`` (1-based) and ``reason``.
@@ -113,6 +130,10 @@ class C81FormatError(ValueError):
         self.column = column
         self.reason = reason
         super().__init__(f"{filename} line {line}, column {column}: {reason}")
+
+
+class C81PlausibilityWarning(UserWarning):
+    """A coefficient in a deck far outside the physical range (:data:`PLAUSIBLE_MAX`)."""
 
 
 class C81RangeWarning(UserWarning):
@@ -230,6 +251,7 @@ class _Reader:
             self.lines.pop()
         self.lines = [ln.rstrip("\r") for ln in self.lines]
         self.i = 0  # index of the next line
+        self.implausible: list[tuple[float, int, int, str]] = []  # (value, line, col, what)
 
     def error(self, line: int, column: int, reason: str):
         return C81FormatError(self.filename, line, column, reason)
@@ -378,6 +400,9 @@ class _Reader:
                 k += m
             alphas.append(vals[0])
             rows.append([v for v, _, _ in vals[1:]])
+            for k, (v, ln, col) in enumerate(vals[1:], start=1):
+                if abs(v) > PLAUSIBLE_MAX:
+                    self.implausible.append((v, ln, col, what[k]))
         self.increasing(alphas, "the angles of attack", where)
         return mach, alphas, np.array(rows, dtype=float).reshape(n_alpha, n_mach)
 
@@ -399,14 +424,14 @@ class _Reader:
         # fixed I2 fields: right-justified two-digit integers
         if len(rest) in (12, 20):
             fields = [rest[k:k + 2] for k in range(0, len(rest), 2)]
-            if all(re.fullmatch(r" \d|\d\d", f) for f in fields):
+            if all(re.fullmatch(r" [0-9]|[0-9][0-9]", f) for f in fields):
                 counts = [(int(f), NAME_WIDTH + 1 + 2 * k) for k, f in enumerate(fields)]
         if counts is None:
             toks = [(m.group(), m.start()) for m in _TOKEN.finditer(rest)]
             for s, c in toks:
-                if not s.isdigit():
+                if not re.fullmatch(r"[0-9]{1,9}", s):
                     raise self.error(lineno, NAME_WIDTH + 1 + c, "expected an integer count "
-                                     f"(I2 fields from column 31), got {s!r} "
+                                     f"(I2 fields from column 31), got {s[:20]!r} "
                                      "(is the name longer than 30 columns?)")
             if len(toks) not in (6, 10):
                 col = NAME_WIDTH + 1 + (toks[-1][1] + len(toks[-1][0]) if toks else 0)
@@ -418,6 +443,22 @@ class _Reader:
             if v < 1:
                 raise self.error(lineno, c, "expected a count of at least 1, got 0")
         return "\n".join(header), lineno, name, counts
+
+    def check_room(self, counts, lineno: int):
+        """Refuse a count that alone needs more lines than the file has (before allocating).
+
+        A table of NM Mach numbers and NA angles takes at least
+        ``ceil(NM / 9) + NA`` lines; smaller mismatches are reported where
+        the tables run out, with what was expected there.
+        """
+        have = len(self.lines) - self.i
+        for k in range(0, len(counts), 2):
+            (nm, col), (na, _) = counts[k], counts[k + 1]
+            need = -(-nm // PER_LINE) + na * (1 + -(-max(0, nm - PER_LINE) // PER_LINE))
+            if need > have:
+                raise self.error(lineno, col, f"the counts {nm} {na} on the title line need at "
+                                 f"least {need} line(s) for one table, but the file has "
+                                 f"{have} after the title line (a count too large?)")
 
     def deltas(self):
         """The DELTAS line(s): every line leads with the keyword, 9 values at most,
@@ -475,7 +516,8 @@ def parse_c81(text: str, filename: str = "<string>") -> C81Deck:
         With the file name, 1-based line and column, and what was expected.
     """
     rd = _Reader(text, filename)
-    header, _, name, counts = rd.title()
+    header, title_line, name, counts = rd.title()
+    rd.check_room(counts, title_line)
     flap = len(counts) == 10
     coefs = COEFFICIENTS if flap else BLADE_COEFFICIENTS
     n = {c: (counts[2 * k][0], counts[2 * k + 1][0]) for k, c in enumerate(coefs)}
@@ -487,7 +529,9 @@ def parse_c81(text: str, filename: str = "<string>") -> C81Deck:
             alpha[c] = np.array([v for v, _, _ in a])
             tables[c] = t
         rd.trailer()
-        return C81Deck(name, alpha, mach, tables, header=header, source=filename)
+        deck = C81Deck(name, alpha, mach, tables, header=header, source=filename)
+        _warn_implausible(rd)
+        return deck
 
     # flap deck: DELTAS line(s), then per delta a DELTA line and five blocks
     deltas = rd.deltas()
@@ -521,8 +565,22 @@ def parse_c81(text: str, filename: str = "<string>") -> C81Deck:
         mach[c] = np.array([v for v, _, _ in first[c][0]])
         alpha[c] = np.array([v for v, _, _ in first[c][1]])
         tables[c] = np.stack(per_delta[c], axis=-1)
-    return C81Deck(name, alpha, mach, tables, delta=np.array([v for v, _, _ in deltas]),
+    deck = C81Deck(name, alpha, mach, tables, delta=np.array([v for v, _, _ in deltas]),
                    header=header, source=filename)
+    _warn_implausible(rd)
+    return deck
+
+
+def _warn_implausible(rd: _Reader) -> None:
+    if not rd.implausible:
+        return
+    v, line, col, what = rd.implausible[0]
+    more = len(rd.implausible) - 1
+    warnings.warn(f"{rd.filename} line {line}, column {col}: {what} = {v:g} is far outside "
+                  f"the physical range of airfoil coefficients (|c| <= {PLAUSIBLE_MAX:g}); "
+                  "a lost decimal point?"
+                  + (f" ({more} more such value(s))" if more else ""),
+                  C81PlausibilityWarning, stacklevel=3)
 
 
 def read_c81(path: str | os.PathLike) -> C81Deck:
@@ -534,7 +592,16 @@ def read_c81(path: str | os.PathLike) -> C81Deck:
         Naming the file, the 1-based line and column, and what was expected.
     """
     path = Path(path)
-    text = path.read_text(encoding="utf-8", errors="strict")
+    data = path.read_bytes()
+    try:
+        text = data.decode("utf-8")
+    except UnicodeDecodeError as err:
+        line = data.count(b"\n", 0, err.start) + 1
+        start = data.rfind(b"\n", 0, err.start) + 1
+        column = len(data[start:err.start].decode("utf-8", errors="replace")) + 1
+        raise C81FormatError(str(path), line, column,
+                             f"not UTF-8 text: byte 0x{data[err.start]:02x} (a C81 deck is "
+                             "plain text; binary file, or another encoding?)") from None
     return parse_c81(text, filename=str(path))
 
 
@@ -636,9 +703,9 @@ def format_c81(deck: C81Deck, *, header: bool = True) -> str:
 
 def write_c81(deck: C81Deck, path: str | os.PathLike, *, header: bool = True) -> Path:
     """Write ``deck`` to ``path`` (see :func:`format_c81`); returns the path."""
-    path = Path(path)
-    path.write_text(format_c81(deck, header=header), encoding="utf-8")
-    return path
+    from .safe_io import atomic_write_text  # deferred: only writing needs it
+
+    return atomic_write_text(path, format_c81(deck, header=header))
 
 
 # --------------------------------------------------------------------------

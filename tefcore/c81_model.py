@@ -317,7 +317,18 @@ def example_deck_path() -> Path:
 
 
 def main(argv: list[str] | None = None) -> int:
-    """``python -m tefcore.c81 example [--out PATH] | check FILE...``."""
+    """``python -m tefcore.c81 example [--out PATH] | check FILE...``.
+
+    ``check`` prints one line per deck (its summary, or its first problem
+    with file, line and column) and exits with 1 when a deck is bad; other
+    errors are one line with exit status 2 (:mod:`tefcore.cli_errors`).
+    """
+    from .cli_errors import run_command
+
+    return run_command(_main, argv, prog="python -m tefcore.c81")
+
+
+def _main(argv: list[str] | None) -> int:
     p = argparse.ArgumentParser(prog="python -m tefcore.c81",
                                 description="C81 airfoil decks: regenerate the example "
                                             "deck or check decks")

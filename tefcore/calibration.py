@@ -105,7 +105,7 @@ def calibrate_torsion(cfg):
             "residual_percent": 100 * sol.fun}
 
 
-if __name__ == "__main__":
+def _main() -> int:
     from .config import load_config
 
     base = load_config("mdart")
@@ -113,3 +113,10 @@ if __name__ == "__main__":
     print({k: (np.round(v, 6) if np.ndim(v) else round(v, 6)) for k, v in fit.items()})
     print(f"pitch link baseline = {fit['pitch_link_stiffness'] / LBF_PER_IN:.2f} lb/in")
     print(frequency_checks(base).drop(columns="source").to_string(index=False))
+    return 0
+
+
+if __name__ == "__main__":
+    from .cli_errors import run_command
+
+    raise SystemExit(run_command(_main, prog="python -m tefcore.calibration"))

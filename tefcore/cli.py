@@ -2,6 +2,14 @@
 
 ``tefcore reproduce`` executes the numbered notebooks with papermill and
 writes the claims report (:mod:`tefcore.reproduce`).
+
+Values given with ``--set`` (and ``sweep --values/--range``) follow the
+units rules of :mod:`tefcore.text_input`: a dimensional field needs its
+unit.  Output files are checked before anything is computed and written
+atomically (:mod:`tefcore.safe_io`).  Exit status: 0 success; 1 the
+command ran but its result is not clean (failed sweep points, failing
+notebooks or claims); 2 an error, printed as one line
+(:mod:`tefcore.cli_errors`); 130 interrupted; 141 output pipe closed.
 """
 
 from __future__ import annotations
@@ -12,23 +20,25 @@ from pathlib import Path
 
 import numpy as np
 
+from .cli_errors import run_command
+from .safe_io import atomic_output, check_output_file
+from .text_input import sweep_values
+
 
 def _load(args):
     from .config import load_config
+    from .text_input import parse_overrides
 
     cfg = load_config(args.config)
     if args.set:
-        over = {}
-        for item in args.set:
-            key, sep, value = item.partition("=")
-            if not sep:
-                raise SystemExit(f"--set expects name=value, got {item!r}")
-            try:
-                over[key.strip()] = float(value)
-            except ValueError:
-                over[key.strip()] = value.strip()
-        cfg = cfg.with_overrides(over)
+        cfg = cfg.with_overrides(parse_overrides(args.set))
     return cfg
+
+
+def _write_csv(table, path) -> None:
+    """Write a table atomically (the destination was checked before computing)."""
+    with atomic_output(path, newline="", what="--csv") as f:
+        table.to_csv(f, index=False)
 
 
 def _common(p):
@@ -43,10 +53,12 @@ def cmd_modes(args) -> int:
     from .blade import blade_modes
 
     cfg = _load(args)
+    if args.csv:
+        check_output_file(args.csv, "--csv")
     table = blade_modes(cfg, n_modes=args.n_modes,
                         collective=np.deg2rad(args.collective)).table()
     if args.csv:
-        table.to_csv(args.csv, index=False)
+        _write_csv(table, args.csv)
     print(table.to_string(index=False, float_format=lambda v: f"{v:.4f}"))
     return 0
 
@@ -55,12 +67,19 @@ def cmd_fanplot(args) -> int:
     import matplotlib
 
     matplotlib.use("Agg")
+    import matplotlib.figure
+
     from .blade import fan_plot
 
     cfg = _load(args)
+    fmt = Path(args.out).suffix.lstrip(".").lower() or "png"
+    if fmt not in matplotlib.figure.Figure().canvas.get_supported_filetypes():
+        raise ValueError(f"--out {args.out}: unknown image format {fmt!r}")
+    check_output_file(args.out, "--out")
     ax = fan_plot(cfg, n_modes=args.n_modes)
     ax.set_title(cfg.name)
-    ax.figure.savefig(args.out, dpi=120, bbox_inches="tight")
+    with atomic_output(args.out, "wb", what="--out") as f:
+        ax.figure.savefig(f, format=fmt, dpi=120, bbox_inches="tight")
     print(f"wrote {args.out}")
     return 0
 
@@ -69,10 +88,12 @@ def cmd_stability(args) -> int:
     from .stability import stability
 
     cfg = _load(args)
+    if args.csv:
+        check_output_file(args.csv, "--csv")
     res = stability(cfg)
     table = res.modes
     if args.csv:
-        table.to_csv(args.csv, index=False)
+        _write_csv(table, args.csv)
     print(table.to_string(index=False, float_format=lambda v: f"{v:.4f}"))
     print("trim: " + ", ".join(f"{k}={v:.4g}" for k, v in res.trim.items()))
     return 0
@@ -82,13 +103,10 @@ def cmd_sweep(args) -> int:
     from .sweep import sweep
 
     cfg = _load(args)
-    if args.range:
-        start, stop, num = args.range
-        values = np.linspace(float(start), float(stop), int(num)).tolist()
-    elif args.values:
-        values = [_number_or_text(v) for v in args.values]
-    else:
-        raise SystemExit("tefcore sweep: give --values or --range")
+    values = sweep_values(args.parameter, args.values, args.range)
+    check_output_file(args.csv, "--csv")
+    if args.out:
+        check_output_file(args.out, "--out", create_folder=True)
     result = sweep(cfg, args.parameter, values, n_jobs=args.jobs, out=args.out,
                    progress=False if args.quiet else None)
     path = result.to_csv(args.csv)
@@ -96,6 +114,9 @@ def cmd_sweep(args) -> int:
     print(f"wrote {path}: {len(values)} points, {n_bad} failed")
     if n_bad:
         print(result.failed.to_string(index=False))
+        print(f"tefcore sweep: {n_bad} of {len(values)} point(s) failed (see {path}, column "
+              "'error')", file=sys.stderr)
+        return 1
     return 0
 
 
@@ -103,9 +124,12 @@ def cmd_mechanism(args) -> int:
     from .mechanism import mechanism
 
     cfg = _load(args)
+    if args.csv:
+        check_output_file(args.csv, "--csv")
     res = mechanism(cfg, mode=args.mode, knockouts=not args.no_knockouts)
     if args.csv:
-        res.table.to_csv(args.csv, index=False, float_format="%.10g")
+        with atomic_output(args.csv, newline="", what="--csv") as f:
+            res.table.to_csv(f, index=False, float_format="%.10g")
     print(res.summary())
     doubtful = [t for t, f in res.knockouts.items() if not f.clear]
     if doubtful:
@@ -116,17 +140,10 @@ def cmd_mechanism(args) -> int:
 
 
 def _grid(cfg, field: str, start: str, stop: str, num: str) -> list:
-    """Evenly spaced SI values of ``field`` from ``start`` to ``stop`` (numbers or
-    'value unit' strings), ``num`` of them."""
-    try:
-        n = int(num)
-    except ValueError:
-        raise ValueError(f"{field}: the number of values must be an integer, got {num!r}") \
-            from None
-    if n < 1:
-        raise ValueError(f"{field}: the number of values must be >= 1, got {n}")
-    lo, hi = (cfg.with_overrides({field: _number_or_text(v)}).get(field) for v in (start, stop))
-    return np.linspace(float(lo), float(hi), n).tolist()
+    """Evenly spaced SI values of ``field`` from ``start`` to ``stop``, ``num`` of them
+    (the units rules of ``--range``, :func:`tefcore.text_input.sweep_values`)."""
+    values = sweep_values(field, None, (start, stop, num))
+    return [float(cfg.with_overrides({field: v}).get(field)) for v in values]
 
 
 def cmd_map(args) -> int:
@@ -135,6 +152,14 @@ def cmd_map(args) -> int:
     cfg = _load(args)
     xs = _grid(cfg, args.x_field, *args.x_range)
     ys = _grid(cfg, args.y_field, *args.y_range)
+    check_output_file(args.csv, "--csv")
+    for path, what in ((args.png, "--png"), (args.netcdf, "--netcdf")):
+        if path:
+            check_output_file(path, what)
+    if args.out:
+        from .safe_io import check_output_folder
+
+        check_output_folder(args.out, "--out", create=True)
     client = None
     if args.scheduler:
         from distributed import Client
@@ -148,10 +173,12 @@ def cmd_map(args) -> int:
     finally:
         if client is not None:
             client.close()
-    res.table.to_csv(args.csv, index=False, float_format="%.10g")
+    with atomic_output(args.csv, newline="", what="--csv") as f:
+        res.table.to_csv(f, index=False, float_format="%.10g")
     written = [args.csv]
     if args.netcdf:
-        res.dataset.to_netcdf(args.netcdf, engine="scipy")
+        with atomic_output(args.netcdf, "wb", what="--netcdf") as f:
+            f.write(res.dataset.to_netcdf(engine="scipy"))
         written.append(args.netcdf)
     if args.png:
         import matplotlib
@@ -159,19 +186,14 @@ def cmd_map(args) -> int:
         matplotlib.use("Agg")
         ax = res.plot()
         ax.set_title(f"{cfg.name}: flutter root growth", fontsize="medium")
-        ax.figure.savefig(args.png, dpi=110, bbox_inches="tight", metadata={"Software": None})
+        with atomic_output(args.png, "wb", what="--png") as f:
+            ax.figure.savefig(f, format="png", dpi=110, bbox_inches="tight",
+                              metadata={"Software": None})
         written.append(args.png)
     n_bad = int((res.table["status"] != "ok").sum())
     print(f"wrote {', '.join(written)}: {len(xs)} x {len(ys)} points, {n_bad} failed, "
           f"{len(res.boundary)} boundary points")
-    return 0
-
-
-def _number_or_text(text: str):
-    try:
-        return float(text)
-    except ValueError:
-        return text
+    return 1 if n_bad else 0
 
 
 def cmd_reproduce(args) -> int:
@@ -205,10 +227,14 @@ def build_parser() -> argparse.ArgumentParser:
     p = sub.add_parser("sweep", help="stability over one parameter, tidy CSV")
     _common(p)
     p.add_argument("parameter", help="dotted field, e.g. flap.cg_offset")
-    p.add_argument("--values", nargs="+", help="values (numbers or 'value unit')")
+    p.add_argument("--values", nargs="+",
+                   help="values: numbers (dimensionless fields) or 'value unit' "
+                        "(dimensional fields need their unit, as with --set)")
     p.add_argument("--range", nargs=3, metavar=("START", "STOP", "NUM"),
-                   help="evenly spaced numeric values (SI or dimensionless)")
-    p.add_argument("--csv", default="sweep.csv", help="tidy table (default: sweep.csv)")
+                   help="NUM evenly spaced values; START and STOP take units like --set "
+                        "(e.g. '400 lb/in' '800 lb/in' 5)")
+    p.add_argument("--csv", default="sweep.csv",
+                   help="tidy table (default: sweep.csv); exit status 1 when points failed")
     p.add_argument("--out", default=None,
                    help="stream points to this JSON-lines file; re-running resumes it")
     p.add_argument("--jobs", type=int, default=1, help="parallel processes (joblib)")
@@ -270,12 +296,12 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def main(argv=None) -> int:
-    args = build_parser().parse_args(argv)
-    try:
+    """Run the ``tefcore`` command; errors are one line, exit 2 (:mod:`tefcore.cli_errors`)."""
+    def body():
+        args = build_parser().parse_args(argv)
         return args.func(args)
-    except ValueError as exc:      # configuration errors: say what, no traceback
-        print(f"tefcore: error: {exc}", file=sys.stderr)
-        return 2
+
+    return run_command(body, prog="tefcore")
 
 
 if __name__ == "__main__":

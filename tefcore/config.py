@@ -36,6 +36,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import os
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from types import MappingProxyType
@@ -397,7 +398,8 @@ class ModelConfig(_Section):
         Param("n_modes", "dimensionless", 9, "[1, 60]", "Coupled modes retained.", "int"),
         Param("aero_model", "dimensionless", "thin_airfoil", "", "Section aerodynamics.", "str",
               choices=("thin_airfoil", "c81")),
-        Param("c81_deck", "dimensionless", "", "", "C81 table file (aero_model = 'c81').", "str"),
+        Param("c81_deck", "dimensionless", "", "", "C81 table file (aero_model = 'c81'); "
+              "in a TOML file a relative path is relative to that file.", "str", path=True),
         Param("tef", "dimensionless", "dynamic", "",
               "Trailing-edge flap: 'dynamic' (flap dof with actuator) or 'none' (no flap, "
               "plain airfoil: the paper's baseline rotor).", "str", choices=("dynamic", "none")),
@@ -415,6 +417,10 @@ class ModelConfig(_Section):
     def _validate(self) -> None:
         if self.aero_model == "c81" and not self.c81_deck:
             raise ValueError("model.c81_deck must name a deck when model.aero_model = 'c81'")
+        if self.aero_model == "c81" and not os.path.isfile(self.c81_deck):
+            raise ValueError(f"model.c81_deck = {self.c81_deck!r}: no such file (in a TOML "
+                             "file a relative path is relative to that file; in Python and "
+                             "with --set, to the working directory)")
 
 
 #: Section name -> section class, in file order.
@@ -555,12 +561,34 @@ class Config:
             raise ValueError(
                 f"flap.midspan + flap.span/2 = {flap.outboard:.6g} lies beyond the blade tip (1)"
             )
+        self._check_tip_mach()
         if 1.0 - flap.chord_ratio < rotor.elastic_axis - _GEOM_TOL:
             raise ValueError(
                 f"flap.chord_ratio = {_fmt(flap.chord_ratio)} does not fit behind the elastic "
                 f"axis: flap leading edge at {1.0 - flap.chord_ratio:.6g} c is ahead of "
                 f"rotor.elastic_axis = {_fmt(rotor.elastic_axis)}"
             )
+
+    def _check_tip_mach(self) -> None:
+        """The advancing tip must stay within the thin-airfoil model's Mach range.
+
+        The C81 tables clip the Mach number to the table (with a warning)
+        instead.
+        """
+        if self.model.aero_model != "thin_airfoil":
+            return
+        from .flap_aero import MACH_MAX  # deferred: keeps this module free of the models
+
+        rotor, mu = self.rotor, self.flight.advance_ratio
+        tip = rotor.rotor_speed * rotor.radius / rotor.speed_of_sound
+        if (1.0 + mu) * tip > MACH_MAX:
+            raise ValueError(
+                f"flight.advance_ratio = {_fmt(mu)} puts the advancing blade tip at Mach "
+                f"(1 + mu) M_tip = {(1.0 + mu) * tip:.4f} (tip Mach M_tip = Omega R / a "
+                f"= {tip:.4f}), above {MACH_MAX}, the limit of the thin-airfoil aerodynamics; "
+                f"with this rotor.rotor_speed, rotor.radius and rotor.speed_of_sound the "
+                f"advance ratio must be at most "
+                f"{math.floor(max(MACH_MAX / tip - 1.0, 0.0) * 1e4) / 1e4:.4f}")
 
     def __eq__(self, other):
         if not isinstance(other, Config):

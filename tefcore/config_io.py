@@ -3,13 +3,19 @@
 File layout: optional top-level ``name`` and ``description``, an optional
 ``[reference]`` table of stated values (see
 :data:`tefcore.config.REFERENCE_PARAMS`), and one table per section.  A
-scalar field is a bare number (SI), a ``"value unit"`` string, or an inline
-table ``{value = 17.0, unit = "ft", source = "Table 1"}``; a blade array is a
-list (SI) or ``{values = [...], unit = "lb/ft", source = "..."}`` (often
-written as a ``[blade.mass]`` sub-table).  Unknown keys are errors.  Missing
-fields take their defaults; fields declared ``REQUIRED`` (all rotor
-geometry, the blade property tables, the hub springs and control linkage,
-the flap geometry and inertia, and the actuator stiffness) must be present.
+scalar field is a ``"value unit"`` string or an inline table
+``{value = 17.0, unit = "ft", source = "Table 1"}``; a blade array is
+``{values = [...], unit = "lb/ft", source = "..."}`` (often written as a
+``[blade.mass]`` sub-table).  A dimensionless field may be a bare number
+(or list); a dimensional one needs its unit in a file (a bare number would
+silently be SI; see :mod:`tefcore.text_input`), while
+:func:`config_from_dict` called from Python takes SI numbers unless
+``require_units=True``.  Unknown keys are errors.  Missing fields take their
+defaults; fields declared ``REQUIRED`` (all rotor geometry, the blade
+property tables, the hub springs and control linkage, the flap geometry and
+inertia, and the actuator stiffness) must be present.  A relative path in a
+file field (``model.c81_deck``) is relative to the folder of the TOML file
+(of the package data for a packaged configuration).
 
 Examples
 --------
@@ -23,6 +29,7 @@ True
 from __future__ import annotations
 
 import difflib
+import errno
 import os
 import tomllib
 from collections.abc import Mapping
@@ -34,7 +41,9 @@ import numpy as np
 import tomli_w
 
 from .config import REFERENCE_PARAMS, SECTIONS, Config
+from .safe_io import atomic_write_text
 from .settings import Param
+from .text_input import require_unit
 
 __all__ = [
     "available_configs",
@@ -61,7 +70,8 @@ def _unknown_keys(keys, allowed, where: str) -> None:
         raise ValueError(f"unknown key(s) in {where}: {', '.join(hints)}")
 
 
-def config_from_dict(data: Mapping[str, Any], *, origin: str = "config") -> Config:
+def config_from_dict(data: Mapping[str, Any], *, origin: str = "config",
+                     require_units: bool = False, base_dir=None) -> Config:
     """Build a Config from parsed TOML data.
 
     Parameters
@@ -70,6 +80,12 @@ def config_from_dict(data: Mapping[str, Any], *, origin: str = "config") -> Conf
         Parsed TOML document (see the module docstring for the layout).
     origin : str
         Prefix for error messages, usually the file name.
+    require_units : bool
+        Refuse bare numbers for dimensional fields (as in a TOML file);
+        ``False`` (the Python API) reads them as SI.
+    base_dir : path-like, optional
+        Folder that relative file paths (``model.c81_deck``) are relative to;
+        ``None``: the working directory.
 
     Returns
     -------
@@ -91,7 +107,7 @@ def config_from_dict(data: Mapping[str, Any], *, origin: str = "config") -> Conf
     ValueError: x.toml: missing required field(s) rotor.n_blades, rotor.rotor_speed, ...
     """
     try:
-        return _from_dict(data)
+        return _from_dict(data, require_units, base_dir)
     except ValueError as err:
         raise ValueError(f"{origin}: {err}") from None
 
@@ -104,7 +120,18 @@ def _source_of(raw, dotted: str) -> str | None:
     return None
 
 
-def _from_dict(data: Mapping[str, Any]) -> Config:
+def _resolve_path(raw, base_dir):
+    """A file field's value with a relative path joined to `base_dir`."""
+    value = raw.get("value") if isinstance(raw, Mapping) else raw
+    if base_dir is None or not isinstance(value, str) or not value:
+        return raw
+    joined = os.path.abspath(os.path.join(base_dir, os.path.expanduser(value)))
+    return {**raw, "value": joined} if isinstance(raw, Mapping) else joined
+
+
+def _from_dict(data: Mapping[str, Any], require_units: bool = False, base_dir=None) -> Config:
+    if not isinstance(data, Mapping):
+        raise ValueError(f"expected a table of sections, got {type(data).__name__}")
     _unknown_keys(data, ["name", "description", "reference", *SECTIONS], "the top level")
     sources: dict[str, str] = {}
     sections: dict[str, Any] = {}
@@ -115,9 +142,14 @@ def _from_dict(data: Mapping[str, Any]) -> Config:
             raise ValueError(f"[{sname}] must be a table, got {table!r}")
         params = {p.name: p for p in cls.PARAMS}
         _unknown_keys(table, params, f"[{sname}]")
+        table = dict(table)
         for name, p in params.items():
             dotted = f"{sname}.{name}"
             if name in table:
+                if require_units:
+                    require_unit(p, table[name], dotted)
+                if p.path:
+                    table[name] = _resolve_path(table[name], base_dir)
                 if src := _source_of(table[name], dotted):
                     sources[dotted] = src
             elif p.required:
@@ -132,6 +164,8 @@ def _from_dict(data: Mapping[str, Any]) -> Config:
         raise ValueError(f"[reference] must be a table, got {reference!r}")
     _unknown_keys(reference, REFERENCE_PARAMS, "[reference]")
     for key, raw in reference.items():
+        if require_units:
+            require_unit(REFERENCE_PARAMS[key], raw, f"reference.{key}")
         if src := _source_of(raw, f"reference.{key}"):
             sources[f"reference.{key}"] = src
     built = {name: cls(**sections[name]) for name, cls in SECTIONS.items()}
@@ -217,13 +251,19 @@ def dumps_config(cfg: Config) -> str:
     return "\n".join(lines) + "\n"
 
 
-def loads_config(text: str, *, origin: str = "<string>") -> Config:
-    """Parse TOML text into a Config (see :func:`config_from_dict`)."""
+def loads_config(text: str, *, origin: str = "<string>", base_dir=None) -> Config:
+    """Parse TOML text into a Config (see :func:`config_from_dict`).
+
+    Dimensional fields need their units (module docstring); relative file
+    paths are relative to `base_dir` (default: the working directory).
+    """
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as err:
         raise ValueError(f"{origin}: invalid TOML: {err}") from None
-    return config_from_dict(data, origin=origin)
+    except RecursionError:
+        raise ValueError(f"{origin}: invalid TOML: nested too deeply") from None
+    return config_from_dict(data, origin=origin, require_units=True, base_dir=base_dir)
 
 
 def available_configs() -> list[str]:
@@ -271,9 +311,18 @@ def load_config(path_or_name: str | os.PathLike) -> Config:
             raise FileNotFoundError(
                 f"no packaged configuration {name!r}; available: {', '.join(available_configs())}"
             )
-        return loads_config(resource.read_text(encoding="utf-8"), origin=f"{name}.toml")
+        return loads_config(resource.read_text(encoding="utf-8"), origin=f"{name}.toml",
+                            base_dir=str(resource.parent))
     path = Path(path_or_name)
-    return loads_config(path.read_text(encoding="utf-8"), origin=str(path))
+    try:
+        text = path.read_text(encoding="utf-8")
+    except FileNotFoundError:
+        raise FileNotFoundError(errno.ENOENT, "no such configuration file", str(path)) from None
+    except UnicodeDecodeError as err:
+        line = path.read_bytes()[:err.start].count(b"\n") + 1
+        raise ValueError(f"{path}: line {line}: not UTF-8 text (byte 0x{err.object[err.start]:02x})"
+                         ) from None
+    return loads_config(text, origin=str(path), base_dir=path.parent)
 
 
 def save_config(cfg: Config, path: str | os.PathLike) -> Path:
@@ -284,9 +333,7 @@ def save_config(cfg: Config, path: str | os.PathLike) -> Path:
     pathlib.Path
         The written path.
     """
-    path = Path(path)
-    path.write_text(dumps_config(cfg), encoding="utf-8")
-    return path
+    return atomic_write_text(path, dumps_config(cfg))
 
 
 def settings_table() -> list[dict[str, Any]]:

@@ -79,7 +79,11 @@ def prandtl_glauert(mach) -> np.ndarray:
     m = np.asarray(mach, dtype=float)
     # min/max propagate NaN, and every comparison with NaN is False
     if m.size and not (m.min() >= 0.0 and m.max() <= MACH_MAX):
-        raise ValueError(f"mach must lie in [0, {MACH_MAX}], got {mach}")
+        bad = ~((m >= 0.0) & (m <= MACH_MAX))
+        worst = m[bad][np.argmax(np.abs(np.nan_to_num(m[bad], nan=np.inf)))]
+        raise ValueError(f"mach must lie in [0, {MACH_MAX}], got {worst:.6g}"
+                         + (f" ({int(bad.sum())} of {m.size} values outside)" if m.size > 1
+                            else ""))
     m = np.minimum(m, MACH_CLIP)
     return (1.0 / np.sqrt(1.0 - m * m))[()]
 

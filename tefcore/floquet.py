@@ -20,7 +20,13 @@ whose matrix is periodic in the azimuth ``psi`` with period ``period``
 Default grid: ``n_steps = 144`` RK4 steps per period (2.5 deg) in
 ``n_sub = 8`` sub-intervals of 45 deg, raised up to :data:`MAX_SUB` for
 heavily damped roots (:data:`MIN_ROOT`); see :data:`DEFAULT_N_STEPS`,
-:data:`DEFAULT_N_SUB` and the theory notes for why.
+:data:`DEFAULT_N_SUB` and the theory notes for why.  :func:`floquet_modes`
+controls its own accuracy: a step-doubling error estimate per exponent, and
+the steps doubled until every exponent meets ``atol + rtol |sigma|`` in its
+damping rate and ``atol + rtol |eta|`` in its frequency
+(:data:`DEFAULT_ATOL`, :data:`DEFAULT_RTOL`);
+if it cannot, :class:`FloquetAccuracyWarning` or :class:`FloquetAccuracyError`
+(docs/theory.md section 5.6a).
 
 Longer than ~400 lines because it is one algorithm, kept with its verification-oriented docs.
 
@@ -48,13 +54,22 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 import scipy.linalg
+import scipy.optimize
 import scipy.sparse.csgraph
 
+from .errors import TefcoreError
+
 __all__ = [
+    "DEFAULT_ATOL",
     "DEFAULT_N_STEPS",
     "DEFAULT_N_SUB",
+    "DEFAULT_RTOL",
+    "MAX_DOUBLINGS",
     "MAX_SUB",
     "MIN_ROOT",
+    "FloquetAccuracyError",
+    "FloquetAccuracyWarning",
+    "FloquetOverflowError",
     "FloquetResult",
     "characteristic_multipliers",
     "constant_coefficient_modes",
@@ -81,8 +96,34 @@ MIN_ROOT = 1e-3
 #: Largest number of sub-intervals :func:`floquet_modes` raises ``n_sub`` to.
 MAX_SUB = 16
 
+#: Default absolute tolerance of :func:`floquet_modes` on each exponent's damping
+#: rate and frequency (per radian of psi, i.e. /rev for the default period).  The
+#: paper's figures resolve real parts to about 0.01 /rev; 1e-3 keeps the sign of
+#: any real part beyond 1e-3 /rev right, ten times below what a plot shows.
+DEFAULT_ATOL = 1e-3
+#: Default relative tolerance, of |sigma| for the damping rate and of |eta| for the
+#: frequency: a -24 /rev root is good to 0.025, a 15 /rev frequency to 0.016.
+DEFAULT_RTOL = 1e-3
+#: ``floquet_modes`` doubles the steps at most this many times by default.
+MAX_DOUBLINGS = 5
+#: Order of both integrators: the step-doubling estimate divides by 2^4 - 1.
+_ORDER = 4
+
 _METHODS = ("rk4", "magnus")
 _TWO_PI = 2.0 * np.pi
+_ON_INACCURATE = ("warn", "raise")
+
+
+class FloquetAccuracyError(TefcoreError, RuntimeError):
+    """The Floquet exponents could not be computed to the requested accuracy."""
+
+
+class FloquetOverflowError(FloquetAccuracyError, ValueError):
+    """A transition matrix overflowed: the step is too long for the system."""
+
+
+class FloquetAccuracyWarning(RuntimeWarning):
+    """The Floquet exponents did not meet the requested accuracy (see the message)."""
 
 
 # --------------------------------------------------------------------------
@@ -263,10 +304,16 @@ def step_propagators(A, n_steps=None, period=_TWO_PI, method="rk4"):
     method = _check_method(method)
     a, n_steps, constant = _sample(A, n_steps, period)
     h = _check_period(period) / n_steps
+    if method == "rk4":
+        _rk4_step_warning(a[:3] if constant else a, h, n_steps)
+    return _propagators(a, h, constant, method)
+
+
+def _propagators(a, h, constant, method):
+    """Step propagators from the samples ``a`` (2N + 1, n, n) of step ends and midpoints."""
+    n_steps = (a.shape[0] - 1) // 2
     if constant:                            # every step is the same: compute one
         a = a[:3]
-    if method == "rk4":
-        _rk4_step_warning(a, h, n_steps)
     a0, am, a1 = a[0:-1:2], a[1::2], a[2::2]
     eye = np.eye(a.shape[-1])
     with np.errstate(over="ignore", invalid="ignore"):
@@ -291,8 +338,8 @@ def step_propagators(A, n_steps=None, period=_TWO_PI, method="rk4"):
             omega = (h / 6) * (a0 + 4 * am + a1) + (h * h / 12) * (a1 @ a0 - a0 @ a1)
             p = scipy.linalg.expm(omega)
     if not np.isfinite(p).all():
-        raise ValueError(f"step propagator overflowed (h = {h:.4g}); A is too large for "
-                         "this step: increase n_steps")
+        raise FloquetOverflowError(f"step propagator overflowed (h = {h:.4g}); A is too "
+                                   "large for this step: increase n_steps")
     if constant:
         p = np.broadcast_to(p, (n_steps, *p.shape[1:]))
     return p
@@ -311,12 +358,20 @@ def _group(p, n_sub):
 
 
 def _tree_product(stack):
-    """Ordered products ``S[:, L-1] ... S[:, 0]`` by pairwise (tree) reduction."""
-    while stack.shape[1] > 1:
-        if stack.shape[1] % 2:
-            eye = np.broadcast_to(np.eye(stack.shape[-1]), (stack.shape[0], 1, *stack.shape[2:]))
-            stack = np.concatenate([stack, eye], axis=1)
-        stack = stack[:, 1::2] @ stack[:, 0::2]
+    """Ordered products ``S[:, L-1] ... S[:, 0]`` by pairwise (tree) reduction.
+
+    Raises :class:`FloquetOverflowError` if a product overflows.
+    """
+    with np.errstate(over="ignore", invalid="ignore"):
+        while stack.shape[1] > 1:
+            if stack.shape[1] % 2:
+                eye = np.broadcast_to(np.eye(stack.shape[-1]),
+                                      (stack.shape[0], 1, *stack.shape[2:]))
+                stack = np.concatenate([stack, eye], axis=1)
+            stack = stack[:, 1::2] @ stack[:, 0::2]
+    if not np.isfinite(stack).all():
+        raise FloquetOverflowError("the transition matrices overflow: the system is too stiff "
+                                   "for this step (increase n_steps, or use method='magnus')")
     return stack[:, 0]
 
 
@@ -422,11 +477,23 @@ def _lifted(phis):
     round-off level and unreliable).
     """
     k_sub, n = phis.shape[0], phis.shape[1]
+    mu, vec = scipy.linalg.eig(_lift(phis))
+    keep, split = _select_roots(mu, k_sub, n)
+    blocks = vec[:, keep].reshape(k_sub, n, n)
+    return mu[keep], blocks, split
+
+
+def _lift(phis):
+    """The block-cyclic matrix ``Z`` of the sub-interval transition matrices."""
+    k_sub, n = phis.shape[0], phis.shape[1]
     z = np.zeros((k_sub * n, k_sub * n), dtype=phis.dtype)
     z4 = z.reshape(k_sub, n, k_sub, n)
     z4[(np.arange(k_sub) + 1) % k_sub, :, np.arange(k_sub), :] = phis   # Phi_k below diag
-    mu, vec = scipy.linalg.eig(z)
+    return z
 
+
+def _select_roots(mu, k_sub, n):
+    """Mask of one root ``mu`` per multiplier among the ``K n`` roots of the lift."""
     # The K n eigenvalues are the K K-th roots mu w^j (w = exp(2 pi i / K)) of
     # every multiplier, so modulo 2 pi / K their angles collapse to n points.
     # Any half-open window of width 2 pi / K holds one root per multiplier;
@@ -447,8 +514,7 @@ def _lifted(phis):
         outside = np.flatnonzero(~keep)[np.argsort(np.abs(mu[~keep]))][:n - inside.size]
         keep = np.zeros_like(keep)
         keep[np.concatenate([inside, outside])] = True
-    blocks = vec[:, keep].reshape(k_sub, n, n)
-    return mu[keep], blocks, split
+    return keep, split
 
 
 def _warn_unsplit(stacklevel=3):
@@ -582,6 +648,16 @@ class FloquetResult:
     participation : ndarray, shape (n, m) or None
         Participation factors of the states in the modes, if computed
         (:meth:`with_participation`).
+    n_steps : int or None
+        Steps per period that gave the result (``floquet_modes`` raises it
+        until the error estimates meet the tolerance); None for direct
+        eigenanalysis.
+    error_estimates : ndarray, shape (m,), or None
+        Estimated error of each exponent: real part for the damping rate,
+        imaginary part for the frequency (both >= 0, per radian of psi):
+        the step-doubling estimate plus a round-off bound, large (up to inf)
+        for a root below round-off (heavily damped beyond resolution).  None
+        when not estimated.
     """
 
     exponents: np.ndarray
@@ -592,6 +668,8 @@ class FloquetResult:
     shapes: np.ndarray | None = None
     n_sub: int | None = None
     participation: np.ndarray | None = None
+    n_steps: int | None = None
+    error_estimates: np.ndarray | None = None
 
     @property
     def damping_rates(self):
@@ -617,7 +695,9 @@ class FloquetResult:
         return replace(self, exponents=self.exponents[mask], multipliers=self.multipliers[mask],
                        eigenvectors=self.eigenvectors[:, mask],
                        shapes=None if self.shapes is None else self.shapes[..., mask],
-                       participation=None if pf is None else pf[:, mask])
+                       participation=None if pf is None else pf[:, mask],
+                       error_estimates=None if self.error_estimates is None
+                       else self.error_estimates[mask])
 
     def with_participation(self):
         """The result with the participation factors of the states filled in.
@@ -654,7 +734,12 @@ class FloquetResult:
         if per.shape[-1] != per.shape[-2]:
             raise ValueError("participation factors need every mode of the system "
                              f"({per.shape[-2]} states, {per.shape[-1]} modes)")
-        dual = np.linalg.inv(per)                       # (n_psi, modes, states)
+        try:
+            dual = np.linalg.inv(per)                   # (n_psi, modes, states)
+        except np.linalg.LinAlgError:
+            # a root beyond the lifting's resolution leaves a zero or repeated
+            # shape: the pseudo-inverse keeps the duals of the resolved modes
+            dual = np.linalg.pinv(per)
         pf = np.einsum("pik,pki->ki", dual, per) / per.shape[0]
         return replace(self, participation=pf)
 
@@ -706,13 +791,15 @@ def _normalise(v):
     return np.divide(np.conj(big), size, out=np.ones(size.shape, complex), where=size > 0)
 
 
-def _sorted_result(eta, multipliers, vectors, period, psi=None, shapes=None, n_sub=None):
+def _sorted_result(eta, multipliers, vectors, period, psi=None, shapes=None, n_sub=None,
+                   n_steps=None):
     order = np.lexsort((eta.real, np.round(eta.imag, 9)))   # frequency ties: by damping
     scale = _normalise(vectors)[order]
     return FloquetResult(
         exponents=eta[order], multipliers=multipliers[order],
         eigenvectors=vectors[:, order] * scale, period=period, psi=psi,
-        shapes=None if shapes is None else shapes[..., order] * scale, n_sub=n_sub)
+        shapes=None if shapes is None else shapes[..., order] * scale, n_sub=n_sub,
+        n_steps=n_steps)
 
 
 # --------------------------------------------------------------------------
@@ -750,7 +837,8 @@ def _harmonic_basis(per, omega):
 
 
 def floquet_modes(A, n_steps=None, n_sub=DEFAULT_N_SUB, period=_TWO_PI, method="rk4",
-                  shapes=False, shift_states=None, max_sub=MAX_SUB):
+                  shapes=False, shift_states=None, max_sub=MAX_SUB, atol=DEFAULT_ATOL,
+                  rtol=DEFAULT_RTOL, max_steps=None, on_inaccurate="warn"):
     """Characteristic exponents, multipliers and modes of ``x' = A(psi) x``.
 
     The step propagators are grouped into ``n_sub`` transition matrices
@@ -805,16 +893,49 @@ def floquet_modes(A, n_steps=None, n_sub=DEFAULT_N_SUB, period=_TWO_PI, method="
         displacements ``slice(0, n)``: the velocities weight harmonic ``k`` by
         ``k^2`` and would pull a heavily damped, harmonically rich mode to a
         higher branch.
+    atol, rtol : float or None, optional
+        Accuracy asked of every exponent, separately for the damping rate
+        (``atol + rtol |sigma|``, the stability answer) and the frequency
+        (``atol + rtol |eta|``: the frequency of a heavily damped root, e.g.
+        near a frequency lock, is ill-conditioned and matters little, so it
+        is held to the size of the whole exponent), per radian of psi
+        (default :data:`DEFAULT_ATOL`, :data:`DEFAULT_RTOL`, both 1e-3).
+        The error is estimated by step doubling: the exponents of
+        ``N`` steps against those of ``N / 2`` steps (every other sample, no
+        new evaluations of ``A``), ``|eta_N - eta_{N/2}| / 15`` for these
+        fourth-order methods. While some exponent misses its tolerance the
+        steps are doubled (``A`` resampled; not possible for periodic
+        samples). ``atol=None`` switches the control off: one grid, and the
+        RK4 step-limit warning of :func:`step_propagators`.
+    max_steps : int, optional
+        Most steps per period the control may reach (default ``32 n_steps``).
+    on_inaccurate : {'warn', 'raise'}, optional
+        Still above the tolerance at ``max_steps``:
+        :class:`FloquetAccuracyWarning` and the result, or
+        :class:`FloquetAccuracyError`.
 
     Returns
     -------
     FloquetResult
-        One entry per exponent (``n``), conjugate pairs both kept.
+        One entry per exponent (``n``), conjugate pairs both kept, with the
+        ``n_steps`` reached and the ``error_estimates``.
 
     Raises
     ------
     ValueError
         For invalid ``A`` or parameters, see :func:`step_propagators`.
+    FloquetOverflowError
+        A transition matrix overflows even at ``max_steps`` (a ``ValueError``
+        and a :class:`FloquetAccuracyError`).
+    FloquetAccuracyError
+        With ``on_inaccurate="raise"``, see above.
+
+    Warns
+    -----
+    FloquetAccuracyWarning
+        See `on_inaccurate`.
+    RuntimeWarning
+        The lifted roots do not split (roots at round-off level).
 
     References
     ----------
@@ -845,10 +966,152 @@ def floquet_modes(A, n_steps=None, n_sub=DEFAULT_N_SUB, period=_TWO_PI, method="
     True
     """
     period = _check_period(period)
-    p = step_propagators(A, n_steps, period, method)
-    n_steps, n = p.shape[0], p.shape[-1]
+    method = _check_method(method)
+    if on_inaccurate not in _ON_INACCURATE:
+        raise ValueError(f"on_inaccurate must be one of {_ON_INACCURATE}, got {on_inaccurate!r}")
+    check = atol is not None
+    if check:
+        atol, rtol = (_check_tolerance(name, v) for name, v in (("atol", atol), ("rtol", rtol)))
+    a, n_steps, constant = _sample(A, n_steps, period)
     k_sub = _check_sub(n_sub, n_steps)
-    max_sub = min(max(_check_int("max_sub", max_sub, 1), k_sub), n_steps)
+    max_sub = _check_int("max_sub", max_sub, 1)
+    refinable = callable(A) or constant
+    if max_steps is None:
+        max_steps = n_steps * 2**MAX_DOUBLINGS
+    max_steps = _check_int("max_steps", max_steps, 1)
+    if not check:
+        if method == "rk4":
+            _rk4_step_warning(a[:3] if constant else a, period / n_steps, n_steps)
+        p = _propagators(a, period / n_steps, constant, method)
+        res, _, split = _modes(p, period, k_sub, max_sub, shapes, shift_states)
+        if not split:
+            _warn_unsplit()
+        return res
+
+    coarse = None                  # exponents on the grid with half the steps
+    while True:
+        try:
+            p = _propagators(a, period / n_steps, constant, method)
+            res, znorm, split = _modes(p, period, k_sub, max_sub, shapes, shift_states)
+        except FloquetOverflowError as err:
+            if refinable and 2 * n_steps <= max_steps:      # shorter steps may not overflow
+                n_steps, coarse = 2 * n_steps, None
+                a = _sample(A, n_steps, period)[0]
+                continue
+            raise FloquetOverflowError(f"{err} (at n_steps = {n_steps} with method = "
+                                       f"{method!r}; the fastest root of the mean A is "
+                                       f"{_fastest_root(a):.3g} per unit of psi)") from None
+        k_sub = res.n_sub
+        if coarse is None and n_steps % 2 == 0:
+            coarse = _coarse_exponents(a[::2], period, k_sub, method, constant)
+        if coarse is None:                                  # odd step count: compare 2N
+            if not refinable or 2 * n_steps > max_steps:
+                if not split:
+                    _warn_unsplit()
+                return res
+            coarse, n_steps = res.exponents, 2 * n_steps
+            a = _sample(A, n_steps, period)[0]
+            continue
+        est, trusted = _error_estimates(res, coarse, znorm, atol)
+        tol_re = atol + rtol * np.abs(res.exponents.real)
+        tol_im = atol + rtol * np.abs(res.exponents)   # |eta|: see the docstring
+        bad = trusted & ((est.real > tol_re) | (est.imag > tol_im))
+        res = replace(res, error_estimates=est)
+        if not bad.any() or not refinable or 2 * n_steps > max_steps:
+            if bad.any():      # an untrusted result is an error first (on_inaccurate="raise")
+                _inaccurate(res, bad, tol_re, tol_im, method, on_inaccurate)
+            if not split:
+                _warn_unsplit()
+            return res
+        coarse, n_steps = res.exponents, 2 * n_steps
+        a = _sample(A, n_steps, period)[0]
+
+
+def _check_tolerance(name, value):
+    try:
+        value = float(value)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} must be a number >= 0, got {value!r}") from None
+    if not (value >= 0.0 and np.isfinite(value)):
+        raise ValueError(f"{name} must be a finite number >= 0, got {value!r}")
+    return value
+
+
+def _fastest_root(a):
+    """Eigenvalue of the mean of the samples ``a`` of largest modulus."""
+    ev = np.linalg.eigvals(np.mean(a, axis=0))
+    return complex(ev[np.argmax(np.abs(ev))])
+
+
+def _coarse_exponents(a, period, k_sub, method, constant):
+    """Exponents (frequency modulo 2 pi / T) with the steps of the samples ``a``, or None.
+
+    None when the coarse grid overflows: then there is no estimate, and the
+    caller refines.
+    """
+    n_steps = (a.shape[0] - 1) // 2
+    try:
+        p = _propagators(a, period / n_steps, constant, method)
+        k = min(k_sub, n_steps)
+        phis = _tree_product(_group(p, k)[0])
+    except FloquetOverflowError:
+        return None
+    mu = scipy.linalg.eigvals(_lift(phis))
+    keep, _ = _select_roots(mu, k, phis.shape[-1])
+    return k * _log_roots(mu[keep]) / period
+
+
+def _error_estimates(res, coarse, znorm, atol):
+    """Step-doubling error estimate of each exponent, and whether it is meaningful.
+
+    The exponents of the fine grid are matched one to one to those of the
+    coarse grid (frequencies compared modulo 2 pi / T, as the integer shift
+    may differ), and ``|eta_N - eta_{N/2}| / (2^4 - 1)`` estimates the error
+    of ``eta_N`` for a fourth-order method (Richardson).  A root whose
+    round-off bound ``(K / T) 1e2 eps ||Z|| / |mu|`` exceeds the estimate's
+    use -- a tenth of the estimate or of ``atol`` -- is not "trusted" (heavily
+    damped beyond resolution): refining the step cannot improve it.  The
+    bound is added to every estimate.
+    """
+    eta = res.exponents
+    unit = _TWO_PI / res.period
+    d = eta[:, None] - np.asarray(coarse)[None, :]
+    d = np.abs(d.real) + 1j * np.abs(np.mod(d.imag + unit / 2, unit) - unit / 2)
+    rows, cols = scipy.optimize.linear_sum_assignment(np.abs(d))
+    est = np.empty(eta.shape, complex)
+    est[rows] = d[rows, cols] / (2**_ORDER - 1)
+    k_sub = res.n_sub
+    mu_abs = np.abs(res.multipliers) ** (1.0 / k_sub)
+    with np.errstate(divide="ignore"):
+        roundoff = (k_sub / res.period) * 1e2 * np.finfo(float).eps * znorm / mu_abs
+    trusted = roundoff <= 0.1 * np.maximum(np.abs(est), atol)
+    est = est + roundoff * (1 + 1j)
+    return est, trusted
+
+
+def _inaccurate(res, bad, tol_re, tol_im, method, on_inaccurate):
+    """Warn or raise: the exponents ``bad`` missed their tolerance at the finest grid."""
+    est = res.error_estimates
+    excess = np.maximum(est.real / tol_re, est.imag / tol_im)
+    k = int(np.flatnonzero(bad)[np.argmax(excess[bad])])
+    eta = res.exponents[k]
+    msg = (f"Floquet exponent {eta.real:.4g}{eta.imag:+.4g}i not converged at n_steps = "
+           f"{res.n_steps} ({method}): error estimate {est[k].real:.2g} in the damping rate, "
+           f"{est[k].imag:.2g} in the frequency, tolerance {tol_re[k]:.2g} / {tol_im[k]:.2g} "
+           f"({int(bad.sum())} exponent(s) above); its sign and value cannot be trusted. "
+           "Raise the step count (n_steps, max_steps; model.n_floquet_steps in a "
+           "configuration)" + (" or use method='magnus'" if method == "rk4" else ""))
+    if on_inaccurate == "raise":
+        raise FloquetAccuracyError(msg)
+    warnings.warn(msg, FloquetAccuracyWarning, stacklevel=3)
+
+
+def _modes(p, period, k_sub, max_sub, shapes, shift_states):
+    """Floquet modes from the step propagators ``p``; also ``max ||Phi_k||`` and whether
+    the lifted roots split one per multiplier."""
+    n_steps, n = p.shape[0], p.shape[-1]
+    k_sub = _check_sub(k_sub, n_steps)
+    max_sub = min(max(max_sub, k_sub), n_steps)
     eps = np.finfo(float).eps
     while True:
         stack, bounds, valid = _group(p, k_sub)
@@ -867,9 +1130,9 @@ def floquet_modes(A, n_steps=None, n_sub=DEFAULT_N_SUB, period=_TWO_PI, method="
             k_sub = max_sub
             continue
         need = k_sub * np.log(max(smallest, np.finfo(float).tiny)) / np.log(floor)
+        if not (floor < 1.0 and np.isfinite(need) and need > 0):
+            need = 2 * k_sub                     # round-off above 1: just halve the blocks
         k_sub = int(min(max_sub, max(2 * k_sub, 2 ** np.ceil(np.log2(need)))))
-    if not split:
-        _warn_unsplit()
     log_mu = _log_roots(mu)
     eta = k_sub * log_mu / period                  # the branch of the selected roots
 
@@ -913,8 +1176,11 @@ def floquet_modes(A, n_steps=None, n_sub=DEFAULT_N_SUB, period=_TWO_PI, method="
     per *= np.exp(-1j * np.outer(psi, j) * unit)[:, None, :]
 
     multipliers = np.exp(k_sub * log_mu)
-    return _sorted_result(eta, multipliers, per[0], period,
-                          psi if shapes else None, per if shapes else None, n_sub=k_sub)
+    return (_sorted_result(eta, multipliers, per[0], period, psi if shapes else None,
+                           per if shapes else None, n_sub=k_sub, n_steps=n_steps),
+            float(np.linalg.norm(phis, axis=(1, 2)).max()), split)
+
+
 
 
 def constant_coefficient_modes(A, period=_TWO_PI):

@@ -110,20 +110,23 @@ class SecondOrderSystem:
         m, c, k = self.matrices(psi)
         return state_matrix(m, c, k)
 
-    def modes(self, n_steps: int = 72, n_sub: int = 4, shapes: bool = False):
+    def modes(self, n_steps: int = 72, n_sub: int = 4, shapes: bool = False,
+              on_inaccurate: str = "warn"):
         """Floquet modes of the system (direct eigenanalysis if constant).
 
-        Forward flight: fourth-order Magnus steps, lifted sub-intervals and
-        the integer frequency shift decided by the displacements
-        (:func:`tefcore.floquet.floquet_modes`).  Returns a
-        :class:`tefcore.floquet.FloquetResult` with both members of each
-        conjugate pair.
+        Forward flight: fourth-order Magnus steps (doubled until the
+        exponents' error estimates meet the tolerance), lifted sub-intervals
+        and the integer frequency shift decided by the displacements
+        (:func:`tefcore.floquet.floquet_modes`; ``on_inaccurate`` as there).
+        Returns a :class:`tefcore.floquet.FloquetResult` with both members
+        of each conjugate pair.
         """
         if not self.periodic:
             return floquet.constant_coefficient_modes(self.state_matrix([0.0])[0])
         return floquet.floquet_modes(self.state_matrix, n_steps=n_steps, n_sub=n_sub,
                                      method="magnus", shapes=shapes,
-                                     shift_states=slice(0, self.n_dof))
+                                     shift_states=slice(0, self.n_dof),
+                                     on_inaccurate=on_inaccurate)
 
 
 def combine(parts, scales=None) -> SecondOrderSystem:

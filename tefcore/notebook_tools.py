@@ -26,6 +26,8 @@ from types import SimpleNamespace
 import numpy as np
 import pandas as pd
 
+from .safe_io import atomic_output
+
 
 def _validation():
     """tefcore.validation, or None where it cannot be imported."""
@@ -68,14 +70,15 @@ def savefig(fig, output_dir, stem: str) -> None:
     extra (nbval executes cells without history, where IPython's trailing
     ``;`` does not suppress the result).
     """
-    fig.savefig(Path(output_dir) / f"{stem}.png", metadata={"Software": None},
-                bbox_inches="tight")
+    with atomic_output(Path(output_dir) / f"{stem}.png", "wb") as f:
+        fig.savefig(f, format="png", metadata={"Software": None}, bbox_inches="tight")
 
 
 def save_csv(df: pd.DataFrame, output_dir, stem: str) -> Path:
     """Write ``df`` as ``<output_dir>/<stem>.csv`` (10 significant digits)."""
     path = Path(output_dir) / f"{stem}.csv"
-    df.to_csv(path, index=False, float_format="%.10g")
+    with atomic_output(path, newline="") as f:
+        df.to_csv(f, index=False, float_format="%.10g")
     return path
 
 

@@ -53,7 +53,9 @@ from pathlib import Path
 
 import pandas as pd
 
+from .errors import OutputError
 from .notebook_tools import _validation, deterministic_matplotlib, savefig
+from .safe_io import atomic_output, atomic_write_text, check_output_file, check_output_folder
 
 #: The notebooks, in order.
 NOTEBOOKS = (
@@ -297,10 +299,11 @@ def _baseline_blade(out: Path) -> pd.DataFrame:
 
     deterministic_matplotlib()
     cfg = load_config("mdart")
-    blade_modes(cfg).table().to_csv(out / "mdart_modes.csv", index=False,
-                                    float_format="%.6g")
+    with atomic_output(out / "mdart_modes.csv", newline="") as f:
+        blade_modes(cfg).table().to_csv(f, index=False, float_format="%.6g")
     checks = frequency_checks(cfg)
-    checks.to_csv(out / "mdart_frequency_checks.csv", index=False, float_format="%.6g")
+    with atomic_output(out / "mdart_frequency_checks.csv", newline="") as f:
+        checks.to_csv(f, index=False, float_format="%.6g")
     ax = fan_plot(cfg)
     ax.set_title("MDART blade (assumed properties), coupled modes")
     savefig(ax.figure, out, "mdart_fanplot")
@@ -413,12 +416,67 @@ def write_report(out: Path, runs, claims: pd.DataFrame, worse: pd.DataFrame,
             md += [f"![{r.name} {p.stem}]({r.name}/{p.name})", ""]
             html_parts.append(_img_tag(p, f"{r.name}: {p.stem}"))
     md_path, html_path = out / "report.md", out / "report.html"
-    md_path.write_text("\n".join(md))
-    html_path.write_text("<!DOCTYPE html><html><head><meta charset=\"utf-8\">"
+    atomic_write_text(md_path, "\n".join(md))
+    atomic_write_text(html_path, "<!DOCTYPE html><html><head><meta charset=\"utf-8\">"
                          "<title>tefcore reproduction report</title>"
                          f"<style>{_CSS}</style></head><body>"
                          + "\n".join(html_parts) + "</body></html>\n")
     return md_path, html_path
+
+
+def _tracked_files(paths: list[Path]) -> list[str]:
+    """Those of `paths` (files or folders) tracked by git; [] outside a work tree, or no git."""
+    import subprocess
+
+    probe = next((p for p in (paths[0], *paths[0].parents) if p.is_dir()), None)
+    if probe is None:
+        return []
+    try:
+        top = subprocess.run(["git", "-C", str(probe), "rev-parse", "--show-toplevel"],
+                             capture_output=True, text=True, timeout=30)
+        if top.returncode != 0:
+            return []
+        root = Path(top.stdout.strip()).resolve()
+        rel = [str(p.relative_to(root)) for p in paths if p.is_relative_to(root)]
+        if not rel:
+            return []
+        listed = subprocess.run(["git", "-C", str(root), "ls-files", "-z", "--", *rel],
+                                capture_output=True, text=True, timeout=30)
+    except (OSError, subprocess.SubprocessError):
+        return []
+    return [f for f in listed.stdout.split("\0") if f] if listed.returncode == 0 else []
+
+
+def check_reproduce_folder(out, names=NOTEBOOKS, nb_dir: Path | None = None) -> Path:
+    """Refuse an output folder whose files would overwrite sources; return it resolved.
+
+    ``reproduce`` writes ``OUT/notebooks/<name>.ipynb``, ``OUT/<name>/`` and
+    the report files.  Refused (:class:`~tefcore.errors.OutputError`,
+    before anything runs): ``OUT/notebooks`` is the folder of the source
+    notebooks (``--out .`` from the repository root), or any file that would
+    be written is tracked by git, or a destination is a link or a folder.
+    """
+    out = Path(out).resolve()
+    if out.exists() or out.is_symlink():
+        check_output_folder(out, "reproduce --out")
+    nb_dir = (nb_dir or notebooks_dir()).resolve()
+    if (out / "notebooks").resolve() == nb_dir:
+        raise OutputError(f"reproduce --out {out}: the executed notebooks would overwrite the "
+                          f"source notebooks in {nb_dir}; choose another output folder "
+                          "(default: output)")
+    files = [out / f for f in ("report.md", "report.html", "claims.csv", "mdart_modes.csv",
+                               "mdart_frequency_checks.csv", "mdart_fanplot.png")]
+    files += [out / "notebooks" / f"{n}.ipynb" for n in names]
+    tracked = _tracked_files(files + [out / n for n in names])
+    if tracked:
+        shown = ", ".join(tracked[:3]) + (f" and {len(tracked) - 3} more" if len(tracked) > 3
+                                          else "")
+        raise OutputError(f"reproduce --out {out} would overwrite file(s) tracked by git: "
+                          f"{shown}; choose another output folder (default: output)")
+    for f in files:
+        if f.exists() or f.is_symlink():
+            check_output_file(f, "reproduce output")
+    return out
 
 
 def reproduce(out, params=None, notebooks=None, progress: bool = True,
@@ -429,17 +487,17 @@ def reproduce(out, params=None, notebooks=None, progress: bool = True,
     (later wins, see :func:`merge_params`). Non-zero when a notebook failed or
     a claim is worse than its recorded status.
     """
-    out = Path(out).resolve()
-    out.mkdir(parents=True, exist_ok=True)
     names = [resolve_notebook(n) for n in notebooks] if notebooks else list(NOTEBOOKS)
+    out = check_reproduce_folder(out, names, nb_dir)
+    out.mkdir(parents=True, exist_ok=True)
     layers = params if isinstance(params, list | tuple) else [params or {}]
     merged = merge_params(*layers, notebooks=names)
     start = time.perf_counter()
     checks = _baseline_blade(out)
     runs = run_notebooks(out, merged, names, progress=progress, nb_dir=nb_dir)
     claims = collect_claims(out, names)
-    claims.drop(columns=["notebook"]).to_csv(out / "claims.csv", index=False) \
-        if not claims.empty else claims.to_csv(out / "claims.csv", index=False)
+    with atomic_output(out / "claims.csv", newline="") as f:
+        (claims if claims.empty else claims.drop(columns=["notebook"])).to_csv(f, index=False)
     worse = regressions(claims)
     md, html_path = write_report(out, runs, claims, worse, checks)
     passed, total = score(claims)

@@ -116,6 +116,9 @@ class Param:
         Allowed values of a ``'str'`` field (empty: any string).
     optional : bool
         Whether None is allowed.
+    path : bool
+        A ``'str'`` field naming a file: relative paths in a TOML file are
+        read relative to that file (:mod:`tefcore.config_io`).
 
     Examples
     --------
@@ -134,6 +137,7 @@ class Param:
     kind: str = "float"
     choices: tuple[str, ...] = ()
     optional: bool = False
+    path: bool = False
     _bounds: tuple = field(init=False, repr=False, compare=False)
 
     def __post_init__(self):
@@ -222,8 +226,18 @@ def _fmt(value) -> str:
     if value is None:
         return "?"
     if isinstance(value, numbers.Integral) and not isinstance(value, bool):
+        if int(value).bit_length() > 64:  # no 400-digit numbers in messages
+            return f"<an integer of {int(int(value).bit_length() * math.log10(2)) + 1} digits>"
         return str(int(value))
     return repr(float(value)) if isinstance(value, numbers.Real) else repr(value)
+
+
+def _as_float(x) -> float:
+    """``float(x)``, or inf where a huge integer does not fit a float."""
+    try:
+        return float(x)
+    except OverflowError:
+        return math.inf
 
 
 def _is_number(value) -> bool:
@@ -307,9 +321,12 @@ def coerce_value(p: Param, raw, dotted: str):
         raise ValueError(
             f"{dotted} must be {'an integer' if p.kind == 'int' else 'a number'}, got {what}"
         )
-    value = float(raw) * factor
+    try:
+        value = float(raw) * factor
+    except OverflowError:
+        value = math.inf
     if not math.isfinite(value):
-        raise ValueError(f"{dotted} = {_fmt(raw)} is not finite")
+        raise ValueError(f"{dotted} = {_fmt(raw)} is not finite (or too large for a float)")
     if p.kind == "int":
         if value != int(value):
             raise ValueError(f"{dotted} = {_fmt(raw)} must be an integer")
@@ -324,7 +341,7 @@ def _coerce_array(p: Param, raw, factor: float, dotted: str) -> np.ndarray:
         except ValueError as err:
             raise ValueError(f"{dotted}: {err}") from None
     if _is_number(raw):
-        arr = np.array(float(raw))
+        arr = np.array(_as_float(raw))
     elif isinstance(raw, np.ndarray):
         if raw.dtype.kind not in "iuf" or raw.ndim > 1:
             raise ValueError(
@@ -335,7 +352,11 @@ def _coerce_array(p: Param, raw, factor: float, dotted: str) -> np.ndarray:
         for i, x in enumerate(raw):
             if not _is_number(x):
                 raise ValueError(f"{dotted}[{i}] must be a number, got {type(x).__name__} {x!r}")
-        arr = np.array(raw, dtype=float).reshape(-1)
+        try:
+            arr = np.array(raw, dtype=float).reshape(-1)
+        except OverflowError:
+            i = next(i for i, x in enumerate(raw) if not math.isfinite(_as_float(x)))
+            raise ValueError(f"{dotted}[{i}] = {_fmt(raw[i])} is too large for a float") from None
     else:
         raise ValueError(
             f"{dotted} must be a sequence of numbers, got {type(raw).__name__} {raw!r}"

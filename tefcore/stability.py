@@ -166,6 +166,10 @@ def stability(cfg, *, trim_result: TrimResult | None = None, n_steps: int | None
         If ``model`` was built for another configuration.
     tefcore.trim.TrimError
         If the trim does not converge.
+    tefcore.floquet.FloquetAccuracyError
+        If the Floquet exponents do not meet the default tolerance of
+        :func:`tefcore.floquet.floquet_modes` even at 32 times the steps
+        (``n_steps`` is the starting value and is doubled as needed).
     """
     if model is not None:
         if model.cfg != cfg:
@@ -237,9 +241,11 @@ def _stability_of(model, tr: TrimResult, n_steps: int | None) -> StabilityResult
     n = model.n_dof
     system = linear_system(tr)
     # K = 4 sub-intervals to start with; floquet_modes raises K for heavily
-    # damped roots (seen: -7.2 /rev torsion at Fig. 14's 0.22 R span)
+    # damped roots (seen: -7.2 /rev torsion at Fig. 14's 0.22 R span), and the
+    # steps until its error estimates meet the tolerance; a result it cannot
+    # trust is an error, never a spurious (in)stability
     res = system.modes(n_steps=n_steps or cfg.model.n_floquet_steps, n_sub=4,
-                       shapes=system.periodic).with_participation()
+                       shapes=system.periodic, on_inaccurate="raise").with_participation()
     keep = res.positive_frequency()
     # by frequency; the two roots of a locked pair share it exactly, so ties
     # (to 1e-9 /rev, round-off) go less damped first, not by round-off

@@ -241,6 +241,23 @@ def stability_map(cfg: Config, x_field: str, x_values, y_field: str, y_values, *
                      rows=rows)
 
 
+def _append_line(path: Path, line: str) -> None:
+    """Append one line, never through a link (:mod:`tefcore.safe_io`)."""
+    import os
+
+    from .safe_io import check_output_file, open_append
+
+    if not path.exists():
+        check_output_file(path, "map boundary file")
+        path.touch()
+    fd = open_append(path, "map boundary file")
+    try:
+        os.write(fd, line.encode("utf-8"))
+        os.fsync(fd)
+    finally:
+        os.close(fd)
+
+
 def _boundary(table, cfg, x_field, y_field, y_values, point, n_jobs, backend, client, outdir,
               xtol):
     """Refined zeros of the flutter growth along each row (cached in boundary.jsonl)."""
@@ -285,8 +302,7 @@ def _boundary(table, cfg, x_field, y_field, y_values, point, n_jobs, backend, cl
             rec = {"key": key, **rec}
             results.append(rec)
             if cache_path is not None:
-                with open(cache_path, "a", encoding="utf-8") as f:
-                    f.write(json.dumps(rec) + "\n")
+                _append_line(cache_path, json.dumps(rec) + "\n")
     cols = ["y", "x", "direction", "x_lo", "x_hi", "converged", "error"]
     out = pd.DataFrame(results, columns=["key", *cols]).drop(columns="key")
     return out.sort_values(["y", "x"], ignore_index=True)

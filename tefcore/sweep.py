@@ -39,7 +39,6 @@ ValueError: flap.cg_offset = 1.5 is outside the allowed range [-1, 1]
 
 from __future__ import annotations
 
-import datetime
 import numbers
 import os
 import sys
@@ -54,7 +53,9 @@ import pandas as pd
 from tqdm import tqdm
 
 from .config import SECTIONS, Config, resolve_field
-from .sweep_store import FORMAT, FORMAT_VERSION, _jsonable, _SweepFile, _value_key, config_hash
+from .errors import error_text
+from .safe_io import atomic_output
+from .sweep_store import _jsonable, _SweepFile, _value_key, config_hash, sweep_header
 from .tracking import ambiguous_steps, label_changes, track_modes
 
 if TYPE_CHECKING:  # at run time re-exported by __getattr__ (end of the module)
@@ -169,7 +170,7 @@ def _anchor_root(result) -> dict | None:
 
 def _failed_record(key, value, err) -> dict:
     return {"key": key, "value": _jsonable(value), "value_si": None, "status": "failed",
-            "error": f"{type(err).__name__}: {err}", "trim": {}, "modes": None}
+            "error": error_text(err), "trim": {}, "modes": None}
 
 
 def _evaluate(index, point, cfg, parameter, value, key, anchor=False, depth=0):
@@ -199,7 +200,7 @@ def _evaluate(index, point, cfg, parameter, value, key, anchor=False, depth=0):
         if anchor:
             rec["anchor"] = _anchor_root(result)
     except Exception as err:  # recorded, the sweep goes on
-        rec["error"] = f"{type(err).__name__}: {err}"
+        rec["error"] = error_text(err)
         vecs = None
     rec["elapsed_s"] = round(time.perf_counter() - start, 6)
     return index, rec, vecs
@@ -347,8 +348,9 @@ class SweepResult:
         return t[t["label"] == label]
 
     def to_csv(self, path, **kwargs) -> Path:
-        """Write :attr:`table` as CSV (no index); return the path."""
-        self.table.to_csv(path, index=False, **kwargs)
+        """Write :attr:`table` as CSV (no index), atomically; return the path."""
+        with atomic_output(path, newline="") as f:
+            self.table.to_csv(f, index=False, **kwargs)
         return Path(path)
 
 
@@ -553,6 +555,14 @@ def sweep(cfg: Config, parameter: str, values, *, point: Callable | None = None,
         message), empty or duplicate `values`, invalid `extra_overrides`,
         `n_jobs` or `backend`, or a sweep file that does not match.  A value
         that the configuration rejects is *not* raised: it is a failed point.
+        A sweep file that cannot be resumed is a
+        :class:`~tefcore.errors.SweepFileError` (a ``ValueError``) naming
+        what changed (configuration, input files, tefcore version, model
+        code) or the damaged line.
+    tefcore.errors.OutputError
+        `out` is a symbolic link, its folder cannot be created, or another
+        sweep is writing it (advisory lock, :mod:`tefcore.safe_io`);
+        raised before any point is computed.
     KeyboardInterrupt
         Propagated; the points finished so far are in `out`.
     """
@@ -576,12 +586,7 @@ def sweep(cfg: Config, parameter: str, values, *, point: Callable | None = None,
     records: dict[str, dict] = {}
     store = None
     if out is not None:
-        from . import __version__
-
-        header = {"format": FORMAT, "version": FORMAT_VERSION, "parameter": parameter,
-                  "config_hash": chash, "point": _point_name(point),
-                  "tefcore_version": __version__,
-                  "created": datetime.datetime.now(datetime.UTC).isoformat(timespec="seconds")}
+        header = sweep_header(cfg, parameter, chash, _point_name(point))
         store = _SweepFile(out, header, resume)
         for k, rec in store.records.items():
             if not (retry_failed and rec["status"] != "ok"):

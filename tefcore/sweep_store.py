@@ -10,14 +10,23 @@ UTF-8 JSON lines, one object per line, each line written by a single
 
 * line 1, the header::
 
-    {"format": "tefcore.sweep", "version": 1, "parameter": "flap.cg_offset",
-     "config_hash": "<16 hex>", "point": "tefcore.stability:stability",
-     "tefcore_version": "0.1.0", "created": "<ISO time>"}
+    {"format": "tefcore.sweep", "version": 2, "parameter": "flap.cg_offset",
+     "config_hash": "<16 hex>", "inputs": {"model.c81_deck": "sha256:<hex>"},
+     "tefcore_version": "0.1.0", "model_stamp": "<16 hex>",
+     "point": "tefcore.stability:stability", "created": "<ISO time>"}
 
+  It records everything that decides a point's result (:func:`sweep_header`):
   ``config_hash`` is :func:`config_hash` of the base configuration (after
-  ``extra_overrides``) without the swept field.  Resuming with another
-  parameter or configuration raises ``ValueError``; another point function
-  only warns (its name is recorded for information).
+  ``extra_overrides``) without the swept field; ``inputs`` the content
+  digests of the files the configuration refers to
+  (:func:`tefcore.provenance.input_digests`: the C81 deck, when used);
+  ``tefcore_version`` and ``model_stamp`` (:func:`tefcore.provenance.model_stamp`,
+  a fingerprint of the numerical code) the code.  Resuming when any of
+  these differs raises :class:`~tefcore.errors.SweepFileError` (a
+  ``ValueError``) naming what changed: the stored points would be stale.
+  Another point function only warns (its name is recorded for
+  information).  Files of version 1 (without ``inputs`` and
+  ``model_stamp``) cannot be checked and are refused.
 * one line per finished point::
 
     {"key": "0.25", "value": 0.25, "value_si": 0.25, "status": "ok",
@@ -38,8 +47,16 @@ UTF-8 JSON lines, one object per line, each line written by a single
 On resume the file is read back; when a key occurs several times (a retried
 failed point) the last record wins, and records for values not requested
 are ignored (and kept).  A last line cut short by a crash is dropped and
-the file truncated to its last complete line.  Two sweeps must not write the
-same file at the same time.
+the file truncated to its last complete line; any other line that is not a
+record (not JSON, or without the fields above) raises
+:class:`~tefcore.errors.SweepFileError` naming the line.
+
+Writing (:mod:`tefcore.safe_io`): a new file is created atomically (its
+header in a temporary file in the same folder, then ``os.replace``); a
+sweep file that is a symbolic link is refused, and points are appended
+without following links.  While a sweep writes the file it holds an
+advisory lock on ``<file>.lock``: a second sweep of the same file fails at
+once with :class:`~tefcore.errors.OutputError` (it does not wait).
 """
 
 from __future__ import annotations
@@ -50,16 +67,20 @@ import numbers
 import os
 import warnings
 from collections.abc import Iterable, Mapping
-from pathlib import Path
 
 import numpy as np
 
 from .config import SECTIONS, Config
+from .errors import SweepFileError
+from .provenance import describe_digest, input_digests, model_stamp
+from .safe_io import FileLock, atomic_write_text, check_output_file, open_append
 
-__all__ = ["config_hash"]
+__all__ = ["RECORD_MODE_COLUMNS", "config_hash", "sweep_header"]
 
 FORMAT = "tefcore.sweep"
-FORMAT_VERSION = 2
+FORMAT_VERSION = 3
+#: Columns every stored ``modes`` table has (the point function's required columns).
+RECORD_MODE_COLUMNS = ("mode_id", "label", "frequency_per_rev", "real_part", "damping_ratio")
 
 
 # ------------------------------------------------------------------ identities
@@ -124,42 +145,153 @@ def config_hash(cfg: Config, exclude: Iterable[str] = ()) -> str:
 # ------------------------------------------------------------------ the file
 
 
+def sweep_header(cfg: Config, parameter: str, chash: str, point_name: str) -> dict:
+    """Header of a new sweep file: what decides every point (module docstring).
+
+    Raises
+    ------
+    ValueError
+        If a file the configuration refers to cannot be read.
+
+    Examples
+    --------
+    >>> from tefcore.config import load_config
+    >>> cfg = load_config("mdart")
+    >>> head = sweep_header(cfg, "flap.cg_offset", config_hash(cfg), "m:f")
+    >>> head["version"], head["inputs"], len(head["model_stamp"])
+    (2, {}, 16)
+    """
+    import datetime
+
+    from . import __version__
+
+    return {"format": FORMAT, "version": FORMAT_VERSION, "parameter": parameter,
+            "config_hash": chash, "inputs": input_digests(cfg),
+            "tefcore_version": __version__, "model_stamp": model_stamp(),
+            "point": point_name,
+            "created": datetime.datetime.now(datetime.UTC).isoformat(timespec="seconds")}
+
+
+_RESTART = ("use another out path, or resume=False to overwrite it (command line: delete "
+            "the file or choose another --out)")
+
+
+def _check_header(path, head, header: dict) -> None:
+    """Refuse to resume `path` (header `head`) for a sweep with `header`."""
+    if not isinstance(head, dict) or head.get("format") != FORMAT:
+        raise SweepFileError(f"{path} is not a tefcore sweep file (line 1 is not its "
+                             "header); use another out path")
+    if head.get("version") == 1:
+        raise SweepFileError(f"cannot resume {path}: it was written by an older tefcore "
+                             "(sweep file version 1) that did not record the input files and "
+                             f"the model code, so its points cannot be checked; {_RESTART}")
+    if head.get("version") != FORMAT_VERSION:
+        raise SweepFileError(f"{path}: unsupported sweep file version {head.get('version')!r} "
+                             f"(this tefcore reads version {FORMAT_VERSION})")
+    for what in ("parameter", "config_hash"):
+        if head.get(what) != header[what]:
+            raise SweepFileError(
+                f"cannot resume {path}: it holds a sweep of {head.get('parameter')!r} "
+                f"on configuration {head.get('config_hash')}, not of "
+                f"{header['parameter']!r} on configuration {header['config_hash']} "
+                f"({what} differs); {_RESTART}")
+    then, now = head.get("inputs"), header["inputs"]
+    if not isinstance(then, dict):
+        raise SweepFileError(f"{path}: the header's 'inputs' is not a table; the file is "
+                             "damaged")
+    for dotted in sorted(set(then) | set(now)):
+        if then.get(dotted) != now.get(dotted):
+            raise SweepFileError(
+                f"cannot resume {path}: the file {dotted} has changed since its points were "
+                f"computed ({describe_digest(then.get(dotted))} then, "
+                f"{describe_digest(now.get(dotted))} now), so they would be stale; {_RESTART}")
+    for what, name in (("tefcore_version", "tefcore version"),
+                       ("model_stamp", "model code (model_stamp)")):
+        if head.get(what) != header[what]:
+            raise SweepFileError(
+                f"cannot resume {path}: its points were computed by another {name} "
+                f"({head.get(what)!r} then, {header[what]!r} now) and may be stale; "
+                f"{_RESTART}")
+    if head.get("point") != header["point"]:
+        warnings.warn(f"resuming {path}, written by point function {head.get('point')}, "
+                      f"with {header['point']}", UserWarning, stacklevel=5)
+
+
+def _is_real(x) -> bool:
+    return isinstance(x, numbers.Real) and not isinstance(x, bool)
+
+
+def _record_problem(rec) -> str | None:
+    """Why `rec` (a decoded line) is not a point record, or None."""
+    if not isinstance(rec, dict):
+        return f"a JSON {type(rec).__name__}, not a record"
+    missing = [k for k in ("key", "status", "value_si", "error", "trim", "modes")
+               if k not in rec]
+    if missing:
+        return f"a record without {', '.join(map(repr, missing))}"
+    if not isinstance(rec["key"], str) or not rec["key"]:
+        return f"'key' must be a non-empty string, got {rec['key']!r:.40}"
+    if rec["status"] not in ("ok", "failed"):
+        return f"'status' must be 'ok' or 'failed', got {rec['status']!r:.40}"
+    if rec["error"] is not None and not isinstance(rec["error"], str):
+        return "'error' must be a string or null"
+    if not (rec["value_si"] is None or _is_real(rec["value_si"])
+            or isinstance(rec["value_si"], str)):
+        return "'value_si' must be a number, a string or null"
+    if not isinstance(rec["trim"], dict):
+        return "'trim' must be a table"
+    modes = rec["modes"]
+    if rec["status"] == "failed":
+        return None if modes is None else "a failed point must have 'modes': null"
+    if not isinstance(modes, dict):
+        return "'modes' of a point with status 'ok' must be a table of columns"
+    lacking = [c for c in RECORD_MODE_COLUMNS if c not in modes]
+    if lacking:
+        return f"'modes' lacks the column(s) {', '.join(map(repr, lacking))}"
+    lengths = {len(v) if isinstance(v, list) else -1 for v in modes.values()}
+    if len(lengths) != 1 or lengths == {-1} or lengths == {0}:
+        return "the 'modes' columns must be non-empty lists of one length"
+    for col in ("frequency_per_rev", "real_part", "damping_ratio", "mode_id"):
+        if not all(_is_real(x) for x in modes[col]):
+            return f"'modes'.{col!r} must hold numbers"
+    if not all(isinstance(x, str) for x in modes["label"]):
+        return "'modes'.'label' must hold strings"
+    return None
+
+
+def _decode(line: bytes):
+    """One JSON line, or raise ``ValueError`` (any decoding failure)."""
+    try:
+        return json.loads(line.decode("utf-8"))
+    except (UnicodeDecodeError, json.JSONDecodeError, RecursionError) as err:
+        raise ValueError(str(err)) from None
+
+
 class _SweepFile:
     """Append-only JSON-lines store of finished points (module docstring)."""
 
     def __init__(self, path, header: dict, resume: bool):
-        self.path = Path(path)
+        self.path = check_output_file(path, "sweep file", create_folder=True)
         self.records: dict[str, dict] = {}
-        self.path.parent.mkdir(parents=True, exist_ok=True)
-        if resume and self.path.exists() and self.path.stat().st_size > 0:
-            self._load(header)
-        else:
-            tmp = self.path.with_name(self.path.name + ".tmp")
-            tmp.write_text(json.dumps(header) + "\n", encoding="utf-8")
-            os.replace(tmp, self.path)
-        self.fd = os.open(self.path, os.O_WRONLY | os.O_APPEND)
+        self.lock = FileLock(self.path, "sweep file").acquire()
+        try:
+            if resume and self.path.exists() and self.path.stat().st_size > 0:
+                self._load(header)
+            else:
+                atomic_write_text(self.path, json.dumps(header) + "\n", what="sweep file")
+            self.fd = open_append(self.path, "sweep file")
+        except BaseException:
+            self.lock.release()
+            raise
 
     def _load(self, header: dict) -> None:
         raw = self.path.read_bytes()
         lines = raw.split(b"\n")
         try:
-            head = json.loads(lines[0])
-        except json.JSONDecodeError:
+            head = _decode(lines[0])
+        except ValueError:
             head = None
-        if not isinstance(head, dict) or head.get("format") != FORMAT:
-            raise ValueError(f"{self.path} is not a tefcore sweep file")
-        if head.get("version") != FORMAT_VERSION:
-            raise ValueError(f"{self.path}: unsupported sweep file version {head.get('version')}")
-        for what in ("parameter", "config_hash"):
-            if head.get(what) != header[what]:
-                raise ValueError(
-                    f"cannot resume {self.path}: it holds a sweep of {head.get('parameter')!r} "
-                    f"on configuration {head.get('config_hash')}, not of "
-                    f"{header['parameter']!r} on configuration {header['config_hash']} "
-                    f"({what} differs); use another out path, or resume=False to overwrite it")
-        if head.get("point") != header["point"]:
-            warnings.warn(f"resuming {self.path}, written by point function {head.get('point')}, "
-                          f"with {header['point']}", UserWarning, stacklevel=4)
+        _check_header(self.path, head, header)
         good = len(lines[0]) + 1
         body = lines[1:]
         for n, line in enumerate(body, start=2):
@@ -168,17 +300,19 @@ class _SweepFile:
                 break
             try:
                 if last:  # no newline after it: cut short by a crash
-                    raise json.JSONDecodeError("unterminated line", "", 0)
-                rec = json.loads(line)
-            except json.JSONDecodeError:
+                    raise ValueError("unterminated line")
+                rec = _decode(line)
+            except ValueError:
                 if not last:
-                    raise ValueError(f"{self.path}, line {n}: not a JSON record; the file is "
-                                     "damaged (remove the line or the file)") from None
+                    raise SweepFileError(f"{self.path}, line {n}: not a JSON record; the file "
+                                         "is damaged (remove the line or the file)") from None
                 warnings.warn(f"{self.path}: dropping an incomplete last line (interrupted "
                               "write)", UserWarning, stacklevel=4)
-                with open(self.path, "r+b") as f:
-                    f.truncate(good)
+                os.truncate(self.path, good)
                 break
+            if (problem := _record_problem(rec)) is not None:
+                raise SweepFileError(f"{self.path}, line {n}: {problem}; the file is damaged "
+                                     "(remove the line or the file)")
             self.records[rec["key"]] = rec
             good += len(line) + 1
 
@@ -191,3 +325,4 @@ class _SweepFile:
 
     def close(self) -> None:
         os.close(self.fd)
+        self.lock.release()

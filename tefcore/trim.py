@@ -27,17 +27,18 @@ import numpy as np
 import scipy.linalg
 
 from .coupled import Controls, CoupledModel, jacobian_blocks
+from .errors import TefcoreError
 from .flap_dynamics import spectral_derivative
 from .inflow import Inflow, drees_gradients, momentum_inflow
 
 
-class TrimError(RuntimeError):
+class TrimError(TefcoreError, RuntimeError):
     """The trim did not converge, or converged to a state beyond the model (a flap
     diverged statically); ``history`` holds the residual per iteration."""
 
-    def __init__(self, message: str, history: list[dict]):
+    def __init__(self, message: str, history: list[dict] | None = None):
         super().__init__(message)
-        self.history = history
+        self.history = [] if history is None else history
 
 
 def fourier_coefficients(samples: np.ndarray) -> np.ndarray:

@@ -22,6 +22,20 @@ The bare ``lb`` is ambiguous (pound-mass or pound-force).  It is resolved
 by the expected dimension: both readings are tried and the one whose
 dimension matches is kept.  ``lbm`` and ``lbf`` are never ambiguous.
 
+Angles are dimensionless for the conversion, but the parser also counts the
+net power of the angle units (``rad``, ``deg``, ``rev``, and the ``rev`` in
+``rpm``), and the three named dimensions that differ only by it are told
+apart: a ``"dimensionless"`` quantity refuses a unit with an angle
+(``"5 deg"`` for C_T/sigma), an ``"angle"`` needs one angle unit and a
+``"per_angle"`` quantity one inverse angle.  Other named dimensions (e.g.
+``moment_per_angle``) and explicit (M, L, T) vectors do not check it.
+
+Limits (so that no input can overflow, recurse or run long): a unit
+expression has at most :data:`MAX_UNIT_LENGTH` characters, integer powers
+at most :data:`MAX_POWER` in magnitude, parentheses nested at most
+:data:`MAX_DEPTH` deep, and the SI factor must be a finite, normal
+number; anything else is a ``ValueError``.
+
 Examples
 --------
 >>> to_si(34, "ft")
@@ -38,6 +52,7 @@ from __future__ import annotations
 
 import math
 import re
+import sys
 from collections.abc import Sequence
 
 import numpy as np
@@ -45,6 +60,9 @@ from scipy import constants as sc
 
 __all__ = [
     "DIMENSIONS",
+    "MAX_DEPTH",
+    "MAX_POWER",
+    "MAX_UNIT_LENGTH",
     "SI_UNITS",
     "dimension_name",
     "format_dims",
@@ -106,6 +124,17 @@ SI_UNITS: dict[str, str] = {
     "bending_stiffness": "N*m^2",
     "torsional_stiffness": "N*m^2",
 }
+
+#: Longest unit expression accepted (characters).
+MAX_UNIT_LENGTH = 120
+#: Largest magnitude of an integer power (``m^12``).
+MAX_POWER = 12
+#: Deepest nesting of parentheses.
+MAX_DEPTH = 8
+#: Net angle power each angle-like named dimension must have (see the module docstring).
+_ANGLE_POWER = {"dimensionless": 0, "angle": 1, "per_angle": -1}
+#: Base units that are angles (``rpm`` is rev/min: it counts one too).
+_ANGLES = frozenset({"rad", "deg", "degree", "degrees", "rev", "rpm"})
 
 # Base units: name -> (SI factor, dims).  "Hz" is left out on purpose: with
 # rad dimensionless, 1 Hz would silently equal 1 rad/s; write "rev/s".
@@ -227,10 +256,16 @@ def dimension_name(dims: Sequence[int]) -> str:
 
 
 class _Parser:
-    """Recursive-descent parser; counts the net power of the bare ``lb``."""
+    """Recursive-descent parser; counts the net powers of the bare ``lb`` and of angles.
+
+    Each production returns ``(factor, dims, n_lb, n_angle)``.
+    """
 
     def __init__(self, text: str):
+        if len(text) > MAX_UNIT_LENGTH:
+            raise ValueError(f"unit {text[:20]!r}... is longer than {MAX_UNIT_LENGTH} characters")
         self.text = text
+        self.depth = 0
         self.tokens: list[tuple[str, str]] = []
         pos, text = 0, text.rstrip()
         while pos < len(text):
@@ -252,68 +287,89 @@ class _Parser:
         self.i += 1
         return tok
 
-    def parse(self) -> tuple[float, list[int], int]:
+    def parse(self) -> tuple[float, list[int], int, int]:
         if not self.tokens:
             raise ValueError("empty unit string")
-        result = self.expr()
+        try:
+            result = self.expr()
+        except (OverflowError, ZeroDivisionError):
+            result = (math.inf, [0, 0, 0], 0, 0)
         if self.peek() is not None:
             raise ValueError(f"unexpected {self.peek()[1]!r} in unit {self.text!r}")
+        if not (math.isfinite(result[0]) and result[0] >= sys.float_info.min):
+            raise ValueError(f"unit {self.text!r} is out of range (its SI factor over- or "
+                             "underflows)")
         return result
 
-    def expr(self) -> tuple[float, list[int], int]:
-        factor, dims, n_lb = self.power()
+    def expr(self) -> tuple[float, list[int], int, int]:
+        factor, dims, n_lb, n_ang = self.power()
         while (tok := self.peek()) is not None and tok != ("op", ")"):
             if tok[0] == "op" and tok[1] in "*-·/":
                 self.i += 1
             sign = -1 if tok == ("op", "/") else 1  # otherwise implicit product
-            f, d, n = self.power()
+            f, d, n, a = self.power()
             factor *= f**sign
-            dims = [a + sign * b for a, b in zip(dims, d, strict=True)]
+            dims = [x + sign * y for x, y in zip(dims, d, strict=True)]
             n_lb += sign * n
-        return factor, dims, n_lb
+            n_ang += sign * a
+        return factor, dims, n_lb, n_ang
 
-    def power(self) -> tuple[float, list[int], int]:
-        factor, dims, n_lb = self.atom()
+    def power(self) -> tuple[float, list[int], int, int]:
+        factor, dims, n_lb, n_ang = self.atom()
         if (tok := self.peek()) is not None and tok[1] in ("^", "**"):
             self.i += 1
             p = self.exponent()
-            factor, dims, n_lb = factor**p, [d * p for d in dims], n_lb * p
-        return factor, dims, n_lb
+            factor, dims, n_lb, n_ang = factor**p, [d * p for d in dims], n_lb * p, n_ang * p
+        return factor, dims, n_lb, n_ang
 
     def exponent(self) -> int:
         kind, val = self.take()
         if val == "(":
+            self.open()
             p = self.exponent()
-            if self.take()[1] != ")":
-                raise ValueError(f"missing ')' in unit {self.text!r}")
+            self.close()
             return p
         sign = 1
         if val == "-":
             sign, (kind, val) = -1, self.take()
-        if kind != "num" or not val.isdigit():
+        if kind != "num" or not (val.isascii() and val.isdigit()):
             raise ValueError(f"exponent must be an integer in unit {self.text!r}")
+        if len(val) > 3 or int(val) > MAX_POWER:
+            raise ValueError(f"exponent {sign * int(val[:20])} in unit {self.text!r} is out of "
+                             f"range (at most {MAX_POWER} in magnitude)")
         return sign * int(val)
 
-    def atom(self) -> tuple[float, list[int], int]:
+    def open(self) -> None:
+        self.depth += 1
+        if self.depth > MAX_DEPTH:
+            raise ValueError(f"parentheses nested more than {MAX_DEPTH} deep in unit "
+                             f"{self.text[:40]!r}")
+
+    def close(self) -> None:
+        if self.take()[1] != ")":
+            raise ValueError(f"missing ')' in unit {self.text!r}")
+        self.depth -= 1
+
+    def atom(self) -> tuple[float, list[int], int, int]:
         kind, val = self.take()
         if val == "(":
+            self.open()
             result = self.expr()
-            if self.take()[1] != ")":
-                raise ValueError(f"missing ')' in unit {self.text!r}")
+            self.close()
             return result
         if kind == "num":
             # Only "1" (as in "1/rad"): a stray number such as the "2" of
             # "in2" must not silently scale the unit.
             if float(val) != 1.0:
                 raise ValueError(f"unexpected number {val!r} in unit {self.text!r}")
-            return 1.0, [0, 0, 0], 0
+            return 1.0, [0, 0, 0], 0, 0
         if kind == "name":
             if val.lower() == _AMBIGUOUS_LB:
-                return 1.0, [0, 0, 0], 1
+                return 1.0, [0, 0, 0], 1, 0
             key = val if val in _UNITS else _CASELESS.get(val.lower())
             if key is not None:
                 factor, dims = _UNITS[key]
-                return factor, list(dims), 0
+                return factor, list(dims), 0, int(key in _ANGLES)
             raise ValueError(f"unknown unit {val!r} in {self.text!r}")
         raise ValueError(f"unexpected {val!r} in unit {self.text!r}")
 
@@ -375,10 +431,19 @@ def _parse_unit(text: str, unit: str, dimension: str | Sequence[int] | None) -> 
     expected = None if dimension is None else resolve_dimension(dimension)
     where = "" if dimension is None else f" (expected {_describe(dimension)})"
     try:
-        factor, dims_list, n_lb = _Parser(text).parse()
+        factor, dims_list, n_lb, n_angle = _Parser(text).parse()
     except ValueError as err:
         raise ValueError(f"{err}{where}") from None
     dims: Dims = tuple(dims_list)  # type: ignore[assignment]
+    if isinstance(dimension, str) and dimension in _ANGLE_POWER:
+        want = _ANGLE_POWER[dimension]
+        if n_angle != want and dims == _NONE and not n_lb:
+            got = {0: "has no angle unit", 1: "is an angle", -1: "is a per-angle unit"}.get(
+                n_angle, f"has angle power {n_angle}")
+            need = {"dimensionless": "a pure number (no unit, '1' or 'percent')",
+                    "angle": "an angle (rad, deg, rev)",
+                    "per_angle": "a per-angle quantity (1/rad, 1/deg)"}[dimension]
+            raise ValueError(f"unit {unit!r} {got}, expected {need}")
     if n_lb:
         # Try both readings of the bare "lb"; keep the one that fits.
         readings = {

@@ -25,6 +25,7 @@ from .curve_metrics import X_SLACK as _EPS
 from .curve_metrics import compare_curve, stability_intervals, zero_crossings
 from .figure_frames import FIG7_OVERHANGS, compute_figure, figure_frame
 from .reference import FIGURES, KNOWN_FIGURES, STATUSES, load_claims, reference_dir, x_to_si
+from .safe_io import atomic_write_text
 from .units import parse_quantity
 
 __all__ = ["COLUMNS", "claims_score", "compare_curve", "figure_frame", "reference_curves",
@@ -175,5 +176,5 @@ def update_recorded_status(table: pd.DataFrame, path=None) -> int:
             new = b[:m.end()] + "\n" + line + b[m.end():]
         changed += new != b
         blocks[i] = new
-    path.write_text("".join(blocks))
+    atomic_write_text(path, "".join(blocks))
     return changed

@@ -101,7 +101,7 @@ def test_round_trip_exact(tmp_path):
 
 
 @given(
-    mu=st.floats(0, 0.6),
+    mu=st.floats(0, 0.55),  # MDART: the advancing tip reaches the Mach limit at 0.5838
     mass=st.lists(st.floats(1e-3, 1e3), min_size=21, max_size=21),
     arm=st.floats(1e-6, 1e6),
 )

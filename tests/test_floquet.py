@@ -564,3 +564,82 @@ def test_sub_intervals_are_raised_for_heavily_damped_roots():
 def test_max_sub_validation(bad):
     with pytest.raises((ValueError, TypeError), match="max_sub"):
         floquet_modes(np.eye(2) * -0.1, max_sub=bad)
+
+
+# --------------------------------------------------------------------------
+# accuracy control (issue 13, finding 8)
+
+HEAVY_24 = np.array([-24.0 + 0j, -0.1 + 1.3j, -0.1 - 1.3j])
+
+
+def heavy_periodic_system():
+    """x = (1 + 0.3 sin psi) z, z' = B z with exponents -24 and -0.1 +- 1.3i."""
+    B = coupled(HEAVY_24, seed=4, spread=0.3)
+
+    def P(psi):
+        return (1 + 0.3 * np.sin(psi))[:, None, None] * np.eye(3)
+
+    def dP(psi):
+        return (0.3 * np.cos(psi))[:, None, None] * np.eye(3)
+
+    return transformed(B, P, dP)
+
+
+def test_default_rk4_controls_its_error_on_a_heavily_damped_root():
+    """Finding 8: RK4 at its default 144 steps put a -24 /rev root at about -23.4
+    (h lambda = 1.05: one-step factor 0.360 against e^-1.05 = 0.351) without a word.
+    With the step-doubling control the steps double until the estimate meets
+    1e-3 + 1e-3 |sigma| = 0.025 for that root."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        res = floquet_modes(heavy_periodic_system())
+    got = matched(HEAVY_24, res.exponents)
+    # RK4 error ~ |lambda|^5 h^4 / 120: 1.2e-3 at 576 steps, within the 0.025 tolerance
+    assert_allclose(got.real, HEAVY_24.real, atol=0.025)
+    assert res.n_steps == 4 * DEFAULT_N_STEPS
+    est = res.error_estimates[np.argmin(res.exponents.real)]
+    assert abs(got[0].real + 24) <= 4 * est.real          # the estimate is honest
+    # without the control: the old answer, 0.6 /rev off
+    old = floquet_modes(heavy_periodic_system(), atol=None)
+    assert old.n_steps == DEFAULT_N_STEPS and old.error_estimates is None
+    assert abs(old.exponents.real.min() + 24) > 0.5
+
+
+def test_light_roots_keep_the_first_grid_and_report_their_error():
+    res = floquet_modes(general_transform_system(), method="magnus")
+    assert res.n_steps == DEFAULT_N_STEPS                 # estimate 1e-9: no refinement
+    assert np.all(res.error_estimates.real < 1e-6)
+    # the estimate follows the error: observed 3.6e-8 at 144 steps (see above)
+    err = np.abs(matched(LAM_B, res.exponents) - LAM_B).max()
+    assert err < 10 * np.abs(res.error_estimates).max()
+
+
+def test_an_unmet_tolerance_warns_or_raises():
+    from tefcore.floquet import FloquetAccuracyError, FloquetAccuracyWarning
+
+    A = heavy_periodic_system()
+    with pytest.warns(FloquetAccuracyWarning, match=r"-2\d\.\d+.*not converged at n_steps = 144"):
+        floquet_modes(A, max_steps=144)
+    with pytest.raises(FloquetAccuracyError, match="cannot be trusted"):
+        floquet_modes(A, max_steps=144, on_inaccurate="raise")
+    # periodic samples cannot be refined: the estimate still warns
+    samples = A(np.arange(288) * TWO_PI / 288)
+    with pytest.warns(FloquetAccuracyWarning):
+        floquet_modes(samples)
+
+
+def test_overflow_is_a_named_error():
+    """A transition matrix that overflows at every step count is a FloquetOverflowError
+    (a ValueError), not scipy's 'array must not contain infs or NaNs'."""
+    from tefcore.floquet import FloquetOverflowError
+
+    with pytest.raises(FloquetOverflowError, match="overflow.*n_steps = 4"):
+        floquet_modes(np.diag([400.0, -1.0]), n_steps=2, max_steps=4, method="magnus", n_sub=1)
+
+
+@pytest.mark.parametrize("kwargs, msg", [({"atol": -1.0}, "atol"), ({"rtol": np.nan}, "rtol"),
+                                         ({"max_steps": 0}, "max_steps"),
+                                         ({"on_inaccurate": "ignore"}, "on_inaccurate")])
+def test_accuracy_parameters_are_validated(kwargs, msg):
+    with pytest.raises(ValueError, match=msg):
+        floquet_modes(np.eye(2) * -0.1, **kwargs)

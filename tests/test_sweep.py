@@ -188,7 +188,7 @@ def test_file_format_header_and_one_line_per_point(tmp_path):
     out = tmp_path / "s.jsonl"
     res = run(XS[:4], out=out)
     head, *recs = read_lines(out)
-    assert head["format"] == "tefcore.sweep" and head["version"] == 2
+    assert head["format"] == "tefcore.sweep" and head["version"] == 3
     assert head["parameter"] == PARAM
     assert head["config_hash"] == config_hash(MDART, [PARAM]) == res.config_hash
     assert head["point"].endswith(":ToyPoint")

@@ -1,0 +1,114 @@
+"""What decides a computed result, as fingerprints: input files and the model code.
+
+A stored result (a point of a sweep file, :mod:`tefcore.sweep_store`) may be
+reused only while everything that decided it is unchanged.  The
+configuration's field values are one part (:func:`tefcore.sweep_store.config_hash`);
+this module gives the others:
+
+* :func:`input_files` / :func:`input_digests` -- the files a configuration
+  refers to and that the computation reads (the C81 deck when
+  ``model.aero_model = "c81"``), by the SHA-256 of their content: editing a
+  deck in place changes its digest although its path does not change;
+* :func:`model_stamp` -- a fingerprint of tefcore's numerical code: the
+  SHA-256 of the source of every module of the package except those that
+  only present or store results (:data:`PRESENTATION_MODULES`).  Any change
+  to the numerical code, even to a comment, changes the stamp, so stored
+  results are never reused across code changes (erring towards recomputing).
+  A point function outside tefcore (``sweep(point=...)``) is not covered:
+  only its name is recorded.
+
+Examples
+--------
+>>> from tefcore.config import load_config
+>>> input_digests(load_config("mdart"))   # thin-airfoil aerodynamics: no files read
+{}
+>>> len(model_stamp())
+16
+"""
+
+from __future__ import annotations
+
+import functools
+import hashlib
+from importlib import resources
+from pathlib import Path
+
+__all__ = [
+    "PRESENTATION_MODULES",
+    "describe_digest",
+    "file_digest",
+    "input_digests",
+    "input_files",
+    "model_stamp",
+]
+
+#: Modules that cannot change a computed point (command line, reports, notebooks'
+#: helpers, comparisons with the paper, file handling); every other module counts.
+PRESENTATION_MODULES = frozenset({
+    "__main__", "boundary", "calibration", "claim_checks", "cli", "cli_errors",
+    "curve_metrics", "errors", "figure_frames", "figures", "notebook_tools", "provenance",
+    "reference", "reproduce", "safe_io", "validation",
+})
+
+
+def file_digest(path) -> str:
+    """``"sha256:<hex>"`` of the content of `path`.
+
+    Raises
+    ------
+    OSError
+        If the file cannot be read.
+    """
+    h = hashlib.sha256()
+    with open(path, "rb") as f:
+        for block in iter(lambda: f.read(1 << 20), b""):
+            h.update(block)
+    return f"sha256:{h.hexdigest()}"
+
+
+def input_files(cfg) -> dict[str, Path]:
+    """Dotted field -> file that the computation for `cfg` reads."""
+    if cfg.model.aero_model == "c81" and cfg.model.c81_deck:
+        return {"model.c81_deck": Path(cfg.model.c81_deck)}
+    return {}
+
+
+def input_digests(cfg) -> dict[str, str]:
+    """Dotted field -> :func:`file_digest` of each of :func:`input_files`.
+
+    Raises
+    ------
+    ValueError
+        If a file cannot be read (the message names the field and the path).
+    """
+    out = {}
+    for dotted, path in input_files(cfg).items():
+        try:
+            out[dotted] = file_digest(path)
+        except OSError as err:
+            raise ValueError(f"{dotted} = {str(path)!r}: cannot read it "
+                             f"({err.strerror or err})") from None
+    return out
+
+
+@functools.lru_cache(maxsize=1)
+def model_stamp() -> str:
+    """16 hex digits of SHA-256 over the numerical modules' source (module docstring)."""
+    h = hashlib.sha256()
+    package = resources.files("tefcore")
+    names = sorted(f.name for f in package.iterdir() if f.name.endswith(".py"))
+    for name in names:
+        if name.removesuffix(".py") in PRESENTATION_MODULES:
+            continue
+        data = package.joinpath(name).read_bytes()
+        h.update(name.encode() + b"\0" + len(data).to_bytes(8, "little") + data)
+    return h.hexdigest()[:16]
+
+
+def describe_digest(digest: str | None) -> str:
+    """Short form of a digest for messages (``sha256 1a2b3c4d5e6f``)."""
+    if not isinstance(digest, str):
+        return repr(digest)
+    algo, _, hexa = digest.partition(":")
+    return f"{algo} {hexa[:12]}" if hexa else digest[:16]
+

@@ -1,0 +1,290 @@
+"""Output files written safely: checked first, written atomically, never through a link.
+
+Every file tefcore writes (sweep files, CSV tables, reports, figures,
+configurations, C81 decks) goes through this module:
+
+* :func:`check_output_file` -- checked *before* any computing: the
+  destination is not a symbolic link, a folder or a device, and its folder
+  exists and is writable.  Problems raise
+  :class:`~tefcore.errors.OutputError` naming the path.
+* :func:`atomic_output` / :func:`atomic_write_text` -- the content goes to
+  a temporary file created exclusively (``O_CREAT | O_EXCL | O_NOFOLLOW``,
+  :func:`tempfile.mkstemp`) in the destination's own folder, is
+  ``fsync``-ed, and replaces the destination with :func:`os.replace` (one
+  atomic rename, which replaces a link rather than following it); the
+  folder is ``fsync``-ed after.  Readers see the old file or the new one,
+  never a part; a crash leaves at most a stray ``.<name>.*.tmp`` file.
+  The temporary name is unique, so simultaneous writers never collide.
+* :class:`FileLock` -- an advisory lock (``fcntl.flock``) on
+  ``<path>.lock`` for files that are appended to over a long run (sweep
+  files): a second writer fails at once with an
+  :class:`~tefcore.errors.OutputError` naming the process that holds the
+  lock (it does not wait).  The lock file is left in place (removing it
+  would let two writers lock two different files); it is empty apart from
+  the holder's process id.  ``flock`` locks are not reliable on some network
+  file systems, and do nothing where ``fcntl`` is missing (Windows).
+* :func:`open_append` -- appending without following a link.
+
+Examples
+--------
+>>> import tempfile, pathlib
+>>> folder = pathlib.Path(tempfile.mkdtemp())
+>>> atomic_write_text(folder / "a.txt", "hello\\n").read_text()
+'hello\\n'
+>>> (folder / "link.txt").symlink_to(folder / "a.txt")
+>>> atomic_write_text(folder / "link.txt", "x")  # doctest: +ELLIPSIS
+Traceback (most recent call last):
+...
+tefcore.errors.OutputError: output file .../link.txt is a symbolic link; ...
+"""
+
+from __future__ import annotations
+
+import contextlib
+import errno
+import os
+import stat
+import tempfile
+from collections.abc import Iterator
+from pathlib import Path
+from typing import IO
+
+from .errors import OutputError
+
+try:  # POSIX only
+    import fcntl
+except ImportError:  # pragma: no cover - Windows
+    fcntl = None
+
+__all__ = [
+    "FileLock",
+    "atomic_output",
+    "atomic_write_bytes",
+    "atomic_write_text",
+    "check_output_file",
+    "check_output_folder",
+    "open_append",
+]
+
+
+def check_output_folder(folder, what: str = "output folder", *, create: bool = False) -> Path:
+    """Check that `folder` is (or, with `create`, can be made) a writable folder.
+
+    Raises
+    ------
+    OutputError
+        Naming the folder and the problem.
+    """
+    folder = Path(folder)
+    if create and not folder.exists() and not folder.is_symlink():
+        try:
+            folder.mkdir(parents=True, exist_ok=True)
+        except OSError as err:
+            raise OutputError(f"{what} {folder}: cannot create it ({err.strerror})") from None
+    if not folder.exists():
+        raise OutputError(f"{what} {folder} does not exist")
+    if not folder.is_dir():
+        raise OutputError(f"{what} {folder} is not a folder")
+    if not os.access(folder, os.W_OK | os.X_OK):
+        raise OutputError(f"{what} {folder} is not writable")
+    return folder
+
+
+def check_output_file(path, what: str = "output file", *, create_folder: bool = False) -> Path:
+    """Check an output destination before computing anything for it.
+
+    Parameters
+    ----------
+    path : path-like
+        The file to be written.
+    what : str
+        How to name it in messages (e.g. ``"--csv"``).
+    create_folder : bool
+        Create the missing parent folders instead of refusing.
+
+    Returns
+    -------
+    pathlib.Path
+
+    Raises
+    ------
+    OutputError
+        The path is a symbolic link, a folder or not a regular file, or its
+        folder is missing or not writable.
+    """
+    path = Path(path)
+    if path.is_symlink():
+        raise OutputError(f"{what} {path} is a symbolic link; tefcore does not write through "
+                          "or replace links (remove it, or choose another path)")
+    if path.exists():
+        mode = path.stat().st_mode
+        if stat.S_ISDIR(mode):
+            raise OutputError(f"{what} {path} is a folder, not a file")
+        if not stat.S_ISREG(mode):
+            raise OutputError(f"{what} {path} exists and is not a regular file")
+    folder = path.parent
+    try:
+        check_output_folder(folder, "folder", create=create_folder)
+    except OutputError as err:
+        raise OutputError(f"{what} {path}: {err}") from None
+    return path
+
+
+def _file_mode(path: Path) -> int:
+    """Permissions for the new file: those of the file replaced, else 0o666 & ~umask."""
+    try:
+        return stat.S_IMODE(os.lstat(path).st_mode)
+    except OSError:
+        mask = os.umask(0o022)
+        os.umask(mask)
+        return 0o666 & ~mask
+
+
+def _fsync_folder(folder: Path) -> None:
+    try:
+        fd = os.open(folder, os.O_RDONLY | getattr(os, "O_DIRECTORY", 0))
+    except OSError:
+        return
+    try:
+        os.fsync(fd)
+    except OSError:  # some file systems cannot sync a folder
+        pass
+    finally:
+        os.close(fd)
+
+
+@contextlib.contextmanager
+def atomic_output(path, mode: str = "w", *, encoding: str | None = "utf-8",
+                  newline: str | None = None, what: str = "output file") -> Iterator[IO]:
+    """Context manager: a file object whose content replaces `path` atomically on success.
+
+    On an exception inside the block the temporary file is removed and
+    `path` is untouched.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> p = pathlib.Path(tempfile.mkdtemp()) / "t.csv"
+    >>> with atomic_output(p, newline="") as f:
+    ...     _ = f.write("a,b\\n1,2\\n")
+    >>> p.read_text()
+    'a,b\\n1,2\\n'
+    """
+    path = check_output_file(path, what)
+    binary = "b" in mode
+    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
+    try:
+        with os.fdopen(fd, mode, encoding=None if binary else encoding,
+                       newline=None if binary else newline) as f:
+            yield f
+            f.flush()
+            os.fsync(f.fileno())
+        os.chmod(tmp, _file_mode(path))
+        os.replace(tmp, path)
+    except BaseException:
+        with contextlib.suppress(OSError):
+            os.unlink(tmp)
+        raise
+    _fsync_folder(path.parent)
+
+
+def atomic_write_bytes(path, data: bytes, *, what: str = "output file") -> Path:
+    """Write `data` to `path` atomically (see :func:`atomic_output`); return the path."""
+    with atomic_output(path, "wb", what=what) as f:
+        f.write(data)
+    return Path(path)
+
+
+def atomic_write_text(path, text: str, *, encoding: str = "utf-8",
+                      what: str = "output file") -> Path:
+    """Write `text` to `path` atomically (see :func:`atomic_output`); return the path."""
+    return atomic_write_bytes(path, text.encode(encoding), what=what)
+
+
+def open_append(path, what: str = "output file") -> int:
+    """File descriptor for appending to an existing `path`, refusing a symbolic link."""
+    flags = os.O_WRONLY | os.O_APPEND | getattr(os, "O_NOFOLLOW", 0) | getattr(os, "O_CLOEXEC", 0)
+    try:
+        return os.open(path, flags)
+    except OSError as err:
+        if err.errno == errno.ELOOP:
+            raise OutputError(f"{what} {path} is a symbolic link; tefcore does not write "
+                              "through links") from None
+        raise
+
+
+class FileLock:
+    """Exclusive advisory lock held on ``<path>.lock`` while a file is being written.
+
+    Parameters
+    ----------
+    path : path-like
+        The file being protected (the lock file is beside it).
+    what : str
+        How to name `path` in messages.
+
+    Raises
+    ------
+    OutputError
+        From :meth:`acquire` (and ``with``): another process holds the lock,
+        or the lock file is a link or cannot be created.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> p = pathlib.Path(tempfile.mkdtemp()) / "s.jsonl"
+    >>> with FileLock(p):
+    ...     FileLock(p).acquire()  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    tefcore.errors.OutputError: .../s.jsonl is being written by another process (...
+    """
+
+    def __init__(self, path, what: str = ""):
+        self.path = Path(path)
+        self.lock_path = self.path.with_name(self.path.name + ".lock")
+        self.what = f"{what} " if what else ""
+        self.fd: int | None = None
+
+    def acquire(self) -> FileLock:
+        """Take the lock, or raise :class:`~tefcore.errors.OutputError` at once."""
+        if fcntl is None:  # pragma: no cover - no advisory locks here
+            return self
+        flags = (os.O_RDWR | os.O_CREAT | getattr(os, "O_NOFOLLOW", 0)
+                 | getattr(os, "O_CLOEXEC", 0))
+        try:
+            fd = os.open(self.lock_path, flags, 0o666)
+        except OSError as err:
+            why = "it is a symbolic link" if err.errno == errno.ELOOP else err.strerror
+            raise OutputError(f"cannot use the lock file {self.lock_path} of {self.what}"
+                              f"{self.path}: {why}") from None
+        try:
+            fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except OSError as err:
+            holder = ""
+            with contextlib.suppress(OSError, ValueError):
+                pid = int(os.pread(fd, 32, 0).split()[0])
+                holder = f", process {pid}"
+            os.close(fd)
+            if err.errno in (errno.EWOULDBLOCK, errno.EAGAIN, errno.EACCES):
+                raise OutputError(f"{self.what}{self.path} is being written by another process "
+                                  f"(lock {self.lock_path}{holder}); wait until it has "
+                                  "finished, or write to another file") from None
+            raise OutputError(f"cannot lock {self.lock_path}: {err.strerror}") from None
+        with contextlib.suppress(OSError):
+            os.ftruncate(fd, 0)
+            os.pwrite(fd, f"{os.getpid()}\n".encode(), 0)
+        self.fd = fd
+        return self
+
+    def release(self) -> None:
+        """Release the lock (the lock file stays)."""
+        if self.fd is not None:
+            os.close(self.fd)
+            self.fd = None
+
+    def __enter__(self) -> FileLock:
+        return self.acquire()
+
+    def __exit__(self, *exc) -> None:
+        self.release()
