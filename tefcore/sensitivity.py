@@ -500,7 +500,9 @@ def tornado_plot(table: pd.DataFrame, headline: str, ax=None, *, labels: Mapping
     ax.axvline(base, color="k", lw=0.8)
     unit = t["unit"].iloc[0]
     ax.set_xlabel(f"{headline} [{unit}]" if unit else headline)
-    ax.bar(0, 0, color="C0", label="low end")
-    ax.bar(0, 0, color="C3", label="high end")
-    ax.legend(fontsize="x-small", loc="lower right")
+    from matplotlib.patches import Patch
+
+    ax.legend(handles=[Patch(color="C0", alpha=0.8, label="low end"),
+                       Patch(color="C3", alpha=0.8, label="high end")],
+              fontsize="x-small", loc="lower right")
     return ax
