@@ -628,8 +628,9 @@ drives the flutter.'''),
 For Fig. 9 in particular: the inertial coupling is proportional to the flap
 mass times its CG offset, and the flap mass and inertia are assumed
 (0.30 lb/ft with a nose balance weight, from the flap's construction); the
-critical offset moves with them (notebook 08). The torsion mode shape at the flap (set by the assumed GJ and the
-equivalent pitch-link spring) sets how much the flap "sees" of the twist.'''),
+critical offset moves with them (notebook 08). The torsion mode shape at the
+flap (set by the assumed GJ and the equivalent pitch-link spring) sets how
+much the flap "sees" of the twist.'''),
         code('''\
 for name in ["fig9"]:
     nt.unsteadiness(name, results[name], base)
@@ -948,12 +949,15 @@ moves which result, and by how much. This notebook
 3. computes four **headline results** and re-computes them with every assumed
    property at the two ends of its plausible range (`tefcore.sensitivity`):
 
-| headline | what | paper |
-|---|---|---|
-| `fig9_onset` | flap CG offset c_cg/c_f where the TEF flutter root turns unstable, mu = 0.3, c_b/c_f = 0.29 | 0.26 |
-| `growth_hover` | growth rate (real part, 1/rev) of the TEF flutter root at the imbalanced baseline (c_cg/c_f = 0.33, c_b/c_f = 0.29), hover | "weakly unstable" |
-| `growth_mu03` | the same at mu = 0.3 | "more unstable with forward speed" |
-| `fig8_onset` | overhang c_b/c_f at which the TEF root turns unstable in hover, mass-balanced flap | "larger than 50 %" |
+* `fig9_onset`: the flap CG offset c_cg/c_f where the TEF flutter root turns
+  unstable, mu = 0.3, c_b/c_f = 0.29 (paper: 0.26);
+* `growth_hover`: the growth rate (real part, 1/rev) of the TEF flutter root at
+  the imbalanced baseline (c_cg/c_f = 0.33, c_b/c_f = 0.29) in hover (paper:
+  "weakly unstable");
+* `growth_mu03`: the same at mu = 0.3 (paper: "more unstable with forward
+  speed");
+* `fig8_onset`: the overhang c_b/c_f at which the TEF flutter root turns
+  unstable in hover with the mass-balanced flap (paper: "larger than 50 %").
 
 **Which root is the TEF.** Where the flap frequency meets a blade mode the two
 roots *coalesce*: they share the flap's motion, one is destabilised and the

@@ -128,8 +128,9 @@ def element_nodes(cfg, n: int) -> np.ndarray:
     >>> from tefcore.config_io import load_config
     >>> cfg = load_config("mdart")
     >>> nodes = element_nodes(cfg, 20)
-    >>> bool(np.isclose(nodes, cfg.flap.inboard).any() and np.isclose(nodes, cfg.flap.outboard).any())
-    True
+    >>> on = [bool(np.isclose(nodes, e).any()) for e in (cfg.flap.inboard, cfg.flap.outboard)]
+    >>> on
+    [True, True]
     """
     x0 = cfg.rotor.root_offset
     nodes = np.linspace(x0, 1.0, n + 1)

@@ -23,9 +23,10 @@ which the flap participates materially: those whose TEF kinetic-energy share
 (:func:`tef_energy_share`, the flap coordinate's ``|q_F|^2 M_FF`` over all
 coordinates' ``|q_k|^2 M_kk``, with the structural mass of
 :func:`tefcore.section_inertia.coupled_mass_matrix`) is at least
-:data:`SHARE_RATIO` (0.15) of the largest share among all roots.  Both members of a coalesced pair pass that
-test, so the destabilised one is found wherever the coalescence happens; away
-from coalescences only the flap mode itself does.  Every function takes an
+:data:`SHARE_RATIO` (0.15) of the largest share among all roots.  Both
+members of a coalesced pair pass that test, so the destabilised one is found
+wherever the coalescence happens; away from coalescences only the flap mode
+itself does.  Every function takes an
 ``identify`` callable (``StabilityResult -> row with real_part and
 frequency_per_rev``), so the mode tracking of :mod:`tefcore.tracking` can
 replace this rule in one place.
@@ -201,7 +202,7 @@ def _onset(cfg, h: Headline, identify, xtol: float) -> tuple[float, str]:
         if prev is not None and prev[1] < 0 <= g:
             lo, hi = prev[0], float(x)
 
-            def f(v):
+            def f(v, warm=warm):
                 return _real_part(cfg.with_overrides({h.field: v}), identify, warm)[0]
 
             return float(scipy.optimize.brentq(f, lo, hi, xtol=xtol)), "ok"
@@ -361,7 +362,8 @@ def _by_name(name: str) -> Assumption:
     for a in ASSUMPTIONS:
         if a.name == name:
             return a
-    raise ValueError(f"unknown assumption {name!r}; known: {', '.join(a.name for a in ASSUMPTIONS)}")
+    known = ", ".join(a.name for a in ASSUMPTIONS)
+    raise ValueError(f"unknown assumption {name!r}; known: {known}")
 
 
 def apply_assumption(cfg, assumption: Assumption | str, end: str):
