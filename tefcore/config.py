@@ -44,6 +44,7 @@ from typing import Any
 
 import numpy as np
 
+from .section_inertia import check_section_inertia
 from .settings import REQUIRED, Param, _close, _fmt, _rebuild, _Section, _section, coerce_value
 
 __all__ = [
@@ -323,10 +324,52 @@ class FlapConfig(_Section):
               "Hinge aft of the flap leading edge, c_b / c_f."),
         Param("cg_offset", "dimensionless", 0.0, "[-1, 1]",
               "Flap CG aft of the hinge, c_cg / c_f."),
-        Param("mass", "mass_per_length", REQUIRED, "[0, inf)", "Flap mass per span."),
+        Param("mass", "mass_per_length", REQUIRED, "[0, inf)",
+              "Flap mass per span, of the flap of chord ratio reference_chord_ratio "
+              "(rescaled with the chord by scaling)."),
         Param("inertia_cg", "inertia_per_length", REQUIRED, "[0, inf)",
-              "Flap mass moment of inertia per span about its own CG."),
+              "Flap mass moment of inertia per span about its own CG, of the flap of chord "
+              "ratio reference_chord_ratio (rescaled with the chord by scaling)."),
+        Param("reference_chord_ratio", "dimensionless", None, "(0, 1)",
+              "Chord ratio c_f/c at which mass and inertia_cg are given (None: at any "
+              "chord_ratio, i.e. never rescaled).", optional=True),
+        Param("scaling", "dimensionless", "construction", "",
+              "How mass and inertia_cg per span follow the flap chord: 'construction' (same "
+              "construction: mass ~ c_f, inertia ~ c_f^3 per span; per-span values do not "
+              "change with the span) or 'fixed' (per-span values kept).", "str",
+              choices=("construction", "fixed")),
     )  # fmt: skip
+
+    @property
+    def chord_scale(self) -> float:
+        """c_f / c_f,ref: the flap chord over the chord its mass and inertia are given for."""
+        ref = self.reference_chord_ratio
+        if ref is None or self.scaling == "fixed":
+            return 1.0
+        return self.chord_ratio / ref
+
+    @property
+    def mass_per_span(self) -> float:
+        """Flap mass per span [kg/m] at the configured chord (the scaling rule applied).
+
+        Same construction (skins, core, nose spar and balance weight scaled with the flap
+        chord at a fixed section thickness): the mass per span grows as ``c_f``.
+        """
+        return self.mass * self.chord_scale
+
+    @property
+    def inertia_cg_per_span(self) -> float:
+        """Flap inertia per span about its CG [kg m] at the configured chord.
+
+        Same construction: mass ~ ``c_f`` and every chordwise distance ~ ``c_f``, so
+        the inertia per span grows as ``c_f^3``.
+        """
+        return self.inertia_cg * self.chord_scale**3
+
+    @property
+    def hinge_position(self) -> float:
+        """Hinge aft of the blade leading edge / c: ``1 - c_f/c + (c_b/c_f)(c_f/c)``."""
+        return 1.0 - self.chord_ratio + self.overhang * self.chord_ratio
 
     @property
     def inboard(self) -> float:
@@ -340,7 +383,8 @@ class FlapConfig(_Section):
 
     def inertia_hinge(self, chord: float) -> float:
         """Inertia per span about the hinge [kg m] for blade chord `chord` [m]."""
-        return self.inertia_cg + self.mass * (self.cg_offset * self.chord_ratio * chord) ** 2
+        return (self.inertia_cg_per_span
+                + self.mass_per_span * (self.cg_offset * self.chord_ratio * chord) ** 2)
 
 
 @_section("actuator")
@@ -568,6 +612,8 @@ class Config:
                 f"axis: flap leading edge at {1.0 - flap.chord_ratio:.6g} c is ahead of "
                 f"rotor.elastic_axis = {_fmt(rotor.elastic_axis)}"
             )
+        # the flap inside its blade section (docs/theory.md section 2.7)
+        check_section_inertia(self)
 
     def _check_tip_mach(self) -> None:
         """The advancing tip must stay within the thin-airfoil model's Mach range.

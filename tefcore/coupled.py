@@ -26,6 +26,7 @@ import numpy as np
 from .beam_element import gauss_legendre
 from .blade import blade_modes, pitch_function, rotor_units
 from .flap_dynamics import flap_properties, propeller_moment
+from .section_inertia import check_coupled_mass
 
 
 def section_model(cfg):
@@ -402,15 +403,17 @@ def coupled_model(cfg, collective: float = 0.0, modes=None) -> CoupledModel:
                 "first_moment": fp.first_moment / (m0 * rad),
                 "hinge_from_ea": fp.hinge_from_ea / rad, "span": fl.span,
                 "k_a": units.spring(fp.k_a), "c_a": units.damper(fp.c_a)}
-    return CoupledModel(cfg=cfg, modes=modes, n_modes=n_m, has_flap=has_flap, x=x, w=w,
-                        flap_stations=slice(n, 2 * n),
-                        shape_stack=np.concatenate([shapes[f] for f in _FIELDS], axis=0).T,
-                        tip_flap=s["w"][-1], shapes=shapes, twist=twist,
-                        m_s=modes.modal_mass,
-                        c_s=modes.modal_damping + modes.modal_gyroscopic,
-                        k_s=modes.modal_stiffness, d_s=modes.modal_damping,
-                        g_s=modes.modal_gyroscopic, flap=flap, aero=section_model(cfg),
-                        scale=scale)
+    model = CoupledModel(cfg=cfg, modes=modes, n_modes=n_m, has_flap=has_flap, x=x, w=w,
+                         flap_stations=slice(n, 2 * n),
+                         shape_stack=np.concatenate([shapes[f] for f in _FIELDS], axis=0).T,
+                         tip_flap=s["w"][-1], shapes=shapes, twist=twist,
+                         m_s=modes.modal_mass,
+                         c_s=modes.modal_damping + modes.modal_gyroscopic,
+                         k_s=modes.modal_stiffness, d_s=modes.modal_damping,
+                         g_s=modes.modal_gyroscopic, flap=flap, aero=section_model(cfg),
+                         scale=scale)
+    check_coupled_mass(model)       # blade modes + flap: positive definite (docs/theory.md 2.7)
+    return model
 
 
 def _stack_fields(objs, cls, names, n_psi):

@@ -93,15 +93,17 @@ def flap_properties(cfg) -> FlapProperties:
 
     The hinge lies ``overhang * c_f`` behind the flap nose, which is at
     ``(1 - E) c`` from the leading edge; the elastic axis is at
-    ``rotor.elastic_axis * c``.
+    ``rotor.elastic_axis * c``.  Mass and inertia are per span at the
+    configured chord (:attr:`tefcore.config.FlapConfig.mass_per_span`).
     """
     r, f = cfg.rotor, cfg.flap
-    x_hinge = 1.0 - f.chord_ratio + f.overhang * f.chord_ratio     # fraction of chord
+    # per-span mass and inertia at the configured chord (flap.scaling rule); the
+    # same numbers are lumped into the blade section (tefcore.section_inertia)
     return FlapProperties(span=f.span * r.radius, radius_mid=f.midspan * r.radius,
                           chord=r.chord, chord_ratio=f.chord_ratio, overhang=f.overhang,
                           cg_offset=f.cg_offset,
-                          hinge_from_ea=(r.elastic_axis - x_hinge) * r.chord,
-                          mass=f.mass, inertia_cg=f.inertia_cg,
+                          hinge_from_ea=(r.elastic_axis - f.hinge_position) * r.chord,
+                          mass=f.mass_per_span, inertia_cg=f.inertia_cg_per_span,
                           k_a=cfg.actuator.stiffness, c_a=cfg.actuator.damping)
 
 

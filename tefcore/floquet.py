@@ -1120,7 +1120,8 @@ def _modes(p, period, k_sub, max_sub, shapes, shift_states):
         smallest = np.abs(mu).min()
         # a root is trusted when it is above MIN_ROOT and its round-off,
         # eps ||Z|| / |mu| relative (||Z|| = the largest ||Phi_k||), is <= 1e-6
-        floor = max(MIN_ROOT, 1e6 * eps * np.linalg.norm(phis, axis=(1, 2)).max())
+        with np.errstate(over="ignore"):     # an inf norm: no K resolves it (below)
+            floor = max(MIN_ROOT, 1e6 * eps * np.linalg.norm(phis, axis=(1, 2)).max())
         if (split and smallest >= floor) or k_sub >= max_sub:
             break
         # |mu| = |lambda|^(1/K): the K that lifts the most damped root to the
@@ -1175,7 +1176,8 @@ def _modes(p, period, k_sub, max_sub, shapes, shift_states):
     eta = eta + 1j * j * unit
     per *= np.exp(-1j * np.outer(psi, j) * unit)[:, None, :]
 
-    multipliers = np.exp(k_sub * log_mu)
+    with np.errstate(over="ignore"):   # a garbage root beyond resolution: inf, judged below
+        multipliers = np.exp(k_sub * log_mu)
     return (_sorted_result(eta, multipliers, per[0], period, psi if shapes else None,
                            per if shapes else None, n_sub=k_sub, n_steps=n_steps),
             float(np.linalg.norm(phis, axis=(1, 2)).max()), split)

@@ -66,6 +66,7 @@ NOTEBOOKS = (
     "05_stiffness",
     "06_size_and_location",
     "07_flight_condition",
+    "08_assumptions",
 )
 #: Which paper figures each notebook reproduces.
 NOTEBOOK_FIGURES = {
@@ -76,6 +77,7 @@ NOTEBOOK_FIGURES = {
     "05_stiffness": ("fig10", "fig11", "fig12"),
     "06_size_and_location": ("fig13", "fig14", "fig15"),
     "07_flight_condition": ("fig16a", "fig16b", "fig17"),
+    "08_assumptions": (),               # no figure: the sensitivity of the headline results
 }
 KERNEL_NAME = "python3"
 STATUS_ORDER = {"pass": 0, "not reproducible": 1, "fail": 2}

@@ -296,8 +296,10 @@ class SweepResult:
         Point index -> the shapes tracking compared (columns as the rows of
         that point's modes table), for every ok point, loaded or computed.
     n_computed, n_loaded : int
-        Points evaluated in this run / loaded from the `out` file (the
-        refinement points included).
+        Of the points asked for: evaluated in this run / loaded from the
+        `out` file.
+    n_refined : int
+        Points added by refinement and evaluated in this run.
     out : Path or None
         The sweep file.
     anchor : dict
@@ -313,6 +315,7 @@ class SweepResult:
     eigenvectors: dict = field(default_factory=dict, repr=False)
     n_computed: int = 0
     n_loaded: int = 0
+    n_refined: int = 0
     out: Path | None = None
     anchor: dict = field(default_factory=dict)
     vectors: dict = field(default_factory=dict, repr=False)
@@ -608,7 +611,7 @@ def sweep(cfg: Config, parameter: str, values, *, point: Callable | None = None,
                desc=f"sweep {parameter}", unit="pt")
     vectors: dict[str, np.ndarray] = {}
     client_own = cluster = None
-    n_computed = 0
+    n_computed = n_refined = 0
     wanted: dict[str, int] = {}        # refinement key -> depth, as this run decides them
 
     def active():
@@ -638,7 +641,10 @@ def sweep(cfg: Config, parameter: str, values, *, point: Callable | None = None,
                         if store is not None:
                             store.append(rec)
                         n_failed += rec["status"] != "ok"
-                        n_computed += 1
+                        if key_of[i] in main:
+                            n_computed += 1
+                        else:
+                            n_refined += 1
                         bar.set_postfix(failed=n_failed, refresh=False)
                         bar.update()
                 finally:
@@ -672,7 +678,7 @@ def sweep(cfg: Config, parameter: str, values, *, point: Callable | None = None,
     index_of = {k: i for i, k in enumerate(keys)}
     return SweepResult(parameter=parameter, values=values, table=table, config_hash=chash,
                        eigenvectors={index_of[k]: v for k, v in vectors.items() if k in index_of},
-                       n_computed=n_computed, n_loaded=n_loaded,
+                       n_computed=n_computed, n_loaded=n_loaded, n_refined=n_refined,
                        out=None if out is None else Path(out), anchor=start, vectors=shapes,
                        _modes=modes)
 

@@ -256,6 +256,34 @@ def _record_problem(rec) -> str | None:
             return f"'modes'.{col!r} must hold numbers"
     if not all(isinstance(x, str) for x in modes["label"]):
         return "'modes'.'label' must hold strings"
+    return _tracking_problem(rec, next(iter(lengths)))
+
+
+def _tracking_problem(rec, n_modes: int) -> str | None:
+    """Why the tracking fields of an ok record are malformed, or None."""
+    vec = rec.get("vectors")
+    if vec is not None:
+        if not (isinstance(vec, dict) and set(vec) == {"re", "im"}):
+            return "'vectors' must be a table with 're' and 'im'"
+        for part in ("re", "im"):
+            rows = vec[part]
+            if not (isinstance(rows, list) and rows and all(
+                    isinstance(r, list) and len(r) == n_modes and all(_is_real(x) for x in r)
+                    for r in rows)):
+                return f"'vectors'.{part!r} must be rows of {n_modes} numbers (one per mode)"
+        if len(vec["re"]) != len(vec["im"]):
+            return "'vectors' 're' and 'im' differ in size"
+    if not isinstance(rec.get("periodic", False), bool):
+        return "'periodic' must be true or false"
+    depth = rec.get("refinement", 0)
+    if isinstance(depth, bool) or not isinstance(depth, int) or depth < 0:
+        return "'refinement' must be a count >= 0"
+    anchor = rec.get("anchor")
+    if anchor is not None and not (
+            isinstance(anchor, dict) and isinstance(anchor.get("clear"), bool)
+            and isinstance(anchor.get("row"), int) and not isinstance(anchor["row"], bool)
+            and 0 <= anchor["row"] < n_modes):
+        return "'anchor' must be null or a table with a mode 'row' and 'clear'"
     return None
 
 

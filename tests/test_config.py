@@ -33,6 +33,7 @@ from tefcore.config_io import (
 from tefcore.units import to_si
 
 MDART = load_config("mdart")
+NST = MDART.blade.stations.size  # blade stations of the MDART tables
 EPS4 = 4 * np.finfo(float).eps  # a product of constants in another order: few ulp
 
 
@@ -70,7 +71,7 @@ def test_mdart_baseline_from_text():
     assert MDART.flight.ct_sigma == 0.075
     assert MDART.flight.collective is None
     assert MDART.flap.cg_offset == 0.0  # mass-balanced baseline flap
-    assert MDART.blade.stations.size == 21
+    assert MDART.blade.stations.size == 18
     assert MDART.blade.stations[0] == MDART.rotor.root_offset
 
 
@@ -102,7 +103,8 @@ def test_round_trip_exact(tmp_path):
 
 @given(
     mu=st.floats(0, 0.55),  # MDART: the advancing tip reaches the Mach limit at 0.5838
-    mass=st.lists(st.floats(1e-3, 1e3), min_size=21, max_size=21),
+    # heavier than the flap's share everywhere, so that the flap fits (section_inertia)
+    mass=st.lists(st.floats(2.5, 1e3), min_size=NST, max_size=NST),
     arm=st.floats(1e-6, 1e6),
 )
 @settings(max_examples=25, deadline=None)
@@ -192,7 +194,7 @@ def test_override_with_table_and_joint_changes():
         {
             "actuator.stiffness": {"value": 1.5 * 81.52, "unit": "ft-lb/rad", "source": "x1.5"},
             "rotor.root_offset": 0.1,
-            "blade.stations": np.linspace(0.1, 1.0, 21),
+            "blade.stations": np.linspace(0.1, 1.0, NST),
             "model.n_modes": 12.0,  # integral float accepted for an int field
         }
     )
@@ -270,11 +272,12 @@ def test_flap_at_tip_within_rounding_is_accepted():
 @pytest.mark.parametrize(
     ("overrides", "field", "text"),
     [
-        ({"blade.mass": [1.0] * 20}, "blade.mass", "has 20 values"),
-        ({"blade.gj": [4e4] * 5 + [0.0] + [4e4] * 15}, "blade.gj[5]", "outside"),
-        ({"blade.ei_lag": [-1.0] * 21}, "blade.ei_lag[0]", "outside"),
-        ({"blade.mass": [3.0] * 20 + [math.nan]}, "blade.mass[20]", "not finite"),
-        ({"blade.mass": [3.0] * 20 + [True]}, "blade.mass[20]", "must be a number"),
+        ({"blade.mass": [3.0] * (NST - 1)}, "blade.mass", f"has {NST - 1} values"),
+        ({"blade.gj": [4e4] * 5 + [0.0] + [4e4] * (NST - 6)}, "blade.gj[5]", "outside"),
+        ({"blade.ei_lag": [-1.0] * NST}, "blade.ei_lag[0]", "outside"),
+        ({"blade.mass": [3.0] * (NST - 1) + [math.nan]}, f"blade.mass[{NST - 1}]", "not finite"),
+        ({"blade.mass": [3.0] * (NST - 1) + [True]}, f"blade.mass[{NST - 1}]",
+         "must be a number"),
         ({"blade.ka": "2 furlong"}, "blade.ka", "unknown unit"),
         ({"blade.ka": {"value": 2.0}}, "blade.ka", "unknown key"),
         ({"blade.twist": 0.8}, "blade.twist[0]", "outside"),
@@ -293,8 +296,8 @@ def test_scalar_broadcast_and_unit_table():
     cfg = MDART.with_overrides(
         {"blade.mass": {"values": 2.0, "unit": "slug/ft"}, "blade.ka": "2 in"}
     )
-    np.testing.assert_array_equal(cfg.blade.mass, np.full(21, 2.0 * sc.slug / sc.foot))
-    np.testing.assert_array_equal(cfg.blade.ka, np.full(21, 2 * sc.inch))
+    np.testing.assert_array_equal(cfg.blade.mass, np.full(NST, 2.0 * sc.slug / sc.foot))
+    np.testing.assert_array_equal(cfg.blade.ka, np.full(NST, 2 * sc.inch))
 
 
 def test_section_interpolates_and_scales():
@@ -314,8 +317,14 @@ def test_reference_mass_matches_closed_form():
     # Uniform m from x0 to 1: m0 = 3 int m x^2 dx = m (1 - x0^3); linear m = a + b x
     # gives 3 (a (1 - x0^3)/3 + b (1 - x0^4)/4).  The quadrature is exact for
     # these cubics, so only rounding remains: 1e-12 relative.
-    m = MDART.blade.mass[0]
-    assert MDART.reference_mass == pytest.approx(m * (1 - 0.05**3), rel=1e-12)
+    # The MDART mass is piecewise linear: per segment m = m0 + k (x - x0) integrates to
+    # m0 (x1^3 - x0^3)/3 + k [(x1^4 - x0^4)/4 - x0 (x1^3 - x0^3)/3], summed here in closed form.
+    xs, ms = MDART.blade.stations, MDART.blade.mass
+    x0, x1, m0 = xs[:-1], xs[1:], ms[:-1]
+    k = np.diff(ms) / np.diff(xs)
+    cube = (x1**3 - x0**3) / 3
+    exact = 3 * np.sum(m0 * cube + k * ((x1**4 - x0**4) / 4 - x0 * cube))
+    assert MDART.reference_mass == pytest.approx(exact, rel=1e-12)
     blade = BladeConfig(stations=np.linspace(0.2, 1.0, 5), mass=2.0 + 3.0 * np.linspace(0.2, 1, 5),
                         ei_flap=1.0, ei_lag=1.0, gj=1.0, ea=1.0)  # fmt: skip
     exact = 3 * (2.0 * (1 - 0.2**3) / 3 + 3.0 * (1 - 0.2**4) / 4)

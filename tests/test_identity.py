@@ -126,7 +126,7 @@ def test_resumed_and_parallel_sweeps_write_identical_csv(tmp_path):
     sweep(MDART, PARAM, XS[:3], point=Veering(), progress=False, out=out)   # interrupted
     resumed = sweep(MDART, PARAM, XS, point=Veering(), progress=False, out=out)
     again = sweep(MDART, PARAM, XS, point=Veering(), progress=False, out=out)
-    assert again.n_computed == 0                                # all reused, refinements too
+    assert again.n_computed == 0 and again.n_refined == 0      # all reused, refinements too
     parallel = sweep(MDART, PARAM, XS, point=Veering(), progress=False, n_jobs=2)
     paths = [tmp_path / f"{k}.csv" for k in ("f", "r", "a", "p")]
     for res, path in zip((fresh, resumed, again, parallel), paths, strict=True):

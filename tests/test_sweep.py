@@ -290,7 +290,7 @@ def test_resume_refuses_another_configuration_or_parameter(tmp_path):
     with pytest.raises(ValueError, match=r"cannot resume .*parameter differs"):
         sweep(MDART, "flap.overhang", [0.2], point=ToyPoint(), out=out, progress=False)
     with pytest.raises(ValueError, match="config_hash differs"):
-        run(XS[:2], out=out, extra_overrides={"flap.mass": 1.0})
+        run(XS[:2], out=out, extra_overrides={"flap.mass": 0.5})
     # another base value of the swept field itself does not matter
     p = ToyPoint()
     sweep(MDART.with_overrides({PARAM: 0.3}), PARAM, XS[:2], point=p, out=out, progress=False)
