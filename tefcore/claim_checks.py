@@ -14,6 +14,7 @@ least-squares slope; curves are compared at the digitised x
 from __future__ import annotations
 
 import json
+from dataclasses import replace
 
 import numpy as np
 import pandas as pd
@@ -51,6 +52,14 @@ def _is(labels: pd.Series, mode: str) -> pd.Series:
     return (labels == mode) | (labels == f"{mode} (locked)")
 
 
+#: The ``mode`` of a claim about the flutter root of each point (the least
+#: stable root with a flap participation >= 0.1, :func:`tefcore.sweep.sweep`).
+FLUTTER_ROOT = "flutter root"
+#: Quantities of a root's stability, for which a TEF claim also reports the
+#: flutter root's result (for information: the status is the TEF branch's).
+_STABILITY_QUANTITIES = ("real_part", "damping", "damping_ratio")
+
+
 class _Ambiguous(Exception):
     """The claim's mode cannot be identified over its range (status ``ambiguous``)."""
 
@@ -61,6 +70,13 @@ def _select(frame, mode, identify="track") -> pd.DataFrame:
     (``identify="track"``), or at each point the mode labelled `mode` there
     (``"label"``, the most participating one if several)."""
     col = "label_here" if identify == "label" and "label_here" in frame else "label"
+    if mode == FLUTTER_ROOT:
+        if "flutter_root" not in frame:
+            raise _Fail("the result has no flutter roots (no flap participation)")
+        rows = frame[frame["flutter_root"].fillna(False).astype(bool)]
+        if rows.empty:
+            raise _Fail("no root with a flap participation >= 0.1 in the sweep")
+        return rows
     if mode == "TEF" and identify == "track" and "tef_branch" in frame:
         rows = frame[frame["tef_branch"].fillna(False).astype(bool)]
         if rows.empty:
@@ -110,7 +126,7 @@ def _series(frame, mode, quantity, lo=None, hi=None, identify="track"):
     if quantity not in frame:
         raise _Fail(f"the result has no {quantity!r} column")
     t = _select(frame, mode, identify) if mode else frame
-    if mode and identify == "track":
+    if mode and mode != FLUTTER_ROOT and identify == "track":
         doubt = _doubtful(t, mode, lo, hi)
         if doubt:
             raise _Ambiguous(f"the identity of {mode!r} is undecided at x = "
@@ -338,7 +354,7 @@ def _check_mechanism(c: Claim, ctx: _Context):
     frame = ctx.frame(c.figure, c.overrides)
     xs = float(x_to_si(c.figure, c.x, c.x_unit))
     rows = _select(frame, c.mode, ctx.identify)
-    doubt = _doubtful(rows, c.mode, None, xs)
+    doubt = [] if c.mode == FLUTTER_ROOT else _doubtful(rows, c.mode, None, xs)
     if doubt and ctx.identify == "track":
         raise _Ambiguous(f"the identity of {c.mode!r} is undecided at x = {doubt[0]:.4g}")
     at = rows[np.abs(rows["x"].to_numpy(float) - xs) <= _EPS * max(abs(xs), 1.0)]
@@ -389,6 +405,24 @@ def _check_mechanism(c: Claim, ctx: _Context):
 
 _CHECKS = {"mechanism": _check_mechanism, "value": _check_value, "threshold": _check_threshold, "range": _check_range,
            "trend": _check_trend, "comparison": _check_comparison, "curve": _check_curve}
+
+
+def _flutter_root_note(c: Claim, ctx: _Context) -> str:
+    """For a claim about the TEF mode's stability: what the flutter root gives.
+
+    Where the flap's own mode (the TEF branch) and the least stable root the
+    flap takes part in differ -- after a coalescence the flap shares its motion
+    with a blade mode, and the instability can sit on either branch -- the
+    reader sees both; the claim's status stays the TEF branch's.
+    """
+    if c.mode != "TEF" or c.quantity not in _STABILITY_QUANTITIES or c.kind == "mechanism":
+        return ""
+    try:
+        _, computed, _, ok, _ = _CHECKS[c.kind](replace(c, mode=FLUTTER_ROOT), ctx)
+    except (_Fail, _NotEvaluated, _Ambiguous, KeyError):
+        return ""
+    verdict = "" if ok is None else (" (would pass)" if ok else " (would fail)")
+    return f" | flutter root: {computed}{verdict}"
 
 
 def _row(c: Claim, expected="", computed="", value=np.nan, status="", reason="", agree=np.nan):
@@ -459,6 +493,7 @@ def validate_figure(name: str, result, claims=None, *, cfg=None, variants=None, 
             rows.append(_row(c, status="ambiguous", reason=str(err)))
             continue
         status = "not reproducible" if ok is None else ("pass" if ok else "fail")
+        computed = computed + _flutter_root_note(c, ctx)
         agree = np.nan
         if c.mode and c.figure in FIGURES and c.quantity != "natural_frequency_per_rev":
             try:

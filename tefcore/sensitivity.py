@@ -17,19 +17,14 @@ a time, to the low and the high end of its plausible range:
 
 **Which root is "the TEF".**  Where the flap frequency meets a blade mode the
 two roots coalesce and share the flap's motion; one is destabilised, the
-other stabilised, and names based on one root are ambiguous there.  Here the
-*flutter root* (:func:`flutter_root`) is the least stable of the roots in
-which the flap participates materially: those whose TEF kinetic-energy share
-(:func:`tef_energy_share`, the flap coordinate's ``|q_F|^2 M_FF`` over all
-coordinates' ``|q_k|^2 M_kk``, with the structural mass of
-:func:`tefcore.section_inertia.coupled_mass_matrix`) is at least
-:data:`SHARE_RATIO` (0.15) of the largest share among all roots.  Both
-members of a coalesced pair pass that test, so the destabilised one is found
-wherever the coalescence happens; away from coalescences only the flap mode
-itself does.  Every function takes an
-``identify`` callable (``StabilityResult -> row with real_part and
-frequency_per_rev``), so the mode tracking of :mod:`tefcore.tracking` can
-replace this rule in one place.
+other stabilised.  The headlines use the *flutter root*
+(:func:`flutter_root`, the same rule as the sweeps' ``flutter_root`` role,
+:func:`tefcore.mechanism.flutter_root`): the least stable root in which the
+flap participates by at least :data:`tefcore.mechanism.FLUTTER_PARTICIPATION`
+(participation factors, scale-invariant).  Both members of a coalesced pair
+pass that test, so the destabilised one is found wherever the coalescence
+happens.  Every function takes an ``identify`` callable
+(``StabilityResult -> row with real_part and frequency_per_rev``).
 
 The assumptions and their ranges are in :mod:`tefcore.assumptions` (re-exported
 here).  **Calibration is kept.**  Assumptions that move the stated first-torsion
@@ -60,7 +55,8 @@ import scipy.optimize
 
 from .assumptions import ASSUMPTIONS, Assumption, apply_assumption  # re-exported
 from .config import load_config
-from .section_inertia import coupled_mass_matrix
+from .mechanism import FLUTTER_PARTICIPATION
+from .mechanism import flutter_root as mechanism_flutter_root
 
 __all__ = [
     "ASSUMPTIONS",
@@ -71,63 +67,36 @@ __all__ = [
     "flutter_root",
     "headline_results",
     "sensitivity",
-    "tef_energy_share",
     "tornado_plot",
     "tornado_table",
 ]
 
 #: The mass-imbalanced flap of Figs. 10-17 (tefcore.figures.IMBALANCED).
 _IMBALANCED = {"flap.overhang": 0.29, "flap.cg_offset": 0.33}
-#: Minimum TEF share of a root, relative to the largest over all roots, for the
-#: root to count as one the flap takes part in.  Measured on MDART over every
-#: point of Figs. 8-17: the unstable flap-involved root carries 0.19-1.0 of the
-#: largest share (0.19 at half the actuator stiffness of Fig. 12), roots the
-#: flap does not take part in below 1e-3; both roots of a coalesced pair carry
-#: similar shares (0.06 and 0.06 at the Fig. 9 onset).
-SHARE_RATIO = 0.15
 
 
 # ------------------------------------------------------------ identification
 
 
-def tef_energy_share(result) -> np.ndarray:
-    """Share of each root's kinetic energy in the flap coordinate, in ``result.modes`` order.
-
-    ``|q_F|^2 M_FF / sum_k |q_k|^2 M_kk`` over the displacement part of the
-    eigenvector, with the structural mass diagonal of the coupled model
-    (:func:`tefcore.section_inertia.coupled_mass_matrix`); zeros without a flap.
-    """
-    model = result.trim_result.model
-    n = model.n_dof
-    if not model.has_flap:
-        return np.zeros(len(result.modes))
-    mass = np.abs(np.diag(coupled_mass_matrix(model)))
-    energy = np.abs(np.asarray(result.eigenvectors)[:n]) ** 2 * mass[:, None]
-    return energy[-1] / energy.sum(axis=0)
-
-
-def flutter_root(result, share_ratio: float = SHARE_RATIO) -> pd.Series:
+def flutter_root(result, threshold: float = FLUTTER_PARTICIPATION) -> pd.Series:
     """The least stable root among those the flap participates in.
 
     Parameters
     ----------
     result : tefcore.stability.StabilityResult
-    share_ratio : float
-        A root counts when its TEF energy share is at least this fraction of
-        the largest share among all roots (:data:`SHARE_RATIO`).
+    threshold : float
+        Least flap participation (``share_TEF``) of a root that counts.
 
     Returns
     -------
     pandas.Series
-        The row of ``result.modes`` with ``tef_share`` added.
+        The row of ``result.modes``.
     """
-    share = tef_energy_share(result)
-    if not share.size or share.max() <= 0:
+    row = mechanism_flutter_root(result.modes, threshold)
+    if row is None:
         raise ValueError("no root carries the flap: the configuration has no flap dof "
                          "(model.tef = 'none')")
-    table = result.modes.assign(tef_share=share)
-    keep = table[share >= share_ratio * share.max()]
-    return keep.loc[keep["real_part"].idxmax()]
+    return result.modes.loc[row]
 
 
 # ----------------------------------------------------------------- headlines

@@ -29,9 +29,10 @@ possible value, :math:`s_\\omega = 1/2` (two Floquet modes near 10.5 and
 differ by 0.3 modulo 1, which is what tells them apart).  The shapes are compared in a basis that does not change along the
 sweep (:meth:`tefcore.coupled.CoupledModel.tracking_basis`).
 
-**Identity is decided, or flagged.**  A match is *clear* when its cost is at
-most :data:`CLEAR_COST` and every alternative -- another mode for the track,
-or another track for the mode -- costs at least :data:`MARGIN` more.
+**Identity is decided, or flagged.**  A match is *clear* when its shape part
+``1 - MAC`` is at most :data:`CLEAR_COST` (the eigenvalue part alone when no
+shapes are known) and every alternative -- another mode for the track, or
+another track for the mode -- costs at least :data:`MARGIN` more.
 Otherwise the row's ``identity`` is ``"ambiguous"``; :func:`tefcore.sweep.sweep`
 then refines the parameter step between the two points (bisection, bounded)
 and tracks again.  Where two roots have the same shape and eigenvalue
@@ -89,9 +90,12 @@ __all__ = ["CLEAR_COST", "COALESCED_DISTANCE", "CROSSING_MAC", "COALESCED_MAC", 
 #: Columns every modes table must have.
 MODE_COLUMNS = ("mode_id", "label", "frequency_per_rev", "real_part")
 
-#: Largest cost of a clear match: shapes sharing at least half their
-#: (kinematic) norm when the eigenvalues agree -- a mode that changed more than
-#: that in one step has not been resolved by the step.
+#: Largest shape cost ``1 - MAC`` of a clear match: shapes sharing at least
+#: half their (kinematic) norm -- a mode whose shape changed more than that in
+#: one step has not been resolved by the step.  (The eigenvalue part is not
+#: held to it: a flap mode at 18 /rev moves 0.25 /rev in a 0.01 c_f step of
+#: the CG offset, half the range a Floquet frequency is known in, with its
+#: shape unchanged, MAC 1.0 -- measured.)
 CLEAR_COST = 0.5
 #: Smallest lead of a clear match over every alternative.  0.25 is a MAC
 #: difference of a quarter (or an eigenvalue distance of a quarter of the
@@ -210,11 +214,13 @@ def relative_distance(a, b, periodic: bool = False) -> np.ndarray:
     return np.hypot(ds / ss, _frequency_gap(a, b, periodic) / sw)
 
 
-def match_cost(pred, prev_vecs, eig, vecs, periodic: bool = False) -> np.ndarray:
+def match_cost(pred, prev_vecs, eig, vecs, periodic: bool = False, *,
+               shape_part: bool = False):
     """Assignment cost between tracks (rows) and the modes of a new point (columns).
 
     ``(1 - MAC)`` where both shapes are known and of one length (else 0) plus
-    the :func:`relative_distance` of the eigenvalues, capped at 1.
+    the :func:`relative_distance` of the eigenvalues, capped at 1.  With
+    ``shape_part``, also the ``1 - MAC`` part alone (NaN where no shapes).
 
     Parameters
     ----------
@@ -230,23 +236,32 @@ def match_cost(pred, prev_vecs, eig, vecs, periodic: bool = False) -> np.ndarray
     pred = np.asarray(pred, complex)
     eig = np.asarray(eig, complex)
     cost = np.minimum(1.0, relative_distance(pred, eig, periodic))
-    if vecs is None:
-        return cost
-    for i, v in enumerate(prev_vecs):
-        if v is not None and v.shape[0] == vecs.shape[0]:
-            cost[i] += 1.0 - mac(v, vecs)[0]
-    return cost
+    shape = np.full(cost.shape, np.nan)
+    if vecs is not None:
+        for i, v in enumerate(prev_vecs):
+            if v is not None and v.shape[0] == vecs.shape[0]:
+                shape[i] = 1.0 - mac(v, vecs)[0]
+                cost[i] += shape[i]
+    return (cost, shape) if shape_part else cost
 
 
-def _decide(cost, rows, cols):
+def _is_clear(best: float, shape: float, alt: float) -> bool:
+    """A match of total cost ``best`` (shape part ``shape``, NaN: unknown) with the
+    best alternative at ``alt``: clear or not."""
+    own = best if np.isnan(shape) else shape
+    return bool(own <= CLEAR_COST and alt - best >= MARGIN)
+
+
+def _decide(cost, rows, cols, shape=None):
     """Per assigned pair: clear (bool) and the best alternative's column."""
+    shape = np.full(cost.shape, np.nan) if shape is None else shape
     clear, rival = [], []
     for r, c in zip(rows, cols, strict=True):
         best = cost[r, c]
         row_alt = np.delete(cost[r], c)
         col_alt = np.delete(cost[:, c], r)
         alt = min(row_alt.min(initial=np.inf), col_alt.min(initial=np.inf))
-        clear.append(bool(best <= CLEAR_COST and alt - best >= MARGIN))
+        clear.append(_is_clear(best, shape[r, c], alt))
         others = [j for j in range(cost.shape[1]) if j != c]
         rival.append(min(others, key=lambda j: cost[r, j]) if others else -1)
     return clear, rival
@@ -422,10 +437,10 @@ def track_modes(points: Sequence, values=None, *, predict: bool = True) -> pd.Da
         identity = np.full(len(modes), "start", dtype=object)
         if alive and len(modes):
             pred = np.array([tracks[t].predict(x, predict) for t in alive])
-            cost = match_cost(pred, [tracks[t].vec for t in alive], eig, vecs,
-                              periodic or prev_periodic)
+            cost, shape = match_cost(pred, [tracks[t].vec for t in alive], eig, vecs,
+                                     periodic or prev_periodic, shape_part=True)
             rows, cols = linear_sum_assignment(cost)
-            clear, rival = _decide(cost, rows, cols)
+            clear, rival = _decide(cost, rows, cols, shape)
             partner = {}
             for r, c, ok, k in zip(rows, cols, clear, rival, strict=True):
                 assigned[c] = alive[r]
@@ -644,10 +659,11 @@ def follow_root(solve: Callable, start: float, stop: float, root: int, *,
         s_new = s + step
         eig_n, vec_n = solve(s_new)
         eig_n = np.asarray(eig_n, complex)
-        cost = match_cost([track.predict(s_new, True)], [track.vec], eig_n, vec_n, periodic)
+        cost, shape = match_cost([track.predict(s_new, True)], [track.vec], eig_n, vec_n,
+                                 periodic, shape_part=True)
         j = int(np.argmin(cost[0]))
         alt = np.delete(cost[0], j).min(initial=np.inf)
-        ok = cost[0, j] <= CLEAR_COST and alt - cost[0, j] >= MARGIN
+        ok = _is_clear(cost[0, j], shape[0, j], alt)
         if not ok and abs(step) > min_h * (1 + 1e-12):
             h = step / 2
             continue

@@ -400,3 +400,22 @@ def test_mechanism_claim_on_a_real_hover_sweep():
     status, row = check(c, res.table.assign(x=res.table["value_si"]))
     assert status in ("pass", "fail", "ambiguous")
     assert "participation" in row["computed"]
+
+
+def test_flutter_root_claims_and_the_note_on_tef_claims():
+    # the TEF branch (label TEF) is stable; the flutter root of each point is
+    # the torsion track, unstable above 0.2: a TEF claim fails on the branch
+    # and reports what the flutter root gives; a flutter-root claim passes
+    t = branch_table()
+    t["real_part"] = np.where(t["label"] == "TEF", -1.0, t["real_part"])
+    t.loc[t["label"] == "blade torsion 1", "real_part"] = 2 * (t["value_si"] - 0.2)
+    t["flutter_root"] = t["label"] == "blade torsion 1"
+    c = claim(kind="threshold", mode="TEF", direction="destabilising")
+    status, row = check(c, t)
+    assert status == "fail"
+    assert "flutter root: crossings: destabilising at 0.2" in row["computed"]
+    assert "(would pass)" in row["computed"]
+    fr = claim(kind="threshold", mode="flutter root", direction="destabilising",
+               expected=0.2, tolerance=0.01, tolerance_reason="test")
+    status, row = check(fr, t)
+    assert status == "pass" and row["computed_value"] == pytest.approx(0.2)
