@@ -359,6 +359,12 @@ class SweepResult:
 
 #: Bisections of an ambiguous step at most (a step of 1/8 of the original).
 MAX_REFINE = 3
+#: ... and of a step where the TEF branch itself is ambiguous (1/32): the
+#: branch is what the paper's claims are about, and a flap mode veering with
+#: a blade mode can turn its shape within a few per cent of a sweep's step.
+MAX_REFINE_BRANCH = 5
+#: Points refinement may add at least (else twice the points asked for).
+MIN_REFINE_BUDGET = 24
 #: Flap participation of a flutter root (:data:`tefcore.mechanism.FLUTTER_PARTICIPATION`).
 FLUTTER_SHARE = 0.1
 
@@ -392,17 +398,45 @@ def _track(records: dict, order: list) -> pd.DataFrame:
     return track_modes(pts, values=[float(records[k]["value_si"]) for k in order])
 
 
-def _refinements(records: dict, budget: int) -> list[tuple[float, int]]:
-    """Midpoints (SI value, depth) of the steps whose tracking is ambiguous."""
+def _anchor_row(rec: dict, modes: pd.DataFrame, use_anchor: bool):
+    """(row of the flap mode at the sweep start, how it was found), or (None, "")."""
+    anchor = (rec.get("anchor") or {}) if use_anchor else {}
+    if anchor.get("clear"):
+        return int(anchor["row"]), "zero coupling"
+    if "share_TEF" in modes and len(modes) and modes["share_TEF"].max() > 0:
+        return int(modes["share_TEF"].to_numpy().argmax()), "largest flap participation"
+    hits = np.flatnonzero(modes["label"].to_numpy() == "TEF")
+    return (int(hits[0]), "label") if hits.size else (None, "")
+
+
+def _refinements(records: dict, budget: int, main: set,
+                 use_anchor: bool = True) -> list[tuple[float, int]]:
+    """Midpoints (SI value, depth) of the steps whose tracking is ambiguous.
+
+    Steps where the TEF branch itself is ambiguous come first and may be
+    bisected :data:`MAX_REFINE_BRANCH` times; the others :data:`MAX_REFINE`.
+    """
     order = _ok_in_order(records)
     if len(order) < 2:
         return []
     tracked = _track(records, order)
+    branch_steps = set()
+    first = next((i for i, k in enumerate(order) if k in main), None)
+    if first is not None:
+        row, _ = _anchor_row(records[order[first]], pd.DataFrame(records[order[first]]["modes"]),
+                             use_anchor)
+        if row is not None:
+            start = tracked[(tracked["step"] == first) & (tracked["mode_id"] == row)]
+            if not start.empty:
+                mine = tracked[tracked["track"] == start["track"].iloc[0]]
+                branch_steps = set(mine.loc[mine["identity"] == "ambiguous", "step"])
+    steps = ambiguous_steps(tracked)
     out = []
-    for step in ambiguous_steps(tracked):
+    for step in sorted(steps, key=lambda s: (s not in branch_steps, s)):
         a, b = records[order[step - 1]], records[order[step]]
         depth = max(a.get("refinement", 0), b.get("refinement", 0)) + 1
-        if depth <= MAX_REFINE and len(out) < budget:
+        limit = MAX_REFINE_BRANCH if step in branch_steps else MAX_REFINE
+        if depth <= limit and len(out) < budget:
             out.append((0.5 * (float(a["value_si"]) + float(b["value_si"])), depth))
     return out
 
@@ -424,17 +458,11 @@ def _roles(table: pd.DataFrame, records: dict, order: list, main_keys: set,
     if first is None:
         return {}
     rows = table[ok & (table["key"] == first)]
-    rec = records[first]
-    anchor = (rec.get("anchor") or {}) if use_anchor else {}
-    if anchor.get("clear"):
-        row, method = rows.index[rows["mode_id"] == anchor["row"]], "zero coupling"
-    elif "share_TEF" in rows and rows["share_TEF"].max() > 0:
-        row, method = [rows["share_TEF"].idxmax()], "largest flap participation"
-    elif (rows["label_here"] == "TEF").any():
-        row, method = rows.index[rows["label_here"] == "TEF"], "label"
-    else:
+    mode_row, method = _anchor_row(records[first], pd.DataFrame(records[first]["modes"]),
+                                   use_anchor)
+    if mode_row is None:
         return {}
-    row = row[0]
+    row = rows.index[rows["mode_id"] == mode_row][0]
     track = table.at[row, "track"]
     branch = ok & (table["track"] == track)
     table.loc[branch, "tef_branch"] = True
@@ -543,8 +571,10 @@ def sweep(cfg: Config, parameter: str, values, *, point: Callable | None = None,
     refine : bool
         Where the identity of a mode between two neighbouring points is
         ambiguous (:mod:`tefcore.tracking`), evaluate the midpoint and track
-        again, up to :data:`MAX_REFINE` bisections and at most twice as
-        many added points as asked for; the added points are rows with
+        again, up to :data:`MAX_REFINE` bisections (:data:`MAX_REFINE_BRANCH`
+        where the TEF branch is ambiguous, those first) and at most
+        :data:`MIN_REFINE_BUDGET` or twice as many added points as asked for,
+        whichever is more; the added points are rows with
         ``refinement > 0``.
 
     Returns
@@ -621,7 +651,7 @@ def sweep(cfg: Config, parameter: str, values, *, point: Callable | None = None,
         return out
 
     try:
-        budget = 2 * len(values) if refine else 0
+        budget = max(2 * len(values), MIN_REFINE_BUDGET) if refine else 0
         while True:
             if jobs:
                 if backend == "dask":
@@ -654,7 +684,7 @@ def sweep(cfg: Config, parameter: str, values, *, point: Callable | None = None,
             jobs = []
             if budget <= 0:
                 break
-            mids = [(x, d) for x, d in _refinements(active(), budget)
+            mids = [(x, d) for x, d in _refinements(active(), budget, main, anchor)
                     if _value_key(x) not in wanted and _value_key(x) not in main]
             if not mids:
                 break

@@ -269,24 +269,28 @@ def trim(model: CoupledModel, *, tol: float = 1e-10, max_iter: int = 40,
                     f"(last max residual {history[-1]['max_residual']:.3e})", history)
 
 
-#: Largest trimmed flap deflection [deg] accepted as a result.  Linear
-#: thin-airfoil flap theory and attached flow end well before it (real flaps
-#: separate beyond about 15-20 deg), and a trailing-edge flap travels a few
-#: degrees; a trim that needs more is a flap that diverges statically -- e.g.
-#: MDART's flap, aerodynamically over-balanced beyond 60 % overhang in hover,
-#: trims at 17 deg at 0.60 and at 215 deg at 0.63 (measured), with the
-#: collective running away to keep the thrust.
-MAX_FLAP_DEFLECTION_DEG = 20.0
+#: Largest mean trimmed flap deflection [deg] accepted as a result.  A
+#: trailing-edge flap travels a few degrees, and the linear flap aerodynamics
+#: (attached flow on the flap) end about here; a trim whose *mean* deflection
+#: needs more is a flap that diverges statically -- an aerodynamically
+#: over-balanced flap in hover trims at 5.6 deg mean at overhang 0.55, 17.9 deg
+#: at 0.60, 180 deg at 0.63 with the collective running away, and at -14 deg
+#: at 0.70 on the other side (MDART, measured): equilibria of a diverged flap
+#: held only by the model's nonlinear kinematics, not results.  The
+#: oscillating part is not limited: a near-resonant response to the actuator
+#: (Fig. 7 at 0.5 overhang: 21 deg half peak-to-peak, measured) is the paper's
+#: own result, out of the linear range as it is.
+MAX_FLAP_DEFLECTION_DEG = 10.0
 
 
 def _check_flap_deflection(model, q, history) -> None:
-    """Refuse a trim whose flap deflection is beyond :data:`MAX_FLAP_DEFLECTION_DEG`."""
+    """Refuse a trim whose mean flap deflection is beyond :data:`MAX_FLAP_DEFLECTION_DEG`."""
     if not model.has_flap:
         return
-    peak = float(np.rad2deg(np.abs(q[-1]).max()))
-    if peak > MAX_FLAP_DEFLECTION_DEG:
+    mean = float(np.rad2deg(abs(q[-1].mean())))
+    if mean > MAX_FLAP_DEFLECTION_DEG:
         raise TrimError(
-            f"the trimmed flap deflection reaches {peak:.3g} deg, beyond "
+            f"the mean trimmed flap deflection is {mean:.3g} deg, beyond "
             f"{MAX_FLAP_DEFLECTION_DEG:g} deg where the flap model holds: the flap diverges "
             f"statically (its hinge-moment stiffness, actuator included, is near zero or "
             f"negative: an aerodynamically over-balanced flap, flap.overhang = "
