@@ -117,17 +117,18 @@ def _doubtful(rows, mode, lo, hi) -> list[float]:
     return sorted(set(np.round(x[bad], 12).tolist()))
 
 
-def _series(frame, mode, quantity, lo=None, hi=None, identify="track"):
+def _series(frame, mode, quantity, lo=None, hi=None, identify="track", until=None):
     """(x, y) of one mode and quantity, sorted by x, within [lo, hi].
 
     Only the points the figure asks for (``refinement == 0``); raises
-    :class:`_Ambiguous` when the mode's identity is undecided in the range.
+    :class:`_Ambiguous` when the mode's identity is undecided in the range
+    (up to ``until`` if given: a value at one x needs the identity there).
     """
     if quantity not in frame:
         raise _Fail(f"the result has no {quantity!r} column")
     t = _select(frame, mode, identify) if mode else frame
     if mode and mode != FLUTTER_ROOT and identify == "track":
-        doubt = _doubtful(t, mode, lo, hi)
+        doubt = _doubtful(t, mode, lo, hi if until is None else until)
         if doubt:
             raise _Ambiguous(f"the identity of {mode!r} is undecided at x = "
                              + ", ".join(f"{v:.4g}" for v in doubt[:4])
@@ -182,7 +183,7 @@ class _Context:
         return f
 
     def series(self, c: Claim, fig=None, mode=None, quantity=None, interval=None,
-               overrides=None):
+               overrides=None, until=None):
         fig, mode = fig or c.figure, c.mode if mode is None else mode
         quantity = quantity or c.quantity
         overrides = c.overrides if overrides is None else overrides
@@ -190,7 +191,7 @@ class _Context:
         if interval is not None:
             lo, hi = (float(v) for v in x_to_si(fig, np.asarray(interval, float), c.x_unit))
         x, y = _series(self.frame(fig, overrides, quantity), mode, quantity, lo, hi,
-                       self.identify)
+                       self.identify, until)
         if len(x) == 0:
             raise _Fail(f"no {mode or quantity} points" + (f" in {interval}" if lo else ""))
         return x, y
@@ -212,7 +213,8 @@ def _check_value(c: Claim, ctx: _Context):
     if c.figure == "fig6":
         computed = float(ctx.frame("fig6")[c.quantity].iloc[0])
     else:
-        x, y = ctx.series(c)
+        last = max(v for v in (c.x, c.relative_to) if v is not None)
+        x, y = ctx.series(c, until=float(x_to_si(c.figure, last, c.x_unit)))
         computed = _at(c, x, y, c.x)
         if c.relative_to is not None:
             computed = computed / _at(c, x, y, c.relative_to) - 1

@@ -66,11 +66,11 @@ class StabilityResult:
     trim : dict
         Trim scalars.
     trim_result : TrimResult
-    vectors : ndarray, shape (n_phys, n_modes)
-        Physical shapes at psi = 0
-        (:meth:`tefcore.coupled.CoupledModel.tracking_basis` times the
-        displacements): the parameter-independent basis in which modes are
-        compared between sweep points.
+    vectors : ndarray, shape (2 n_phys, n_modes)
+        Physical shapes of the displacements and velocities at psi = 0
+        (:meth:`tefcore.coupled.CoupledModel.tracking_basis` times each):
+        the parameter-independent basis in which modes are compared between
+        sweep points.
     periodic : bool
         True for forward flight (Floquet), False for hover (constant
         coefficients).
@@ -225,6 +225,22 @@ def periodic_state_matrix(tr: TrimResult):
     return system.state_matrix, system.m
 
 
+def _tracking_shapes(basis, res, n):
+    """Physical shapes to compare modes by: displacement and velocity at psi = 0.
+
+    ``[B q(0); B q*(0)]`` (velocities per radian of azimuth) from the state
+    eigenvector, which the integer frequency shift of a Floquet mode does not
+    change.  Two Floquet modes can share one displacement shape at psi = 0
+    (MAC 0.96 between MDART's first flap and first torsion modes at
+    mu = 0.3, measured); their velocities, which scale with the frequency,
+    tell them apart.  A sampled motion over the revolution would too, but
+    aliases for modes far above the Floquet steps' frequencies (a 0.1 c
+    flap near 100 /rev), whose velocity shape stays steady.
+    """
+    vec = res.eigenvectors
+    return np.concatenate([basis @ vec[:n], basis @ vec[n:2 * n]], axis=0)
+
+
 def _coordinate_shares(participation, n):
     """Shares of the coordinates in each mode (n x modes), summing to 1.
 
@@ -253,7 +269,7 @@ def _stability_of(model, tr: TrimResult, n_steps: int | None) -> StabilityResult
     keep = keep.select(order)
     vec = keep.eigenvectors
     frac = _coordinate_shares(keep.participation, n)
-    shapes = model.tracking_basis() @ vec[:n]
+    shapes = _tracking_shapes(model.tracking_basis(), keep, n)
     labels = _label_modes(frac, model.labels, keep.frequencies, keep.damping_rates, shapes)
     kinds = [lab.split()[1] if lab.startswith("blade") else "TEF" for lab in model.labels]
     table = pd.DataFrame({

@@ -363,7 +363,8 @@ MAX_REFINE = 3
 #: branch is what the paper's claims are about, and a flap mode veering with
 #: a blade mode can turn its shape within a few per cent of a sweep's step.
 MAX_REFINE_BRANCH = 5
-#: Points refinement may add at least (else twice the points asked for).
+#: Points refinement may add for the TEF branch, and at least for the other
+#: modes (else twice the points asked for).
 MIN_REFINE_BUDGET = 24
 #: Flap participation of a flutter root (:data:`tefcore.mechanism.FLUTTER_PARTICIPATION`).
 FLUTTER_SHARE = 0.1
@@ -409,12 +410,14 @@ def _anchor_row(rec: dict, modes: pd.DataFrame, use_anchor: bool):
     return (int(hits[0]), "label") if hits.size else (None, "")
 
 
-def _refinements(records: dict, budget: int, main: set,
-                 use_anchor: bool = True) -> list[tuple[float, int]]:
-    """Midpoints (SI value, depth) of the steps whose tracking is ambiguous.
+def _refinements(records: dict, budgets: dict, main: set,
+                 use_anchor: bool = True) -> list[tuple[float, int, str]]:
+    """Midpoints (SI value, depth, budget) of the steps whose tracking is ambiguous.
 
-    Steps where the TEF branch itself is ambiguous come first and may be
-    bisected :data:`MAX_REFINE_BRANCH` times; the others :data:`MAX_REFINE`.
+    While the TEF branch itself has ambiguous steps that may still be
+    bisected (:data:`MAX_REFINE_BRANCH` times, from the ``"branch"`` budget),
+    only those are returned; then the others (:data:`MAX_REFINE` times, from
+    the ``"other"`` budget).
     """
     order = _ok_in_order(records)
     if len(order) < 2:
@@ -430,15 +433,18 @@ def _refinements(records: dict, budget: int, main: set,
             if not start.empty:
                 mine = tracked[tracked["track"] == start["track"].iloc[0]]
                 branch_steps = set(mine.loc[mine["identity"] == "ambiguous", "step"])
-    steps = ambiguous_steps(tracked)
-    out = []
-    for step in sorted(steps, key=lambda s: (s not in branch_steps, s)):
-        a, b = records[order[step - 1]], records[order[step]]
-        depth = max(a.get("refinement", 0), b.get("refinement", 0)) + 1
-        limit = MAX_REFINE_BRANCH if step in branch_steps else MAX_REFINE
-        if depth <= limit and len(out) < budget:
-            out.append((0.5 * (float(a["value_si"]) + float(b["value_si"])), depth))
-    return out
+    def mids(steps, limit, which):
+        out = []
+        for step in sorted(steps):
+            a, b = records[order[step - 1]], records[order[step]]
+            depth = max(a.get("refinement", 0), b.get("refinement", 0)) + 1
+            if depth <= limit and len(out) < budgets[which]:
+                out.append((0.5 * (float(a["value_si"]) + float(b["value_si"])), depth, which))
+        return out
+
+    # the TEF branch's own doubts first, round after round, then the others
+    return (mids(branch_steps, MAX_REFINE_BRANCH, "branch")
+            or mids(ambiguous_steps(tracked), MAX_REFINE, "other"))
 
 
 def _roles(table: pd.DataFrame, records: dict, order: list, main_keys: set,
@@ -572,9 +578,10 @@ def sweep(cfg: Config, parameter: str, values, *, point: Callable | None = None,
         Where the identity of a mode between two neighbouring points is
         ambiguous (:mod:`tefcore.tracking`), evaluate the midpoint and track
         again, up to :data:`MAX_REFINE` bisections (:data:`MAX_REFINE_BRANCH`
-        where the TEF branch is ambiguous, those first) and at most
-        :data:`MIN_REFINE_BUDGET` or twice as many added points as asked for,
-        whichever is more; the added points are rows with
+        where the TEF branch is ambiguous, those first, with their own budget
+        of :data:`MIN_REFINE_BUDGET` points) and at most that or twice as
+        many added points as asked for, whichever is more, for the other
+        modes; the added points are rows with
         ``refinement > 0``.
 
     Returns
@@ -651,7 +658,9 @@ def sweep(cfg: Config, parameter: str, values, *, point: Callable | None = None,
         return out
 
     try:
-        budget = max(2 * len(values), MIN_REFINE_BUDGET) if refine else 0
+        # the TEF branch has its own budget: other modes' doubts cannot use it up
+        budgets = ({"branch": MIN_REFINE_BUDGET, "other": max(2 * len(values), MIN_REFINE_BUDGET)}
+                   if refine else {"branch": 0, "other": 0})
         while True:
             if jobs:
                 if backend == "dask":
@@ -682,16 +691,16 @@ def sweep(cfg: Config, parameter: str, values, *, point: Callable | None = None,
             # bisect the steps where a mode's identity is not decided; a
             # midpoint already in the file (a resumed sweep) is reused
             jobs = []
-            if budget <= 0:
+            if not any(budgets.values()):
                 break
-            mids = [(x, d) for x, d in _refinements(active(), budget, main, anchor)
-                    if _value_key(x) not in wanted and _value_key(x) not in main]
+            mids = [m for m in _refinements(active(), budgets, main, anchor)
+                    if _value_key(m[0]) not in wanted and _value_key(m[0]) not in main]
             if not mids:
                 break
-            for x, depth in mids:
+            for x, depth, which in mids:
                 key = _value_key(x)
                 wanted[key] = depth
-                budget -= 1
+                budgets[which] -= 1
                 if key not in records or (retry_failed and records[key]["status"] != "ok"):
                     jobs.append((len(keys) + len(wanted),
                                  (point, cfg, parameter, float(x), key, False, depth)))

@@ -43,8 +43,9 @@ separate them: a coalescence, and the identity is ``"coalescence"``; the
 track then goes on with the less stable root of the pair (the one that
 matters for stability), by convention -- the table says where.
 Two tracks whose eigenvalues pass closer in a step than they move may have
-crossed or veered; unless both kept their shapes (MAC >= :data:`CROSSING_MAC`),
-the match is ``"ambiguous"`` too and the step is refined.  A track's first row is ``"start"``.
+crossed or veered; where their shapes exchanged (each new shape carries at
+least :data:`EXCHANGE_MAC` of the other's old one), the match is
+``"ambiguous"`` too and the step is refined.  A track's first row is ``"start"``.
 
 Each track keeps the ``label`` its mode had where the track starts; the
 point's own label at each point is ``label_here``, so a label that changes
@@ -82,7 +83,7 @@ import numpy as np
 import pandas as pd
 from scipy.optimize import linear_sum_assignment
 
-__all__ = ["CLEAR_COST", "COALESCED_DISTANCE", "CROSSING_MAC", "COALESCED_MAC", "MARGIN", "FollowResult",
+__all__ = ["CLEAR_COST", "COALESCED_DISTANCE", "EXCHANGE_MAC", "COALESCED_MAC", "MARGIN", "FollowResult",
            "ambiguous_steps", "eigen_distance", "follow_root", "label_changes", "mac",
            "relative_distance",
            "match_cost", "match_modes", "track_modes"]
@@ -102,11 +103,12 @@ CLEAR_COST = 0.5
 #: scale): a lead that round-off or a smooth change over one step does not
 #: overturn; two candidates closer than that are a coin toss and refined.
 MARGIN = 0.25
-#: Two tracks passing close in one step keep their identity only when both
-#: shapes are kept at least this well (a crossing of uncoupled modes keeps
-#: them exactly; a veering turns them, e.g. MAC 0.87 over a step that spans
-#: a veering of a 2 x 2 family).
-CROSSING_MAC = 0.99
+#: Two tracks passing close in one step are a possible veering when one's new
+#: shape carries at least this share of the other's old shape (MAC): a veering
+#: exchanges the shapes (sin^2 of the turn, 0.13 over a step that spans the
+#: veering of a 2 x 2 family), modes crossing without coupling keep theirs
+#: (MAC between distinct MDART modes below 0.05, measured).
+EXCHANGE_MAC = 0.1
 #: Two roots of one point with a MAC above this ...
 COALESCED_MAC = 0.9
 #: ... and a :func:`relative_distance` below this are one coalesced pair.
@@ -465,7 +467,8 @@ def track_modes(points: Sequence, values=None, *, predict: bool = True) -> pd.Da
                 if t >= 0:
                     tracked_eig[j] = _unwrap(eig[j], tracks[t].predict(x, predict))
         if alive and len(modes):
-            _flag_close_passes(identity, assigned, tracked_eig, tracks, vecs)
+            _flag_close_passes(identity, assigned, tracked_eig, tracks, vecs,
+                               periodic or prev_periodic)
         for j in np.flatnonzero(assigned < 0):
             tracks.append(_Track(label=str(modes["label"].iloc[j])))
             assigned[j] = len(tracks) - 1
@@ -489,34 +492,48 @@ def track_modes(points: Sequence, values=None, *, predict: bool = True) -> pd.Da
     return out.sort_values(["step", "track"], kind="stable", ignore_index=True)
 
 
-def _flag_close_passes(identity, assigned, eig, tracks, vecs) -> None:
+def _flag_close_passes(identity, assigned, eig, tracks, vecs, periodic=False) -> None:
     """Mark ``ambiguous`` the clear matches of two tracks that pass close in a step.
 
     Two roots whose eigenvalues, moving linearly over the step, come closer
     than either moved may have crossed or veered; the end points cannot tell
-    which.  A crossing keeps both shapes (MAC >= :data:`CROSSING_MAC` with
-    the track's last shape), a veering turns them: unless both shapes are
-    kept, the step is bisected (:func:`tefcore.sweep.sweep`).
+    which.  Modes that cross without coupling keep their own shapes; modes
+    that veer exchange them, so each root's new shape carries some of the
+    other's old one: where that exchange is at least :data:`EXCHANGE_MAC`
+    (or no shapes are known), the step is bisected (:func:`tefcore.sweep.sweep`).
     """
     js = [j for j in range(len(assigned)) if assigned[j] >= 0 and identity[j] == "clear"]
     if len(js) < 2:
         return
     p0 = np.array([tracks[assigned[j]].eig[-1][1] for j in js])
     p1 = np.asarray([eig[j] for j in js])
-    kept = np.zeros(len(js), bool)
-    if vecs is not None:
-        for a, j in enumerate(js):
-            prev = tracks[assigned[j]].vec
-            if prev is not None and prev.shape[0] == vecs.shape[0]:
-                kept[a] = mac(prev, vecs[:, j])[0, 0] >= CROSSING_MAC
+    old = [tracks[assigned[j]].vec for j in js]
+    known = vecs is not None and all(v is not None and v.shape[0] == vecs.shape[0] for v in old)
+    exchange = np.ones((len(js), len(js)), bool)
+    if known:
+        cross = mac(np.stack(old, axis=1), vecs[:, js])       # old shape a vs new shape b
+        exchange = (cross >= EXCHANGE_MAC) | (cross.T >= EXCHANGE_MAC)
+    if periodic:
+        # Floquet frequencies are known modulo 1/rev and up to sign: each
+        # root's end is put next to its start, then each pair's second root
+        # next to the first (the same shift and sign for both its ends), so
+        # the segments below are compared in one local frame
+        p1 = np.array([_unwrap(e, s) for e, s in zip(p1, p0, strict=True)])
     for a in range(len(js)):
         for b in range(a + 1, len(js)):
-            if kept[a] and kept[b]:
+            if not exchange[a, b]:
                 continue
+            b0, b1 = p0[b], p1[b]
+            if periodic:
+                b0n = _unwrap(b0, p0[a])
+                sign = 1.0 if np.isclose(b0n.imag % 1.0, b0.imag % 1.0) else -1.0
+                b1 = complex(b1.real, sign * b1.imag + (b0n.imag - sign * b0.imag))
+                b0 = b0n
             # one scale for the pair: damping rates and frequencies each
             # relative to their size (as relative_distance)
-            pts = np.array([p0[a], p1[a], p0[b], p1[b]])
-            sc = (0.5 + 0.5 * np.abs(pts.real).mean()) + 1j * (1.0 + 0.5 * np.abs(pts.imag).mean())
+            pts = np.array([p0[a], p1[a], b0, b1])
+            sc = (0.5 + 0.5 * np.abs(pts.real).mean()) + 1j * (
+                0.5 if periodic else 1.0 + 0.5 * np.abs(pts.imag).mean())
             x0a, x1a, x0b, x1b = (z.real / sc.real + 1j * z.imag / sc.imag for z in pts)
             d0, dd = x0a - x0b, (x1a - x0a) - (x1b - x0b)
             t = 0.0 if dd == 0 else float(np.clip(-(d0 * np.conj(dd)).real / abs(dd) ** 2,

@@ -59,11 +59,13 @@ def test_flutter_root_is_the_least_stable_flap_root():
 def test_onset_brackets_a_zero_crossing():
     # a coarse Fig. 8 scan: the onset lies between the grid points where the
     # flutter root changes sign and the root's real part vanishes there
+    # (0.55, not 0.6: beyond ~0.59 the over-balanced flap diverges statically and
+    # its trim is refused, tefcore.trim.MAX_FLAP_DEFLECTION_DEG)
     h = Headline("fig8", "", {"flight.advance_ratio": 0.0, "flap.cg_offset": 0.0},
-                 "flap.overhang", (0.0, 0.2, 0.4, 0.6))
+                 "flap.overhang", (0.0, 0.2, 0.4, 0.55))
     out = headline_results(MDART, headlines=[h], xtol=1e-6)
     x = float(out["value"].iloc[0])
-    assert out["status"].iloc[0] == "ok" and 0.4 < x < 0.6
+    assert out["status"].iloc[0] == "ok" and 0.4 < x < 0.55
     cfg = MDART.with_overrides({**h.fixed, "flap.overhang": x})
     near = [flutter_root(stability(cfg.with_overrides({"flap.overhang": x + d})))["real_part"]
             for d in (-1e-4, 1e-4)]
