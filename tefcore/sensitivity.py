@@ -55,6 +55,7 @@ import scipy.optimize
 
 from .assumptions import ASSUMPTIONS, Assumption, apply_assumption  # re-exported
 from .config import load_config
+from .errors import TefcoreError
 from .mechanism import FLUTTER_PARTICIPATION
 from .mechanism import flutter_root as mechanism_flutter_root
 
@@ -166,7 +167,10 @@ def _onset(cfg, h: Headline, identify, xtol: float) -> tuple[float, str]:
             c = cfg.with_overrides({h.field: float(x)})
         except ValueError as err:                 # the data do not admit this point
             return math.nan, f"no crossing below {h.field} = {x} (invalid: {err})"[:200]
-        g, res = _real_part(c, identify, warm)
+        try:
+            g, res = _real_part(c, identify, warm)
+        except TefcoreError as err:               # e.g. a statically diverged flap
+            return math.nan, f"no crossing below {h.field} = {x} ({err})"[:200]
         warm = res.trim_result
         if prev is None and g >= 0:
             return math.nan, f"unstable already at {h.field} = {x} (real part {g:+.3f})"
