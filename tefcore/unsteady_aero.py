@@ -36,7 +36,7 @@ Examples
 >>> bool(abs(model.wake.lift_deficiency(0.26) - theodorsen_function(0.26)) < 2e-4)
 True
 >>> round(float(theodorsen_function(0.26).real), 4), round(float(theodorsen_function(0.26).imag), 4)
-(0.7113, -0.1919)
+(0.6865, -0.1842)
 """
 
 from __future__ import annotations
