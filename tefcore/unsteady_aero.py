@@ -219,7 +219,7 @@ def _check_n(n_states) -> int:
     return int(n_states)
 
 
-@functools.lru_cache(maxsize=None)
+@functools.cache
 def peters_wake(n_states: int) -> WakeModel:
     """Peters' finite-state wake with his published constants.
 
@@ -286,7 +286,7 @@ def _fit_residues(poles):
     return a @ r - y, r
 
 
-@functools.lru_cache(maxsize=None)
+@functools.cache
 def fitted_wake(n_states: int) -> WakeModel:
     """Wake of ``N`` real poles fitted to ``1 - C(k)`` by least squares.
 
@@ -551,6 +551,7 @@ class UnsteadyFlapAirfoil:
         """
         k = np.asarray(reduced_frequency, dtype=float)
         if not np.all(np.isfinite(k)) or np.any(k < 0.0):
-            raise ValueError(f"reduced frequency must be finite and >= 0, got {reduced_frequency}")
+            raise ValueError(f"reduced frequency must be finite and >= 0, "
+                             f"got {reduced_frequency}")
         mats = self.matrices(velocity=velocity, density=density, chord=chord, axis=axis, mach=mach)
         return mats.frequency_response(k * velocity / (0.5 * chord))
