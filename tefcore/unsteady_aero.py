@@ -450,7 +450,7 @@ class UnsteadyFlapAirfoil:
 
     def upwash(self, *, alpha, alpha_rate, plunge_rate, delta, delta_rate, velocity, chord,
                axis=0.25) -> np.ndarray:
-        """The 3/4-chord upwash ``Q`` [m/s] of the circulation ``Gamma = 2 pi b Q`` (section 3.2)."""
+        """The 3/4-chord upwash ``Q`` [m/s]: circulation ``Gamma = 2 pi b Q`` (section 3.2)."""
         b = 0.5 * np.asarray(chord, dtype=float)
         a = 2.0 * np.asarray(axis, dtype=float) - 1.0
         u = np.asarray(velocity, dtype=float)
