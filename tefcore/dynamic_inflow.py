@@ -1,6 +1,6 @@
 """Pitt-Peters dynamic inflow: three inflow states (mean, sine, cosine).
 
-docs/theory.md section 6.1.  The induced inflow over the disk (positive down,
+docs/theory.md section 3.10.  The induced inflow over the disk (positive down,
 units of the tip speed ``Omega R``, ``x = r/R``) is
 
     lambda_i(x, psi) = lambda_0 + x (lambda_s sin psi + lambda_c cos psi)
