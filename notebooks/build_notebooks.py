@@ -668,14 +668,14 @@ print(nt.mode_summary("fig9", res_fig9.table, labels=("TEF",), quantity="frequen
 The paper calls the instability of the mass-unbalanced flap "typical
 trailing-edge flap-blade torsion flutter", resulting "from the energy transfer
 between the trailing-edge flap mode and blade torsion mode". Here is the TEF
-branch and the flutter root at c_cg = 0.36 c_f, term by term: which terms do
+branch and the flutter root at c_cg = 0.33 c_f (the paper's imbalanced flap), term by term: which terms do
 the destabilising work, and what happens when the flap-torsion couplings are
 knocked out:'''),
         code('''\
-print(nt.explain("fig9", res_fig9, 0.36, base, overrides).to_string(index=False))
+print(nt.explain("fig9", res_fig9, 0.33, base, overrides).to_string(index=False))
 '''),
         code('''\
-print(nt.explain("fig9", res_fig9, 0.36, base, overrides, which="flutter root",
+print(nt.explain("fig9", res_fig9, 0.33, base, overrides, which="flutter root",
                  knockouts=False).to_string(index=False))
 '''),
         md('''\
