@@ -38,7 +38,7 @@ SETUP = '''\
 import matplotlib.pyplot as plt
 import pandas as pd
 
-from tefcore import notebook_tools as nt
+from tefcore.paper import notebook_tools as nt
 
 out = nt.setup_notebook(output_dir)
 base = nt.base_config(aero_model)
@@ -227,7 +227,7 @@ def claims_cells(figs, saved):
 ## Validation: the paper's claims for these figures
 
 Each row is one statement of the paper, checked against the computed
-results by `tefcore.validation` (`pass`, `fail`, or `not reproducible` when
+results by `tefcore.paper.validation` (`pass`, `fail`, or `not reproducible` when
 the statement needs data we do not have). The full table, with the
 statement, the expected and computed values and the reason, is saved to
 `claims.csv`.'''),
@@ -290,7 +290,7 @@ frequencies are typical bearingless values, not stated by the paper.'''),
 import numpy as np
 
 from tefcore.blade import blade_modes, fan_plot
-from tefcore.calibration import frequency_checks
+from tefcore.paper.calibration import frequency_checks
 
 modes = blade_modes(base).table()
 modes["frequency_hz"] = modes["frequency_per_rev"] * base.rotor.rotor_speed / (2 * np.pi)
@@ -416,7 +416,7 @@ The CAMRAD II curve is not available either.'''),
         md('''\
 ## Figure 5: hinge moment over one revolution, thin airfoil versus table look-up'''),
         code('''\
-from tefcore.figures import hinge_moment_figure
+from tefcore.paper.figures import hinge_moment_figure
 
 cfg5 = base.with_overrides(overrides) if overrides else base
 with nt.counted_warnings("warnings (e.g. table inputs clipped to its edges)"):
@@ -466,7 +466,7 @@ aerodynamically balanced flap has a small *negative* aerodynamic spring
 actuator, and the 4/rev input is below the flap's natural frequency, so the
 response is amplified in phase.'''),
         code('''\
-from tefcore.figures import flap_response_figure
+from tefcore.paper.figures import flap_response_figure
 
 with nt.counted_warnings("warnings (e.g. table inputs clipped to its edges)"):
     fig6 = flap_response_figure(base, **overrides)
@@ -545,7 +545,7 @@ Same conditions as Fig. 6 (mu = 0.2, C_T/sigma = 0.0774, delta_a = 2 deg
 cos(4 psi - 240 deg)). The power is the actuator torque times the actuator
 rate; we show its peak over a revolution and the mean of its magnitude.'''),
         code('''\
-from tefcore.figures import overhang_actuation_figure
+from tefcore.paper.figures import overhang_actuation_figure
 
 with nt.counted_warnings("warnings (e.g. table inputs clipped to its edges)"):
     fig7 = overhang_actuation_figure(base.with_overrides(overrides) if overrides else base,
@@ -997,7 +997,7 @@ for name in ["fig16b", "fig17"]:
 def nb08():
     stem = "08_assumptions"
     extra = '''\
-assumptions = None         # None: every assumption of tefcore.sensitivity.ASSUMPTIONS, or a
+assumptions = None         # None: every assumption of tefcore.paper.sensitivity.ASSUMPTIONS, or a
                            # list of their names, e.g. ["flap mass", "flap inertia"]
 '''
     return stem, [
@@ -1014,7 +1014,7 @@ moves which result, and by how much. This notebook
 2. shows the assumed blade (frequencies where soft-inplane bearingless blades
    have them, torsion calibrated to the four frequencies the text states);
 3. computes four **headline results** and re-computes them with every assumed
-   property at the two ends of its plausible range (`tefcore.sensitivity`):
+   property at the two ends of its plausible range (`tefcore.paper.sensitivity`):
 
 * `fig9_onset`: the flap CG offset c_cg/c_f where the TEF flutter root turns
   unstable, mu = 0.3, c_b/c_f = 0.29 (paper: 0.26);
@@ -1033,7 +1033,7 @@ root* here is the least stable root in which the flap takes part materially:
 its TEF kinetic-energy share is at least 0.15 of the largest share among all
 roots (measured on MDART: the unstable flap-involved root carries 0.19-1.0 of
 it at every point of Figs. 8-17, roots without the flap below 1e-3). This rule
-is `tefcore.sensitivity.flutter_root`; every function takes an `identify`
+is `tefcore.paper.sensitivity.flutter_root`; every function takes an `identify`
 argument, so the mode tracking of `tefcore.tracking` can replace it.'''),
         params_cell(stem, extra=extra),
         code(SETUP, "nbval-ignore-output"),
@@ -1091,7 +1091,7 @@ figures' mass-imbalanced flap. `tefcore/data/mdart.toml` gives the reason for
 every number.'''),
         code('''\
 from tefcore.blade import blade_modes
-from tefcore.calibration import frequency_checks
+from tefcore.paper.calibration import frequency_checks
 from tefcore.flap_dynamics import flap_natural_frequency, flap_properties
 
 fan = []
@@ -1118,7 +1118,7 @@ slope through the blade inertia that the stated Lock number then needs) are
 re-calibrated first: the sensitivity is that of the whole derivation with what
 the text states held fixed.'''),
         code('''\
-from tefcore import sensitivity as sens
+from tefcore.paper import sensitivity as sens
 
 chosen = [a for a in sens.ASSUMPTIONS if assumptions is None or a.name in assumptions]
 pd.set_option("display.max_colwidth", 110)

@@ -1,7 +1,7 @@
 """Command line: ``tefcore modes | fanplot | stability | sweep | map | mechanism | reproduce``.
 
 ``tefcore reproduce`` executes the numbered notebooks with papermill and
-writes the claims report (:mod:`tefcore.reproduce`).
+writes the claims report (:mod:`tefcore.paper.reproduce`).
 
 Values given with ``--set`` (and ``sweep --values/--range``) follow the
 units rules of :mod:`tefcore.text_input`: a dimensional field needs its
@@ -197,7 +197,7 @@ def cmd_map(args) -> int:
 
 
 def cmd_reproduce(args) -> int:
-    from .reproduce import load_params_file, parse_cli_params, reproduce
+    from .paper.reproduce import load_params_file, parse_cli_params, reproduce
 
     # later layers win: file "all" < file notebook < -p all < -p notebook
     layers = [load_params_file(args.params)] if args.params else []

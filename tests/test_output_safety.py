@@ -15,7 +15,7 @@ from pathlib import Path
 import pytest
 from test_sweep import MDART, PARAM, XS, ToyPoint, run
 
-from tefcore import reproduce as rp
+from tefcore.paper import reproduce as rp
 from tefcore.sweep import sweep
 
 TESTS = Path(__file__).parent

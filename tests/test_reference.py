@@ -7,8 +7,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from tefcore.figures import FIGURES
-from tefcore.reference import (
+from tefcore.paper.figures import FIGURES
+from tefcore.paper.reference import (
     ReferenceDataError,
     load_claims,
     parse_claim,

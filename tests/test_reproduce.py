@@ -8,7 +8,7 @@ from pathlib import Path
 import pandas as pd
 import pytest
 
-from tefcore import reproduce as rp
+from tefcore.paper import reproduce as rp
 from tefcore.cli import main
 
 pytest.importorskip("yaml")
@@ -122,7 +122,7 @@ def _claim(status, recorded, tag="validation"):
     ("pass", "pass", "failed", 1),             # a notebook failed
 ])
 def test_exit_status(tmp_path, monkeypatch, status, recorded, run_status, code):
-    pytest.importorskip("tefcore.validation")
+    pytest.importorskip("tefcore.paper.validation")
     monkeypatch.setattr(rp, "run_notebooks", _fake_runs([_claim(status, recorded)], run_status))
     assert rp.reproduce(tmp_path, notebooks=["04"], progress=False) == code
     md = (tmp_path / "report.md").read_text()

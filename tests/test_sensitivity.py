@@ -8,9 +8,9 @@ import pandas as pd
 import pytest
 from numpy.testing import assert_allclose
 
-from tefcore.calibration import frequency_checks
+from tefcore.paper.calibration import frequency_checks
 from tefcore.config import load_config
-from tefcore.sensitivity import (
+from tefcore.paper.sensitivity import (
     ASSUMPTIONS,
     HEADLINES,
     Headline,

@@ -8,7 +8,7 @@ from numpy.testing import assert_allclose
 
 from tefcore import floquet
 from tefcore.blade import blade_modes
-from tefcore.calibration import mode_frequency
+from tefcore.paper.calibration import mode_frequency
 from tefcore.config import load_config
 from tefcore.coupled import coupled_model
 from tefcore.flap_dynamics import flap_natural_frequency, flap_properties
@@ -223,7 +223,7 @@ def test_heavily_damped_root_resolved_by_raising_the_sub_intervals():
     # MDART data the same mechanism put a -7.2 /rev root 1.4 /rev off at K = 4
     # on Fig. 14's 0.22 R span; with the re-derived blade K = 4 is off by
     # 1.4e-4 /rev here, among the largest of the figures' extreme points, measured.)
-    from tefcore.figures import figure_config
+    from tefcore.paper.figures import figure_config
     from tefcore.stability import periodic_state_matrix
 
     cfg = figure_config("fig13").with_overrides({"flap.midspan": 0.90})

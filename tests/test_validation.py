@@ -7,9 +7,9 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from tefcore.figures import run_figure
-from tefcore.reference import ReferenceDataError, load_claims, parse_claim
-from tefcore.validation import (
+from tefcore.paper.figures import run_figure
+from tefcore.paper.reference import ReferenceDataError, load_claims, parse_claim
+from tefcore.paper.validation import (
     claims_score,
     compare_curve,
     reference_curves,

@@ -19,7 +19,7 @@ that blade.
 :func:`frequency_checks` evaluates these targets for a configuration;
 :func:`calibrate_torsion` is the least-squares fit that produced the assumed
 GJ, pitch-horn arm and baseline pitch-link stiffness (run it through
-``python -m tefcore.calibration`` to reproduce the numbers in the TOML).
+``python -m tefcore.paper.calibration`` to reproduce the numbers in the TOML).
 """
 
 from __future__ import annotations
@@ -28,8 +28,8 @@ import numpy as np
 import pandas as pd
 import scipy.optimize
 
-from .blade import blade_modes
-from .units import to_si
+from ..blade import blade_modes
+from ..units import to_si
 
 LBF_PER_IN = to_si(1.0, "lbf/in")        # N/m per lb/in
 
@@ -117,7 +117,7 @@ def calibrate_torsion(cfg):
 
 
 def _main() -> int:
-    from .config import load_config
+    from ..config import load_config
 
     base = load_config("mdart")
     fit = calibrate_torsion(base)
@@ -128,6 +128,6 @@ def _main() -> int:
 
 
 if __name__ == "__main__":
-    from .cli_errors import run_command
+    from ..cli_errors import run_command
 
-    raise SystemExit(run_command(_main, prog="python -m tefcore.calibration"))
+    raise SystemExit(run_command(_main, prog="python -m tefcore.paper.calibration"))

@@ -4,7 +4,7 @@
 ``x`` column (the figure's swept value); :func:`natural_frequency_frame`
 adds the blade's natural frequencies at the same x; :func:`compute_figure`
 runs a figure, optionally with configuration overrides (the variants some
-claims compare against).  Used by :mod:`tefcore.claim_checks`.
+claims compare against).  Used by :mod:`tefcore.paper.claim_checks`.
 """
 
 from __future__ import annotations
@@ -54,7 +54,7 @@ def figure_frame(name: str, result) -> pd.DataFrame:
 
 def natural_frequency_frame(name, frame, cfg, overrides) -> pd.DataFrame:
     """Blade natural frequencies (:func:`tefcore.blade.blade_modes`) at the frame's x."""
-    from .blade import blade_modes
+    from ..blade import blade_modes
 
     base = _fig.figure_config(name, cfg).with_overrides(overrides)
     rows = []
@@ -77,7 +77,7 @@ def compute_figure(name, cfg=None, values=None, overrides=None, n_jobs=1, progre
     values = list(FIGURES[name].values if values is None else values)
     if not overrides:
         return _fig.run_figure(name, cfg, values=values, n_jobs=n_jobs, progress=progress)
-    from .sweep import sweep
+    from ..sweep import sweep
 
     base = _fig.figure_config(name, cfg).with_overrides(overrides)
     return sweep(base, FIGURES[name].parameter, values, n_jobs=n_jobs, progress=progress)

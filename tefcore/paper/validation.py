@@ -1,15 +1,15 @@
 """Compare tefcore results with the reference claims of the paper.
 
 :func:`validate_all` runs every figure that has a checkable claim (through
-:mod:`tefcore.figures`, adding the x values that value claims need to the
+:mod:`tefcore.paper.figures`, adding the x values that value claims need to the
 sweeps) and returns one tidy row per claim; :func:`validate_figure` checks
 the claims of one figure against its result.  The claims are loaded by
-:mod:`tefcore.reference` (format: ``reference_data/README.md``).
+:mod:`tefcore.paper.reference` (format: ``reference_data/README.md``).
 
-How each kind of claim is compared is in :mod:`tefcore.claim_checks`
+How each kind of claim is compared is in :mod:`tefcore.paper.claim_checks`
 (specified in ``reference_data/README.md``, kinds table), with the
-curve primitives in :mod:`tefcore.curve_metrics` and the figure results as
-tables in :mod:`tefcore.figure_frames`; their public names are re-exported
+curve primitives in :mod:`tefcore.paper.curve_metrics` and the figure results as
+tables in :mod:`tefcore.paper.figure_frames`; their public names are re-exported
 here.
 """
 
@@ -25,8 +25,8 @@ from .curve_metrics import X_SLACK as _EPS
 from .curve_metrics import compare_curve, stability_intervals, zero_crossings
 from .figure_frames import FIG7_OVERHANGS, compute_figure, figure_frame
 from .reference import FIGURES, KNOWN_FIGURES, STATUSES, load_claims, reference_dir, x_to_si
-from .safe_io import atomic_write_text
-from .units import parse_quantity
+from ..safe_io import atomic_write_text
+from ..units import parse_quantity
 
 __all__ = ["COLUMNS", "claims_score", "compare_curve", "figure_frame", "reference_curves",
            "stability_intervals", "update_recorded_status", "validate_all", "validate_figure",
@@ -67,9 +67,9 @@ def validate_all(n_jobs: int = 1, progress: bool = False, *, claims=None, cfg=No
     Parameters
     ----------
     n_jobs, progress
-        Passed to the sweeps (:func:`tefcore.figures.run_figure`).
+        Passed to the sweeps (:func:`tefcore.paper.figures.run_figure`).
     claims : list of Claim, optional
-        Default :func:`tefcore.reference.load_claims`.
+        Default :func:`tefcore.paper.reference.load_claims`.
     cfg : Config, optional
         Base configuration (default MDART).
     results : dict, optional

@@ -26,11 +26,11 @@ pass that test, so the destabilised one is found wherever the coalescence
 happens.  Every function takes an ``identify`` callable
 (``StabilityResult -> row with real_part and frequency_per_rev``).
 
-The assumptions and their ranges are in :mod:`tefcore.assumptions` (re-exported
+The assumptions and their ranges are in :mod:`tefcore.paper.assumptions` (re-exported
 here).  **Calibration is kept.**  Assumptions that move the stated first-torsion
 frequencies (section inertia, the GJ distribution, the lift slope through the
 blade mass that the Lock number then needs) are re-calibrated with
-:func:`tefcore.calibration.calibrate_torsion` before the results are
+:func:`tefcore.paper.calibration.calibrate_torsion` before the results are
 computed: the sensitivity is that of the whole derivation, with what the text
 states held fixed.
 
@@ -54,10 +54,10 @@ import pandas as pd
 import scipy.optimize
 
 from .assumptions import ASSUMPTIONS, Assumption, apply_assumption  # re-exported
-from .config import load_config
-from .errors import TefcoreError
-from .mechanism import FLUTTER_PARTICIPATION
-from .mechanism import flutter_root as mechanism_flutter_root
+from ..config import load_config
+from ..errors import TefcoreError
+from ..mechanism import FLUTTER_PARTICIPATION
+from ..mechanism import flutter_root as mechanism_flutter_root
 
 __all__ = [
     "ASSUMPTIONS",
@@ -72,7 +72,7 @@ __all__ = [
     "tornado_table",
 ]
 
-#: The mass-imbalanced flap of Figs. 10-17 (tefcore.figures.IMBALANCED).
+#: The mass-imbalanced flap of Figs. 10-17 (tefcore.paper.figures.IMBALANCED).
 _IMBALANCED = {"flap.overhang": 0.29, "flap.cg_offset": 0.33}
 
 
@@ -145,8 +145,8 @@ HEADLINES = (
 
 
 def _real_part(cfg, identify, warm=None):
-    from .stability import stability  # deferred: heavy
-    from .trim import TrimError
+    from ..stability import stability  # deferred: heavy
+    from ..trim import TrimError
 
     try:
         res = stability(cfg, trim_result=warm)

@@ -1,6 +1,6 @@
 """Zero crossings, stability intervals and curve comparison of sampled curves.
 
-The primitives behind the claim checks (:mod:`tefcore.claim_checks`): a
+The primitives behind the claim checks (:mod:`tefcore.paper.claim_checks`): a
 real part that changes sign between two sweep points crosses zero where the
 straight line between them does; a digitised curve is compared with the
 model's curve at the digitised x, never extrapolated.

@@ -8,8 +8,8 @@
   the notebooks wrote and writes ``report.md`` and a self-contained
   ``report.html`` (figures embedded as base64 PNG).  The exit code is
   non-zero when a notebook fails or a validation claim is worse than its
-  recorded status (:func:`tefcore.validation.worse_than_recorded`).
-* The notebooks' shared helpers live in :mod:`tefcore.notebook_tools`.
+  recorded status (:func:`tefcore.paper.validation.worse_than_recorded`).
+* The notebooks' shared helpers live in :mod:`tefcore.paper.notebook_tools`.
 
 Output layout (``--out OUT``)::
 
@@ -53,9 +53,9 @@ from pathlib import Path
 
 import pandas as pd
 
-from .errors import OutputError
+from ..errors import OutputError
 from .notebook_tools import _validation, deterministic_matplotlib, savefig
-from .safe_io import atomic_output, atomic_write_text, check_output_file, check_output_folder
+from ..safe_io import atomic_output, atomic_write_text, check_output_file, check_output_folder
 
 #: The notebooks, in order.
 NOTEBOOKS = (
@@ -295,9 +295,9 @@ def _baseline_blade(out: Path) -> pd.DataFrame:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    from .blade import blade_modes, fan_plot
+    from ..blade import blade_modes, fan_plot
     from .calibration import frequency_checks
-    from .config import load_config
+    from ..config import load_config
 
     deterministic_matplotlib()
     cfg = load_config("mdart")

@@ -4,7 +4,7 @@ The few functions every notebook uses, so the notebooks stay short and
 compute, plot, print and save the same way: ``setup_notebook``,
 ``figure_values``, ``run_stability_figure``, ``plot_modes``,
 ``mode_summary``, ``claims_table`` ...  The runner that executes the
-notebooks and writes the report is :mod:`tefcore.reproduce`.
+notebooks and writes the report is :mod:`tefcore.paper.reproduce`.
 
 Examples
 --------
@@ -26,11 +26,11 @@ from types import SimpleNamespace
 import numpy as np
 import pandas as pd
 
-from .safe_io import atomic_output
+from ..safe_io import atomic_output
 
 
 def _validation():
-    """tefcore.validation, or None where it cannot be imported."""
+    """tefcore.paper.validation, or None where it cannot be imported."""
     try:
         from . import validation
     except ImportError:
@@ -88,8 +88,8 @@ def base_config(aero_model: str = "thin_airfoil", overrides: dict | None = None)
     ``aero_model``: ``"thin_airfoil"`` (quasi-steady Theodorsen-type) or
     ``"table"`` (C81 look-up with the shipped *generated* example deck).
     """
-    from .c81 import example_deck_path
-    from .config import load_config
+    from ..c81 import example_deck_path
+    from ..config import load_config
 
     cfg = load_config("mdart")
     if aero_model in ("table", "c81"):
@@ -103,7 +103,7 @@ def base_config(aero_model: str = "thin_airfoil", overrides: dict | None = None)
 def section_aero(aero_model: str, cfg=None):
     """Section model for the Fig. 5 hinge moment: ``"thin_airfoil"`` or ``"table"``
     (the shipped generated deck), with the flap geometry of ``cfg``."""
-    from .coupled import section_model
+    from ..coupled import section_model
 
     cfg = base_config(aero_model) if cfg is None else cfg
     return section_model(base_config(aero_model).with_overrides({
@@ -126,9 +126,9 @@ def figure_values(name: str, n_points: int | None = None, values=None,
                   claim_points: bool = True) -> list:
     """Sweep values of a figure: explicit ``values``, ``n_points`` evenly over the
     paper's range, or (both None) the paper's values of
-    :data:`tefcore.figures.FIGURES` plus (``claim_points``) the x values that
+    :data:`tefcore.paper.figures.FIGURES` plus (``claim_points``) the x values that
     the figure's value claims name -- the same sweep as
-    :func:`tefcore.validation.validate_all` runs."""
+    :func:`tefcore.paper.validation.validate_all` runs."""
     from .figures import FIGURES
 
     if values is not None:
@@ -174,7 +174,7 @@ def quiet_stability(cfg):
     """:func:`tefcore.stability.stability` with its numerical warnings counted,
     not printed (workers' stderr would otherwise reach the notebook); the count
     is the sweep column ``trim_numerical_warnings``."""
-    from .stability import stability
+    from ..stability import stability
 
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
@@ -190,12 +190,12 @@ def run_stability_figure(name: str, base=None, overrides: dict | None = None,
                          values=None, n_jobs: int = 1, cg_offset=None):
     """A stability figure's sweep: the caption's fixed parameters, then ``overrides``.
 
-    Same as :func:`tefcore.figures.run_figure` except that ``overrides``
+    Same as :func:`tefcore.paper.figures.run_figure` except that ``overrides``
     (e.g. another advance ratio) win over the caption, and warnings are
     counted instead of printed.  Returns the SweepResult.
     """
     from .figures import FIGURES, figure_config
-    from .sweep import sweep
+    from ..sweep import sweep
 
     cfg = figure_config(name, base)
     if overrides:
@@ -264,7 +264,7 @@ def curves(name: str, table: pd.DataFrame, labels=PAPER_MODES,
     the sweep start, :func:`tefcore.sweep.sweep`); another mode ``m`` is the
     track labelled ``m`` or ``m (locked)`` that is present at the most
     points (ties: the exact label) -- the same choice as
-    :mod:`tefcore.validation`.  Columns ``label, track, x, frequency_per_rev``
+    :mod:`tefcore.paper.validation`.  Columns ``label, track, x, frequency_per_rev``
     (continued along the track: whole /rev of a Floquet frequency are not
     allowed to jump), ``damping, same_character, certain, refinement``;
     ``same_character`` is False where the mode's own label at that point is
@@ -317,7 +317,7 @@ def natural_frequencies(name: str, values, base=None, overrides: dict | None = N
     """Blade natural frequencies (:func:`tefcore.blade.blade_modes`, no aerodynamics,
     zero collective) at each sweep value: the "blade frequency" panels of
     Figs. 10a/11a, as the paper's stated frequencies (and the validation) use them."""
-    from .blade import blade_modes
+    from ..blade import blade_modes
     from .figures import FIGURES, figure_config
 
     cfg = figure_config(name, base)
@@ -465,7 +465,7 @@ def mechanism_summary(cfg, x=None, name=None, root=None, knockouts=True,
     0.001 /rev, largest first) and the knockouts.
     """
     from .figures import FIGURES, figure_config
-    from .mechanism import mechanism
+    from ..mechanism import mechanism
 
     if name is not None:
         cfg = figure_config(name, cfg).with_overrides({FIGURES[name].parameter: x})
@@ -507,7 +507,7 @@ def clean(df: pd.DataFrame) -> pd.DataFrame:
 
 def sign_changes(name: str, table: pd.DataFrame, label: str = "TEF",
                  measure: str = "decay_rate") -> list:
-    """Where a mode's damping changes sign (:func:`tefcore.curve_metrics.zero_crossings`
+    """Where a mode's damping changes sign (:func:`tefcore.paper.curve_metrics.zero_crossings`
     of its real part, on the figure's own points), paper units."""
     from .curve_metrics import zero_crossings
 
@@ -638,7 +638,7 @@ def report_sweep(name: str, result) -> None:
 
 
 def claims_table(name: str, result, cfg=None, variants=None, others=None) -> pd.DataFrame:
-    """:func:`tefcore.validation.validate_figure` for one figure.
+    """:func:`tefcore.paper.validation.validate_figure` for one figure.
 
     ``variants``: ``{overrides dict as JSON (validation.variant_key): result}``
     of runs already made (e.g. Fig. 12's balanced flap); ``others``: figure
@@ -656,7 +656,7 @@ def claims_table(name: str, result, cfg=None, variants=None, others=None) -> pd.
                 raise
             why = "no reference data (reference_data/claims.toml)"
     else:
-        why = "tefcore.validation is not installed"
+        why = "tefcore.paper.validation is not installed"
     return pd.DataFrame([{"id": f"{name}-none", "figure": name, "statement": "",
                           "expected": "", "computed": "", "status": "not reproducible",
                           "reason": why, "tag": "", "recorded_status": ""}])

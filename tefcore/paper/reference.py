@@ -6,7 +6,7 @@ WebPlotDigitizer (``reference_data/curves/*.toml`` sidecars beside the CSV
 exports).  The format is specified in ``reference_data/README.md``; this
 module loads it into :class:`Claim` records, checking every field and raising
 :class:`ReferenceDataError` naming the file and the record (or CSV row).
-:mod:`tefcore.validation` compares the claims with model results.
+:mod:`tefcore.paper.validation` compares the claims with model results.
 
 Examples
 --------
@@ -32,9 +32,9 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from .config import SECTIONS, resolve_field
+from ..config import SECTIONS, resolve_field
 from .figures import FIGURES, figure_config
-from .units import to_si
+from ..units import to_si
 
 __all__ = ["KINDS", "QUANTITIES", "ROOT_KINDS", "STATUSES", "Claim", "ReferenceDataError",
            "load_claims",
@@ -151,7 +151,7 @@ class Claim:
 def reference_dir() -> Path:
     """The reference data folder: ``$TEFCORE_REFERENCE_DATA`` or the repository's."""
     env = os.environ.get("TEFCORE_REFERENCE_DATA")
-    return Path(env) if env else Path(__file__).resolve().parents[1] / "reference_data"
+    return Path(env) if env else Path(__file__).resolve().parent / "reference_data"
 
 
 def _dimension(figure: str) -> str:
@@ -351,7 +351,7 @@ def _names(r: _Record, key: str, choices) -> tuple:
 
 def _mechanism_claim(r: _Record, kw: dict, figure: str) -> Claim:
     """A claim about why a root is unstable (:func:`tefcore.mechanism.mechanism`)."""
-    from .mechanism import TERMS
+    from ..mechanism import TERMS
 
     if figure not in FIGURES:
         r.fail("a mechanism claim is about a root of a stability figure")

@@ -1,4 +1,4 @@
-"""The assumed MDART properties and their plausible ranges (for :mod:`tefcore.sensitivity`).
+"""The assumed MDART properties and their plausible ranges (for :mod:`tefcore.paper.sensitivity`).
 
 Each :class:`Assumption` names the configuration fields it changes, the low and
 high ends of its range as overrides of a baseline configuration, and the

@@ -5,7 +5,7 @@ the MDART baseline with the fixed parameters of its caption
 (:data:`FIGURES`); :func:`run_figure` runs it with :func:`tefcore.sweep.sweep`.
 Figures 5-7 are flap-response analyses about a trimmed forward-flight state
 (:func:`hinge_moment_figure`, :func:`flap_response_figure`,
-:func:`overhang_actuation_figure`). Notebooks and :mod:`tefcore.validation`
+:func:`overhang_actuation_figure`). Notebooks and :mod:`tefcore.paper.validation`
 both call these, so a figure is computed the same way everywhere.
 """
 
@@ -16,11 +16,11 @@ from dataclasses import dataclass, field
 import numpy as np
 import pandas as pd
 
-from .config import load_config
-from .coupled import coupled_model
-from .flap_dynamics import SectionMotion, aerodynamic_hinge_moment, flap_properties
-from .sweep import sweep
-from .trim import fourier_eval, trim
+from ..config import load_config
+from ..coupled import coupled_model
+from ..flap_dynamics import SectionMotion, aerodynamic_hinge_moment, flap_properties
+from ..sweep import sweep
+from ..trim import fourier_eval, trim
 
 #: the mass-imbalanced flap of Figs. 10-17 and Fig. 9's overhang
 IMBALANCED = {"flap.overhang": 0.29, "flap.cg_offset": 0.33}

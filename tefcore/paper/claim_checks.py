@@ -5,10 +5,10 @@ here.  The claim's series is its mode (the track labelled ``mode`` or
 ``mode + " (locked)"`` present at the most points) and quantity, sorted by
 x, failed points left out; values are interpolated linearly, never
 extrapolated; thresholds and ranges use the zero crossings of the real part
-(:func:`tefcore.curve_metrics.zero_crossings`); trends the sign of the
+(:func:`tefcore.paper.curve_metrics.zero_crossings`); trends the sign of the
 least-squares slope; curves are compared at the digitised x
-(:func:`tefcore.curve_metrics.compare_curve`).  Running every figure is
-:func:`tefcore.validation.validate_all`.
+(:func:`tefcore.paper.curve_metrics.compare_curve`).  Running every figure is
+:func:`tefcore.paper.validation.validate_all`.
 """
 
 from __future__ import annotations
@@ -351,7 +351,7 @@ def _check_curve(c: Claim, ctx: _Context):
 def _check_mechanism(c: Claim, ctx: _Context):
     from .figures import FIGURES as FIGS
     from .figures import figure_config
-    from .mechanism import mechanism
+    from ..mechanism import mechanism
 
     frame = ctx.frame(c.figure, c.overrides)
     xs = float(x_to_si(c.figure, c.x, c.x_unit))
@@ -443,7 +443,7 @@ def validate_figure(name: str, result, claims=None, *, cfg=None, variants=None, 
     ----------
     name : str
         ``"fig3"`` ... ``"fig17"`` (stability figures of
-        :data:`tefcore.figures.FIGURES`) or ``"fig5"``, ``"fig6"``, ``"fig7"``.
+        :data:`tefcore.paper.figures.FIGURES`) or ``"fig5"``, ``"fig6"``, ``"fig7"``.
     result
         The figure's output: SweepResult (or its table), the DataFrame of
         figs. 5 and 7, or the dict of fig. 6.  ``None``: computed when needed.
