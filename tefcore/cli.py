@@ -1,7 +1,8 @@
-"""Command line: ``tefcore modes | fanplot | stability | sweep | map | mechanism | reproduce``.
+"""Command line: ``tefcore modes | fanplot | stability | sweep | map | mechanism | reproduce |
+notebooks``.
 
-``tefcore reproduce`` executes the numbered notebooks with papermill and
-writes the claims report (:mod:`tefcore.paper.reproduce`).
+``tefcore reproduce`` and ``tefcore notebooks`` belong to the paper layer
+(:mod:`tefcore.paper.commands`).
 
 Values given with ``--set`` (and ``sweep --values/--range``) follow the
 units rules of :mod:`tefcore.text_input`: a dimensional field needs its
@@ -196,16 +197,6 @@ def cmd_map(args) -> int:
     return 1 if n_bad else 0
 
 
-def cmd_reproduce(args) -> int:
-    from .paper.reproduce import load_params_file, parse_cli_params, reproduce
-
-    # later layers win: file "all" < file notebook < -p all < -p notebook
-    layers = [load_params_file(args.params)] if args.params else []
-    layers.append(parse_cli_params([tuple(p) for p in args.param or ()]))
-    return reproduce(Path(args.out), params=layers, notebooks=args.only,
-                     progress=not args.no_progress)
-
-
 def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(prog="tefcore", description=__doc__)
     sub = parser.add_subparsers(dest="command", required=True)
@@ -277,21 +268,9 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--csv", default=None, help="write the decomposition to this CSV file")
     p.add_argument("--no-knockouts", action="store_true", help="skip the knockouts (faster)")
     p.set_defaults(func=cmd_mechanism)
-    p = sub.add_parser(
-        "reproduce", help="run the notebooks (papermill) and write the claims report",
-        description="Execute notebooks/01-07 with papermill into OUT, then write "
-                    "OUT/report.md and a self-contained OUT/report.html listing every claim. "
-                    "Exit status 1 when a notebook fails or a claim is worse than recorded.")
-    p.add_argument("--out", default="output", help="output folder (default: output)")
-    p.add_argument("--params", default=None, metavar="FILE.yaml",
-                   help="YAML parameters: {all: {...}, 03_overhang: {...}, ...}")
-    p.add_argument("-p", "--param", nargs=2, action="append", metavar=("NAME", "VALUE"),
-                   help="notebook parameter for all notebooks, or NOTEBOOK:NAME for one "
-                        "(e.g. -p n_jobs 2 -p 03_overhang:n_points 8); VALUE is YAML")
-    p.add_argument("--only", nargs="+", metavar="NOTEBOOK", default=None,
-                   help="run only these notebooks (e.g. 03 04_cg_offset)")
-    p.add_argument("--no-progress", action="store_true", help="no progress bar")
-    p.set_defaults(func=cmd_reproduce)
+    from .paper.commands import add_commands  # reproduce, notebooks
+
+    add_commands(sub)
     return parser
 
 

@@ -294,7 +294,9 @@ def check_section_inertia(cfg) -> None:
     det = host["mass"] * host["inertia"] - host["first_moment"] ** 2
     bad = np.flatnonzero((host["mass"] <= 0) | (det <= REL_TOL * scale))
     if bad.size:
-        k = int(bad[np.argmin(det[bad] / scale[bad])])
+        with np.errstate(divide="ignore", invalid="ignore"):   # scale underflows to 0
+            ratio = det[bad] / scale[bad]
+        k = int(bad[np.argmin(np.where(np.isfinite(ratio), ratio, -np.inf))])
         f, bal = cfg.flap, flap_share(cfg, balanced=True)
         m_max = flap_mass_limit(cfg, xs[k])
         i_max = _inertia_cg_limit(cfg, xs[k])

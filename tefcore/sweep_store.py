@@ -158,8 +158,8 @@ def sweep_header(cfg: Config, parameter: str, chash: str, point_name: str) -> di
     >>> from tefcore.config import load_config
     >>> cfg = load_config("mdart")
     >>> head = sweep_header(cfg, "flap.cg_offset", config_hash(cfg), "m:f")
-    >>> head["version"], head["inputs"], len(head["model_stamp"])
-    (2, {}, 16)
+    >>> head["version"] == FORMAT_VERSION, head["inputs"], len(head["model_stamp"])
+    (True, {}, 16)
     """
     import datetime
 

@@ -107,7 +107,8 @@ def fake_repo(tmp_path, monkeypatch):
     src = nb / "04_cg_offset.ipynb"
     src.write_text("SOURCE NOTEBOOK")
 
-    def fake_run(out, params, names, progress=True, nb_dir=None, kernel_name="python3"):
+    def fake_run(out, params, names, progress=True, nb_dir=None, kernel_name="python3",
+                 jobs=None):
         (out / "notebooks").mkdir(parents=True, exist_ok=True)
         for name in names:             # what papermill does: write the executed notebook
             (out / "notebooks" / f"{name}.ipynb").write_text("EXECUTED")

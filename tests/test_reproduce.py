@@ -8,8 +8,12 @@ from pathlib import Path
 import pandas as pd
 import pytest
 
-from tefcore.paper import reproduce as rp
 from tefcore.cli import main
+from tefcore.paper import notebook_files as nbf
+from tefcore.paper import reproduce as rp
+from tefcore.paper import run_params
+
+from test_report_html import check_page
 
 pytest.importorskip("yaml")
 
@@ -17,7 +21,7 @@ pytest.importorskip("yaml")
 
 
 def test_cli_params_are_yaml_typed_and_targeted():
-    got = rp.parse_cli_params([("n_jobs", "2"), ("values", "{fig8: [0.0, 0.5]}"),
+    got = run_params.parse_cli_params([("n_jobs", "2"), ("values", "{fig8: [0.0, 0.5]}"),
                                ("03_overhang:n_points", "5"), ("4:aero_model", "table"),
                                ("07_flight_condition.ipynb:overrides",
                                 "{flight.ct_sigma: 0.08}"), ("n_points", "null")])
@@ -28,9 +32,9 @@ def test_cli_params_are_yaml_typed_and_targeted():
 
 def test_unknown_notebook_or_bad_name_is_an_error():
     with pytest.raises(ValueError, match="unknown notebook"):
-        rp.parse_cli_params([("99_nothing:n_points", "3")])
+        run_params.parse_cli_params([("99_nothing:n_points", "3")])
     with pytest.raises(ValueError, match="identifier"):
-        rp.parse_cli_params([("n-points", "3")])
+        run_params.parse_cli_params([("n-points", "3")])
 
 
 def test_params_file_and_precedence(tmp_path, monkeypatch):
@@ -39,7 +43,7 @@ def test_params_file_and_precedence(tmp_path, monkeypatch):
                  "04_cg_offset:\n  damping_measure: damping_ratio\n")
     seen = {}
 
-    def fake(out, params=None, notebooks=None, progress=True, nb_dir=None):
+    def fake(out, params=None, notebooks=None, progress=True, nb_dir=None, jobs=None):
         seen.update(out=out, params=params, notebooks=notebooks, progress=progress)
         return 0
 
@@ -47,7 +51,7 @@ def test_params_file_and_precedence(tmp_path, monkeypatch):
     assert main(["reproduce", "--out", str(tmp_path / "o"), "--params", str(f),
                  "-p", "n_points", "8", "-p", "04:n_points", "3", "--only", "03", "04",
                  "--no-progress"]) == 0
-    merged = rp.merge_params(*seen["params"])
+    merged = run_params.merge_params(*seen["params"])
     # file all < file notebook < -p all < -p notebook
     assert merged["03_overhang"] == {"n_jobs": 2, "n_points": 8}
     assert merged["04_cg_offset"] == {"n_jobs": 2, "n_points": 3,
@@ -67,16 +71,17 @@ def test_every_notebook_has_parameters_kernelspec_and_outputs():
     pytest.importorskip("papermill")
     import nbformat
 
-    for name in rp.NOTEBOOKS:
-        path = rp.notebooks_dir() / f"{name}.ipynb"
+    for name in nbf.NOTEBOOKS:
+        path = nbf.notebooks_dir() / f"{name}.ipynb"
         nb = nbformat.read(path, as_version=4)
         assert nb.metadata["kernelspec"]["name"] == "python3"
         tagged = [c for c in nb.cells if "parameters" in c.metadata.get("tags", [])]
         assert len(tagged) == 1
-        params = rp.notebook_parameters(path)
+        params = nbf.notebook_parameters(path)
         assert {"output_dir", "n_jobs", "aero_model", "overrides", "n_points"} <= set(params)
         code = [c for c in nb.cells if c.cell_type == "code"]
         assert all(c.get("execution_count") for c in code), f"{name} is not executed"
+        assert [c.execution_count for c in code] == list(range(1, len(code) + 1))
         for c in code:
             for o in c.get("outputs", []):
                 assert o.output_type != "error", f"{name}: stored error output"
@@ -96,7 +101,7 @@ def test_unknown_notebook_parameter_is_rejected_before_running(tmp_path, capsys)
 
 
 def _fake_runs(claims_rows, status="ok"):
-    def run(out, params, names, progress=True, nb_dir=None, kernel_name="python3"):
+    def run(out, params, names, progress=True, nb_dir=None, kernel_name="python3", jobs=None):
         runs = []
         for name in names:
             (out / name).mkdir(parents=True, exist_ok=True)
@@ -159,11 +164,14 @@ def test_tiny_run_writes_report_with_all_claims_and_embedded_figures(tiny_runs):
     page = (out / "report.html").read_text()
     for cid in claims["id"]:
         assert cid in md and cid in page
-    assert "![04_cg_offset fig09](04_cg_offset/fig09.png)" in md
+    assert re.search(r"!\[Fig\. 9: effect of flap CG offset[^]]*\]\(04_cg_offset/fig09\.png\)", md)
+    assert (out / "notebooks" / "04_cg_offset.html").exists()
     imgs = re.findall(r'src="data:image/png;base64,([A-Za-z0-9+/=]+)"', page)
     assert len(imgs) >= 2                         # fan plot + fig09
     assert all(base64.b64decode(i)[:8] == b"\x89PNG\r\n\x1a\n" for i in imgs)
     assert 'src="http' not in page and "<link" not in page   # self-contained
+    parsed = check_page(page)                     # anchors resolve, no literal markup
+    assert "fig9" in parsed.ids
     worse = rp.regressions(rp.collect_claims(out, ["04_cg_offset"]))
     assert code == (1 if len(worse) else 0)
 

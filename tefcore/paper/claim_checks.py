@@ -19,8 +19,7 @@ from dataclasses import replace
 import numpy as np
 import pandas as pd
 
-from .curve_metrics import X_SLACK as _EPS
-from .curve_metrics import compare_curve, stability_intervals, zero_crossings
+from .curve_metrics import X_SLACK, compare_curve, stability_intervals, zero_crossings
 from .figure_frames import compute_figure, figure_frame, natural_frequency_frame
 from .reference import FIGURES, QUANTITIES, Claim, load_claims, x_to_si
 
@@ -102,14 +101,14 @@ def _doubtful(rows, mode, lo, hi) -> list[float]:
     if "identity" not in rows:
         return []
     x = rows["x"].to_numpy(float)
-    upto = np.ones(len(rows), bool) if hi is None else x <= hi * (1 + _EPS) + _EPS
+    upto = np.ones(len(rows), bool) if hi is None else x <= hi * (1 + X_SLACK) + X_SLACK
     if mode == "TEF" and "tef_branch_certain" in rows:
         bad = ~rows["tef_branch_certain"].fillna(False).astype(bool).to_numpy()
     else:
         # a coalescence is followed by convention (the less stable root goes
         # on, tefcore.tracking); only an undecided match is a doubt
         bad = rows["identity"].astype(str).to_numpy() == "ambiguous"
-    inside = upto if lo is None else upto & (x >= lo * (1 - _EPS) - _EPS)
+    inside = upto if lo is None else upto & (x >= lo * (1 - X_SLACK) - X_SLACK)
     if mode == "TEF":
         bad &= inside
     else:
@@ -139,7 +138,7 @@ def _series(frame, mode, quantity, lo=None, hi=None, identify="track", until=Non
     t = t[np.isfinite(t[quantity].to_numpy(float))].sort_values("x")
     x, y = t["x"].to_numpy(float), t[quantity].to_numpy(float)
     if lo is not None:
-        slack = _EPS * max(abs(lo), abs(hi), 1e-300)
+        slack = X_SLACK * max(abs(lo), abs(hi), 1e-300)
         keep = (x >= lo - slack) & (x <= hi + slack)
         x, y = x[keep], y[keep]
     return x, y
@@ -203,7 +202,7 @@ def _unit(c: Claim) -> str:
 
 def _at(c, x, y, xv):
     xs = float(x_to_si(c.figure, xv, c.x_unit))
-    slack = _EPS * max(abs(xs), 1e-300)
+    slack = X_SLACK * max(abs(xs), 1e-300)
     if not x[0] - slack <= xs <= x[-1] + slack:
         raise _Fail(f"x = {_g(xv)} {c.x_unit} is outside the computed range")
     return float(np.interp(xs, x, y))
@@ -222,7 +221,7 @@ def _check_value(c: Claim, ctx: _Context):
     where = "" if c.x is None else f" at x = {_g(c.x)} {c.x_unit}".rstrip()
     if c.expected is not None:
         tol = c.tolerance * (abs(c.expected) if c.tolerance_type == "relative" else 1)
-        ok = abs(computed - c.expected) <= tol * (1 + _EPS)
+        ok = abs(computed - c.expected) <= tol * (1 + X_SLACK)
         expected = f"{_g(c.expected)} ± {_g(tol)} {unit}{where}"
         why = f"off by {_g(computed - c.expected)}, more than {_g(tol)}"
     else:
@@ -255,7 +254,7 @@ def _check_threshold(c: Claim, ctx: _Context):
     reasons = []
     if cross[-1][1] != c.direction:
         reasons.append(f"the last crossing is {cross[-1][1]}: the end state is not the claimed one")
-    if c.expected is not None and abs(best / f - c.expected) > c.tolerance * (1 + _EPS):
+    if c.expected is not None and abs(best / f - c.expected) > c.tolerance * (1 + X_SLACK):
         reasons.append("crossing outside the tolerance")
     return expected, f"crossings: {desc}", best / f, not reasons, "; ".join(reasons)
 
@@ -270,7 +269,7 @@ def _check_range(c: Claim, ctx: _Context):
     if len(got) != 1:
         return expected, computed, np.nan, False, f"{len(got)} {c.state} intervals, expected one"
     err = max(abs(got[0][0] - lo), abs(got[0][1] - hi))
-    ok = err <= c.tolerance * (1 + _EPS) + _EPS * max(abs(lo), abs(hi))
+    ok = err <= c.tolerance * (1 + X_SLACK) + X_SLACK * max(abs(lo), abs(hi))
     return expected, computed, err, ok, "" if ok else (
         f"an end is {_g(err)} {c.x_unit}".rstrip() + " off")
 
@@ -301,8 +300,8 @@ def _check_trend(c: Claim, ctx: _Context):
         _, yr = ctx.series(c, mode=c.reference_mode, interval=c.interval)
         scale = c.tolerance * float(np.ptp(yr))
         what = f"{_g(c.tolerance)} x peak-to-peak of {c.reference_mode} ({_g(np.ptp(yr))})"
-    return (f"constant{span}: peak-to-peak <= {what}", computed, p2p, p2p <= scale * (1 + _EPS),
-            "" if p2p <= scale * (1 + _EPS) else f"varies by {_g(p2p)} > {_g(scale)}")
+    return (f"constant{span}: peak-to-peak <= {what}", computed, p2p, p2p <= scale * (1 + X_SLACK),
+            "" if p2p <= scale * (1 + X_SLACK) else f"varies by {_g(p2p)} > {_g(scale)}")
 
 
 def _check_comparison(c: Claim, ctx: _Context):
@@ -349,9 +348,9 @@ def _check_curve(c: Claim, ctx: _Context):
 
 
 def _check_mechanism(c: Claim, ctx: _Context):
+    from ..mechanism import mechanism
     from .figures import FIGURES as FIGS
     from .figures import figure_config
-    from ..mechanism import mechanism
 
     frame = ctx.frame(c.figure, c.overrides)
     xs = float(x_to_si(c.figure, c.x, c.x_unit))
@@ -359,7 +358,7 @@ def _check_mechanism(c: Claim, ctx: _Context):
     doubt = [] if c.mode == FLUTTER_ROOT else _doubtful(rows, c.mode, None, xs)
     if doubt and ctx.identify == "track":
         raise _Ambiguous(f"the identity of {c.mode!r} is undecided at x = {doubt[0]:.4g}")
-    at = rows[np.abs(rows["x"].to_numpy(float) - xs) <= _EPS * max(abs(xs), 1.0)]
+    at = rows[np.abs(rows["x"].to_numpy(float) - xs) <= X_SLACK * max(abs(xs), 1.0)]
     if at.empty:
         raise _Fail(f"no {c.mode} root at x = {_g(c.x)} {c.x_unit}".rstrip()
                     + " (validate_all adds the x of mechanism claims to the sweep)")
@@ -405,7 +404,8 @@ def _check_mechanism(c: Claim, ctx: _Context):
             res.eigenvalue.real, not reasons, "; ".join(reasons))
 
 
-_CHECKS = {"mechanism": _check_mechanism, "value": _check_value, "threshold": _check_threshold, "range": _check_range,
+_CHECKS = {"mechanism": _check_mechanism, "value": _check_value,
+           "threshold": _check_threshold, "range": _check_range,
            "trend": _check_trend, "comparison": _check_comparison, "curve": _check_curve}
 
 

@@ -14,13 +14,14 @@ import inspect
 import numpy as np
 import pandas as pd
 
-from . import figures as _fig
+from . import figures
 from .reference import FIGURES, KNOWN_FIGURES
 
 __all__ = ["FIG7_OVERHANGS", "compute_figure", "figure_frame", "natural_frequency_frame"]
 
 #: Overhangs of Fig. 7 when no claim asks for others.
-FIG7_OVERHANGS = inspect.signature(_fig.overhang_actuation_figure).parameters["overhangs"].default
+FIG7_OVERHANGS = inspect.signature(
+    figures.overhang_actuation_figure).parameters["overhangs"].default
 
 
 def figure_frame(name: str, result) -> pd.DataFrame:
@@ -56,7 +57,7 @@ def natural_frequency_frame(name, frame, cfg, overrides) -> pd.DataFrame:
     """Blade natural frequencies (:func:`tefcore.blade.blade_modes`) at the frame's x."""
     from ..blade import blade_modes
 
-    base = _fig.figure_config(name, cfg).with_overrides(overrides)
+    base = figures.figure_config(name, cfg).with_overrides(overrides)
     rows = []
     for x in np.unique(frame["x"].to_numpy(float)):
         m = blade_modes(base.with_overrides({FIGURES[name].parameter: float(x)}))
@@ -69,15 +70,15 @@ def natural_frequency_frame(name, frame, cfg, overrides) -> pd.DataFrame:
 def compute_figure(name, cfg=None, values=None, overrides=None, n_jobs=1, progress=False):
     """Run one figure (optionally with configuration overrides)."""
     if name == "fig5":
-        return _fig.hinge_moment_figure(cfg)
+        return figures.hinge_moment_figure(cfg)
     if name == "fig6":
-        return _fig.flap_response_figure(cfg)
+        return figures.flap_response_figure(cfg)
     if name == "fig7":
-        return _fig.overhang_actuation_figure(cfg, overhangs=values or FIG7_OVERHANGS)
+        return figures.overhang_actuation_figure(cfg, overhangs=values or FIG7_OVERHANGS)
     values = list(FIGURES[name].values if values is None else values)
     if not overrides:
-        return _fig.run_figure(name, cfg, values=values, n_jobs=n_jobs, progress=progress)
+        return figures.run_figure(name, cfg, values=values, n_jobs=n_jobs, progress=progress)
     from ..sweep import sweep
 
-    base = _fig.figure_config(name, cfg).with_overrides(overrides)
+    base = figures.figure_config(name, cfg).with_overrides(overrides)
     return sweep(base, FIGURES[name].parameter, values, n_jobs=n_jobs, progress=progress)

@@ -131,19 +131,42 @@ def trimmed_section_motion(tr, x: float) -> SectionMotion:
         flap_slope=lambda p: kin(p, "slope"), flap_accel=lambda p: kin(p, "wdd") * om**2 * rad)
 
 
+#: Short titles of the flap-response figures 5-7 (the stability figures' are their captions).
+RESPONSE_TITLES = {
+    "fig5": "Hinge moment over one revolution, prescribed flap motion "
+            "δ_f = 2° cos(4ψ − 240°)",
+    "fig6": "Flap response to the actuator input δ_a = 2° cos(4ψ − 240°)",
+    "fig7": "Actuation power and flap response versus overhang",
+}
+
+
+def response_config(cfg=None, **over):
+    """Configuration of Figs. 5-7: ``cfg``, then :data:`FIG5_FLIGHT`, then ``over``.
+
+    Parameters
+    ----------
+    cfg : tefcore.config.Config, optional
+        Base configuration (default: MDART).
+    **over
+        Dotted fields that win over the figures' flight condition.
+    """
+    return (cfg or load_config("mdart")).with_overrides({**FIG5_FLIGHT, **over})
+
+
 def _fig5_trim(cfg, **over):
-    cfg = (cfg or load_config("mdart")).with_overrides({**FIG5_FLIGHT, **over})
+    cfg = response_config(cfg, **over)
     return cfg, trim(coupled_model(cfg))
 
 
-def hinge_moment_figure(cfg=None, aero=None, n_psi: int = 72) -> pd.DataFrame:
+def hinge_moment_figure(cfg=None, aero=None, n_psi: int = 72, **over) -> pd.DataFrame:
     """Fig. 5: aerodynamic hinge moment over a revolution, prescribed flap motion.
 
     ``delta_f = 2 deg cos(4 psi - 240 deg)`` on the trimmed blade at
-    ``mu = 0.2, C_T/sigma = 0.0774``; ``aero`` is a section model (default:
-    the configured one). Returns ``psi_deg, delta_deg, hinge_moment`` [N m].
+    ``mu = 0.2, C_T/sigma = 0.0774`` (:func:`response_config`; ``over``
+    wins); ``aero`` is a section model (default: the configured one).
+    Returns ``psi_deg, delta_deg, hinge_moment`` [N m].
     """
-    cfg, tr = _fig5_trim(cfg)
+    cfg, tr = _fig5_trim(cfg, **over)
     props = flap_properties(cfg)
     aero = aero or tr.model.aero
     psi = np.linspace(0, 2 * np.pi, n_psi, endpoint=False)
@@ -187,11 +210,16 @@ def flap_response_figure(cfg=None, **over) -> dict:
             "mean_power": float(np.abs(power).mean()), "trim": tr.summary()}
 
 
-def overhang_actuation_figure(cfg=None, overhangs=(0.0, 0.1, 0.2, 0.29, 0.35, 0.4, 0.45, 0.5)):
-    """Fig. 7: actuation power and half peak-to-peak response versus overhang."""
+def overhang_actuation_figure(cfg=None, overhangs=(0.0, 0.1, 0.2, 0.29, 0.35, 0.4, 0.45, 0.5),
+                              **over):
+    """Fig. 7: actuation power and half peak-to-peak response versus overhang.
+
+    Each overhang is :func:`flap_response_figure` with ``over`` (which wins
+    over the figures' flight condition).
+    """
     rows = []
     for ov in overhangs:
-        out = flap_response_figure(cfg, **{"flap.overhang": float(ov)})
+        out = flap_response_figure(cfg, **{**over, "flap.overhang": float(ov)})
         rows.append({"overhang": ov, "half_peak_to_peak_deg": out["half_peak_to_peak_deg"],
                      "peak_power": out["peak_power"], "mean_power": out["mean_power"]})
     return pd.DataFrame(rows)

@@ -33,12 +33,13 @@ import numpy as np
 import pandas as pd
 
 from ..config import SECTIONS, resolve_field
-from .figures import FIGURES, figure_config
 from ..units import to_si
+from .figures import FIGURES, figure_config
 
 __all__ = ["KINDS", "QUANTITIES", "ROOT_KINDS", "STATUSES", "Claim", "ReferenceDataError",
            "load_claims",
-           "parse_claim", "read_wpd_csv", "reference_dir", "x_to_si", "y_to_canonical"]
+           "parse_claim", "read_wpd_csv", "reference_dir", "swept_dimension", "x_to_si",
+           "y_to_canonical"]
 
 KINDS = ("value", "threshold", "range", "trend", "comparison", "mechanism", "curve",
          "not_reproducible")
@@ -154,7 +155,8 @@ def reference_dir() -> Path:
     return Path(env) if env else Path(__file__).resolve().parent / "reference_data"
 
 
-def _dimension(figure: str) -> str:
+def swept_dimension(figure: str) -> str:
+    """Physical dimension of a stability figure's swept field (e.g. ``"angle"``)."""
     section, name = resolve_field(FIGURES[figure].parameter)
     return next(p.dimension for p in SECTIONS[section].PARAMS if p.name == name)
 
@@ -166,7 +168,7 @@ def x_to_si(figure: str, values, unit: str = ""):
     azimuth in deg; fig7: overhang fraction.  ``ValueError`` for a bad unit.
     """
     if figure in FIGURES:
-        return to_si(values, unit, _dimension(figure)) if unit else values
+        return to_si(values, unit, swept_dimension(figure)) if unit else values
     table = _RESPONSE_X.get(figure, {})
     if unit not in table:
         raise ValueError(f"x unit {unit!r} not accepted for {figure}; use one of {list(table)}")

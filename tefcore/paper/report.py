@@ -1,8 +1,8 @@
 """The reproduction report: one model, rendered to markdown and HTML.
 
 :func:`build_report` gathers what a reproduction wrote -- the notebooks' runs,
-their figures with the captions they recorded (:func:`figure_caption`
-sidecars), the claims table and the stated blade frequencies -- into a
+their figures with the captions they recorded (JSON beside each PNG,
+:func:`tefcore.paper.plotting.savefig`), the claims table and the stated blade frequencies -- into a
 :class:`Report` organised like the paper: a summary on top (score, figure
 thumbnails linking down), then one section per figure with its caption, its
 claims beside it and where the compact model departs from the paper's.
@@ -29,8 +29,11 @@ from pathlib import Path
 import jinja2
 import pandas as pd
 
-__all__ = ["FIGURE_TITLES", "MARKERS", "Report", "Section", "build_report", "figure_caption",
-           "render", "write_report"]
+from ..safe_io import atomic_write_text
+from .departures import departures_text, load_departures
+
+__all__ = ["FIGURE_TITLES", "Image", "Report", "Section", "build_report", "render",
+           "write_report"]
 
 #: The paper's figure captions (its own words), by tefcore figure name.
 FIGURE_TITLES = {
@@ -66,12 +69,6 @@ FIGURE_TITLES = {
     "fig17": "Figure 17: Effect of forward speed on blade and trailing-edge flap (TEF) "
              "stability",
 }
-#: What the plots' markers and lines mean (the same in every stability figure).
-MARKERS = ("Filled markers: the figure's own sweep points; hollow markers: the mode has the "
-           "character (largest participation) of another mode there; dotted line and grey "
-           "markers: its identity is undecided there (a coalescence or an unresolved veering). "
-           "Black crosses: digitised curves of the paper, where a user added them.")
-
 _STATUS_CLASS = {"pass": "pass", "fail": "fail", "ambiguous": "ambig",
                  "not reproducible": "notrep"}
 
@@ -98,6 +95,7 @@ class Section:
     images: list = field(default_factory=list)
     claims: list = field(default_factory=list)
     departures: str = ""
+    shown_with: str = ""     # the section whose figure also shows this one
 
 
 @dataclass
@@ -115,20 +113,7 @@ class Report:
     checks: list
     version: str
     fanplot: Image | None = None
-    elapsed_s: float = 0.0
-
-
-def figure_caption(output_dir, stem: str, figure: str, caption: str) -> Path:
-    """Record the caption of ``<output_dir>/<stem>.png`` for the report.
-
-    A notebook writes it beside each figure it saves: the paper figure it
-    belongs to (``"fig9"``) and a caption built from the conditions actually
-    used (so it stays right when a user overrides a parameter).
-    """
-    path = Path(output_dir) / f"{stem}.json"
-    path.write_text(json.dumps({"figure": figure, "caption": caption}, sort_keys=True) + "\n",
-                    encoding="utf-8")
-    return path
+    departures: str = ""     # common to all figures; each section has its own part
 
 
 def _slug(text: str) -> str:
@@ -148,62 +133,82 @@ def _image(path: Path, root: Path, caption: str) -> Image:
                  caption=_plain(caption), anchor=_slug(path.stem))
 
 
+def _sidecars(folder: Path) -> dict:
+    """``{png stem: {"figures": [...], "caption": str}}`` from the JSON written beside figures."""
+    out = {}
+    for side in sorted(folder.glob("*.json")) if folder.exists() else []:
+        try:
+            meta = json.loads(side.read_text(encoding="utf-8"))
+        except (OSError, ValueError):
+            continue
+        if isinstance(meta, dict) and (side.with_suffix(".png")).exists():
+            out[side.stem] = {"figures": str(meta.get("figure") or "").split(),
+                              "caption": str(meta.get("caption") or side.stem)}
+    return out
+
+
 def build_report(out, runs, claims: pd.DataFrame, worse: pd.DataFrame, *, figures_of,
-                 departures: str = "", checks: pd.DataFrame | None = None,
-                 version: str = "", elapsed_s: float = 0.0) -> Report:
+                 checks: pd.DataFrame | None = None, version: str = "") -> Report:
     """Collect a reproduction's outputs in ``out`` into a :class:`Report`.
 
     Parameters
     ----------
     out : path
-        The reproduction folder (``<notebook>/`` with PNGs, JSON captions
-        and claims; ``notebooks/<notebook>.html``).
+        The reproduction folder (``<notebook>/`` with PNGs, their JSON
+        captions (:func:`tefcore.paper.plotting.savefig`) and claims;
+        ``notebooks/<notebook>.html``).
     runs : list
         Notebook runs (``name, status, error, seconds``).
     claims, worse : DataFrame
         All claims (with a ``notebook`` column) and those worse than recorded.
     figures_of : dict
         Notebook -> the paper figures it reproduces, in order.
-    departures : str
-        The shared "where the model departs" text (markdown).
+    checks : DataFrame, optional
+        The stated blade frequencies against the model's.
+    version : str
+        tefcore's version, shown in the summary.  (Run times are printed by
+        :func:`tefcore.paper.reproduce.reproduce`, not kept in the report, so
+        that two runs write identical reports.)
+
+    Returns
+    -------
+    Report
     """
     out = Path(out)
     status = claims.get("status", pd.Series(dtype=str))
-    validation = claims[claims.get("tag", "") == "validation"] if "tag" in claims else claims
+    validation = claims[claims["tag"] == "validation"] if "tag" in claims else claims
     passed = int((validation.get("status", pd.Series(dtype=str)) == "pass").sum())
     counts = {s: int((status == s).sum()) for s in _STATUS_CLASS}
+    _, own_departures = load_departures()
     sections = []
     for run in runs:
         folder = out / run.name
-        captions = {}
-        for side in sorted(folder.glob("*.json")) if folder.exists() else []:
-            try:
-                meta = json.loads(side.read_text(encoding="utf-8"))
-                captions[side.stem] = meta
-            except (OSError, ValueError):
-                continue
-        pngs = sorted(folder.glob("*.png")) if folder.exists() else []
+        sides = _sidecars(folder)
         html_nb = f"notebooks/{run.name}.html"
         for fig in figures_of.get(run.name, ()):
-            mine = [p for p in pngs if captions.get(p.stem, {}).get("figure") == fig]
+            mine = [stem for stem, m in sides.items() if m["figures"][:1] == [fig]]
+            shared = [m["figures"][0] for m in sides.values()
+                      if fig in m["figures"][1:]]
             cl = claims[claims["figure"] == fig] if "figure" in claims else claims.iloc[0:0]
-            if not mine and cl.empty:
+            if not mine and not shared and cl.empty:
                 continue
             sec = Section(key=fig, title=FIGURE_TITLES.get(fig, fig), anchor=fig,
                           notebook=run.name, notebook_html=html_nb,
-                          departures=departures)
-            sec.images = [_image(p, out, captions[p.stem]["caption"]) for p in mine]
+                          departures=own_departures.get(fig, ""),
+                          shown_with=shared[0] if shared and not mine else "")
+            sec.images = [_image(folder / f"{stem}.png", out, sides[stem]["caption"])
+                          for stem in mine]
             sec.claims = [{k: _plain(v) for k, v in row.items()} | {
                 "css": _STATUS_CLASS.get(row.get("status", ""), "notrep")}
                 for row in cl.fillna("").astype(str).to_dict("records")]
             sections.append(sec)
         # figures a notebook saved without a paper figure (e.g. its own studies)
-        extra = [p for p in pngs if captions.get(p.stem, {}).get("figure") in (None, "")]
+        extra = [stem for stem, m in sides.items() if not m["figures"]]
         if extra:
             sec = Section(key=run.name, title=f"Further results of {run.name}",
                           anchor=_slug(run.name), notebook=run.name, notebook_html=html_nb)
-            sec.images = [_image(p, out, captions.get(p.stem, {}).get("caption", p.stem))
-                          for p in extra]
+            sec.images = [_image(folder / f"{stem}.png", out, sides[stem]["caption"])
+                          for stem in extra]
             sections.append(sec)
     fan = out / "mdart_fanplot.png"
     return Report(
@@ -215,7 +220,7 @@ def build_report(out, runs, claims: pd.DataFrame, worse: pd.DataFrame, *, figure
         passed=passed, total=len(validation), counts=counts,
         worse=worse.fillna("").astype(str).to_dict("records") if not worse.empty else [],
         notebooks=[{"name": r.name, "status": r.status, "error": r.error,
-                    "seconds": f"{r.seconds:.1f}", "html": f"notebooks/{r.name}.html"}
+                    "html": f"notebooks/{r.name}.html"}
                    for r in runs],
         sections=sections,
         checks=[] if checks is None else checks.drop(columns="source", errors="ignore")
@@ -223,7 +228,7 @@ def build_report(out, runs, claims: pd.DataFrame, worse: pd.DataFrame, *, figure
         version=version,
         fanplot=_image(fan, out, "MDART blade (assumed properties): fan plot of the coupled "
                                  "modes") if fan.exists() else None,
-        elapsed_s=elapsed_s)
+        departures=departures_text())
 
 
 def _environment() -> jinja2.Environment:
@@ -285,5 +290,5 @@ def write_report(report: Report, out) -> tuple[Path, Path]:
     out = Path(out)
     paths = out / "report.md", out / "report.html"
     for path, fmt in zip(paths, ("md", "html"), strict=True):
-        path.write_text(render(report, fmt), encoding="utf-8")
+        atomic_write_text(path, render(report, fmt))
     return paths

@@ -53,11 +53,11 @@ import numpy as np
 import pandas as pd
 import scipy.optimize
 
-from .assumptions import ASSUMPTIONS, Assumption, apply_assumption  # re-exported
 from ..config import load_config
 from ..errors import TefcoreError
 from ..mechanism import FLUTTER_PARTICIPATION
 from ..mechanism import flutter_root as mechanism_flutter_root
+from .assumptions import ASSUMPTIONS, Assumption, apply_assumption  # re-exported
 
 __all__ = [
     "ASSUMPTIONS",

@@ -20,29 +20,39 @@ from pathlib import Path
 
 import pandas as pd
 
-from .claim_checks import COLUMNS, validate_figure, variant_key
-from .curve_metrics import X_SLACK as _EPS
-from .curve_metrics import compare_curve, stability_intervals, zero_crossings
-from .figure_frames import FIG7_OVERHANGS, compute_figure, figure_frame
-from .reference import FIGURES, KNOWN_FIGURES, STATUSES, load_claims, reference_dir, x_to_si
 from ..safe_io import atomic_write_text
 from ..units import parse_quantity
+from .claim_checks import COLUMNS, validate_figure, variant_key
+from .curve_metrics import X_SLACK, compare_curve, stability_intervals, zero_crossings
+from .figure_frames import FIG7_OVERHANGS, compute_figure, figure_frame
+from .reference import (
+    FIGURES,
+    KNOWN_FIGURES,
+    STATUSES,
+    load_claims,
+    reference_dir,
+    swept_dimension,
+    x_to_si,
+)
 
 __all__ = ["COLUMNS", "claims_score", "compare_curve", "figure_frame", "reference_curves",
-           "stability_intervals", "update_recorded_status", "validate_all", "validate_figure",
+           "stability_intervals", "sweep_values", "update_recorded_status", "validate_all",
+           "validate_figure",
            "variant_key", "worse_than_recorded", "zero_crossings"]
 
 
 def _value_si(name: str, v) -> float:
     if isinstance(v, str):
-        from .reference import _dimension
-
-        return parse_quantity(v, _dimension(name))
+        return parse_quantity(v, swept_dimension(name))
     return float(v)
 
 
-def _sweep_values(name: str, claims) -> list:
-    """The figure's values plus the x of its value claims, sorted, without duplicates."""
+def sweep_values(name: str, claims) -> list:
+    """A stability figure's sweep values plus the x its value and mechanism claims name.
+
+    Sorted, without duplicates (equal within :data:`~tefcore.paper.curve_metrics.X_SLACK`),
+    in the figure's own value format; the sweep :func:`validate_all` runs.
+    """
     values = list(FIGURES[name].values)
     have = [_value_si(name, v) for v in values]
     strings = isinstance(values[0], str)
@@ -52,7 +62,7 @@ def _sweep_values(name: str, claims) -> list:
             if xv is None:
                 continue
             si = float(x_to_si(name, xv, c.x_unit))
-            if any(abs(si - h) <= _EPS * max(abs(h), 1e-300) for h in have):
+            if any(abs(si - h) <= X_SLACK * max(abs(h), 1e-300) for h in have):
                 continue
             values.append(f"{xv:g} {c.x_unit}" if strings and c.x_unit else si)
             have.append(si)
@@ -92,7 +102,7 @@ def validate_all(n_jobs: int = 1, progress: bool = False, *, claims=None, cfg=No
     for name in (n for n in KNOWN_FIGURES if n in need):
         mine = [c for c in active if c.figure == name]
         if name in FIGURES:
-            values[name] = _sweep_values(name, mine)
+            values[name] = sweep_values(name, mine)
         elif name == "fig7":
             xs = {float(v) for c in mine for v in (c.x, c.relative_to) if v is not None}
             values[name] = sorted(set(FIG7_OVERHANGS) | xs)

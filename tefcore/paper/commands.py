@@ -1,0 +1,107 @@
+"""The paper layer's subcommands of ``tefcore``: ``reproduce`` and ``notebooks``.
+
+:func:`add_commands` adds them to the ``tefcore`` parser (:mod:`tefcore.cli`
+calls it); the work is done by :mod:`tefcore.paper.reproduce` and
+:mod:`tefcore.paper.notebook_files`, imported only when a command runs.
+"""
+
+from __future__ import annotations
+
+import argparse
+from pathlib import Path
+
+__all__ = ["add_commands", "cmd_notebooks", "cmd_reproduce"]
+
+_REPRODUCE = """\
+Execute the numbered notebooks with papermill into OUT (several at once, up to
+the cores), check every claim of the paper they cover, and write
+OUT/report.html (self-contained, figures embedded), OUT/report.md and
+OUT/claims.csv; each executed notebook also as OUT/notebooks/NAME.html.
+
+Works from an installed wheel in any folder: the notebooks and the reference
+data ship with tefcore.  Exit status 1 when a notebook fails, a claim is worse
+than its recorded status, or no claim was checked.
+
+examples:
+  tefcore reproduce --out out
+  tefcore reproduce --only 04 --out out -p n_jobs 2
+  tefcore reproduce -p overrides "{flight.advance_ratio: 0.2}" -p 03:n_points 8
+"""
+
+_NOTEBOOKS = """\
+List the numbered notebooks, or copy them for editing: --copy DIR writes each
+notebook (.ipynb, with its outputs) and its jupytext source (.py) into DIR,
+never overwriting a file there.  Open the copies in Jupyter; run them with
+'tefcore reproduce' on your copies by setting TEFCORE_NOTEBOOKS=DIR.
+
+examples:
+  tefcore notebooks
+  tefcore notebooks --copy my_notebooks
+  tefcore notebooks --copy my_notebooks --only 04 05
+"""
+
+
+def cmd_reproduce(args) -> int:
+    """Run ``tefcore reproduce`` with parsed arguments; return the exit status."""
+    from .reproduce import reproduce
+    from .run_params import load_params_file, parse_cli_params
+
+    # later layers win: file "all" < file notebook < -p all < -p notebook
+    layers = [load_params_file(args.params)] if args.params else []
+    layers.append(parse_cli_params([tuple(p) for p in args.param or ()]))
+    return reproduce(Path(args.out), params=layers, notebooks=args.only,
+                     progress=not args.no_progress, jobs=args.jobs)
+
+
+def cmd_notebooks(args) -> int:
+    """Run ``tefcore notebooks`` with parsed arguments; return the exit status."""
+    from .notebook_files import (
+        NOTEBOOK_FIGURES,
+        NOTEBOOKS,
+        copy_notebooks,
+        notebooks_dir,
+        resolve_notebook,
+    )
+
+    names = [resolve_notebook(n) for n in args.only] if args.only else list(NOTEBOOKS)
+    if args.copy is None:
+        print(f"notebooks in {notebooks_dir()}:")
+        for n in names:
+            figs = ", ".join(f.replace("fig", "Fig. ") for f in NOTEBOOK_FIGURES[n])
+            print(f"  {n:38s} {figs or 'assumptions and their effects'}")
+        return 0
+    written = copy_notebooks(args.copy, names)
+    print(f"copied {len(written) // 2} notebooks (.ipynb and .py) into {args.copy}")
+    return 0
+
+
+def add_commands(sub) -> None:
+    """Add ``reproduce`` and ``notebooks`` to the ``tefcore`` subparsers ``sub``.
+
+    Parameters
+    ----------
+    sub : argparse._SubParsersAction
+        From :meth:`argparse.ArgumentParser.add_subparsers`.
+    """
+    fmt = argparse.RawDescriptionHelpFormatter
+    p = sub.add_parser("reproduce", formatter_class=fmt, description=_REPRODUCE,
+                       help="run the notebooks, check the paper's claims, write the report")
+    p.add_argument("--out", default="output", help="output folder (default: output)")
+    p.add_argument("--params", default=None, metavar="FILE.yaml",
+                   help="YAML parameters: {all: {...}, 03_overhang: {...}, ...}")
+    p.add_argument("-p", "--param", nargs=2, action="append", metavar=("NAME", "VALUE"),
+                   help="notebook parameter for all notebooks, or NOTEBOOK:NAME for one "
+                        "(e.g. -p n_jobs 2 -p 03_overhang:n_points 8); VALUE is YAML")
+    p.add_argument("--only", nargs="+", metavar="NOTEBOOK", default=None,
+                   help="run only these notebooks (e.g. 03 04_cg_offset)")
+    p.add_argument("--jobs", type=int, default=None,
+                   help="notebooks executed at once (default: the number of cores)")
+    p.add_argument("--no-progress", action="store_true", help="no progress bar")
+    p.set_defaults(func=cmd_reproduce)
+    p = sub.add_parser("notebooks", formatter_class=fmt, description=_NOTEBOOKS,
+                       help="list the notebooks, or copy them for editing (--copy DIR)")
+    p.add_argument("--copy", default=None, metavar="DIR",
+                   help="copy the notebooks (.ipynb and .py sources) into DIR")
+    p.add_argument("--only", nargs="+", metavar="NOTEBOOK", default=None,
+                   help="only these notebooks (e.g. 04 05_stiffness)")
+    p.set_defaults(func=cmd_notebooks)

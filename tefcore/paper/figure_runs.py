@@ -1,0 +1,251 @@
+"""Running a paper figure the way the notebooks do: configuration, values, sweep.
+
+:func:`run_config` is the configuration a notebook analyses for a figure (the
+MDART baseline, the figure's caption, then the user's overrides);
+:func:`figure_values` its sweep values (the paper's, evenly spaced, or
+explicit); :func:`run_stability_figure` runs the sweep with numerical
+warnings counted, not printed; :func:`natural_frequencies` gives the blade
+frequencies of the "blade frequency" panels.
+
+Examples
+--------
+>>> figure_values("fig11", 3)
+[0.75, 1.375, 2.0]
+>>> figure_values("fig10", 3)
+['150 lb/in', '475 lb/in', '800 lb/in']
+>>> run_config("fig9", overrides={"flight.advance_ratio": 0.2}).flight.advance_ratio
+0.2
+"""
+
+from __future__ import annotations
+
+import warnings
+from types import SimpleNamespace
+
+import numpy as np
+import pandas as pd
+
+from ..c81 import example_deck_path
+from ..config import load_config
+from .claim_checks import variant_key
+from .figures import FIGURES, figure_config
+from .plotting import split_value, x_values
+from .reference import ReferenceDataError, load_claims
+from .validation import sweep_values
+
+__all__ = ["AERO_MODELS", "base_config", "figure_values", "natural_frequencies",
+           "quiet_stability", "run_config", "run_stability_figure", "section_aero",
+           "variant_key"]
+
+#: Section aerodynamics a notebook can choose (``aero_model`` parameter).
+AERO_MODELS = ("thin_airfoil", "table")
+
+
+def base_config(aero_model: str = "thin_airfoil", overrides: dict | None = None):
+    """MDART configuration with the chosen section aerodynamics.
+
+    Parameters
+    ----------
+    aero_model : {"thin_airfoil", "table"}
+        Quasi-steady thin-airfoil theory, or the C81 look-up with the shipped
+        *generated* example deck (``"c81"`` is accepted for ``"table"``).
+    overrides : dict, optional
+        Dotted configuration fields applied last.
+
+    Returns
+    -------
+    tefcore.config.Config
+    """
+    cfg = load_config("mdart")
+    if aero_model in ("table", "c81"):
+        cfg = cfg.with_overrides({"model.aero_model": "c81",
+                                  "model.c81_deck": str(example_deck_path())})
+    elif aero_model != "thin_airfoil":
+        raise ValueError(f"aero_model = {aero_model!r}: expected one of "
+                          f"{', '.join(AERO_MODELS)}")
+    return cfg.with_overrides(overrides) if overrides else cfg
+
+
+def run_config(name: str, base=None, overrides: dict | None = None):
+    """The configuration a figure is computed with: base, the caption, then ``overrides``.
+
+    Parameters
+    ----------
+    name : str
+        Paper figure (``"fig9"``).
+    base : tefcore.config.Config, optional
+        Base configuration (default: MDART).
+    overrides : dict, optional
+        Dotted fields that win over the caption (e.g. another advance ratio).
+    """
+    cfg = figure_config(name, base)
+    return cfg.with_overrides(overrides) if overrides else cfg
+
+
+def section_aero(aero_model: str, cfg=None):
+    """Section model of Fig. 5's hinge moment with the flap geometry of ``cfg``.
+
+    Parameters
+    ----------
+    aero_model : {"thin_airfoil", "table"}
+        See :func:`base_config`.
+    cfg : tefcore.config.Config, optional
+        Source of ``flap.chord_ratio`` and ``flap.overhang``.
+    """
+    from ..coupled import section_model
+
+    cfg = base_config(aero_model) if cfg is None else cfg
+    return section_model(base_config(aero_model).with_overrides({
+        "flap.chord_ratio": cfg.flap.chord_ratio, "flap.overhang": cfg.flap.overhang}))
+
+
+def _claim_sweep_values(name: str):
+    try:
+        mine = [c for c in load_claims() if c.figure == name and c.kind != "not_reproducible"]
+    except (ReferenceDataError, FileNotFoundError):
+        return None
+    return sweep_values(name, mine)
+
+
+def figure_values(name: str, n_points: int | None = None, values=None,
+                  claim_points: bool = True) -> list:
+    """Sweep values of a figure.
+
+    Parameters
+    ----------
+    name : str
+        Paper figure.
+    n_points : int, optional
+        That many values, evenly over the paper's range.
+    values : sequence, optional
+        Explicit values (win over ``n_points``).
+    claim_points : bool
+        With neither: add the x values the figure's value claims name to the
+        paper's values -- the same sweep as
+        :func:`tefcore.paper.validation.validate_all` runs.
+
+    Returns
+    -------
+    list
+        Numbers, or strings with units where the paper's values have them.
+    """
+    if values is not None:
+        return list(values)
+    base = list(FIGURES[name].values)
+    if n_points is None:
+        return (_claim_sweep_values(name) if claim_points else None) or base
+    n = int(n_points)
+    if n < 2:
+        raise ValueError(f"n_points must be at least 2, got {n_points!r}")
+    (lo, unit), (hi, _) = split_value(base[0]), split_value(base[-1])
+    grid = np.linspace(lo, hi, n)
+    if unit:
+        return [f"{v:.6g} {unit}" for v in grid]
+    return [float(f"{v:.10g}") for v in grid]
+
+
+def quiet_stability(cfg):
+    """:func:`tefcore.stability.stability` with its numerical warnings counted, not printed.
+
+    Workers' stderr would otherwise reach the notebook; the count is the
+    sweep column ``trim_numerical_warnings``.
+
+    Parameters
+    ----------
+    cfg : tefcore.config.Config
+        The configuration.
+    """
+    from ..stability import stability
+
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        res = stability(cfg)
+    trim = dict(res.trim)
+    trim["numerical_warnings"] = len(caught)
+    return SimpleNamespace(modes=res.modes, eigenvectors=res.eigenvectors, trim=trim,
+                           vectors=res.vectors, periodic=res.periodic, system=res.system,
+                           trim_result=res.trim_result)
+
+
+def run_stability_figure(name: str, base=None, overrides: dict | None = None,
+                         values=None, n_jobs: int = 1, cg_offset=None):
+    """A stability figure's sweep with the caption's fixed parameters, then ``overrides``.
+
+    Same as :func:`tefcore.paper.figures.run_figure` except that
+    ``overrides`` (e.g. another advance ratio) win over the caption, and
+    warnings are counted instead of printed.
+
+    Parameters
+    ----------
+    name : str
+        Paper figure.
+    base : tefcore.config.Config, optional
+        Base configuration.
+    overrides : dict, optional
+        Dotted fields applied over the caption.
+    values : sequence, optional
+        Sweep values (default: the paper's).
+    n_jobs : int
+        Processes for the sweep.
+    cg_offset : float, optional
+        Flap CG offset applied last (the balanced/imbalanced variants).
+
+    Returns
+    -------
+    tefcore.sweep.SweepResult
+    """
+    from ..sweep import sweep
+
+    cfg = run_config(name, base, overrides)
+    if cg_offset is not None:
+        cfg = cfg.with_overrides({"flap.cg_offset": cg_offset})
+    fig = FIGURES[name]
+    vals = list(fig.values) if values is None else list(values)
+    return sweep(cfg, fig.parameter, vals, point=quiet_stability, n_jobs=n_jobs,
+                 progress=False)
+
+
+def natural_frequencies(name: str, values, base=None, overrides: dict | None = None,
+                        labels=("blade flap 1", "blade lag 1", "blade torsion 1")):
+    """Blade natural frequencies at each sweep value (no aerodynamics, zero collective).
+
+    The "blade frequency" panels of Figs. 10a/11a, as the paper's stated
+    frequencies (and the validation) use them (:func:`tefcore.blade.blade_modes`).
+
+    Parameters
+    ----------
+    name : str
+        Paper figure.
+    values : sequence
+        Sweep values.
+    base : tefcore.config.Config, optional
+        Base configuration.
+    overrides : dict, optional
+        Dotted fields applied over the caption.
+    labels : tuple of str
+        Modes to return.
+
+    Returns
+    -------
+    DataFrame
+        In the format of :func:`tefcore.paper.plotting.curves`.
+    """
+    from ..blade import blade_modes
+
+    cfg = run_config(name, base, overrides)
+    rows = []
+    for v in values:
+        m = blade_modes(cfg.with_overrides({FIGURES[name].parameter: v}))
+        for lab, f in zip(m.labels, m.frequencies, strict=True):
+            if f"blade {lab}" in labels:
+                rows.append({"point": len(rows), "value": v, "label": f"blade {lab}",
+                             "frequency_per_rev": float(f)})
+    t = pd.DataFrame(rows)
+    t["x"] = x_values(name, t)
+    t["track"] = t["label"]
+    t["damping"] = np.nan
+    t["same_character"] = True
+    t["certain"] = True
+    t["refinement"] = 0
+    return t[["label", "track", "x", "frequency_per_rev", "damping", "same_character",
+              "certain", "refinement"]]

@@ -1,0 +1,274 @@
+# ---
+# jupyter:
+#   jupytext:
+#     formats: ipynb,py:percent
+#     text_representation:
+#       extension: .py
+#       format_name: percent
+#       format_version: '1.3'
+#       jupytext_version: 1.19.6
+#   kernelspec:
+#     display_name: Python 3
+#     language: python
+#     name: python3
+# ---
+
+# %% [markdown]
+# # 06 -- Flap size and spanwise location (Figs. 13-15)
+#
+# Mass-imbalanced flap (c_cg = 0.33 c_f, c_b = 0.29 c_f), mu = 0.30. Where the
+# flap sits and how big it is changes two things at once:
+#
+# * the **dynamic pressure** it sees (proportional to (r/R)^2 in hover, more
+#   outboard) and the size of its aerodynamic and inertial loads;
+# * the **modal amplitude** of blade flap bending and torsion at the flap:
+#   both grow towards the tip, so an outboard flap couples more strongly to the
+#   blade modes -- for better (more authority for vibration control) and for
+#   worse (more flutter-prone).
+#
+# A larger flap chord also changes the section aerodynamics of the flap
+# itself: the flap's pitching moment peaks near c_f/c = 0.26 while the flap
+# lift grows monotonically (the paper's Ref. 21).
+
+# %% tags=["parameters"]
+# Parameters (papermill: `tefcore reproduce -p NAME VALUE`, `papermill -p NAME VALUE`).
+# output folder for the CSV and PNG results, relative to the working directory
+output_dir = "output/06_size_and_location"
+n_jobs = 1                 # processes for the stability sweeps (joblib); 2 on 2 cores
+aero_model = "thin_airfoil"  # "thin_airfoil" (quasi-steady) or "table" (C81, shipped deck)
+overrides = {}             # dotted configuration fields applied over each figure's caption,
+                           # e.g. {"flight.ct_sigma": 0.08, "flight.advance_ratio": 0.2}
+n_points = None            # None: the paper's sweep values; int: that many, evenly, same range
+values = {}                # explicit sweep values per figure, e.g. {"fig8": [0.0, 0.25, 0.5]}
+damping_measure = "decay_rate"  # "decay_rate" (-Re(s)/Omega) or "damping_ratio" (%)
+
+# %% tags=["nbval-ignore-output"]
+# %matplotlib inline
+import matplotlib.pyplot as plt
+import pandas as pd
+
+from tefcore.paper import notebook_tools as nt
+
+out = nt.setup_notebook(output_dir)
+base = nt.base_config(aero_model)
+claims_cfg = base.with_overrides(overrides) if overrides else base  # for runs validation adds
+results, variants = {}, {}
+
+# %% [markdown]
+# ## Figure 13: flap midspan location
+#
+# Paper: the **TEF mode becomes unstable as the flap moves towards the tip**;
+# blade flap damping decreases slightly, torsion damping increases, lag is
+# unchanged.
+
+# %%
+vals_fig13 = nt.figure_values("fig13", n_points, values.get("fig13"))
+cfg_fig13 = nt.run_config("fig13", base, overrides)
+res_fig13 = nt.run_stability_figure("fig13", base, overrides, vals_fig13, n_jobs)
+results["fig13"] = res_fig13
+nt.report_sweep("fig13", res_fig13)
+
+# %%
+fig, ax = plt.subplots(figsize=(6.4, 4.4))
+nt.plot_modes(ax, "fig13", res_fig13.table, measure=damping_measure,
+              reference=nt.reference_curves("fig13"))
+ax.set_title(nt.figure_title("fig13", cfg_fig13, width=110), fontsize="medium")
+nt.legend_below(ax)
+nt.savefig(fig, out, "fig13", figure="fig13",
+           caption=nt.figure_caption("fig13", cfg_fig13, "Damping of the blade modes and the TEF branch"));
+
+# %% [markdown]
+# **Which root is which.** "The TEF mode" is the *TEF branch*: the root that the
+# flap's own mode (the flap on its actuator spring, uncoupled from the blade)
+# becomes when the coupling is switched on, at the start of the sweep, followed
+# continuously along the sweep (by eigenvalue and shape; where a step is too
+# coarse to tell, tefcore bisects it). Its character can change along the way
+# -- it can turn into a torsion-like root, while another root becomes
+# flap-dominated -- so the plots also show the *flutter root* at each point
+# (the least stable root in which the flap participates by at least 10 %) and
+# the participation of flap, torsion, bending and lag in the TEF branch. Two
+# roots approaching in frequency while one turns towards the unstable side is
+# the classic picture of coalescence flutter.
+
+# %%
+nt.report_identity("fig13", res_fig13)
+fig, (ax_l, ax_p) = plt.subplots(1, 2, figsize=(11, 4.2))
+nt.plot_root_locus(ax_l, "fig13", res_fig13.table)
+ax_l.set_title("root locus (square: start, arrows: increasing x)", fontsize="medium")
+nt.legend_below(ax_l)
+nt.plot_participation(ax_p, "fig13", res_fig13.table)
+ax_p.set_title("participation in the TEF branch", fontsize="medium")
+nt.legend_below(ax_p, ncol=4)
+nt.savefig(fig, out, "fig13_locus", figure="fig13",
+           caption=nt.figure_caption("fig13", cfg_fig13, nt.LOCUS_CAPTION, markers=False));
+
+# %%
+print("damping (" + damping_measure + ") of the tracked modes "
+      "(NaN: that track is absent at this x, e.g. after a locked pair unlocks):")
+summary = nt.mode_summary("fig13", res_fig13.table, measure=damping_measure)
+print(summary.to_string())
+changes = nt.sign_changes("fig13", res_fig13.table, measure=damping_measure)
+print("TEF damping changes sign at:", changes or "nowhere in the range")
+
+# %% [markdown]
+# ## Figure 14: flap length
+#
+# Paper: the **TEF mode becomes unstable for flap lengths above 14 % R**; blade
+# flap damping decreases with length, torsion damping increases (both stay
+# well damped). Length acts like location, but more strongly.
+
+# %%
+vals_fig14 = nt.figure_values("fig14", n_points, values.get("fig14"))
+cfg_fig14 = nt.run_config("fig14", base, overrides)
+res_fig14 = nt.run_stability_figure("fig14", base, overrides, vals_fig14, n_jobs)
+results["fig14"] = res_fig14
+nt.report_sweep("fig14", res_fig14)
+
+# %%
+fig, ax = plt.subplots(figsize=(6.4, 4.4))
+nt.plot_modes(ax, "fig14", res_fig14.table, measure=damping_measure,
+              reference=nt.reference_curves("fig14"))
+ax.set_title(nt.figure_title("fig14", cfg_fig14, width=110), fontsize="medium")
+nt.legend_below(ax)
+nt.savefig(fig, out, "fig14", figure="fig14",
+           caption=nt.figure_caption("fig14", cfg_fig14, "Damping of the blade modes and the TEF branch"));
+
+# %% [markdown]
+# **Which root is which.** "The TEF mode" is the *TEF branch*: the root that the
+# flap's own mode (the flap on its actuator spring, uncoupled from the blade)
+# becomes when the coupling is switched on, at the start of the sweep, followed
+# continuously along the sweep (by eigenvalue and shape; where a step is too
+# coarse to tell, tefcore bisects it). Its character can change along the way
+# -- it can turn into a torsion-like root, while another root becomes
+# flap-dominated -- so the plots also show the *flutter root* at each point
+# (the least stable root in which the flap participates by at least 10 %) and
+# the participation of flap, torsion, bending and lag in the TEF branch. Two
+# roots approaching in frequency while one turns towards the unstable side is
+# the classic picture of coalescence flutter.
+
+# %%
+nt.report_identity("fig14", res_fig14)
+fig, (ax_l, ax_p) = plt.subplots(1, 2, figsize=(11, 4.2))
+nt.plot_root_locus(ax_l, "fig14", res_fig14.table)
+ax_l.set_title("root locus (square: start, arrows: increasing x)", fontsize="medium")
+nt.legend_below(ax_l)
+nt.plot_participation(ax_p, "fig14", res_fig14.table)
+ax_p.set_title("participation in the TEF branch", fontsize="medium")
+nt.legend_below(ax_p, ncol=4)
+nt.savefig(fig, out, "fig14_locus", figure="fig14",
+           caption=nt.figure_caption("fig14", cfg_fig14, nt.LOCUS_CAPTION, markers=False));
+
+# %%
+print("damping (" + damping_measure + ") of the tracked modes "
+      "(NaN: that track is absent at this x, e.g. after a locked pair unlocks):")
+summary = nt.mode_summary("fig14", res_fig14.table, measure=damping_measure)
+print(summary.to_string())
+changes = nt.sign_changes("fig14", res_fig14.table, measure=damping_measure)
+print("TEF damping changes sign at:", changes or "nowhere in the range")
+
+# %% [markdown]
+# ## Figure 15: flap chord
+#
+# Paper: the **TEF mode is unstable for flap chords between 0.15 and 0.40 of
+# the airfoil chord** and stable outside; blade flap damping follows the TEF
+# mode (positive aerodynamic coupling), torsion damping does the opposite
+# (negative coupling).
+
+# %%
+vals_fig15 = nt.figure_values("fig15", n_points, values.get("fig15"))
+cfg_fig15 = nt.run_config("fig15", base, overrides)
+res_fig15 = nt.run_stability_figure("fig15", base, overrides, vals_fig15, n_jobs)
+results["fig15"] = res_fig15
+nt.report_sweep("fig15", res_fig15)
+
+# %%
+fig, ax = plt.subplots(figsize=(6.4, 4.4))
+nt.plot_modes(ax, "fig15", res_fig15.table, measure=damping_measure,
+              reference=nt.reference_curves("fig15"))
+ax.set_title(nt.figure_title("fig15", cfg_fig15, width=110), fontsize="medium")
+nt.legend_below(ax)
+nt.savefig(fig, out, "fig15", figure="fig15",
+           caption=nt.figure_caption("fig15", cfg_fig15, "Damping of the blade modes and the TEF branch"));
+
+# %% [markdown]
+# **Which root is which.** "The TEF mode" is the *TEF branch*: the root that the
+# flap's own mode (the flap on its actuator spring, uncoupled from the blade)
+# becomes when the coupling is switched on, at the start of the sweep, followed
+# continuously along the sweep (by eigenvalue and shape; where a step is too
+# coarse to tell, tefcore bisects it). Its character can change along the way
+# -- it can turn into a torsion-like root, while another root becomes
+# flap-dominated -- so the plots also show the *flutter root* at each point
+# (the least stable root in which the flap participates by at least 10 %) and
+# the participation of flap, torsion, bending and lag in the TEF branch. Two
+# roots approaching in frequency while one turns towards the unstable side is
+# the classic picture of coalescence flutter.
+
+# %%
+nt.report_identity("fig15", res_fig15)
+fig, (ax_l, ax_p) = plt.subplots(1, 2, figsize=(11, 4.2))
+nt.plot_root_locus(ax_l, "fig15", res_fig15.table)
+ax_l.set_title("root locus (square: start, arrows: increasing x)", fontsize="medium")
+nt.legend_below(ax_l)
+nt.plot_participation(ax_p, "fig15", res_fig15.table)
+ax_p.set_title("participation in the TEF branch", fontsize="medium")
+nt.legend_below(ax_p, ncol=4)
+nt.savefig(fig, out, "fig15_locus", figure="fig15",
+           caption=nt.figure_caption("fig15", cfg_fig15, nt.LOCUS_CAPTION, markers=False));
+
+# %%
+print("damping (" + damping_measure + ") of the tracked modes "
+      "(NaN: that track is absent at this x, e.g. after a locked pair unlocks):")
+summary = nt.mode_summary("fig15", res_fig15.table, measure=damping_measure)
+print(summary.to_string())
+changes = nt.sign_changes("fig15", res_fig15.table, measure=damping_measure)
+print("TEF damping changes sign at:", changes or "nowhere in the range")
+
+# %% [markdown]
+# **What the paper concludes** (conclusion 5): with a mass-imbalanced flap,
+# increasing the flap length or moving the flap towards the tip destabilises
+# the TEF mode. Note that in these sweeps the flap is built the same way at
+# every size (`flap.scaling = "construction"`): its mass per unit span is kept
+# as it grows longer and grows with its chord (its inertia with the chord
+# cubed), so a longer or wider flap is also a heavier flap with a larger
+# imbalance moment -- the inertial and aerodynamic effects grow together.
+
+# %% [markdown]
+# ## Validation: the paper's claims for these figures
+#
+# Each row is one statement of the paper, checked against the computed
+# results by `tefcore.paper.validation` (`pass`, `fail`, or `not reproducible` when
+# the statement needs data we do not have). The full table, with the
+# statement, the expected and computed values and the reason, is saved to
+# `claims.csv`.
+
+# %%
+claims = pd.concat([nt.claims_table(name, results[name], cfg=claims_cfg, others=results,
+                                   variants=variants.get(name))
+                    for name in ["fig13", "fig14", "fig15"]], ignore_index=True)
+nt.show_claims(claims)
+
+# %% [markdown]
+# The results of this notebook are in `output_dir`: the tidy sweep tables
+# (`*_modes.csv`: one row per point and tracked mode, with the trim), the
+# figures (`*.png`) and the claims table (`claims.csv`), which
+# `tefcore reproduce` collects into its report.
+
+# %%
+written = [nt.save_csv(claims, out, "claims")]
+written.append(nt.save_csv(res_fig13.table, out, "fig13_modes"))
+written.append(nt.save_csv(res_fig14.table, out, "fig14_modes"))
+written.append(nt.save_csv(res_fig15.table, out, "fig15_modes"))
+print(sorted(p.name for p in written + sorted(out.glob("*.png"))))
+
+# %% [markdown]
+# ## Where the compact model departs from UMARC, and what that may shift
+#
+# One text for all notebooks (`tefcore/paper/departures.toml`): what holds for every
+# figure, then what matters most for this notebook's.
+
+# %%
+nt.show_departures("fig13", "fig14", "fig15")
+
+# %%
+for name in ["fig13", "fig15"]:
+    nt.unsteadiness(name, results[name], base)

@@ -1,0 +1,203 @@
+# ---
+# jupyter:
+#   jupytext:
+#     formats: ipynb,py:percent
+#     text_representation:
+#       extension: .py
+#       format_name: percent
+#       format_version: '1.3'
+#       jupytext_version: 1.19.6
+#   kernelspec:
+#     display_name: Python 3
+#     language: python
+#     name: python3
+# ---
+
+# %% [markdown]
+# # 07 -- Flight condition: collective pitch and forward speed (Figs. 16-17)
+#
+# Mass-imbalanced flap (c_cg = 0.33 c_f, c_b = 0.29 c_f). The structural and
+# inertial couplings do not depend on the flight condition; the aerodynamic
+# ones do:
+#
+# * **collective pitch** raises the blade's steady lift and the trimmed flap
+#   deflection and hinge moment, changing the aerodynamic stiffness around
+#   which the flap oscillates;
+# * **forward speed** makes the dynamic pressure periodic (advancing side high,
+#   retreating side low) and couples the modes through periodic coefficients,
+#   which is why the Floquet method is needed; on the advancing side the flap
+#   sees up to (0.83 + mu)^2 of the hover dynamic pressure at the flap.
+#
+# Here the collective is prescribed (not trimmed to a thrust).
+
+# %% tags=["parameters"]
+# Parameters (papermill: `tefcore reproduce -p NAME VALUE`, `papermill -p NAME VALUE`).
+# output folder for the CSV and PNG results, relative to the working directory
+output_dir = "output/07_flight_condition"
+n_jobs = 1                 # processes for the stability sweeps (joblib); 2 on 2 cores
+aero_model = "thin_airfoil"  # "thin_airfoil" (quasi-steady) or "table" (C81, shipped deck)
+overrides = {}             # dotted configuration fields applied over each figure's caption,
+                           # e.g. {"flight.ct_sigma": 0.08, "flight.advance_ratio": 0.2}
+n_points = None            # None: the paper's sweep values; int: that many, evenly, same range
+values = {}                # explicit sweep values per figure, e.g. {"fig8": [0.0, 0.25, 0.5]}
+damping_measure = "decay_rate"  # "decay_rate" (-Re(s)/Omega) or "damping_ratio" (%)
+
+# %% tags=["nbval-ignore-output"]
+# %matplotlib inline
+import matplotlib.pyplot as plt
+import pandas as pd
+
+from tefcore.paper import notebook_tools as nt
+
+out = nt.setup_notebook(output_dir)
+base = nt.base_config(aero_model)
+claims_cfg = base.with_overrides(overrides) if overrides else base  # for runs validation adds
+results, variants = {}, {}
+
+# %% [markdown]
+# ## Figure 16: collective pitch, (a) hover and (b) mu = 0.30
+#
+# Paper: in hover the **TEF mode becomes unstable at large collective**, though
+# the variation is very small; at mu = 0.30 it is **unstable from 4 to 12 deg
+# collective and increasingly so** with larger collective.
+
+# %%
+cfg_fig16a = nt.run_config("fig16a", base, overrides)
+res_fig16a = nt.run_stability_figure("fig16a", base, overrides,
+                                     nt.figure_values("fig16a", n_points, values.get("fig16a")),
+                                     n_jobs)
+cfg_fig16b = nt.run_config("fig16b", base, overrides)
+res_fig16b = nt.run_stability_figure("fig16b", base, overrides,
+                                     nt.figure_values("fig16b", n_points, values.get("fig16b")),
+                                     n_jobs)
+results.update(fig16a=res_fig16a, fig16b=res_fig16b)
+nt.report_sweep("fig16a", res_fig16a)
+nt.report_sweep("fig16b", res_fig16b)
+
+# %%
+fig, (ax_a, ax_b) = plt.subplots(1, 2, figsize=(11, 4.4), sharey=True)
+nt.plot_modes(ax_a, "fig16a", res_fig16a.table, measure=damping_measure,
+              reference=nt.reference_curves("fig16a"))
+ax_a.set_title("(a) " + nt.flight_condition(cfg_fig16a), fontsize="medium")
+nt.plot_modes(ax_b, "fig16b", res_fig16b.table, measure=damping_measure,
+              reference=nt.reference_curves("fig16b"))
+ax_b.set_title("(b) " + nt.flight_condition(cfg_fig16b), fontsize="medium")
+nt.legend_below(ax_b)
+title16 = ("Fig. 16: effect of collective pitch ("
+           + nt.conditions(cfg_fig16b, exclude=("flight.collective", "flight.advance_ratio"))
+           + ")")
+fig.suptitle(title16, fontsize="medium")
+nt.savefig(fig, out, "fig16", figure="fig16a fig16b",
+           caption=f"{title16}. Damping of the blade modes and the TEF branch: (a) "
+                   f"{nt.flight_condition(cfg_fig16a)}, (b) {nt.flight_condition(cfg_fig16b)}. "
+                   + nt.MARKERS);
+
+# %%
+for name in ("fig16a", "fig16b"):
+    print(f"{name}: damping (" + damping_measure + ")")
+    print(nt.mode_summary(name, results[name].table, measure=damping_measure).to_string())
+    print("TEF damping changes sign at:",
+          nt.sign_changes(name, results[name].table, measure=damping_measure) or "nowhere")
+
+# %% [markdown]
+# ## Figure 17: forward speed
+#
+# Paper: the **TEF mode is weakly unstable in hover and becomes more unstable
+# with forward speed**.
+
+# %%
+vals_fig17 = nt.figure_values("fig17", n_points, values.get("fig17"))
+cfg_fig17 = nt.run_config("fig17", base, overrides)
+res_fig17 = nt.run_stability_figure("fig17", base, overrides, vals_fig17, n_jobs)
+results["fig17"] = res_fig17
+nt.report_sweep("fig17", res_fig17)
+
+# %%
+fig, ax = plt.subplots(figsize=(6.4, 4.4))
+nt.plot_modes(ax, "fig17", res_fig17.table, measure=damping_measure,
+              reference=nt.reference_curves("fig17"))
+ax.set_title(nt.figure_title("fig17", cfg_fig17, width=110), fontsize="medium")
+nt.legend_below(ax)
+nt.savefig(fig, out, "fig17", figure="fig17",
+           caption=nt.figure_caption("fig17", cfg_fig17, "Damping of the blade modes and the TEF branch"));
+
+# %% [markdown]
+# **Which root is which.** "The TEF mode" is the *TEF branch*: the root that the
+# flap's own mode (the flap on its actuator spring, uncoupled from the blade)
+# becomes when the coupling is switched on, at the start of the sweep, followed
+# continuously along the sweep (by eigenvalue and shape; where a step is too
+# coarse to tell, tefcore bisects it). Its character can change along the way
+# -- it can turn into a torsion-like root, while another root becomes
+# flap-dominated -- so the plots also show the *flutter root* at each point
+# (the least stable root in which the flap participates by at least 10 %) and
+# the participation of flap, torsion, bending and lag in the TEF branch. Two
+# roots approaching in frequency while one turns towards the unstable side is
+# the classic picture of coalescence flutter.
+
+# %%
+nt.report_identity("fig17", res_fig17)
+fig, (ax_l, ax_p) = plt.subplots(1, 2, figsize=(11, 4.2))
+nt.plot_root_locus(ax_l, "fig17", res_fig17.table)
+ax_l.set_title("root locus (square: start, arrows: increasing x)", fontsize="medium")
+nt.legend_below(ax_l)
+nt.plot_participation(ax_p, "fig17", res_fig17.table)
+ax_p.set_title("participation in the TEF branch", fontsize="medium")
+nt.legend_below(ax_p, ncol=4)
+nt.savefig(fig, out, "fig17_locus", figure="fig17",
+           caption=nt.figure_caption("fig17", cfg_fig17, nt.LOCUS_CAPTION, markers=False));
+
+# %%
+print("damping (" + damping_measure + ") of the tracked modes "
+      "(NaN: that track is absent at this x, e.g. after a locked pair unlocks):")
+summary = nt.mode_summary("fig17", res_fig17.table, measure=damping_measure)
+print(summary.to_string())
+changes = nt.sign_changes("fig17", res_fig17.table, measure=damping_measure)
+print("TEF damping changes sign at:", changes or "nowhere in the range")
+
+# %% [markdown]
+# **What the paper concludes** (conclusions 2 and 6): torsion-flap flutter of a
+# mass-unbalanced flap is worse at high advance ratio, and increasing
+# collective pitch makes the TEF mode more unstable. Combined with notebooks
+# 03-06, the design message is: mass-balance the flap, keep the overhang
+# moderate, and keep the actuator stiff.
+
+# %% [markdown]
+# ## Validation: the paper's claims for these figures
+#
+# Each row is one statement of the paper, checked against the computed
+# results by `tefcore.paper.validation` (`pass`, `fail`, or `not reproducible` when
+# the statement needs data we do not have). The full table, with the
+# statement, the expected and computed values and the reason, is saved to
+# `claims.csv`.
+
+# %%
+claims = pd.concat([nt.claims_table(name, results[name], cfg=claims_cfg, others=results,
+                                   variants=variants.get(name))
+                    for name in ["fig16a", "fig16b", "fig17"]], ignore_index=True)
+nt.show_claims(claims)
+
+# %% [markdown]
+# The results of this notebook are in `output_dir`: the tidy sweep tables
+# (`*_modes.csv`: one row per point and tracked mode, with the trim), the
+# figures (`*.png`) and the claims table (`claims.csv`), which
+# `tefcore reproduce` collects into its report.
+
+# %%
+written = [nt.save_csv(claims, out, "claims")]
+written.append(nt.save_csv(res_fig16a.table, out, "fig16a_modes"))
+written.append(nt.save_csv(res_fig16b.table, out, "fig16b_modes"))
+written.append(nt.save_csv(res_fig17.table, out, "fig17_modes"))
+print(sorted(p.name for p in written + sorted(out.glob("*.png"))))
+
+# %% [markdown]
+# ## Where the compact model departs from UMARC, and what that may shift
+#
+# One text for all notebooks (`tefcore/paper/departures.toml`): what holds for every
+# figure, then what matters most for this notebook's.
+
+# %%
+nt.show_departures("fig16a", "fig16b", "fig17")
+
+# %%
+for name in ["fig16b", "fig17"]:
+    nt.unsteadiness(name, results[name], base)

@@ -1,0 +1,525 @@
+"""Plots of the paper's figures: tracked modes, root loci, participation, captions.
+
+Every stability figure of the notebooks is drawn by these functions, so the
+curves, markers and captions mean the same thing everywhere:
+
+* :func:`curves` -- one tracked curve per mode of a sweep table (the TEF
+  branch for ``"TEF"``), with the paper's x axis (:data:`AXES`);
+* :func:`plot_modes`, :func:`plot_root_locus`, :func:`plot_participation`;
+* :func:`conditions`, :func:`figure_title` and :func:`figure_caption` --
+  titles and captions built from the configuration actually used, so they
+  stay right when a user overrides a parameter;
+* :func:`savefig` -- a PNG with fixed metadata (byte-identical between runs)
+  and a JSON caption beside it that the report reads.
+
+Examples
+--------
+>>> from tefcore.config import load_config
+>>> cfg = load_config("mdart").with_overrides({"flight.advance_ratio": 0.2})
+>>> conditions(cfg, exclude=("flap.cg_offset",)).split(", ")  # doctest: +NORMALIZE_WHITESPACE
+['μ = 0.20', 'C_T/σ = 0.075', 'c_b/c_f = 0.29', 'actuator 81.5 ft-lb/rad',
+ 'quasi-steady thin-airfoil aerodynamics']
+"""
+
+from __future__ import annotations
+
+import json
+import re
+import textwrap
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+from ..safe_io import atomic_output, atomic_write_text
+from ..units import from_si
+
+__all__ = ["AXES", "LOCUS_CAPTION", "MARKERS", "MEASURES", "PAPER_MODES", "STYLE", "conditions",
+           "curves", "deterministic_matplotlib", "figure_caption", "figure_title",
+           "flight_condition", "legend_below",
+           "plot_modes", "plot_participation", "plot_root_locus", "savefig", "split_value",
+           "x_values"]
+
+_NUM_UNIT = re.compile(r"^\s*([-+0-9.eE]+)\s*(.*)$")
+
+
+def split_value(value) -> tuple[float, str]:
+    """A swept value as ``(number, unit)``: ``"150 lb/in"`` -> ``(150.0, "lb/in")``.
+
+    Examples
+    --------
+    >>> split_value("150 lb/in"), split_value(0.25)
+    ((150.0, 'lb/in'), (0.25, ''))
+    """
+    if isinstance(value, str):
+        m = _NUM_UNIT.match(value)
+        if not m:
+            raise ValueError(f"cannot read a number from {value!r}")
+        return float(m.group(1)), m.group(2).strip()
+    return float(value), ""
+
+
+def _degrees(v):
+    return np.rad2deg(np.asarray(v, float))
+
+
+#: x axis per figure: (label, function of the table's ``value`` column or None)
+AXES = {
+    "fig3": ("collective pitch θ₀ [deg]", _degrees),
+    "fig4": ("collective pitch θ₀ [deg]", _degrees),
+    "fig8": ("flap overhang c_b/c_f", None),
+    "fig9": ("flap CG offset c_cg/c_f (positive aft)", None),
+    "fig10": ("pitch link stiffness [lb/in]", None),
+    "fig11": ("torsional stiffness GJ / baseline GJ", None),
+    "fig12": ("actuator stiffness / baseline (81.52 ft-lb/rad)",
+              lambda v: np.array([split_value(s)[0] for s in v]) / 81.52),
+    "fig13": ("flap midspan location r/R", None),
+    "fig14": ("flap length / R", None),
+    "fig15": ("flap chord c_f/c", None),
+    "fig16a": ("collective pitch θ₀ [deg]", _degrees),
+    "fig16b": ("collective pitch θ₀ [deg]", _degrees),
+    "fig17": ("advance ratio μ", None),
+}
+
+#: modes shown in the paper's damping panels
+PAPER_MODES = ("TEF", "blade flap 1", "blade lag 1", "blade torsion 1")
+#: colour, marker and line style of each mode
+STYLE = {"TEF": ("C3", "o", "-"), "blade flap 1": ("C0", "s", "-"),
+         "blade lag 1": ("C2", "^", "--"), "blade torsion 1": ("C1", "D", "-.")}
+#: damping measures: (axis label, function of a curves table)
+MEASURES = {
+    "decay_rate": ("damping −Re(s)/Ω  [1/rev]  (> 0 stable)",
+                   lambda t: -t["real_part"]),
+    "damping_ratio": ("damping ratio ζ [%]  (> 0 stable)",
+                      lambda t: 100 * t["damping_ratio"]),
+}
+#: What the plots' markers and lines mean (the same in every stability figure).
+MARKERS = ("Lines join every computed point (including points added where an identity had "
+           "to be decided); filled markers are the figure's own sweep points. A hollow "
+           "marker: the mode has the character (largest participation) of another mode "
+           "there -- it exchanged character in a coupling. Dotted line and grey markers: "
+           "its identity is undecided from there on (a coalescence or an unresolved "
+           "veering). Black crosses: the paper's curves, where digitised data were added. "
+           "\"TEF\" is the TEF branch: the root the flap's own mode becomes when the "
+           "coupling is switched on, followed along the sweep.")
+
+#: Caption of the root-locus and participation figures beside each stability figure.
+LOCUS_CAPTION = ("Left: root locus of the tracked modes (square: first point; arrows: increasing "
+                 "x; black dots: the flutter root of each point, the least stable root the flap "
+                 "takes part in). Right: participation of the flap, blade torsion, bending and "
+                 "lag in the TEF branch (participation factors, summing to 1)")
+
+_CURVE_COLUMNS = ["label", "track", "x", "frequency_per_rev", "damping", "same_character",
+                  "certain", "refinement"]
+
+
+def deterministic_matplotlib() -> None:
+    """Set the matplotlib rcParams that make saved figures byte-identical between runs."""
+    import matplotlib as mpl
+
+    mpl.rcParams.update({"svg.hashsalt": "tefcore", "pdf.compression": 6,
+                         "figure.dpi": 80, "savefig.dpi": 110,
+                         "figure.figsize": (6.4, 4.2), "axes.grid": True,
+                         "grid.alpha": 0.3, "legend.fontsize": "small"})
+
+
+def savefig(fig, output_dir, stem: str, figure: str = "", caption: str = "") -> None:
+    """Save ``fig`` as ``<output_dir>/<stem>.png`` with fixed metadata.
+
+    Parameters
+    ----------
+    fig : matplotlib.figure.Figure
+        The figure.
+    output_dir : path
+        Existing folder to write into.
+    stem : str
+        File name without suffix.
+    figure : str
+        The paper figure it belongs to (``"fig9"``), for the report.
+    caption : str
+        Caption for the report (:func:`figure_caption`); written with
+        ``figure`` to ``<stem>.json`` beside the PNG when either is given.
+
+    Returns None, so that a notebook cell ending with it displays nothing
+    extra (nbval executes cells without history, where IPython's trailing
+    ``;`` does not suppress the result).
+    """
+    out = Path(output_dir)
+    with atomic_output(out / f"{stem}.png", "wb") as f:
+        fig.savefig(f, format="png", metadata={"Software": None}, bbox_inches="tight")
+    if figure or caption:
+        atomic_write_text(out / f"{stem}.json", json.dumps(
+            {"figure": figure, "caption": caption}, sort_keys=True, ensure_ascii=False) + "\n")
+
+
+_AERO_NAMES = {"thin_airfoil": "quasi-steady thin-airfoil aerodynamics",
+               "c81": "C81 table aerodynamics"}
+
+
+def flight_condition(cfg) -> str:
+    """``"hover"`` or ``"μ = 0.30"``.
+
+    Parameters
+    ----------
+    cfg : tefcore.config.Config
+        The configuration.
+    """
+    mu = cfg.flight.advance_ratio
+    return "hover" if mu == 0 else f"μ = {mu:.2f}"
+
+
+def conditions(cfg, exclude=()) -> str:
+    """The flight condition and flap of ``cfg`` in the paper's symbols.
+
+    Parameters
+    ----------
+    cfg : tefcore.config.Config
+        The configuration actually analysed.
+    exclude : iterable of str
+        Dotted fields not to mention (the swept one).
+
+    Returns
+    -------
+    str
+        E.g. ``"μ = 0.30, C_T/σ = 0.07, c_b/c_f = 0.29, c_cg/c_f = 0.33, ..."``;
+        hover is ``"hover"``; the flap is left out of a blade without one.
+    """
+    ex = set(exclude)
+    fl, flap = cfg.flight, cfg.flap
+    parts = []
+    if "flight.advance_ratio" not in ex:
+        parts.append(flight_condition(cfg))
+    if "flight.collective" not in ex:
+        if fl.collective is None:
+            parts.append(f"C_T/σ = {fl.ct_sigma:.3g}")
+        else:
+            parts.append(f"θ₀ = {np.rad2deg(fl.collective):.1f} deg")
+    if cfg.model.tef != "none":
+        for field, text in (("flap.overhang", f"c_b/c_f = {flap.overhang:.2f}"),
+                            ("flap.cg_offset", f"c_cg/c_f = {flap.cg_offset:.2f}")):
+            if field not in ex:
+                parts.append(text)
+        if "actuator.stiffness" not in ex:
+            parts.append(f"actuator {from_si(cfg.actuator.stiffness, 'ft-lbf/rad'):.1f} ft-lb/rad")
+    else:
+        parts.append("no flap")
+    if "model.aero_model" not in ex:
+        parts.append(_AERO_NAMES.get(cfg.model.aero_model, f"{cfg.model.aero_model} aerodynamics"))
+    return ", ".join(parts)
+
+
+def figure_title(name: str, cfg, width: int | None = None) -> str:
+    """Short title of a paper figure with the conditions of ``cfg``.
+
+    Parameters
+    ----------
+    name : str
+        Paper figure (``"fig9"``).
+    cfg : tefcore.config.Config
+        The configuration actually analysed (:func:`conditions`).
+    width : int, optional
+        Wrap to lines of at most this many characters (for a plot title).
+
+    Examples
+    --------
+    >>> from tefcore.paper.figure_runs import run_config
+    >>> figure_title("fig9", run_config("fig9"))[:40]
+    'Fig. 9: effect of flap CG offset (μ = 0.'
+    """
+    from .figures import FIGURES, RESPONSE_TITLES
+
+    if name in FIGURES:
+        fig = FIGURES[name]
+        short = re.split(r",|\(", fig.caption, maxsplit=1)[0].strip()
+        swept = (fig.parameter,)
+    else:
+        short, swept = RESPONSE_TITLES[name], ("flap.overhang",) if name == "fig7" else ()
+    short = short[0].lower() + short[1:]
+    title = f"Fig. {name[3:]}: {short} ({conditions(cfg, exclude=swept)})"
+    return title if width is None else "\n".join(textwrap.wrap(title, width))
+
+
+def figure_caption(name: str, cfg, what: str = "", markers: bool = True) -> str:
+    """Report caption of a figure: what it shows, the conditions used, the markers.
+
+    Parameters
+    ----------
+    name : str
+        Paper figure (``"fig9"``).
+    cfg : tefcore.config.Config
+        The configuration actually analysed (caption fields and overrides).
+    what : str
+        What the panels show, e.g. ``"(a) TEF frequency; (b) damping"``.
+    markers : bool
+        Append what the markers and lines of a tracked-mode plot mean (:data:`MARKERS`).
+    """
+    text = figure_title(name, cfg) + "."
+    if what:
+        text += " " + what.rstrip(".") + "."
+    return text + " " + MARKERS if markers else text
+
+
+def legend_below(ax, ncol: int = 3, **kw):
+    """A legend under the axes, where it cannot cover a curve.
+
+    Returns the :class:`matplotlib.legend.Legend` (or None when nothing is labelled).
+    """
+    handles, labels = ax.get_legend_handles_labels()
+    if not handles:
+        return None
+    kw.setdefault("fontsize", "x-small")
+    return ax.legend(handles, labels, loc="upper center", bbox_to_anchor=(0.5, -0.16),
+                     ncol=ncol, frameon=False, **kw)
+
+
+def x_values(name: str, table: pd.DataFrame) -> np.ndarray:
+    """The paper's x-axis quantity for each row of a sweep table (``value`` column)."""
+    _, fn = AXES[name]
+    v = table["value"].tolist()
+    if fn is not None:
+        return np.asarray(fn(v), float)
+    return np.array([split_value(s)[0] for s in v], float)
+
+
+def _base_label(s: pd.Series) -> pd.Series:
+    return s.astype(str).str.removesuffix(" (locked)")
+
+
+def curves(name: str, table: pd.DataFrame, labels=PAPER_MODES,
+           measure: str = "decay_rate") -> pd.DataFrame:
+    """One tracked curve per mode, for plotting and printing.
+
+    ``"TEF"`` is the TEF branch of the sweep (the track of the flap mode at
+    the sweep start, :func:`tefcore.sweep.sweep`); another mode ``m`` is the
+    track labelled ``m`` or ``m (locked)`` that is present at the most
+    points (ties: the exact label) -- the same choice as
+    :mod:`tefcore.paper.validation`.
+
+    Parameters
+    ----------
+    name : str
+        Paper figure (sets the x axis).
+    table : DataFrame
+        Sweep table (:attr:`tefcore.sweep.SweepResult.table`).
+    labels : tuple of str
+        Modes to return.
+    measure : {"decay_rate", "damping_ratio"}
+        Damping measure (:data:`MEASURES`).
+
+    Returns
+    -------
+    DataFrame
+        Columns ``label, track, x, frequency_per_rev`` (continued along the
+        track: whole /rev of a Floquet frequency are not allowed to jump),
+        ``damping, same_character, certain, refinement``; ``same_character``
+        is False where the mode's own label at that point is another mode's
+        (it exchanged character with it), ``certain`` is False from the first
+        point where its identity could not be decided.
+    """
+    _, fn = MEASURES[measure]
+    ok = table[table["status"] == "ok"].copy()
+    ok["base"] = _base_label(ok["label"])
+    parts = []
+    for lab in labels:
+        if lab == "TEF" and "tef_branch" in ok:
+            g = ok[ok["tef_branch"].fillna(False).astype(bool)].copy()
+            if g.empty:
+                continue
+            g["certain"] = g["tef_branch_certain"].fillna(False).astype(bool)
+        else:
+            sub = ok[ok["base"] == lab]
+            if sub.empty:
+                continue
+            sizes = sub.groupby("track", sort=False).agg(n=("point", "size"),
+                                                         first=("label", "first"))
+            sizes = sizes.assign(exact=sizes["first"] == lab).sort_values(
+                ["n", "exact"], ascending=False, kind="stable")
+            g = sub[sub["track"] == sizes.index[0]].copy()
+            ident = g["identity"] if "identity" in g else pd.Series("clear", index=g.index)
+            g["certain"] = (ident != "ambiguous").cummin().to_numpy()
+        g["label"] = lab
+        parts.append(g)
+    if not parts:
+        return pd.DataFrame(columns=_CURVE_COLUMNS)
+    cv = pd.concat(parts, ignore_index=True)
+    if "frequency_tracked" in cv:
+        cv["frequency_per_rev"] = cv["frequency_tracked"]
+    if "refinement" not in cv:
+        cv["refinement"] = 0
+    cv["x"] = x_values(name, cv)
+    cv["damping"] = fn(cv)
+    cv["same_character"] = _base_label(cv["label_here"]) == cv["label"]
+    cv = cv.sort_values(["x"], kind="stable")
+    order = {lab: i for i, lab in enumerate(labels)}
+    cv = cv.sort_values("label", key=lambda s: s.map(order), kind="stable")
+    return cv[_CURVE_COLUMNS].reset_index(drop=True)
+
+
+def plot_modes(ax, name: str, table: pd.DataFrame, labels=PAPER_MODES,
+               quantity: str = "damping", measure: str = "decay_rate",
+               reference: pd.DataFrame | None = None, label_suffix: str = "",
+               style=None, natural: pd.DataFrame | None = None):
+    """Frequency or damping of the tracked modes against the paper's x axis.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        Axes to draw in.
+    name : str
+        Paper figure.
+    table : DataFrame
+        Sweep table.
+    labels : tuple of str
+        Modes to draw.
+    quantity : {"damping", "frequency"}
+        What to draw.
+    measure : {"decay_rate", "damping_ratio"}
+        Damping measure.
+    reference : DataFrame, optional
+        Digitised curves (``label, x, y``) drawn as black crosses.
+    label_suffix : str
+        Appended to each legend entry (to compare variants in one axes).
+    style : dict, optional
+        ``label -> (colour, marker, line style)``; default :data:`STYLE`.
+    natural : DataFrame, optional
+        Draw these natural frequencies (:func:`tefcore.paper.figure_runs.natural_frequencies`)
+        instead of the table's.
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+        ``ax``. What the markers mean: :data:`MARKERS`.
+    """
+    xlabel, _ = AXES[name]
+    cv = natural if natural is not None else curves(name, table, labels, measure)
+    ycol = "frequency_per_rev" if quantity == "frequency" else "damping"
+    doubt_shown = False
+    for lab in labels:
+        g = cv[cv["label"] == lab]
+        if g.empty:
+            continue
+        color, marker, ls = (style or STYLE).get(lab, ("0.3", "o", "-"))
+        sure, unsure = g[g["certain"]], g[~g["certain"]]
+        if not unsure.empty and not sure.empty:      # join the two parts
+            unsure = pd.concat([sure.iloc[[-1]], unsure])
+        ax.plot(sure["x"], sure[ycol], ls=ls, color=color, lw=1.4, label=f"{lab}{label_suffix}")
+        if not unsure.empty:
+            ax.plot(unsure["x"], unsure[ycol], ls=":", color=color, lw=1.4,
+                    label=None if doubt_shown else "identity undecided (dotted)")
+            doubt_shown = True
+        main = g[g["refinement"] == 0]
+        filled = main[main["same_character"] & main["certain"]]
+        hollow = main[~main["same_character"] & main["certain"]]
+        grey = main[~main["certain"]]
+        ax.plot(filled["x"], filled[ycol], ls="none", marker=marker, color=color, ms=5)
+        ax.plot(hollow["x"], hollow[ycol], ls="none", marker=marker, ms=5,
+                markerfacecolor="white", markeredgecolor=color)
+        ax.plot(grey["x"], grey[ycol], ls="none", marker=marker, ms=5,
+                markerfacecolor="0.85", markeredgecolor=color)
+    if reference is not None and not reference.empty:
+        for lab, g in reference.groupby("label", sort=True):
+            ax.plot(g["x"], g["y"], ls="none", marker="x", color="k", ms=6,
+                    label=f"paper: {lab}")
+    if quantity == "damping":
+        ax.axhline(0.0, color="k", lw=0.8)
+        ax.set_ylabel(MEASURES[measure][0])
+    else:
+        ax.set_ylabel("natural frequency [/rev]" if natural is not None
+                      else "frequency [/rev]")
+    ax.set_xlabel(xlabel)
+    return ax
+
+
+def plot_root_locus(ax, name: str, table: pd.DataFrame, labels=PAPER_MODES,
+                    flutter: bool = True, style=None):
+    """Root locus: real part against frequency of the tracked modes along the sweep.
+
+    The classic picture of coalescence flutter: two roots approach in
+    frequency and one of them turns towards (and across) the imaginary
+    axis.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        Axes to draw in.
+    name : str
+        Paper figure.
+    table : DataFrame
+        Sweep table.
+    labels : tuple of str
+        Modes to draw; arrows point in the direction of the swept parameter,
+        the first point of each curve is a square.
+    flutter : bool
+        Also mark the flutter root of each point (the least stable root the
+        flap takes part in) with black dots.
+    style : dict, optional
+        ``label -> (colour, marker, line style)``.
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+        ``ax``.
+    """
+    cv = curves(name, table, labels)
+    for lab in labels:
+        g = cv[cv["label"] == lab]
+        if len(g) < 2:
+            continue
+        color, _, ls = (style or STYLE).get(lab, ("0.3", "o", "-"))
+        x, y = g["frequency_per_rev"].to_numpy(float), -g["damping"].to_numpy(float)
+        ax.plot(x, y, ls=ls, color=color, lw=1.3, label=lab)
+        ax.plot(x[0], y[0], "s", color=color, ms=5)
+        step = max(1, len(x) // 5)
+        for i in range(0, len(x) - 1, step):
+            ax.annotate("", xy=(x[i + 1], y[i + 1]), xytext=(x[i], y[i]),
+                        arrowprops={"arrowstyle": "->", "color": color, "lw": 1.2})
+    if flutter and "flutter_root" in table:
+        fr = table[(table["status"] == "ok") & table["flutter_root"].fillna(False).astype(bool)]
+        freq = fr["frequency_tracked"] if "frequency_tracked" in fr else fr["frequency_per_rev"]
+        ax.plot(freq, fr["real_part"], "k.", ms=4, label="flutter root (each point)")
+    ax.axhline(0.0, color="k", lw=0.8)
+    ax.set_xlabel("frequency [/rev]")
+    ax.set_ylabel("real part Re(s)/Ω [1/rev]  (> 0 unstable)")
+    return ax
+
+
+def plot_participation(ax, name: str, table: pd.DataFrame, label: str = "TEF"):
+    """Participation by kind of coordinate along one tracked mode (stacked).
+
+    The shares are participation factors
+    (:meth:`tefcore.floquet.FloquetResult.with_participation`), summing to 1
+    at each point: how much of the mode's dynamics is the flap's, the blade
+    torsion's, flap bending's and lag's.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        Axes to draw in.
+    name : str
+        Paper figure.
+    table : DataFrame
+        Sweep table.
+    label : str
+        The mode (``"TEF"``: the TEF branch).
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+        ``ax``.
+    """
+    cv = curves(name, table, (label,))
+    ok = table[table["status"] == "ok"]
+    if label == "TEF" and "tef_branch" in ok:
+        rows = ok[ok["tef_branch"].fillna(False).astype(bool)]
+    else:
+        rows = ok[ok["track"].isin(cv["track"].unique())]
+    rows = rows.assign(x=x_values(name, rows)).sort_values("x")
+    kinds = [k for k in ("TEF", "torsion", "flap", "lag") if f"share_{k}" in rows]
+    colors = {"TEF": "C3", "torsion": "C1", "flap": "C0", "lag": "C2"}
+    ax.stackplot(rows["x"], *[rows[f"share_{k}"] for k in kinds],
+                 labels=[("flap (TEF)" if k == "TEF" else f"blade {k}") for k in kinds],
+                 colors=[colors[k] for k in kinds], alpha=0.8)
+    ax.set_ylim(0, 1)
+    ax.set_ylabel(f"participation in the {label} mode")
+    ax.set_xlabel(AXES[name][0])
+    return ax

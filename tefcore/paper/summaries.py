@@ -1,0 +1,272 @@
+"""Printed summaries of a figure's results, for notebook cells that nbval checks.
+
+Every function prints (or returns) rounded, deterministic text: the tracked
+modes' damping and frequency tables (:func:`mode_summary`), where damping
+changes sign (:func:`sign_changes`), how the modes were identified
+(:func:`report_identity`), why a root is (un)stable (:func:`explain`, an
+energy balance by :mod:`tefcore.mechanism`), how unsteady the flap mode is
+(:func:`unsteadiness`), and the paper's claims checked against the results
+(:func:`claims_table`, :func:`show_claims`).
+
+Examples
+--------
+>>> format_value(2.2e-16), format_value(0.123456), format_value("at 0.3333333 c_f")
+('0', '0.1235', 'at 0.3333 c_f')
+"""
+
+from __future__ import annotations
+
+import math
+import re
+import warnings
+from contextlib import contextmanager
+
+import numpy as np
+import pandas as pd
+
+from ..mechanism import mechanism
+from ..unsteady_aero import theodorsen_function
+from . import validation
+from .curve_metrics import zero_crossings
+from .figure_runs import run_config
+from .figures import FIGURES, figure_config
+from .plotting import AXES, PAPER_MODES, curves, x_values
+
+__all__ = ["claims_table", "clean", "counted_warnings", "explain", "format_value",
+           "mechanism_summary", "mode_summary", "reference_curves", "report_identity",
+           "report_sweep", "show_claims", "sign_changes", "unsteadiness"]
+
+
+def mechanism_summary(cfg, x=None, name=None, root=None, knockouts=True,
+                      digits: int = 3) -> pd.DataFrame:
+    """:func:`tefcore.mechanism.mechanism` of one root, as a rounded table.
+
+    ``name``/``x``: the figure's configuration at that x (its swept value);
+    ``root``: the eigenvalue of the root (e.g. the TEF branch there), else
+    the root the flap mode becomes (``mode="TEF"``).  Prints the kind and
+    participation; returns ``term, contribution_real`` (terms with at least
+    0.001 /rev, largest first) and the knockouts.
+    """
+    if name is not None:
+        cfg = figure_config(name, cfg).with_overrides({FIGURES[name].parameter: x})
+    res = mechanism(cfg, mode="TEF" if root is None else "root", root=root,
+                    knockouts=knockouts)
+    print(f"{res.kind} at {res.eigenvalue.real:+.{digits}f} "
+          f"{res.eigenvalue.imag:+.{digits}f}i /rev; participation: "
+          + ", ".join(f"{k} {v:.2f}" for k, v in res.participation.items() if v >= 0.005))
+    t = res.table
+    terms = t[~t["term"].str.startswith(("total", "knockout"))]
+    terms = terms[terms["contribution_real"].abs() >= 10 ** -digits]
+    terms = terms.reindex(terms["contribution_real"].abs().sort_values(
+        ascending=False, kind="stable").index)
+    knock = t[t["term"].str.startswith("knockout")]
+    out = pd.concat([terms, knock], ignore_index=True)[["term", "contribution_real"]]
+    return clean(out.assign(contribution_real=out["contribution_real"].round(digits)))
+
+
+def mode_summary(name: str, table: pd.DataFrame | None, labels=PAPER_MODES,
+                 measure: str = "decay_rate", quantity: str = "damping",
+                 digits: int = 3, natural: pd.DataFrame | None = None) -> pd.DataFrame:
+    """Wide table (x by mode), rounded, for printing in checked cells."""
+    cv = natural if natural is not None else curves(name, table, labels, measure)
+    cv = cv[cv["refinement"] == 0]               # the figure's own points
+    col = "frequency_per_rev" if quantity == "frequency" else "damping"
+    wide = cv.pivot_table(index="x", columns="label", values=col, aggfunc="first",
+                          sort=True)
+    wide = wide[[c for c in labels if c in wide.columns]]
+    wide.index = np.round(wide.index.to_numpy(float), 4)
+    wide.index.name = AXES[name][0]
+    wide.columns.name = None
+    return clean(wide.round(digits))
+
+
+def clean(df: pd.DataFrame) -> pd.DataFrame:
+    """Replace ``-0.0`` by ``0.0`` (so printed tables do not flip sign)."""
+    return df.apply(lambda c: c.mask(c == 0, 0.0) if c.dtype.kind == "f" else c)
+
+
+def sign_changes(name: str, table: pd.DataFrame, label: str = "TEF",
+                 measure: str = "decay_rate") -> list:
+    """Where a mode's damping changes sign (:func:`tefcore.paper.curve_metrics.zero_crossings`
+    of its real part, on the figure's own points), paper units."""
+    cv = curves(name, table, (label,), measure)
+    cv = cv[cv["refinement"] == 0]
+    out = []
+    for _, g in cv.groupby("track", sort=True):
+        x, y = g["x"].to_numpy(), -g["damping"].to_numpy()
+        for x0, d in zero_crossings(x, y):
+            out.append((round(float(x0), 3),
+                        "stable -> unstable" if d == "destabilising" else "unstable -> stable"))
+    return out
+
+
+def report_identity(name: str, result) -> None:
+    """A few deterministic lines on how the sweep's modes were identified.
+
+    Where the TEF branch starts and how it was anchored, how many points the
+    refinement added, where the branch's identity is undecided, and where
+    the flutter root (least stable root the flap takes part in) is a root
+    other than the TEF branch's.
+    """
+    t = result.table
+    ok = t[t["status"] == "ok"]
+    n_ref = ok.loc[ok["refinement"] > 0, "point"].nunique() if "refinement" in ok else 0
+    anchor = getattr(result, "anchor", {}) or {}
+    x = x_values(name, ok.assign(value=ok["value"])) if len(ok) else np.array([])
+    ok = ok.assign(x=x)
+    if not anchor:
+        print(f"{name}: no TEF branch (no flap mode at the sweep start)")
+        return
+    start = ok[(ok["point"] == anchor["point"])]["x"].iloc[0]
+    print(f"{name}: TEF branch anchored at x = {start:.4g} by {anchor['method']}; "
+          f"{n_ref} points added where identities were ambiguous")
+    branch = ok[ok["tef_branch"].fillna(False).astype(bool)]
+    unsure = branch[~branch["tef_branch_certain"].fillna(False).astype(bool)]
+    print("  TEF branch identity undecided from x = "
+          + (f"{unsure['x'].min():.4g}" if not unsure.empty else "nowhere (decided throughout)"))
+    fr = ok[ok["flutter_root"].fillna(False).astype(bool)]
+    other = fr[~fr["tef_branch"].fillna(False).astype(bool) & (fr["refinement"] == 0)]
+    if other.empty:
+        print("  the flutter root is the TEF branch's root at every point")
+    else:
+        labs = sorted(set(other["label_here"].astype(str)))
+        print(f"  the flutter root is another root at {len(other)} of "
+              f"{int((fr['refinement'] == 0).sum())} points (labelled {', '.join(labs)})")
+
+
+def explain(name: str, result, x: float, base=None, overrides: dict | None = None,
+            which: str = "TEF branch", knockouts: bool = True) -> pd.DataFrame:
+    """Why the TEF branch (or the flutter root) is (un)stable at the sweep point
+    nearest ``x`` (paper units): :func:`mechanism_summary` of that root.
+
+    ``which``: ``"TEF branch"`` or ``"flutter root"``.  Prints the point and
+    the root's kind and participation; returns the terms' work and the
+    knockouts (rounded, for checked cells).
+    """
+    t = result.table
+    col = "tef_branch" if which == "TEF branch" else "flutter_root"
+    rows = t[(t["status"] == "ok") & t[col].fillna(False).astype(bool) & (t["refinement"] == 0)]
+    if rows.empty:
+        print(f"{name}: no {which} in the sweep")
+        return pd.DataFrame(columns=["term", "contribution_real"])
+    xs = x_values(name, rows)
+    r = rows.iloc[int(np.argmin(np.abs(xs - x)))]
+    cfg = run_config(name, base, overrides).with_overrides(
+        {FIGURES[name].parameter: r["value_si"]})
+    print(f"{name}, {which} at x = {float(xs[int(np.argmin(np.abs(xs - x)))]):.4g} "
+          f"(labelled {r['label_here']} there):")
+    return mechanism_summary(cfg, root=complex(r["real_part"], r["frequency_per_rev"]),
+                             knockouts=knockouts)
+
+
+def unsteadiness(name: str, result, base=None) -> None:
+    """Print the TEF mode's reduced frequency at the flap and Theodorsen's C(k):
+    how far from quasi-steady (C = 1) the flap mode of this sweep is."""
+    cfg = figure_config(name, base)
+    t = result.table
+    own_label = t["label_here"].astype(str).str.removesuffix(" (locked)")
+    own = t[(t["status"] == "ok") & (own_label == "TEF")]
+    if own.empty:
+        print(f"{name}: no TEF mode in the sweep")
+        return
+    f = float(np.median(own["frequency_per_rev"]))   # where the mode is TEF-like itself
+    # k = omega b / U with b = c/2 and U = x R Omega (hover speed at the flap midspan)
+    k = f * cfg.rotor.chord / (2 * cfg.flap.midspan * cfg.rotor.radius)
+    c = complex(theodorsen_function(k))
+    print(f"{name}: TEF mode at {f:.1f}/rev (median over the sweep) -> reduced frequency "
+          f"k = {k:.2f} at {cfg.flap.midspan:.2f} R;")
+    print(f"  Theodorsen C(k): |C| = {abs(c):.2f}, phase {np.degrees(np.angle(c)):.1f} deg "
+          "(quasi-steady theory uses C = 1, phase 0)")
+
+
+@contextmanager
+def counted_warnings(what: str):
+    """Collect the warnings of a block and print one deterministic line counting
+    them by category (nothing when there are none), instead of a stderr flood."""
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        yield caught
+    if caught:
+        counts = pd.Series([w.category.__name__ for w in caught]).value_counts().sort_index()
+        print(f"{what}: " + ", ".join(f"{n} {cat}" for cat, n in counts.items()))
+
+
+def report_sweep(name: str, result) -> None:
+    """One deterministic line: points, failures, points with numerical warnings."""
+    t = result.table
+    pts = t.drop_duplicates("point")
+    n_warn = int((pts.get("trim_numerical_warnings", pd.Series(dtype=float)).fillna(0) > 0)
+                 .sum())
+    print(f"{name}: {len(pts)} points of {result.parameter}, "
+          f"{int((pts['status'] != 'ok').sum())} failed, {n_warn} with numerical warnings")
+    for row in result.failed.itertuples(index=False):
+        print(f"  failed at {row.value}: {row.error}")
+
+
+def claims_table(name: str, result, cfg=None, variants=None, others=None) -> pd.DataFrame:
+    """The paper's claims about one figure, checked against its result.
+
+    :func:`tefcore.paper.validation.validate_figure`, with a fresh index.
+
+    Parameters
+    ----------
+    name : str
+        Paper figure.
+    result : SweepResult or dict
+        The figure's result.
+    cfg : tefcore.config.Config, optional
+        Base configuration of runs the validation adds.
+    variants : dict, optional
+        ``{variant_key(overrides): result}`` of runs already made (e.g. Fig.
+        12's balanced flap); anything else a claim needs is computed.
+    others : dict, optional
+        Figure name -> result, for claims comparing figures.
+
+    Raises
+    ------
+    tefcore.paper.reference.ReferenceDataError
+        Without usable reference data (never an empty "0 of 0" table).
+    """
+    return validation.validate_figure(name, result, cfg=cfg, variants=variants,
+                                      others=others).reset_index(drop=True)
+
+
+def reference_curves(name: str):
+    """Digitised curves of the paper for a figure (``label, x, y``), or None.
+
+    Parameters
+    ----------
+    name : str
+        Paper figure.
+    """
+    return validation.reference_curves(name)
+
+
+def show_claims(table: pd.DataFrame, width: int = 70) -> None:
+    """Print a claims table compactly and deterministically (claim, status, computed)."""
+    if table.empty:
+        print("no claims for this figure")
+        return
+    t = table.copy()
+    if "computed" in t:
+        t["computed"] = [format_value(v) for v in t["computed"]]
+    cols = [c for c in ("id", "status", "computed") if c in t.columns]
+    with pd.option_context("display.max_colwidth", width, "display.width", 200):
+        print(t[cols or list(t.columns)].to_string(index=False))
+
+
+_NUMBER = re.compile(r"(?<![\w.])-?\d+(?:\.\d+)?(?:e[-+]?\d+)?(?![\w.])")
+
+
+def _round_number(text: str) -> str:
+    v = float(text)
+    if abs(v) < 1e-9:          # round-off (e.g. 2.2e-16 for "unchanged"): not a result
+        return "0"
+    return f"{v:.4g}"
+
+
+def format_value(v) -> str:
+    """A value printed with 4 significant digits; |x| < 1e-9 (round-off) as 0."""
+    if isinstance(v, float | np.floating):
+        return "nan" if math.isnan(v) else _round_number(repr(float(v)))
+    return _NUMBER.sub(lambda m: _round_number(m.group()), str(v))

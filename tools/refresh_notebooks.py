@@ -1,0 +1,103 @@
+"""Rebuild and execute the notebooks from their jupytext sources (developers).
+
+The notebooks' sources are the percent-format ``tefcore/paper/notebooks/NN_*.py``
+files; the ``.ipynb`` beside them are the same cells with their outputs, which
+nbval compares.  After editing a source, or after any change to the numerics,
+run::
+
+    python tools/refresh_notebooks.py            # all notebooks, two at a time
+    python tools/refresh_notebooks.py 04 07      # some
+
+Each notebook is built from its source (jupytext), executed with papermill in
+one temporary working folder (outputs go there, not into the package) with
+``interactive = False`` where a notebook has that parameter (the static
+figure, not widget state), and written back without papermill's injected
+cell and timings, with cell ids numbered in order, so that an unchanged
+notebook is rewritten byte-identically.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import sys
+import tempfile
+import time
+from concurrent.futures import ThreadPoolExecutor
+from pathlib import Path
+
+import jupytext
+import nbformat
+import papermill
+
+NB_DIR = Path(__file__).resolve().parent.parent / "tefcore" / "paper" / "notebooks"
+
+
+def build(source: Path) -> nbformat.NotebookNode:
+    """The notebook of a jupytext source, without outputs, with deterministic ids."""
+    nb = jupytext.read(source)
+    nb.metadata.setdefault("kernelspec", {"display_name": "Python 3", "language": "python",
+                                          "name": "python3"})
+    nb.metadata.setdefault("language_info", {"name": "python"})
+    for i, cell in enumerate(nb.cells):
+        cell["id"] = f"cell-{i:03d}"
+    return nb
+
+
+def clean(nb: nbformat.NotebookNode) -> nbformat.NotebookNode:
+    """Drop papermill's injected parameters cell and its run metadata."""
+    nb.cells = [c for c in nb.cells if "injected-parameters" not in c.metadata.get("tags", [])]
+    nb.metadata.pop("papermill", None)
+    count = 0
+    for i, cell in enumerate(nb.cells):
+        cell.metadata.pop("papermill", None)
+        cell.metadata.pop("execution", None)
+        cell["id"] = f"cell-{i:03d}"
+        if cell.cell_type == "code":
+            # numbered in order (nbval takes a cell without a count for one never run)
+            count += 1
+            cell.execution_count = count
+            for out in cell.get("outputs", []):
+                if "execution_count" in out:
+                    out["execution_count"] = count
+    return nb
+
+
+def refresh(source: Path, work: Path) -> tuple[str, float]:
+    """Build, execute (kernel in the process's working folder ``work``) and store one notebook."""
+    start = time.perf_counter()
+    target = source.with_suffix(".ipynb")
+    unexecuted = work / target.name
+    nbformat.write(build(source), unexecuted)
+    params = papermill.inspect_notebook(str(unexecuted))
+    executed = papermill.execute_notebook(
+        str(unexecuted), str(work / f"executed-{target.name}"),
+        parameters={"interactive": False} if "interactive" in params else {},
+        kernel_name="python3", cwd=None, progress_bar=False, log_output=False,
+        extra_arguments=["--IPKernelApp.log_level=ERROR"])
+    nbformat.write(clean(executed), target)
+    return source.stem, time.perf_counter() - start
+
+
+def main(argv=None) -> int:
+    p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    p.add_argument("notebooks", nargs="*", help="numbers or names (default: all)")
+    p.add_argument("--jobs", type=int, default=2, help="notebooks executed at once")
+    args = p.parse_args(argv)
+    sources = sorted(NB_DIR.glob("[0-9][0-9]_*.py"))
+    if args.notebooks:
+        sources = [s for s in sources if any(s.stem.startswith(k.zfill(2)) or s.stem == k
+                                             for k in args.notebooks)]
+    # one working folder for all (papermill's own cwd would chdir the whole process,
+    # which races between threads); each notebook writes into output/<its name> there
+    with tempfile.TemporaryDirectory(prefix="tefcore-refresh-") as tmp:
+        os.chdir(tmp)
+        with ThreadPoolExecutor(max_workers=max(1, args.jobs)) as pool:
+            for name, seconds in pool.map(lambda s: refresh(s, Path(tmp)), sources):
+                print(f"{name}: {seconds:.1f} s", file=sys.stderr)
+        os.chdir(NB_DIR)
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
