@@ -96,7 +96,8 @@ def _label_modes(frac, labels, freqs, rates, disp):
     the shares, so every coordinate names exactly one mode, even where two
     modes share one coordinate (flutter). Kinetic-energy shares would hide the
     light coordinates: the MDART torsion mode in hover carries 0.5 % of its
-    kinetic energy in torsion but 65 % of its participation (measured). A complex pair whose multipliers have
+    kinetic energy in torsion but 65 % of its participation (measured). A
+    complex pair whose multipliers have
     become two real ones (frequency locked to a multiple of 1/2 per rev, or
     overdamped) gives one mode more than coordinates: the pair shares its
     coordinate's label, the less damped root carrying it plainly and the

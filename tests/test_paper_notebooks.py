@@ -12,10 +12,10 @@ import nbformat
 import pytest
 
 from tefcore.paper import notebook_files as nbf
+from tefcore.paper.captions import figure_caption, figure_title
 from tefcore.paper.departures import departures_text, load_departures
 from tefcore.paper.figure_runs import run_config
 from tefcore.paper.figures import FIGURES, response_config
-from tefcore.paper.plotting import figure_caption, figure_title
 
 jupytext = pytest.importorskip("jupytext")
 

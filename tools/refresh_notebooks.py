@@ -7,6 +7,12 @@ run::
 
     python tools/refresh_notebooks.py            # all notebooks, two at a time
     python tools/refresh_notebooks.py 04 07      # some
+    python tools/refresh_notebooks.py --sources-only   # layout/comment edits only
+
+``--sources-only`` copies the sources' cells into the stored notebooks and
+keeps their outputs, without executing: for edits that cannot change an
+output (line breaks, comments, markdown).  nbval then tells whether that was
+true.
 
 Each notebook is built from its source (jupytext), executed with papermill in
 one temporary working folder (outputs go there, not into the package) with
@@ -52,6 +58,8 @@ def clean(nb: nbformat.NotebookNode) -> nbformat.NotebookNode:
     for i, cell in enumerate(nb.cells):
         cell.metadata.pop("papermill", None)
         cell.metadata.pop("execution", None)
+        if cell.metadata.get("tags") == []:       # papermill adds empty tag lists
+            cell.metadata.pop("tags")
         cell["id"] = f"cell-{i:03d}"
         if cell.cell_type == "code":
             # numbered in order (nbval takes a cell without a count for one never run)
@@ -79,15 +87,36 @@ def refresh(source: Path, work: Path) -> tuple[str, float]:
     return source.stem, time.perf_counter() - start
 
 
+def resync_sources(source: Path) -> str:
+    """Copy the cells' sources of ``source`` into its stored notebook, keeping outputs."""
+    target = source.with_suffix(".ipynb")
+    fresh, stored = build(source), nbformat.read(target, as_version=4)
+    kinds = [c.cell_type for c in fresh.cells]
+    if kinds != [c.cell_type for c in stored.cells]:
+        raise SystemExit(f"{source.name}: cells added, removed or changed kind; execute it "
+                         "instead (without --sources-only)")
+    for new, old in zip(fresh.cells, stored.cells, strict=True):
+        old.source = new.source
+        old.metadata = new.metadata
+    nbformat.write(clean(stored), target)
+    return source.stem
+
+
 def main(argv=None) -> int:
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("notebooks", nargs="*", help="numbers or names (default: all)")
     p.add_argument("--jobs", type=int, default=2, help="notebooks executed at once")
+    p.add_argument("--sources-only", action="store_true",
+                   help="copy the sources' cells into the notebooks, keep the outputs")
     args = p.parse_args(argv)
     sources = sorted(NB_DIR.glob("[0-9][0-9]_*.py"))
     if args.notebooks:
         sources = [s for s in sources if any(s.stem.startswith(k.zfill(2)) or s.stem == k
                                              for k in args.notebooks)]
+    if args.sources_only:
+        for source in sources:
+            print(f"{resync_sources(source)}: sources copied", file=sys.stderr)
+        return 0
     # one working folder for all (papermill's own cwd would chdir the whole process,
     # which races between threads); each notebook writes into output/<its name> there
     with tempfile.TemporaryDirectory(prefix="tefcore-refresh-") as tmp:

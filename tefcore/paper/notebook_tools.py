@@ -8,8 +8,9 @@ where they belong and are re-exported here:
   :func:`run_config`, :func:`figure_values`, :func:`run_stability_figure`,
   :func:`natural_frequencies`, :func:`section_aero`);
 * plotting -- :mod:`tefcore.paper.plotting` (:func:`plot_modes`,
-  :func:`plot_root_locus`, :func:`plot_participation`, :func:`figure_title`,
-  :func:`figure_caption`, :func:`legend_below`, :func:`savefig`);
+  :func:`plot_root_locus`, :func:`plot_participation`, :func:`legend_below`,
+  :func:`savefig`) and :mod:`tefcore.paper.captions` (:func:`figure_title`,
+  :func:`figure_caption`, :func:`conditions`);
 * printed summaries for checked cells -- :mod:`tefcore.paper.summaries`
   (:func:`mode_summary`, :func:`sign_changes`, :func:`report_identity`,
   :func:`explain`, :func:`unsteadiness`, :func:`claims_table`, ...);
@@ -33,6 +34,14 @@ import pandas as pd
 
 from ..runtime import apply_defaults
 from ..safe_io import atomic_output
+from .captions import (
+    LOCUS_CAPTION,
+    MARKERS,
+    conditions,
+    figure_caption,
+    figure_title,
+    flight_condition,
+)
 from .departures import departures_text, show_departures
 from .explorer import explore
 from .figure_runs import (
@@ -47,17 +56,11 @@ from .figure_runs import (
 )
 from .plotting import (
     AXES,
-    LOCUS_CAPTION,
-    MARKERS,
     MEASURES,
     PAPER_MODES,
     STYLE,
-    conditions,
     curves,
     deterministic_matplotlib,
-    figure_caption,
-    figure_title,
-    flight_condition,
     legend_below,
     plot_modes,
     plot_participation,

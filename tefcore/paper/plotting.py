@@ -6,26 +6,21 @@ curves, markers and captions mean the same thing everywhere:
 * :func:`curves` -- one tracked curve per mode of a sweep table (the TEF
   branch for ``"TEF"``), with the paper's x axis (:data:`AXES`);
 * :func:`plot_modes`, :func:`plot_root_locus`, :func:`plot_participation`;
-* :func:`conditions`, :func:`figure_title` and :func:`figure_caption` --
-  titles and captions built from the configuration actually used, so they
-  stay right when a user overrides a parameter;
+* :func:`legend_below` -- a legend that cannot cover a curve;
 * :func:`savefig` -- a PNG with fixed metadata (byte-identical between runs)
-  and a JSON caption beside it that the report reads.
+  and a JSON caption beside it that the report reads (captions:
+  :mod:`tefcore.paper.captions`).
 
 Examples
 --------
->>> from tefcore.config import load_config
->>> cfg = load_config("mdart").with_overrides({"flight.advance_ratio": 0.2})
->>> conditions(cfg, exclude=("flap.cg_offset",)).split(", ")  # doctest: +NORMALIZE_WHITESPACE
-['μ = 0.20', 'C_T/σ = 0.075', 'c_b/c_f = 0.29', 'actuator 81.5 ft-lb/rad',
- 'quasi-steady thin-airfoil aerodynamics']
+>>> split_value("0.5 ft-lbf/rad")
+(0.5, 'ft-lbf/rad')
 """
 
 from __future__ import annotations
 
 import json
 import re
-import textwrap
 from pathlib import Path
 
 import numpy as np
@@ -34,9 +29,8 @@ import pandas as pd
 from ..safe_io import atomic_output, atomic_write_text
 from ..units import from_si
 
-__all__ = ["AXES", "LOCUS_CAPTION", "MARKERS", "MEASURES", "PAPER_MODES", "STYLE", "conditions",
-           "curves", "deterministic_matplotlib", "figure_caption", "figure_title",
-           "flight_condition", "legend_below",
+__all__ = ["AXES", "MEASURES", "PAPER_MODES", "STYLE", "curves", "deterministic_matplotlib",
+           "legend_below",
            "plot_modes", "plot_participation", "plot_root_locus", "savefig", "split_value",
            "x_values"]
 
@@ -93,22 +87,6 @@ MEASURES = {
     "damping_ratio": ("damping ratio ζ [%]  (> 0 stable)",
                       lambda t: 100 * t["damping_ratio"]),
 }
-#: What the plots' markers and lines mean (the same in every stability figure).
-MARKERS = ("Lines join every computed point (including points added where an identity had "
-           "to be decided); filled markers are the figure's own sweep points. A hollow "
-           "marker: the mode has the character (largest participation) of another mode "
-           "there -- it exchanged character in a coupling. Dotted line and grey markers: "
-           "its identity is undecided from there on (a coalescence or an unresolved "
-           "veering). Black crosses: the paper's curves, where digitised data were added. "
-           "\"TEF\" is the TEF branch: the root the flap's own mode becomes when the "
-           "coupling is switched on, followed along the sweep.")
-
-#: Caption of the root-locus and participation figures beside each stability figure.
-LOCUS_CAPTION = ("Left: root locus of the tracked modes (square: first point; arrows: increasing "
-                 "x; black dots: the flutter root of each point, the least stable root the flap "
-                 "takes part in). Right: participation of the flap, blade torsion, bending and "
-                 "lag in the TEF branch (participation factors, summing to 1)")
-
 _CURVE_COLUMNS = ["label", "track", "x", "frequency_per_rev", "damping", "same_character",
                   "certain", "refinement"]
 
@@ -120,7 +98,9 @@ def deterministic_matplotlib() -> None:
     mpl.rcParams.update({"svg.hashsalt": "tefcore", "pdf.compression": 6,
                          "figure.dpi": 80, "savefig.dpi": 110,
                          "figure.figsize": (6.4, 4.2), "axes.grid": True,
-                         "grid.alpha": 0.3, "legend.fontsize": "small"})
+                         "grid.alpha": 0.3, "legend.fontsize": "small",
+                         # titles, panel titles and legends below the axes never overlap
+                         "figure.constrained_layout.use": True})
 
 
 def savefig(fig, output_dir, stem: str, figure: str = "", caption: str = "") -> None:
@@ -152,113 +132,6 @@ def savefig(fig, output_dir, stem: str, figure: str = "", caption: str = "") -> 
             {"figure": figure, "caption": caption}, sort_keys=True, ensure_ascii=False) + "\n")
 
 
-_AERO_NAMES = {"thin_airfoil": "quasi-steady thin-airfoil aerodynamics",
-               "c81": "C81 table aerodynamics"}
-
-
-def flight_condition(cfg) -> str:
-    """``"hover"`` or ``"μ = 0.30"``.
-
-    Parameters
-    ----------
-    cfg : tefcore.config.Config
-        The configuration.
-    """
-    mu = cfg.flight.advance_ratio
-    return "hover" if mu == 0 else f"μ = {mu:.2f}"
-
-
-def conditions(cfg, exclude=()) -> str:
-    """The flight condition and flap of ``cfg`` in the paper's symbols.
-
-    Parameters
-    ----------
-    cfg : tefcore.config.Config
-        The configuration actually analysed.
-    exclude : iterable of str
-        Dotted fields not to mention (the swept one).
-
-    Returns
-    -------
-    str
-        E.g. ``"μ = 0.30, C_T/σ = 0.07, c_b/c_f = 0.29, c_cg/c_f = 0.33, ..."``;
-        hover is ``"hover"``; the flap is left out of a blade without one.
-    """
-    ex = set(exclude)
-    fl, flap = cfg.flight, cfg.flap
-    parts = []
-    if "flight.advance_ratio" not in ex:
-        parts.append(flight_condition(cfg))
-    if "flight.collective" not in ex:
-        if fl.collective is None:
-            parts.append(f"C_T/σ = {fl.ct_sigma:.3g}")
-        else:
-            parts.append(f"θ₀ = {np.rad2deg(fl.collective):.1f} deg")
-    if cfg.model.tef != "none":
-        for field, text in (("flap.overhang", f"c_b/c_f = {flap.overhang:.2f}"),
-                            ("flap.cg_offset", f"c_cg/c_f = {flap.cg_offset:.2f}")):
-            if field not in ex:
-                parts.append(text)
-        if "actuator.stiffness" not in ex:
-            parts.append(f"actuator {from_si(cfg.actuator.stiffness, 'ft-lbf/rad'):.1f} ft-lb/rad")
-    else:
-        parts.append("no flap")
-    if "model.aero_model" not in ex:
-        parts.append(_AERO_NAMES.get(cfg.model.aero_model, f"{cfg.model.aero_model} aerodynamics"))
-    return ", ".join(parts)
-
-
-def figure_title(name: str, cfg, width: int | None = None) -> str:
-    """Short title of a paper figure with the conditions of ``cfg``.
-
-    Parameters
-    ----------
-    name : str
-        Paper figure (``"fig9"``).
-    cfg : tefcore.config.Config
-        The configuration actually analysed (:func:`conditions`).
-    width : int, optional
-        Wrap to lines of at most this many characters (for a plot title).
-
-    Examples
-    --------
-    >>> from tefcore.paper.figure_runs import run_config
-    >>> figure_title("fig9", run_config("fig9"))[:40]
-    'Fig. 9: effect of flap CG offset (μ = 0.'
-    """
-    from .figures import FIGURES, RESPONSE_TITLES
-
-    if name in FIGURES:
-        fig = FIGURES[name]
-        short = re.split(r",|\(", fig.caption, maxsplit=1)[0].strip()
-        swept = (fig.parameter,)
-    else:
-        short, swept = RESPONSE_TITLES[name], ("flap.overhang",) if name == "fig7" else ()
-    short = short[0].lower() + short[1:]
-    title = f"Fig. {name[3:]}: {short} ({conditions(cfg, exclude=swept)})"
-    return title if width is None else "\n".join(textwrap.wrap(title, width))
-
-
-def figure_caption(name: str, cfg, what: str = "", markers: bool = True) -> str:
-    """Report caption of a figure: what it shows, the conditions used, the markers.
-
-    Parameters
-    ----------
-    name : str
-        Paper figure (``"fig9"``).
-    cfg : tefcore.config.Config
-        The configuration actually analysed (caption fields and overrides).
-    what : str
-        What the panels show, e.g. ``"(a) TEF frequency; (b) damping"``.
-    markers : bool
-        Append what the markers and lines of a tracked-mode plot mean (:data:`MARKERS`).
-    """
-    text = figure_title(name, cfg) + "."
-    if what:
-        text += " " + what.rstrip(".") + "."
-    return text + " " + MARKERS if markers else text
-
-
 def legend_below(ax, ncol: int = 3, **kw):
     """A legend under the axes, where it cannot cover a curve.
 
@@ -273,9 +146,30 @@ def legend_below(ax, ncol: int = 3, **kw):
 
 
 def x_values(name: str, table: pd.DataFrame) -> np.ndarray:
-    """The paper's x-axis quantity for each row of a sweep table (``value`` column)."""
+    """The paper's x-axis quantity for each row of a sweep table.
+
+    Dimensional values are read from ``value_si`` in the unit of the figure's
+    own values (points added by refinement carry only SI values), else from
+    ``value``.
+
+    Parameters
+    ----------
+    name : str
+        Paper figure.
+    table : DataFrame
+        Rows with ``value`` (and ``value_si``).
+    """
+    from .figures import FIGURES
+    from .reference import swept_dimension
+
     _, fn = AXES[name]
-    v = table["value"].tolist()
+    unit = split_value(FIGURES[name].values[0])[1] if name in FIGURES else ""
+    if unit and "value_si" in table:
+        own = from_si(table["value_si"].to_numpy(float), unit.replace("ft-lb/", "ft-lbf/"),
+                      swept_dimension(name))
+        v = [f"{float(x)!r} {unit}" for x in np.atleast_1d(own)]
+    else:
+        v = table["value"].tolist()
     if fn is not None:
         return np.asarray(fn(v), float)
     return np.array([split_value(s)[0] for s in v], float)
@@ -358,7 +252,7 @@ def curves(name: str, table: pd.DataFrame, labels=PAPER_MODES,
 def plot_modes(ax, name: str, table: pd.DataFrame, labels=PAPER_MODES,
                quantity: str = "damping", measure: str = "decay_rate",
                reference: pd.DataFrame | None = None, label_suffix: str = "",
-               style=None, natural: pd.DataFrame | None = None):
+               style=None, natural: pd.DataFrame | None = None, flutter: bool = True):
     """Frequency or damping of the tracked modes against the paper's x axis.
 
     Parameters
@@ -384,11 +278,16 @@ def plot_modes(ax, name: str, table: pd.DataFrame, labels=PAPER_MODES,
     natural : DataFrame, optional
         Draw these natural frequencies (:func:`tefcore.paper.figure_runs.natural_frequencies`)
         instead of the table's.
+    flutter : bool
+        In a damping panel with the TEF, also mark the flutter root of each of
+        the figure's points (the least stable root the flap takes part in,
+        whichever mode it is) with black dots: where the flutter root is not
+        the TEF branch, this is the root that goes unstable.
 
     Returns
     -------
     matplotlib.axes.Axes
-        ``ax``. What the markers mean: :data:`MARKERS`.
+        ``ax``. What the markers mean: :data:`tefcore.paper.captions.MARKERS`.
     """
     xlabel, _ = AXES[name]
     cv = natural if natural is not None else curves(name, table, labels, measure)
@@ -416,6 +315,13 @@ def plot_modes(ax, name: str, table: pd.DataFrame, labels=PAPER_MODES,
                 markerfacecolor="white", markeredgecolor=color)
         ax.plot(grey["x"], grey[ycol], ls="none", marker=marker, ms=5,
                 markerfacecolor="0.85", markeredgecolor=color)
+    if flutter and quantity == "damping" and "TEF" in labels and table is not None \
+            and "flutter_root" in table:
+        fr = table[(table["status"] == "ok") & table["flutter_root"].fillna(False).astype(bool)
+                   & (table["refinement"] == 0)]
+        if not fr.empty:
+            ax.plot(x_values(name, fr), MEASURES[measure][1](fr), "k.", ms=5, zorder=5,
+                    label=f"flutter root{label_suffix}")
     if reference is not None and not reference.empty:
         for lab, g in reference.groupby("label", sort=True):
             ax.plot(g["x"], g["y"], ls="none", marker="x", color="k", ms=6,

@@ -251,7 +251,20 @@ def _quantity(r: _Record, key: str, figure: str, default: str = "") -> str:
 
 
 def parse_claim(raw: dict, where: str = "<claim>") -> Claim:
-    """Check one raw claim table (as read from TOML) and return the :class:`Claim`."""
+    """Check one raw claim table (as read from TOML) and return the :class:`Claim`.
+
+    Parameters
+    ----------
+    raw : dict
+        The claim's fields (``reference_data/README.md``).
+    where : str
+        Where it was read, for error messages.
+
+    Raises
+    ------
+    ReferenceDataError
+        Naming the claim and the field.
+    """
     r = _Record(raw, where)
     cid = r.text("id", required=True)
     if not _ID.match(cid):
@@ -270,9 +283,17 @@ def parse_claim(raw: dict, where: str = "<claim>") -> Claim:
     if kind == "not_reproducible":
         return Claim(**kw, mode=r.text("mode"), quantity=r.text("quantity"),
                      reason=r.text("reason", required=True))
-    stability = figure in FIGURES
     if kind == "mechanism":
         return _mechanism_claim(r, kw, figure)
+    _curve_fields(r, kw)
+    _KIND_FIELDS[kind](r, kw)
+    return Claim(**kw)
+
+
+def _curve_fields(r: _Record, kw: dict) -> None:
+    """The fields naming the checked curve: mode, quantity, x unit, overrides, tolerance."""
+    kind, figure = kw["kind"], kw["figure"]
+    stability = figure in FIGURES
     q = _quantity(r, "quantity", figure, "real_part" if kind in ("threshold", "range") else "")
     if kind in ("threshold", "range") and q != "real_part":
         r.fail(f"a {kind} is a zero crossing of 'real_part', not of {q!r}")
@@ -292,53 +313,69 @@ def parse_claim(raw: dict, where: str = "<claim>") -> Claim:
     if kw["tolerance"] is not None and (kw["tolerance"] < 0 or not kw["tolerance_reason"]):
         r.fail("a tolerance must be >= 0 and have its 'tolerance_reason'")
 
-    def need_tolerance(need=True):
-        if need and kw["tolerance"] is None:
-            r.fail(f"this {kind} claim needs 'tolerance' and 'tolerance_reason'")
 
-    if kind == "value":
-        kw.update({k: r.number(k, required=(k == "x" and figure != "fig6"))
-                   for k in ("x", "relative_to", "expected", "lower", "upper")})
-        kw["tolerance_type"] = r.text("tolerance_type", choices=("absolute", "relative"),
-                                      default="absolute")
-        if kw["expected"] is None and kw["lower"] is None and kw["upper"] is None:
-            r.fail("a value claim needs 'expected' (with tolerance) or 'lower'/'upper'")
-        need_tolerance(kw["expected"] is not None)
-    elif kind == "threshold":
-        kw.update(expected=r.number("expected"), direction=r.text(
-            "direction", required=True, choices=("destabilising", "stabilising")))
-        need_tolerance(kw["expected"] is not None)
-    elif kind == "range":
-        kw.update(state=r.text("state", required=True, choices=("unstable", "stable")),
-                  expected_interval=r.pair("expected_interval", required=True))
-        need_tolerance()
-    elif kind == "trend":
-        kw.update(direction=r.text("direction", required=True,
-                                   choices=("increasing", "decreasing", "constant")),
-                  method=r.text("method", choices=("slope", "net_change"), default="slope"),
-                  tolerance_type=r.text("tolerance_type", default="absolute", choices=(
-                      "absolute", "relative", "relative_to_mode")),
-                  reference_mode=r.text("reference_mode"))
-        need_tolerance(kw["direction"] == "constant")
-        if kw["tolerance_type"] == "relative_to_mode" and not kw["reference_mode"]:
-            r.fail("tolerance_type 'relative_to_mode' needs 'reference_mode'")
-    elif kind == "comparison":
-        stat = r.text("statistic", required=True, choices=tuple(_RELATIONS))
-        other = r.text("other_figure", choices=("",) + KNOWN_FIGURES) or figure
-        kw.update(statistic=stat, relation=r.text("relation", required=True,
-                                                   choices=_RELATIONS[stat]),
-                  other_figure=other, other_mode=r.text("other_mode") or mode,
-                  other_quantity=_quantity(r, "other_quantity", other, q),
-                  other_interval=r.pair("other_interval") or kw["interval"],
-                  other_overrides=r.overrides("other_overrides"))
-        need_tolerance(stat == "correlation")
-        if stat == "correlation" and other != figure:
-            r.fail("a correlation compares two curves of the same figure")
-        keys = ("figure", "mode", "quantity", "interval", "overrides")
-        if all(kw[k] == kw[f"other_{k}"] for k in keys):
-            r.fail("a comparison needs a second curve that differs (other_figure, other_mode, "
-                   "other_quantity, other_interval or other_overrides)")
-    return Claim(**kw)
+def _need_tolerance(r: _Record, kw: dict, need: bool = True) -> None:
+    if need and kw["tolerance"] is None:
+        r.fail(f"this {kw['kind']} claim needs 'tolerance' and 'tolerance_reason'")
+
+
+def _value_fields(r: _Record, kw: dict) -> None:
+    kw.update({k: r.number(k, required=(k == "x" and kw["figure"] != "fig6"))
+               for k in ("x", "relative_to", "expected", "lower", "upper")})
+    kw["tolerance_type"] = r.text("tolerance_type", choices=("absolute", "relative"),
+                                  default="absolute")
+    if kw["expected"] is None and kw["lower"] is None and kw["upper"] is None:
+        r.fail("a value claim needs 'expected' (with tolerance) or 'lower'/'upper'")
+    _need_tolerance(r, kw, kw["expected"] is not None)
+
+
+def _threshold_fields(r: _Record, kw: dict) -> None:
+    kw.update(expected=r.number("expected"), direction=r.text(
+        "direction", required=True, choices=("destabilising", "stabilising")))
+    _need_tolerance(r, kw, kw["expected"] is not None)
+
+
+def _range_fields(r: _Record, kw: dict) -> None:
+    kw.update(state=r.text("state", required=True, choices=("unstable", "stable")),
+              expected_interval=r.pair("expected_interval", required=True))
+    _need_tolerance(r, kw)
+
+
+def _trend_fields(r: _Record, kw: dict) -> None:
+    kw.update(direction=r.text("direction", required=True,
+                               choices=("increasing", "decreasing", "constant")),
+              method=r.text("method", choices=("slope", "net_change"), default="slope"),
+              tolerance_type=r.text("tolerance_type", default="absolute", choices=(
+                  "absolute", "relative", "relative_to_mode")),
+              reference_mode=r.text("reference_mode"))
+    _need_tolerance(r, kw, kw["direction"] == "constant")
+    if kw["tolerance_type"] == "relative_to_mode" and not kw["reference_mode"]:
+        r.fail("tolerance_type 'relative_to_mode' needs 'reference_mode'")
+
+
+def _comparison_fields(r: _Record, kw: dict) -> None:
+    figure = kw["figure"]
+    stat = r.text("statistic", required=True, choices=tuple(_RELATIONS))
+    other = r.text("other_figure", choices=("",) + KNOWN_FIGURES) or figure
+    kw.update(statistic=stat, relation=r.text("relation", required=True,
+                                               choices=_RELATIONS[stat]),
+              other_figure=other, other_mode=r.text("other_mode") or kw["mode"],
+              other_quantity=_quantity(r, "other_quantity", other, kw["quantity"]),
+              other_interval=r.pair("other_interval") or kw["interval"],
+              other_overrides=r.overrides("other_overrides"))
+    _need_tolerance(r, kw, stat == "correlation")
+    if stat == "correlation" and other != figure:
+        r.fail("a correlation compares two curves of the same figure")
+    keys = ("figure", "mode", "quantity", "interval", "overrides")
+    if all(kw[k] == kw[f"other_{k}"] for k in keys):
+        r.fail("a comparison needs a second curve that differs (other_figure, other_mode, "
+               "other_quantity, other_interval or other_overrides)")
+
+
+#: kind -> the function reading its own fields (after :func:`_curve_fields`)
+_KIND_FIELDS = {"value": _value_fields, "threshold": _threshold_fields,
+                "range": _range_fields, "trend": _trend_fields,
+                "comparison": _comparison_fields, "curve": lambda r, kw: None}
 
 
 def _names(r: _Record, key: str, choices) -> tuple:
@@ -412,7 +449,16 @@ def read_wpd_csv(path) -> dict[str, pd.DataFrame]:
     ``x, y``, no header or one header line, returned under the name ``""``;
     *export all* -- dataset names on row 1 (above each X column), ``X, Y``
     pairs on row 2, then the points (shorter datasets leave cells empty).
-    Raises :class:`ReferenceDataError` naming the file and 1-based row.
+
+    Parameters
+    ----------
+    path : path
+        The CSV file.
+
+    Raises
+    ------
+    ReferenceDataError
+        Naming the file and 1-based row.
     """
     path = Path(path)
     text = path.read_text(encoding="utf-8-sig")
@@ -427,22 +473,33 @@ def read_wpd_csv(path) -> dict[str, pd.DataFrame]:
     while xy and not xy[-1]:
         xy.pop()
     if xy and len(xy) % 2 == 0 and xy == ["X", "Y"] * (len(xy) // 2):
-        names, out = rows[0][1] + [""] * len(xy), {}
-        for j in range(0, len(xy), 2):
-            name = names[j]
-            if not name or name in out:
-                raise ReferenceDataError(f"{path}, row {rows[0][0]}: dataset name above column "
-                                         f"{j + 1} is {'repeated' if name else 'empty'}")
-            pts = []
-            for n, row in rows[2:]:
-                cx, cy = (row + ["", ""])[j:j + 2]
-                if cx or cy:
-                    if not (cx and cy):
-                        raise ReferenceDataError(f"{path}, row {n}: dataset {name!r} has only "
-                                                 "one of its X/Y cells")
-                    pts.append((_num(cx, f"{path}, row {n}"), _num(cy, f"{path}, row {n}")))
-            out[name] = pd.DataFrame(pts, columns=["x", "y"])
-        return out
+        return _wpd_export_all(path, rows, len(xy) // 2)
+    return {"": _wpd_two_columns(path, rows)}
+
+
+def _wpd_export_all(path: Path, rows, n_sets: int) -> dict[str, pd.DataFrame]:
+    """WebPlotDigitizer's "export all": names on row 1, X/Y on row 2, points below."""
+    names, out = rows[0][1] + [""] * (2 * n_sets), {}
+    for j in range(0, 2 * n_sets, 2):
+        name = names[j]
+        if not name or name in out:
+            raise ReferenceDataError(f"{path}, row {rows[0][0]}: dataset name above column "
+                                     f"{j + 1} is {'repeated' if name else 'empty'}")
+        pts = []
+        for n, row in rows[2:]:
+            cx, cy = (row + ["", ""])[j:j + 2]
+            if not (cx or cy):
+                continue                    # a shorter dataset ends here
+            if not (cx and cy):
+                raise ReferenceDataError(f"{path}, row {n}: dataset {name!r} has only "
+                                         "one of its X/Y cells")
+            pts.append((_num(cx, f"{path}, row {n}"), _num(cy, f"{path}, row {n}")))
+        out[name] = pd.DataFrame(pts, columns=["x", "y"])
+    return out
+
+
+def _wpd_two_columns(path: Path, rows) -> pd.DataFrame:
+    """One dataset as two columns x, y, with at most one header line."""
     try:
         [float(c) for c in rows[0][1] if c]
     except ValueError:
@@ -455,7 +512,7 @@ def read_wpd_csv(path) -> dict[str, pd.DataFrame]:
         pts.append((_num(cells[0], f"{path}, row {n}"), _num(cells[1], f"{path}, row {n}")))
     if not pts:
         raise ReferenceDataError(f"{path}: no data rows")
-    return {"": pd.DataFrame(pts, columns=["x", "y"])}
+    return pd.DataFrame(pts, columns=["x", "y"])
 
 
 _SIDECAR = {"id", "figure", "panel", "statement", "condition", "tag", "x_unit", "file",

@@ -96,6 +96,8 @@ class Section:
     claims: list = field(default_factory=list)
     departures: str = ""
     shown_with: str = ""     # the section whose figure also shows this one
+    thumb: str = ""          # base64 PNG of the summary's thumbnail
+    tally: str = ""          # the claims' statuses, e.g. "3 pass, 1 fail"
 
 
 @dataclass
@@ -147,6 +149,43 @@ def _sidecars(folder: Path) -> dict:
     return out
 
 
+def _claim_rows(claims: pd.DataFrame, figure: str) -> list[dict]:
+    """A figure's claims as plain-text rows with their status class."""
+    cl = claims[claims["figure"] == figure] if "figure" in claims else claims.iloc[0:0]
+    return [{k: _plain(v) for k, v in row.items()}
+            | {"css": _STATUS_CLASS.get(row.get("status", ""), "notrep")}
+            for row in cl.fillna("").astype(str).to_dict("records")]
+
+
+def _notebook_sections(out: Path, name: str, figures, claims: pd.DataFrame) -> list[Section]:
+    """The sections of one notebook: one per paper figure, then its other figures."""
+    folder = out / name
+    sides = _sidecars(folder)
+    html_nb = f"notebooks/{name}.html"
+    _, own_departures = load_departures()
+    sections = []
+    for fig in figures:
+        mine = [stem for stem, m in sides.items() if m["figures"][:1] == [fig]]
+        shared = [m["figures"][0] for m in sides.values() if fig in m["figures"][1:]]
+        rows = _claim_rows(claims, fig)
+        if not (mine or shared or rows):
+            continue
+        sections.append(Section(
+            key=fig, title=FIGURE_TITLES.get(fig, fig), anchor=fig, notebook=name,
+            notebook_html=html_nb, departures=own_departures.get(fig, ""),
+            shown_with=shared[0] if shared and not mine else "", claims=rows,
+            images=[_image(folder / f"{stem}.png", out, sides[stem]["caption"])
+                    for stem in mine]))
+    extra = [stem for stem, m in sides.items() if not m["figures"]]
+    if extra:     # figures a notebook saved without a paper figure (e.g. its own studies)
+        sections.append(Section(
+            key=name, title=f"Further results of {name}", anchor=_slug(name), notebook=name,
+            notebook_html=html_nb,
+            images=[_image(folder / f"{stem}.png", out, sides[stem]["caption"])
+                    for stem in extra]))
+    return sections
+
+
 def build_report(out, runs, claims: pd.DataFrame, worse: pd.DataFrame, *, figures_of,
                  checks: pd.DataFrame | None = None, version: str = "") -> Report:
     """Collect a reproduction's outputs in ``out`` into a :class:`Report`.
@@ -179,44 +218,30 @@ def build_report(out, runs, claims: pd.DataFrame, worse: pd.DataFrame, *, figure
     validation = claims[claims["tag"] == "validation"] if "tag" in claims else claims
     passed = int((validation.get("status", pd.Series(dtype=str)) == "pass").sum())
     counts = {s: int((status == s).sum()) for s in _STATUS_CLASS}
-    _, own_departures = load_departures()
-    sections = []
-    for run in runs:
-        folder = out / run.name
-        sides = _sidecars(folder)
-        html_nb = f"notebooks/{run.name}.html"
-        for fig in figures_of.get(run.name, ()):
-            mine = [stem for stem, m in sides.items() if m["figures"][:1] == [fig]]
-            shared = [m["figures"][0] for m in sides.values()
-                      if fig in m["figures"][1:]]
-            cl = claims[claims["figure"] == fig] if "figure" in claims else claims.iloc[0:0]
-            if not mine and not shared and cl.empty:
-                continue
-            sec = Section(key=fig, title=FIGURE_TITLES.get(fig, fig), anchor=fig,
-                          notebook=run.name, notebook_html=html_nb,
-                          departures=own_departures.get(fig, ""),
-                          shown_with=shared[0] if shared and not mine else "")
-            sec.images = [_image(folder / f"{stem}.png", out, sides[stem]["caption"])
-                          for stem in mine]
-            sec.claims = [{k: _plain(v) for k, v in row.items()} | {
-                "css": _STATUS_CLASS.get(row.get("status", ""), "notrep")}
-                for row in cl.fillna("").astype(str).to_dict("records")]
-            sections.append(sec)
-        # figures a notebook saved without a paper figure (e.g. its own studies)
-        extra = [stem for stem, m in sides.items() if not m["figures"]]
-        if extra:
-            sec = Section(key=run.name, title=f"Further results of {run.name}",
-                          anchor=_slug(run.name), notebook=run.name, notebook_html=html_nb)
-            sec.images = [_image(folder / f"{stem}.png", out, sides[stem]["caption"])
-                          for stem in extra]
-            sections.append(sec)
+    sections = [sec for run in runs
+                for sec in _notebook_sections(out, run.name, figures_of.get(run.name, ()),
+                                              claims)]
+    by_key = {sec.key: sec for sec in sections}
+    for sec in sections:
+        shown = sec.images or (by_key[sec.shown_with].images if sec.shown_with in by_key
+                               else [])
+        sec.thumb = shown[0].data if shown else ""
+        n = pd.Series([c["status"] for c in sec.claims], dtype=str).value_counts()
+        sec.tally = ", ".join(f"{n[st]} {st}" for st in _STATUS_CLASS if st in n) \
+            or "no claims checked"
     fan = out / "mdart_fanplot.png"
     return Report(
         title="tefcore reproduction report",
         intro=("Replication of *Aeroelastic Stability of Trailing-Edge Flap Helicopter "
                "Rotors* with the compact tefcore model. Each section shows one figure of the "
                "paper as tefcore computes it, the paper's statements about it checked against "
-               "the computation, and where the model departs from the paper's."),
+               "the computation, and where the model departs from the paper's. A claim "
+               "*passes* when the computation agrees with the statement within its stated "
+               "tolerance, *fails* when it does not, is *ambiguous* when which computed root "
+               "the statement is about cannot be decided (a coalescence or an unresolved "
+               "veering of roots), and *not reproducible* when it needs data tefcore does "
+               "not have (test data, the paper's tables). The score counts the validation "
+               "claims; calibration targets are listed, not scored."),
         passed=passed, total=len(validation), counts=counts,
         worse=worse.fillna("").astype(str).to_dict("records") if not worse.empty else [],
         notebooks=[{"name": r.name, "status": r.status, "error": r.error,

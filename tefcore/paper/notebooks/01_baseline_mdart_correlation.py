@@ -126,7 +126,9 @@ ax_b.set_title("lag frequency", fontsize="medium")
 fig.suptitle(nt.figure_title("fig3", cfg_fig3, width=110) + " -- prediction only, no test data",
              fontsize="medium")
 nt.savefig(fig, out, "fig03", figure="fig3",
-           caption=nt.figure_caption("fig3", cfg_fig3, "(a) lag damping (tefcore prediction; no MDART test data); (b) lag frequency"));
+           caption=nt.figure_caption("fig3", cfg_fig3,
+                                     "(a) lag damping (tefcore prediction; no MDART test data); "
+                                     "(b) lag frequency"));
 
 # %%
 print(nt.mode_summary("fig3", res_fig3.table, labels=("blade lag 1",), measure=damping_measure)
@@ -155,7 +157,9 @@ nt.plot_modes(ax_b, "fig4", res_fig4.table, labels=("blade lag 1",), quantity="f
 ax_b.set_title("lag frequency", fontsize="medium")
 fig.suptitle(nt.figure_title("fig4", cfg_fig4, width=110), fontsize="medium")
 nt.savefig(fig, out, "fig04", figure="fig4",
-           caption=nt.figure_caption("fig4", cfg_fig4, "(a) lag damping (tefcore prediction; no MDART test data); (b) lag frequency"));
+           caption=nt.figure_caption("fig4", cfg_fig4,
+                                     "(a) lag damping (tefcore prediction; no MDART test data); "
+                                     "(b) lag frequency"));
 
 # %%
 print(nt.mode_summary("fig4", res_fig4.table, labels=("blade lag 1",), measure=damping_measure)

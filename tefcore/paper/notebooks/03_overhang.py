@@ -133,7 +133,8 @@ nt.plot_modes(ax, "fig8", res_fig8.table, measure=damping_measure,
 ax.set_title(nt.figure_title("fig8", cfg_fig8, width=110), fontsize="medium")
 nt.legend_below(ax)
 nt.savefig(fig, out, "fig08", figure="fig8",
-           caption=nt.figure_caption("fig8", cfg_fig8, "Damping of the blade modes and the TEF branch"));
+           caption=nt.figure_caption("fig8", cfg_fig8,
+                                     "Damping of the blade modes and the TEF branch"));
 
 # %% [markdown]
 # **Which root is which.** "The TEF mode" is the *TEF branch*: the root that the

@@ -75,14 +75,16 @@ nt.report_sweep("fig9", res_fig9)
 fig, (ax_a, ax_b) = plt.subplots(1, 2, figsize=(11, 4.4))
 nt.plot_modes(ax_a, "fig9", res_fig9.table, quantity="frequency", labels=("TEF",))
 ax_a.set_title("(a) trailing-edge flap frequency", fontsize="medium")
-ax_a.legend()
+nt.legend_below(ax_a)
 nt.plot_modes(ax_b, "fig9", res_fig9.table, measure=damping_measure,
               reference=nt.reference_curves("fig9"))
 ax_b.set_title("(b) blade and TEF damping", fontsize="medium")
 nt.legend_below(ax_b)
 fig.suptitle(nt.figure_title("fig9", cfg_fig9, width=110), fontsize="medium")
 nt.savefig(fig, out, "fig09", figure="fig9",
-           caption=nt.figure_caption("fig9", cfg_fig9, "(a) TEF frequency; (b) damping of the blade modes and the TEF branch"));
+           caption=nt.figure_caption("fig9", cfg_fig9,
+                                     "(a) TEF frequency; (b) damping of the blade modes and the "
+                                     "TEF branch"));
 
 # %% [markdown]
 # **Which root is which.** "The TEF mode" is the *TEF branch*: the root that the
@@ -136,9 +138,9 @@ print(nt.mode_summary("fig9", res_fig9.table, labels=("TEF",), quantity="frequen
 # The paper calls the instability of the mass-unbalanced flap "typical
 # trailing-edge flap-blade torsion flutter", resulting "from the energy transfer
 # between the trailing-edge flap mode and blade torsion mode". Here is the TEF
-# branch and the flutter root at c_cg = 0.33 c_f (the paper's imbalanced flap), term by term: which terms do
-# the destabilising work, and what happens when the flap-torsion couplings are
-# knocked out:
+# branch and the flutter root at c_cg = 0.33 c_f (the paper's imbalanced flap),
+# term by term: which terms do the destabilising work, and what happens when the
+# flap-torsion couplings are knocked out:
 
 # %%
 print(nt.explain("fig9", res_fig9, 0.33, base, overrides).to_string(index=False))

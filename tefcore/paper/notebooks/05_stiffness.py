@@ -79,14 +79,16 @@ fig, (ax_a, ax_b) = plt.subplots(1, 2, figsize=(11, 4.4))
 nt.plot_modes(ax_a, "fig10", res_fig10.table, quantity="frequency", labels=blade_modes_a,
               natural=nat_fig10)
 ax_a.set_title("(a) blade natural frequencies", fontsize="medium")
-ax_a.legend()
+nt.legend_below(ax_a)
 nt.plot_modes(ax_b, "fig10", res_fig10.table, measure=damping_measure, labels=modes_fig10,
               reference=nt.reference_curves("fig10"))
 ax_b.set_title("(b) blade and TEF damping", fontsize="medium")
 nt.legend_below(ax_b)
 fig.suptitle(nt.figure_title("fig10", cfg_fig10, width=110), fontsize="medium")
 nt.savefig(fig, out, "fig10", figure="fig10",
-           caption=nt.figure_caption("fig10", cfg_fig10, "(a) blade natural frequencies; (b) damping of the blade modes and the TEF branch"));
+           caption=nt.figure_caption("fig10", cfg_fig10,
+                                     "(a) blade natural frequencies; (b) damping of the blade "
+                                     "modes and the TEF branch"));
 
 # %% [markdown]
 # **Which root is which.** "The TEF mode" is the *TEF branch*: the root that the
@@ -143,14 +145,16 @@ fig, (ax_a, ax_b) = plt.subplots(1, 2, figsize=(11, 4.4))
 nt.plot_modes(ax_a, "fig11", res_fig11.table, quantity="frequency", labels=blade_modes_a,
               natural=nat_fig11)
 ax_a.set_title("(a) blade natural frequencies", fontsize="medium")
-ax_a.legend()
+nt.legend_below(ax_a)
 nt.plot_modes(ax_b, "fig11", res_fig11.table, measure=damping_measure, labels=modes_fig11,
               reference=nt.reference_curves("fig11"))
 ax_b.set_title("(b) blade and TEF damping", fontsize="medium")
 nt.legend_below(ax_b)
 fig.suptitle(nt.figure_title("fig11", cfg_fig11, width=110), fontsize="medium")
 nt.savefig(fig, out, "fig11", figure="fig11",
-           caption=nt.figure_caption("fig11", cfg_fig11, "(a) blade natural frequencies; (b) damping of the blade modes and the TEF branch"));
+           caption=nt.figure_caption("fig11", cfg_fig11,
+                                     "(a) blade natural frequencies; (b) damping of the blade "
+                                     "modes and the TEF branch"));
 
 # %% [markdown]
 # **Which root is which.** "The TEF mode" is the *TEF branch*: the root that the
@@ -230,7 +234,7 @@ nt.plot_modes(ax_a, "fig12", res_fig12_balanced.table, labels=("TEF",), quantity
 nt.plot_modes(ax_a, "fig12", res_fig12.table, labels=("TEF",), quantity="frequency",
               label_suffix=", c_cg/c_f = 0.33")
 ax_a.set_title("(a) trailing-edge flap frequency", fontsize="medium")
-ax_a.legend()
+nt.legend_below(ax_a)
 nt.plot_modes(ax_b, "fig12", res_fig12.table, measure=damping_measure,
               labels=("blade flap 1", "blade lag 1", "blade torsion 1", "TEF"),
               reference=nt.reference_curves("fig12"))
@@ -238,7 +242,9 @@ ax_b.set_title("(b) blade and TEF damping, c_cg/c_f = 0.33", fontsize="medium")
 nt.legend_below(ax_b)
 fig.suptitle(nt.figure_title("fig12", cfg_fig12, width=110), fontsize="medium")
 nt.savefig(fig, out, "fig12", figure="fig12",
-           caption=nt.figure_caption("fig12", cfg_fig12, "(a) TEF frequency; (b) damping of the blade modes and the TEF branch, mass-imbalanced and balanced flap"));
+           caption=nt.figure_caption("fig12", cfg_fig12,
+                                     "(a) TEF frequency; (b) damping of the blade modes and the "
+                                     "TEF branch, mass-imbalanced and balanced flap"));
 
 # %%
 print("TEF frequency [/rev]: balanced (c_cg = 0) and imbalanced (c_cg = 0.33)")

@@ -75,7 +75,8 @@ nt.plot_modes(ax, "fig13", res_fig13.table, measure=damping_measure,
 ax.set_title(nt.figure_title("fig13", cfg_fig13, width=110), fontsize="medium")
 nt.legend_below(ax)
 nt.savefig(fig, out, "fig13", figure="fig13",
-           caption=nt.figure_caption("fig13", cfg_fig13, "Damping of the blade modes and the TEF branch"));
+           caption=nt.figure_caption("fig13", cfg_fig13,
+                                     "Damping of the blade modes and the TEF branch"));
 
 # %% [markdown]
 # **Which root is which.** "The TEF mode" is the *TEF branch*: the root that the
@@ -131,7 +132,8 @@ nt.plot_modes(ax, "fig14", res_fig14.table, measure=damping_measure,
 ax.set_title(nt.figure_title("fig14", cfg_fig14, width=110), fontsize="medium")
 nt.legend_below(ax)
 nt.savefig(fig, out, "fig14", figure="fig14",
-           caption=nt.figure_caption("fig14", cfg_fig14, "Damping of the blade modes and the TEF branch"));
+           caption=nt.figure_caption("fig14", cfg_fig14,
+                                     "Damping of the blade modes and the TEF branch"));
 
 # %% [markdown]
 # **Which root is which.** "The TEF mode" is the *TEF branch*: the root that the
@@ -188,7 +190,8 @@ nt.plot_modes(ax, "fig15", res_fig15.table, measure=damping_measure,
 ax.set_title(nt.figure_title("fig15", cfg_fig15, width=110), fontsize="medium")
 nt.legend_below(ax)
 nt.savefig(fig, out, "fig15", figure="fig15",
-           caption=nt.figure_caption("fig15", cfg_fig15, "Damping of the blade modes and the TEF branch"));
+           caption=nt.figure_caption("fig15", cfg_fig15,
+                                     "Damping of the blade modes and the TEF branch"));
 
 # %% [markdown]
 # **Which root is which.** "The TEF mode" is the *TEF branch*: the root that the

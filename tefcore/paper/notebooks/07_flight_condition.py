@@ -119,7 +119,8 @@ nt.plot_modes(ax, "fig17", res_fig17.table, measure=damping_measure,
 ax.set_title(nt.figure_title("fig17", cfg_fig17, width=110), fontsize="medium")
 nt.legend_below(ax)
 nt.savefig(fig, out, "fig17", figure="fig17",
-           caption=nt.figure_caption("fig17", cfg_fig17, "Damping of the blade modes and the TEF branch"));
+           caption=nt.figure_caption("fig17", cfg_fig17,
+                                     "Damping of the blade modes and the TEF branch"));
 
 # %% [markdown]
 # **Which root is which.** "The TEF mode" is the *TEF branch*: the root that the

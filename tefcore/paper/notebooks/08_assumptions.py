@@ -187,11 +187,10 @@ for ax, h in zip(axes.ravel(), [h.name for h in sens.HEADLINES], strict=True):
     ax.set_title(h, fontsize="medium")
 fig.suptitle("What each assumption does: headline results at the low (blue) and high (red) "
              "end of its range", fontsize="medium")
-fig.tight_layout()
 nt.savefig(fig, out, "tornado",
            caption="What each assumed property does to four headline results: each bar is a "
                    "headline re-computed with one assumption at the low (blue) or high (red) "
-                   "end of its plausible range, all others at their baseline values (" 
+                   "end of its plausible range, all others at their baseline values ("
                    + nt.conditions(base) + ").");
 
 # %% [markdown]
