@@ -154,9 +154,9 @@ def multiple_load_path_model(cfg, collective: float = 0.0, n_elements: int | Non
     nodes on the flap edges) are 15-dof beams joined at ``flexbeam.clevis``
     (:class:`tefcore.branched.Joint`).  The pitch link is a spring
     ``hub.pitch_link_stiffness`` on the motion of the horn point along the
-    link, the snubber a spring and damper on the relative flap, lag and
-    pitch motion of torque tube and flexbeam at ``torque_tube.inboard``.
-    The blade's centrifugal force goes through the flexbeam; the torque
+    link, the snubber springs on the relative flap, lag and pitch motion of
+    torque tube and flexbeam at ``torque_tube.inboard``, with the damper of
+    its complex stiffness in lag (the chordwise spring/damper).  The blade's centrifugal force goes through the flexbeam; the torque
     tube, held at the clevis only, carries its own in compression.  The
     flexbeam winds up elastically from ``flexbeam.precollective`` at the hub
     to the blade pitch at the clevis; the torque tube is at the clevis pitch.
@@ -232,14 +232,18 @@ def multiple_load_path_model(cfg, collective: float = 0.0, n_elements: int | Non
             lambda x: -0.5 * m_t * (np.asarray(x, float) ** 2 - xt**2)))
         joints.insert(0, Joint("flexbeam", fb.n_elements, "torque_tube", tt.n_elements))
 
-        def snubber(name, fieldname, k_storage, scale):
-            c = sn.loss_factor * k_storage / sn.reference_frequency   # equal loss per cycle
+        def snubber(name, fieldname, k_storage, scale, loss=0.0):
+            c = loss * k_storage / sn.reference_frequency   # equal loss per cycle there
             return Coupling(f"snubber {name}", (("torque_tube", xt, fieldname, 1.0),
                                                 ("flexbeam", xt, fieldname, -1.0)),
                             units.spring(k_storage * scale), units.damper(c * scale))
 
+        # the damper is the chordwise restraint's; in flap and pitch the
+        # elastomer centres (a viscous equivalent fixed at the lag frequency
+        # would overstate its damping of the faster flap and torsion modes by
+        # their frequency ratio, x5 for torsion 1)
         couplings += [snubber("flap", "w", sn.flap_stiffness, rad2),
-                      snubber("lag", "v", sn.lag_stiffness, rad2),
+                      snubber("lag", "v", sn.lag_stiffness, rad2, sn.loss_factor),
                       snubber("torsion", "phi", sn.torsion_stiffness, 1.0)]
     if torque_tube or root is None:
         # the horn point moves by (u - a v', v + d v', w + d w' + a phi); the

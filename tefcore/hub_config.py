@@ -138,9 +138,10 @@ class PitchLinkConfig(_Section):
 class SnubberConfig(_Section):
     """Elastomeric snubber/damper between the torque tube's inboard end and the flexbeam.
 
-    A complex stiffness ``K* = K' (1 + i eta)`` per direction, represented
-    as a spring ``K'`` with a viscous damper ``eta K' / omega_ref`` (equal
-    dissipation per cycle at ``omega_ref``).
+    Springs ``K'`` in flap, lag and pitch; in lag (the chordwise
+    spring/damper restraint) the complex stiffness ``K* = K' (1 + i eta)``,
+    represented as the spring with a viscous damper ``eta K' / omega_ref``
+    (equal dissipation per cycle at ``omega_ref``, the lag frequency).
 
     Parameters
     ----------
@@ -155,7 +156,7 @@ class SnubberConfig(_Section):
         Param("torsion_stiffness", "moment_per_angle", None, "[0, inf)",
               "Storage stiffness K' in pitch.", optional=True),
         Param("loss_factor", "dimensionless", None, "[0, 2]",
-              "Loss factor eta = K''/K' of the elastomer.", optional=True),
+              "Loss factor eta = K''/K' of the chordwise (lag) restraint.", optional=True),
         Param("reference_frequency", "angular_velocity", None, "(0, inf)",
               "Frequency at which the complex stiffness applies (the lag frequency).",
               optional=True),
