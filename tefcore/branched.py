@@ -138,7 +138,7 @@ class BranchedBeam:
         out = {}
         for name, r in local.items():
             g = np.zeros((r.shape[0], self.n_dof))
-            np.add.at(g, (slice(None), self.index[component]), r)
+            g[:, self.index[component]] = r      # a component's global dofs are distinct
             out[name] = g
         return out
 
@@ -245,9 +245,10 @@ def assemble_branched(components: Sequence[Component], joints: Sequence[Joint] =
     for c in components:
         idx = index[c.name]
         n_el = len(c.x_nodes) - 1
+        block = np.ix_(idx, idx)        # distinct within a component: a plain += adds
         for total, local in zip(mats, component_matrices(c.x_nodes, c.section, c.pitch,
                                                          c.tension), strict=True):
-            np.add.at(total, (idx[:, None], idx[None, :]), local)
+            total[block] += local
         owner[idx], slopes[idx] = dof_owner(n_el), dof_slopes(n_el)
     mass, k_el, k_cf, gyro = mats
     damp = np.zeros((n, n))
@@ -258,10 +259,13 @@ def assemble_branched(components: Sequence[Component], joints: Sequence[Joint] =
     fixed = set()
     for comp, node in clamps:
         fixed.update(index[comp][6 * node:6 * node + 6].tolist())
+    cache: dict = {}
     for cp in couplings:
         b = np.zeros(n)
         for comp, x, fname, coef in cp.terms:
-            b += coef * beam.rows(comp, [x])[fname][0]
+            if (comp, x) not in cache:
+                cache[(comp, x)] = beam.rows(comp, [x])
+            b += coef * cache[(comp, x)][fname][0]
         beam.couplings[cp.name] = b
         k_el += cp.stiffness * np.outer(b, b)
         damp += cp.damping * np.outer(b, b)

@@ -1,7 +1,9 @@
 """Validated, immutable configuration of a trailing-edge-flap rotor.
 
 A :class:`Config` bundles the sections ``rotor``, ``blade``, ``hub``,
-``flap``, ``actuator``, ``flight`` and ``model``.  Each section declares its
+``flap``, ``actuator``, ``flight`` and ``model``, and the multiple-load-path
+hub's ``flexbeam``, ``torque_tube``, ``pitch_link`` and ``snubber``
+(:mod:`tefcore.hub_config`).  Each section declares its
 settings once, as a table of :class:`~tefcore.settings.Param` rows (name,
 dimension, default, allowed range, description); the dataclass fields,
 validation, TOML I/O (:mod:`tefcore.config_io`) and the documentation below

@@ -44,20 +44,20 @@ _GEOM_TOL = 1e-12
 def _beam_params(what: str) -> tuple[Param, ...]:
     """Uniform section properties of a hub beam (optional: needed only by the MLP hub)."""
     return (
-        Param("mass", "mass_per_length", None, "(0, inf)", f"Mass per length of the {what}.",
+        Param("mass", "mass_per_length", None, "(0, 1000]", f"Mass per length of the {what}.",
               optional=True),
-        Param("ei_flap", "bending_stiffness", None, "(0, inf)",
+        Param("ei_flap", "bending_stiffness", None, "(0, 1e12]",
               f"Flapwise bending stiffness of the {what}.", optional=True),
-        Param("ei_lag", "bending_stiffness", None, "(0, inf)",
+        Param("ei_lag", "bending_stiffness", None, "(0, 1e12]",
               f"Chordwise bending stiffness of the {what}.", optional=True),
-        Param("gj", "torsional_stiffness", None, "(0, inf)",
+        Param("gj", "torsional_stiffness", None, "(0, 1e12]",
               f"Torsional stiffness of the {what}.", optional=True),
-        Param("ea", "force", None, "(0, inf)", f"Axial stiffness of the {what}.",
+        Param("ea", "force", None, "(0, 1e12]", f"Axial stiffness of the {what}.",
               optional=True),
-        Param("im_flap", "inertia_per_length", None, "[0, inf)",
+        Param("im_flap", "inertia_per_length", None, "[0, 100]",
               f"Mass moment of inertia of the {what} about its chord line, int zeta^2 dm.",
               optional=True),
-        Param("im_lag", "inertia_per_length", None, "[0, inf)",
+        Param("im_lag", "inertia_per_length", None, "[0, 100]",
               f"Mass moment of inertia of the {what} about its flapwise axis, int eta^2 dm.",
               optional=True),
     )  # fmt: skip
@@ -78,7 +78,7 @@ class FlexbeamConfig(_Section):
               "torque tube and main blade are joined.", optional=True),
         Param("n_elements", "dimensionless", 4, "[1, 40]", "Flexbeam finite elements.", "int"),
         *_beam_params("flexbeam"),
-        Param("ka", "length", None, "[0, inf)",
+        Param("ka", "length", None, "[0, 1]",
               "Polar radius of gyration of the flexbeam's tension-carrying area "
               "(tension-torsion stiffening).", optional=True),
         Param("precollective", "angle", 0.0, "[-0.7, 0.7]",
@@ -149,15 +149,15 @@ class SnubberConfig(_Section):
     """
 
     PARAMS = (
-        Param("flap_stiffness", "force_per_length", None, "[0, inf)",
+        Param("flap_stiffness", "force_per_length", None, "[0, 1e12]",
               "Storage stiffness K' in the flapwise (vertical) direction.", optional=True),
-        Param("lag_stiffness", "force_per_length", None, "[0, inf)",
+        Param("lag_stiffness", "force_per_length", None, "[0, 1e12]",
               "Storage stiffness K' in the chordwise (lag) direction.", optional=True),
-        Param("torsion_stiffness", "moment_per_angle", None, "[0, inf)",
+        Param("torsion_stiffness", "moment_per_angle", None, "[0, 1e12]",
               "Storage stiffness K' in pitch.", optional=True),
         Param("loss_factor", "dimensionless", None, "[0, 2]",
               "Loss factor eta = K''/K' of the chordwise (lag) restraint.", optional=True),
-        Param("reference_frequency", "angular_velocity", None, "(0, inf)",
+        Param("reference_frequency", "angular_velocity", None, "(0, 1e4]",
               "Frequency at which the complex stiffness applies (the lag frequency).",
               optional=True),
     )  # fmt: skip

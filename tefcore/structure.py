@@ -132,12 +132,13 @@ def field_rows(x_nodes, x) -> dict[str, np.ndarray]:
     el = np.clip(np.searchsorted(xn, x, side="right") - 1, 0, n_el - 1)
     h = xn[el + 1] - xn[el]
     ops = field_operators((x - xn[el]) / h, h)
-    dmap = _dof_map(n_el)[el]                          # (nx, 15)
+    dmap = _dof_map(n_el)[el]                          # (nx, 15), distinct in each row
     n_dof = 6 * (n_el + 1) + 3 * n_el
     out = {}
+    row = np.arange(x.size)[:, None]
     for name, op in ops.items():
         rows = np.zeros((x.size, n_dof))
-        np.add.at(rows, (np.arange(x.size)[:, None], dmap), op)
+        rows[row, dmap] = op
         out[name] = rows
     return out
 
