@@ -156,8 +156,9 @@ def multiple_load_path_model(cfg, collective: float = 0.0, n_elements: int | Non
     ``hub.pitch_link_stiffness`` on the motion of the horn point along the
     link, the snubber springs on the relative flap, lag and pitch motion of
     torque tube and flexbeam at ``torque_tube.inboard``, with the damper of
-    its complex stiffness in lag (the chordwise spring/damper).  The blade's centrifugal force goes through the flexbeam; the torque
-    tube, held at the clevis only, carries its own in compression.  The
+    its complex stiffness in lag (the chordwise spring/damper).  The blade's
+    centrifugal force goes through the flexbeam; the torque tube, held at
+    the clevis only, carries its own in compression.  The
     flexbeam winds up elastically from ``flexbeam.precollective`` at the hub
     to the blade pitch at the clevis; the torque tube is at the clevis pitch.
 

@@ -30,7 +30,9 @@ from dataclasses import dataclass
 import numpy as np
 import pandas as pd
 
-from .blade import fan_data, multiple_load_path_model, rotor_units
+from .blade import blade_modes, fan_data, multiple_load_path_model, rotor_units
+from .config import load_config
+from .figures import run_figure
 
 __all__ = ["HUB_MODELS", "HubComparison", "compare_hub_models", "kinematic_pitch_ratio",
            "pitch_flap_delta3", "pitch_input_response", "plot_hub_models"]
@@ -171,8 +173,9 @@ class HubComparison:
         :func:`tefcore.blade.fan_data` of each hub, with ``hub_model``.
     modes : DataFrame
         The retained modes at the configured rotor speed: ``hub_model, mode,
-        label, frequency_per_rev, lag_damping_ratio`` (structural, in
-        vacuum: ``C_ii / (2 omega_i M_ii)``).
+        label, frequency_per_rev, damping_ratio`` (structural, in vacuum:
+        ``C_ii / (2 omega_i M_ii)``, as
+        :func:`tefcore.calibration.lag_damping_ratio` for lag 1).
     lag_damping : DataFrame
         Figs. 3 and 4 (no flap): ``hub_model, figure, collective_deg,
         frequency_per_rev, damping_ratio`` of the ``blade lag 1`` track.
@@ -216,12 +219,6 @@ def compare_hub_models(cfg=None, *, speed_ratios=None, figures=("fig3", "fig4"),
     -------
     HubComparison
     """
-    from .calibration import lag_damping_ratio
-    from .config import load_config
-    from .figures import run_figure
-
-    from .blade import blade_modes
-
     cfg = cfg or load_config("mdart")
     speed_ratios = np.linspace(0.2, 1.2, 26) if speed_ratios is None else speed_ratios
     values = None if collectives_deg is None else [float(np.radians(v)) for v in collectives_deg]
@@ -233,8 +230,7 @@ def compare_hub_models(cfg=None, *, speed_ratios=None, figures=("fig3", "fig4"),
         damp = np.diag(m.modal_damping) / (2 * m.frequencies * np.diag(m.modal_mass))
         modes.append(pd.DataFrame({"hub_model": hub, "mode": np.arange(1, len(m.labels) + 1),
                                    "label": m.labels, "frequency_per_rev": m.frequencies,
-                                   "lag_damping_ratio": damp}))
-        assert np.isclose(damp[m.labels.index("lag 1")], lag_damping_ratio(m))
+                                   "damping_ratio": damp}))
         for name in figures:
             lags.append(_lag_track(run_figure(name, c, values, n_jobs=n_jobs), hub, name))
     lag = (pd.concat(lags, ignore_index=True) if lags else
@@ -251,8 +247,6 @@ def plot_hub_models(comparison: HubComparison, cfg=None):
     each figure below).
     """
     import matplotlib.pyplot as plt
-
-    from .config import load_config
 
     cfg = cfg or load_config("mdart")
     figs = list(dict.fromkeys(comparison.lag_damping["figure"]))

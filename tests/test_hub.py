@@ -350,7 +350,7 @@ def test_bad_hub_input_names_the_field(over, field):
 
 
 def test_missing_hub_sections_are_named():
-    from tefcore.config_io import config_to_dict, config_from_dict
+    from tefcore.config_io import config_from_dict, config_to_dict
 
     data = config_to_dict(MDART)
     del data["flexbeam"]
