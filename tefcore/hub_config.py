@@ -170,8 +170,9 @@ HUB_SECTIONS = (FlexbeamConfig, TorqueTubeConfig, PitchLinkConfig, SnubberConfig
 def check_hub_relations(cfg) -> None:
     """Relations of the multiple-load-path hub fields.
 
-    The geometry is checked whenever it is given; completeness and the rest
-    only when ``hub.model = "multiple_load_path"``.
+    Only when ``hub.model = "multiple_load_path"`` (an equivalent-hub
+    configuration does not use these fields; their own ranges are always
+    checked).
 
     Raises
     ------
@@ -182,19 +183,6 @@ def check_hub_relations(cfg) -> None:
         than the chord, a hub beam has no torsional inertia, or no
         main-blade elements are left.
     """
-    r0, cutout, chord = cfg.rotor.root_offset, cfg.rotor.root_cutout, cfg.rotor.chord
-    xc = cfg.flexbeam.clevis
-    if xc is not None and not r0 < xc <= cutout + _GEOM_TOL:
-        raise ValueError(f"flexbeam.clevis = {_fmt(xc)} must lie in (rotor.root_offset, "
-                         f"rotor.root_cutout] = ({_fmt(r0)}, {_fmt(cutout)}]")
-    pl = cfg.pitch_link
-    if pl.horn_arm is not None and not 0.0 < abs(pl.horn_arm) < chord:
-        raise ValueError(f"pitch_link.horn_arm = {_fmt(pl.horn_arm)} m must be nonzero and "
-                         f"shorter than rotor.chord = {_fmt(chord)} m (allowed: "
-                         f"(-{_fmt(chord)}, 0) or (0, {_fmt(chord)}) m)")
-    if not abs(pl.radial_offset) < chord:
-        raise ValueError(f"pitch_link.radial_offset = {_fmt(pl.radial_offset)} m must be "
-                         f"shorter than rotor.chord = {_fmt(chord)} m")
     if cfg.hub.model != "multiple_load_path":
         return
     missing = [f"{cls.SECTION}.{p.name}" for cls in HUB_SECTIONS for p in cls.PARAMS
@@ -202,7 +190,18 @@ def check_hub_relations(cfg) -> None:
     if missing:
         raise ValueError(f"hub.model = 'multiple_load_path' needs {', '.join(missing)} "
                          "(not set)")
-    fb, tt = cfg.flexbeam, cfg.torque_tube
+    r0, cutout, chord = cfg.rotor.root_offset, cfg.rotor.root_cutout, cfg.rotor.chord
+    fb, tt, pl = cfg.flexbeam, cfg.torque_tube, cfg.pitch_link
+    if not r0 < fb.clevis <= cutout + _GEOM_TOL:
+        raise ValueError(f"flexbeam.clevis = {_fmt(fb.clevis)} must lie in "
+                         f"(rotor.root_offset, rotor.root_cutout] = ({_fmt(r0)}, {_fmt(cutout)}]")
+    if not 0.0 < abs(pl.horn_arm) < chord:
+        raise ValueError(f"pitch_link.horn_arm = {_fmt(pl.horn_arm)} m must be nonzero and "
+                         f"shorter than rotor.chord = {_fmt(chord)} m (allowed: "
+                         f"(-{_fmt(chord)}, 0) or (0, {_fmt(chord)}) m)")
+    if not abs(pl.radial_offset) < chord:
+        raise ValueError(f"pitch_link.radial_offset = {_fmt(pl.radial_offset)} m must be "
+                         f"shorter than rotor.chord = {_fmt(chord)} m")
     if not r0 - _GEOM_TOL <= tt.inboard < fb.clevis:
         raise ValueError(f"torque_tube.inboard = {_fmt(tt.inboard)} must lie in "
                          f"[rotor.root_offset, flexbeam.clevis) = [{_fmt(r0)}, "
