@@ -3,7 +3,9 @@
 This module turns a :class:`tefcore.config.Config` into the rotor-unit
 finite-element beam of :mod:`tefcore.structure` and its coupled modes.  The
 collective pitch is the geometric pitch at 0.75 R; the built-in twist is
-added relative to its value there.
+added relative to its value there.  The hub is ``hub.model``: equivalent root
+springs (docs/theory.md section 2.5) or the branched flexbeam / torque tube /
+pitch link / snubber model (section 2.5a, :func:`multiple_load_path_model`).
 """
 
 from __future__ import annotations
@@ -11,6 +13,7 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
+from .branched import BranchedBeam, Component, Coupling, Joint, assemble_branched
 from .scaling import RotorUnits
 from .section_inertia import check_positive_definite, lumped_section
 from .structure import (
@@ -23,7 +26,8 @@ from .structure import (
 )
 
 __all__ = ["blade_model", "blade_modes", "element_nodes", "fan_data", "fan_plot",
-           "pitch_function", "root_springs", "rotor_units", "section_function"]
+           "hub_beam_section", "multiple_load_path_model", "pitch_function", "root_springs",
+           "rotor_units", "section_function"]
 
 #: Section arrays and how each is made nondimensional.
 _SECTION_SCALES = {
@@ -77,7 +81,8 @@ def root_springs(cfg, units: RotorUnits | None = None) -> RootSprings:
                        lag_damper=units.damper(hub.lag_damper))
 
 
-def blade_model(cfg, collective: float = 0.0, n_elements: int | None = None) -> BeamModel:
+def blade_model(cfg, collective: float = 0.0,
+                n_elements: int | None = None) -> BeamModel | BranchedBeam:
     """Assemble the finite-element blade of a configuration.
 
     Parameters
@@ -88,12 +93,18 @@ def blade_model(cfg, collective: float = 0.0, n_elements: int | None = None) -> 
         axes and so couples flap and lag bending.
     n_elements : int, optional
         Equal-length elements from the structural root to the tip
-        (default ``cfg.model.n_elements``).
+        (default ``cfg.model.n_elements``); with the multiple-load-path hub,
+        flexbeam plus torque tube plus main blade.
 
     Returns
     -------
-    BeamModel
+    BeamModel or tefcore.branched.BranchedBeam
+        A single beam on equivalent root springs (``hub.model =
+        "equivalent"``) or the branched hub and blade
+        (:func:`multiple_load_path_model`).
     """
+    if cfg.hub.model == "multiple_load_path":
+        return multiple_load_path_model(cfg, collective, n_elements)
     n = n_elements or cfg.model.n_elements
     x_nodes = element_nodes(cfg, n)
     units = rotor_units(cfg)
@@ -112,7 +123,151 @@ def blade_model(cfg, collective: float = 0.0, n_elements: int | None = None) -> 
     return beam
 
 
-def element_nodes(cfg, n: int) -> np.ndarray:
+def hub_beam_section(sec, units: RotorUnits, ka: float = 0.0):
+    """Nondimensional uniform section ``f(x)`` of a hub beam (flexbeam or torque tube).
+
+    ``sec`` is a :class:`tefcore.hub_config.FlexbeamConfig` or
+    :class:`~tefcore.hub_config.TorqueTubeConfig`; elastic axis, CG and
+    tension axis coincide.
+    """
+    props = {"mass": units.mass_per_len(sec.mass), "ei_flap": units.bending_stiffness(sec.ei_flap),
+             "ei_lag": units.bending_stiffness(sec.ei_lag),
+             "gj": units.bending_stiffness(sec.gj), "ea": units.axial_stiffness(sec.ea),
+             "im_flap": units.inertia_per_length(sec.im_flap),
+             "im_lag": units.inertia_per_length(sec.im_lag), "cg_offset": 0.0,
+             "tension_offset": 0.0, "ka": units.length(ka)}
+
+    def section(x):
+        x = np.asarray(x, float)
+        return {k: np.full(x.shape, v) for k, v in props.items()}
+    return section
+
+
+def multiple_load_path_model(cfg, collective: float = 0.0, n_elements: int | None = None, *,
+                             torque_tube: bool = True,
+                             root: RootSprings | None = None) -> BranchedBeam:
+    """The bearingless hub as flexbeam, torque tube, pitch link and snubber (docs 2.5a).
+
+    Flexbeam (``flexbeam.n_elements``, clamped at ``rotor.root_offset``),
+    torque tube (``torque_tube.n_elements`` from ``torque_tube.inboard``) and
+    main blade (the rest of ``n_elements``, from the clevis to the tip, with
+    nodes on the flap edges) are 15-dof beams joined at ``flexbeam.clevis``
+    (:class:`tefcore.branched.Joint`).  The pitch link is a spring
+    ``hub.pitch_link_stiffness`` on the motion of the horn point along the
+    link, the snubber springs on the relative flap, lag and pitch motion of
+    torque tube and flexbeam at ``torque_tube.inboard``, with the damper of
+    its complex stiffness in lag (the chordwise spring/damper).  The blade's
+    centrifugal force goes through the flexbeam; the torque tube, held at
+    the clevis only, carries its own in compression.  The
+    flexbeam winds up elastically from ``flexbeam.precollective`` at the hub
+    to the blade pitch at the clevis; the torque tube is at the clevis pitch.
+
+    Parameters
+    ----------
+    cfg : tefcore.config.Config
+    collective : float
+        Geometric pitch at 0.75 R [rad].
+    n_elements : int, optional
+        Flexbeam plus torque tube plus main-blade elements
+        (default ``cfg.model.n_elements``).
+    torque_tube : bool
+        ``False``: the single-load-path limit -- no torque tube, no snubber;
+        the pitch link acts on the flexbeam at the hub (with ``root`` given,
+        not at all: its stiffness is then in ``root.torsion``).
+    root : RootSprings, optional
+        Springs at the flexbeam's root instead of the clamp (``u, v, w``
+        stay fixed), as :func:`tefcore.structure.assemble_beam` has them.
+        With ``torque_tube=False`` and :func:`root_springs` this is the
+        equivalent hub on a blade whose inboard part is the flexbeam
+        (tests/test_hub.py).
+
+    Returns
+    -------
+    tefcore.branched.BranchedBeam
+        ``evaluate`` reads the main blade outboard of the clevis and the
+        flexbeam inboard of it.
+    """
+    fb, tt, pl, sn = cfg.flexbeam, cfg.torque_tube, cfg.pitch_link, cfg.snubber
+    n_hub = fb.n_elements + (tt.n_elements if torque_tube else 0)
+    n_blade = (n_elements or cfg.model.n_elements) - n_hub
+    if n_blade < 2:
+        raise ValueError(f"n_elements = {n_elements or cfg.model.n_elements} leaves {n_blade} "
+                         "main-blade element(s) after the flexbeam and torque tube; at least 2")
+    units = rotor_units(cfg)
+    r0, xc = cfg.rotor.root_offset, fb.clevis
+    xt = tt.inboard if torque_tube else r0
+    blade_section = section_function(cfg, units)
+    stations = np.asarray(cfg.blade.stations, float)
+    blade_tension = tension_piecewise_linear(stations, blade_section(stations)["mass"])
+    m_f, m_t = units.mass_per_len(fb.mass), units.mass_per_len(tt.mass)
+    tube_force = 0.5 * m_t * (xc**2 - xt**2) if torque_tube else 0.0   # per Omega^2
+    clevis_tension = float(blade_tension(xc)) + tube_force
+    blade_pitch = pitch_function(cfg, collective)
+    theta_c = float(blade_pitch(xc))
+    # uniform GJ: the elastic wind-up of the flexbeam is linear in x
+    wind = (theta_c - fb.precollective) / (xc - r0)
+    components = [
+        Component("flexbeam", np.linspace(r0, xc, fb.n_elements + 1),
+                  hub_beam_section(fb, units, fb.ka),
+                  lambda x: fb.precollective + wind * (np.asarray(x, float) - r0),
+                  lambda x: clevis_tension + 0.5 * m_f * (xc**2 - np.asarray(x, float) ** 2)),
+        Component("blade", element_nodes(cfg, n_blade, start=xc), blade_section, blade_pitch,
+                  blade_tension),
+    ]
+    joints = [Joint("flexbeam", fb.n_elements, "blade", 0)]
+    rad2 = units.radius**2
+    couplings, clamps, root_fixed = [], [("flexbeam", 0)], []
+    if root is not None:            # as assemble_beam: u, v, w fixed, an infinite spring clamps
+        clamps, root_fixed = [], [0, 1, 3]
+        for f, dof, k, c in (("dv", 2, root.lag, root.lag_damper), ("dw", 4, root.flap, 0.0),
+                             ("phi", 5, root.torsion, 0.0)):
+            if np.isinf(k):
+                root_fixed.append(dof)
+            else:
+                couplings.append(Coupling(f"root {f}", (("flexbeam", r0, f, 1.0),), k, c))
+    horn = "torque_tube" if torque_tube else "flexbeam"
+    if torque_tube:
+        components.insert(1, Component(
+            "torque_tube", np.linspace(xt, xc, tt.n_elements + 1), hub_beam_section(tt, units),
+            lambda x: np.full(np.shape(x), theta_c),
+            lambda x: -0.5 * m_t * (np.asarray(x, float) ** 2 - xt**2)))
+        joints.insert(0, Joint("flexbeam", fb.n_elements, "torque_tube", tt.n_elements))
+
+        def snubber(name, fieldname, k_storage, scale, loss=0.0):
+            c = loss * k_storage / sn.reference_frequency   # equal loss per cycle there
+            return Coupling(f"snubber {name}", (("torque_tube", xt, fieldname, 1.0),
+                                                ("flexbeam", xt, fieldname, -1.0)),
+                            units.spring(k_storage * scale), units.damper(c * scale))
+
+        # the damper is the chordwise restraint's; in flap and pitch the
+        # elastomer centres (a viscous equivalent fixed at the lag frequency
+        # would overstate its damping of the faster flap and torsion modes by
+        # their frequency ratio, x5 for torsion 1)
+        couplings += [snubber("flap", "w", sn.flap_stiffness, rad2),
+                      snubber("lag", "v", sn.lag_stiffness, rad2, sn.loss_factor),
+                      snubber("torsion", "phi", sn.torsion_stiffness, 1.0)]
+    if torque_tube or root is None:
+        # the horn point moves by (u - a v', v + d v', w + d w' + a phi); the
+        # link (unit vector (0, sin cant, cos cant)) stretches by its
+        # component along it
+        a, d = units.length(pl.horn_arm), units.length(pl.radial_offset)
+        ny, nz = np.sin(pl.cant), np.cos(pl.cant)
+        link = tuple((horn, xt, f, c) for f, c in
+                     (("w", nz), ("dw", nz * d), ("phi", nz * a), ("v", ny), ("dv", ny * d)))
+        couplings.append(Coupling("pitch link", link,
+                                  units.spring(cfg.hub.pitch_link_stiffness * rad2)))
+    beam = assemble_branched(components, joints, couplings, clamps=clamps,
+                             span=("blade", "flexbeam"), pitch=blade_pitch)
+    beam.free = np.setdiff1d(beam.free, beam.index["flexbeam"][root_fixed])
+    f = beam.free
+    check_positive_definite(beam.mass[f][:, f], "the assembled hub and blade mass matrix",
+                            "flexbeam.mass, flexbeam.im_flap, flexbeam.im_lag, "
+                            "torque_tube.mass, torque_tube.im_flap, torque_tube.im_lag, and the "
+                            "blade tables with the flap lumped in")
+    return beam
+
+
+def element_nodes(cfg, n: int, start: float | None = None) -> np.ndarray:
     """``n`` elements from the structural root to the tip, with nodes on the flap edges.
 
     Equal elements, except that the free interior node nearest each flap edge
@@ -121,7 +276,9 @@ def element_nodes(cfg, n: int) -> np.ndarray:
     only there, and the modes then vary smoothly as Figs. 13-14 move the edges.
     An edge on the root or tip is already a node; a move that would leave an
     element shorter than 5 % of the others (two edges within one element) is
-    not made, and the step then lies inside that element.
+    not made, and the step then lies inside that element.  ``start``: the
+    inboard end (default ``rotor.root_offset``; the clevis for the main blade
+    of the multiple-load-path hub).
 
     Examples
     --------
@@ -132,7 +289,7 @@ def element_nodes(cfg, n: int) -> np.ndarray:
     >>> on
     [True, True]
     """
-    x0 = cfg.rotor.root_offset
+    x0 = cfg.rotor.root_offset if start is None else start
     nodes = np.linspace(x0, 1.0, n + 1)
     h = (1.0 - x0) / n
     moved: set[int] = set()

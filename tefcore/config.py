@@ -1,7 +1,9 @@
 """Validated, immutable configuration of a trailing-edge-flap rotor.
 
 A :class:`Config` bundles the sections ``rotor``, ``blade``, ``hub``,
-``flap``, ``actuator``, ``flight`` and ``model``.  Each section declares its
+``flap``, ``actuator``, ``flight`` and ``model``, and the multiple-load-path
+hub's ``flexbeam``, ``torque_tube``, ``pitch_link`` and ``snubber``
+(:mod:`tefcore.hub_config`).  Each section declares its
 settings once, as a table of :class:`~tefcore.settings.Param` rows (name,
 dimension, default, allowed range, description); the dataclass fields,
 validation, TOML I/O (:mod:`tefcore.config_io`) and the documentation below
@@ -44,6 +46,13 @@ from typing import Any
 
 import numpy as np
 
+from .hub_config import (
+    FlexbeamConfig,
+    PitchLinkConfig,
+    SnubberConfig,
+    TorqueTubeConfig,
+    check_hub_relations,
+)
 from .section_inertia import check_section_inertia
 from .settings import REQUIRED, Param, _close, _fmt, _rebuild, _Section, _section, coerce_value
 
@@ -56,11 +65,15 @@ __all__ = [
     "BladeConfig",
     "Config",
     "FlapConfig",
+    "FlexbeamConfig",
     "FlightConfig",
     "HubConfig",
     "ModelConfig",
     "Param",
+    "PitchLinkConfig",
     "RotorConfig",
+    "SnubberConfig",
+    "TorqueTubeConfig",
     "coerce_value",
     "load_config",
     "resolve_field",
@@ -280,7 +293,13 @@ class BladeConfig(_Section):
 
 @_section("hub")
 class HubConfig(_Section):
-    """Equivalent bearingless hub: control linkage and root springs/damper.
+    """Bearingless hub: which model, control linkage and equivalent root springs/damper.
+
+    ``model = "equivalent"`` (docs/theory.md section 2.5) uses the root springs,
+    the lag damper and the pitch link on the horn arm here;
+    ``"multiple_load_path"`` (section 2.5a) uses the pitch-link stiffness here
+    and the sections ``flexbeam``, ``torque_tube``, ``pitch_link`` and
+    ``snubber`` instead of the springs, damper and horn arm.
 
     Parameters
     ----------
@@ -288,9 +307,14 @@ class HubConfig(_Section):
     """
 
     PARAMS = (
+        Param("model", "dimensionless", "equivalent", "",
+              "Hub model: 'equivalent' (root springs) or 'multiple_load_path' (flexbeam, "
+              "torque tube, pitch link, snubber).", "str",
+              choices=("equivalent", "multiple_load_path")),
         Param("pitch_link_stiffness", "force_per_length", REQUIRED, "(0, inf)",
               "Pitch-link axial stiffness."),
-        Param("pitch_horn_arm", "length", REQUIRED, "(0, inf)", "Pitch-horn arm."),
+        Param("pitch_horn_arm", "length", REQUIRED, "(0, inf)",
+              "Pitch-horn arm of the equivalent hub."),
         Param("flap_spring", "moment_per_angle", REQUIRED, "[0, inf)",
               "Equivalent flexbeam flap root spring."),
         Param("lag_spring", "moment_per_angle", REQUIRED, "[0, inf)",
@@ -470,8 +494,9 @@ class ModelConfig(_Section):
 #: Section name -> section class, in file order.
 SECTIONS: dict[str, type[_Section]] = {
     cls.SECTION: cls
-    for cls in (RotorConfig, BladeConfig, HubConfig, FlapConfig, ActuatorConfig,
-                FlightConfig, ModelConfig)
+    for cls in (RotorConfig, BladeConfig, HubConfig, FlexbeamConfig, TorqueTubeConfig,
+                PitchLinkConfig, SnubberConfig, FlapConfig, ActuatorConfig, FlightConfig,
+                ModelConfig)
 }  # fmt: skip
 _TOP_LEVEL = ("name", "description")
 
@@ -549,6 +574,10 @@ class Config:
     hub: HubConfig
     flap: FlapConfig
     actuator: ActuatorConfig
+    flexbeam: FlexbeamConfig = field(default_factory=FlexbeamConfig)
+    torque_tube: TorqueTubeConfig = field(default_factory=TorqueTubeConfig)
+    pitch_link: PitchLinkConfig = field(default_factory=PitchLinkConfig)
+    snubber: SnubberConfig = field(default_factory=SnubberConfig)
     flight: FlightConfig = field(default_factory=FlightConfig)
     model: ModelConfig = field(default_factory=ModelConfig)
     name: str = ""
@@ -612,6 +641,8 @@ class Config:
                 f"axis: flap leading edge at {1.0 - flap.chord_ratio:.6g} c is ahead of "
                 f"rotor.elastic_axis = {_fmt(rotor.elastic_axis)}"
             )
+        # the multiple-load-path hub's parts, when selected (docs/theory.md 2.5a)
+        check_hub_relations(self)
         # the flap inside its blade section (docs/theory.md section 2.7)
         check_section_inertia(self)
 

@@ -25,6 +25,10 @@ import scipy.sparse.csgraph
 
 from .beam_element import element_matrices, field_operators
 
+__all__ = ["FIELD_GROUPS", "BeamModel", "BladeModes", "RootSprings", "assemble_beam",
+           "beam_modes", "classify", "component_matrices", "dof_owner", "dof_slopes",
+           "field_rows", "tension_from_mass", "tension_piecewise_linear"]
+
 FIELD_GROUPS = ("axial", "lag", "flap", "torsion")
 
 
@@ -63,14 +67,80 @@ def _dof_groups(n_el: int) -> dict[str, np.ndarray]:
 
 
 @functools.lru_cache(maxsize=8)
-def _dof_owner(n_el: int) -> np.ndarray:
-    """Index into FIELD_GROUPS of every global dof (read-only, cached)."""
+def dof_owner(n_el: int) -> np.ndarray:
+    """Index into FIELD_GROUPS of every dof of an ``n_el``-element beam (read-only, cached).
+
+    Examples
+    --------
+    >>> [FIELD_GROUPS[i] for i in dof_owner(1)[:6]]
+    ['axial', 'lag', 'lag', 'flap', 'flap', 'torsion']
+    """
     groups = _dof_groups(n_el)
     owner = np.full(6 * (n_el + 1) + 3 * n_el, -1)
     for i, kind in enumerate(FIELD_GROUPS):
         owner[groups[kind]] = i
     owner.flags.writeable = False
     return owner
+
+
+_dof_owner = dof_owner
+
+
+@functools.lru_cache(maxsize=8)
+def dof_slopes(n_el: int) -> np.ndarray:
+    """True for the slope dofs ``v', w'`` of an ``n_el``-element beam (read-only, cached).
+
+    Examples
+    --------
+    >>> dof_slopes(1)[:6].tolist()
+    [False, False, True, False, True, False]
+    """
+    slope = np.zeros(6 * (n_el + 1) + 3 * n_el, dtype=bool)
+    nodes = np.arange(6 * (n_el + 1)).reshape(-1, 6)
+    slope[nodes[:, [2, 4]].ravel()] = True
+    slope.flags.writeable = False
+    return slope
+
+
+def field_rows(x_nodes, x) -> dict[str, np.ndarray]:
+    """Rows mapping a beam's dof vector to its fields at stations ``x``.
+
+    Parameters
+    ----------
+    x_nodes : array_like
+        Node stations of the beam (increasing).
+    x : array_like
+        Stations within ``[x_nodes[0], x_nodes[-1]]``.
+
+    Returns
+    -------
+    dict
+        ``u, du, v, dv, ddv, w, dw, ddw, phi, dphi``, each ``(len(x), n_dof)``
+        with ``n_dof = 6 (n_el + 1) + 3 n_el`` (the beam's own numbering).
+
+    Examples
+    --------
+    >>> rows = field_rows([0.0, 0.5, 1.0], [0.5])
+    >>> int(np.flatnonzero(rows["w"][0])[0]), float(rows["w"][0].sum())
+    (9, 1.0)
+    """
+    xn = np.asarray(x_nodes, float)
+    x = np.atleast_1d(np.asarray(x, float))
+    if np.any(x < xn[0] - 1e-12) or np.any(x > xn[-1] + 1e-12):
+        raise ValueError(f"stations must lie in [{xn[0]}, {xn[-1]}]")
+    n_el = len(xn) - 1
+    el = np.clip(np.searchsorted(xn, x, side="right") - 1, 0, n_el - 1)
+    h = xn[el + 1] - xn[el]
+    ops = field_operators((x - xn[el]) / h, h)
+    dmap = _dof_map(n_el)[el]                          # (nx, 15), distinct in each row
+    n_dof = 6 * (n_el + 1) + 3 * n_el
+    out = {}
+    row = np.arange(x.size)[:, None]
+    for name, op in ops.items():
+        rows = np.zeros((x.size, n_dof))
+        rows[row, dmap] = op
+        out[name] = rows
+    return out
 
 
 def tension_from_mass(mass: Callable, x_root: float, n: int = 2001) -> Callable:
@@ -139,6 +209,16 @@ class BeamModel:
     def n_elements(self) -> int:
         return len(self.x_nodes) - 1
 
+    @property
+    def owner(self) -> np.ndarray:
+        """Field (index into FIELD_GROUPS) of every dof."""
+        return dof_owner(self.n_elements)
+
+    @property
+    def slopes(self) -> np.ndarray:
+        """True for the slope dofs (``v', w'``)."""
+        return dof_slopes(self.n_elements)
+
     def stiffness(self, speed_ratio: float = 1.0) -> np.ndarray:
         return self.k_elastic / speed_ratio**2 + self.k_centrifugal
 
@@ -172,6 +252,32 @@ class BeamModel:
         return dict(zip(ops, values, strict=True))
 
 
+def component_matrices(x_nodes, section: Callable, pitch: Callable, tension: Callable):
+    """Unconstrained mass, elastic, centrifugal and Coriolis matrices of one beam.
+
+    The elements of :func:`tefcore.beam_element.element_matrices` scattered
+    into the beam's own dof numbering (six per node, then three interior
+    per element); no supports.  :func:`assemble_beam` and the branched hub
+    (:mod:`tefcore.branched`) build on it.
+
+    Returns
+    -------
+    mass, k_elastic, k_centrifugal, gyroscopic : ndarray, (n_dof, n_dof)
+    """
+    xn = np.asarray(x_nodes, float)
+    if xn.ndim != 1 or len(xn) < 2 or np.any(np.diff(xn) <= 0):
+        raise ValueError("x_nodes must be a strictly increasing 1-D array of >= 2 stations")
+    n_el = len(xn) - 1
+    n_dof = 6 * (n_el + 1) + 3 * n_el
+    elements = element_matrices(xn[:-1], np.diff(xn), section, pitch, tension)
+    dmap = _dof_map(n_el)
+    flat = (dmap[:, :, None] * n_dof + dmap[:, None, :]).ravel()
+    # scatter-add all four element sets at once (bincount is the fast add.at)
+    return tuple(
+        np.bincount(flat, weights=el.ravel(), minlength=n_dof * n_dof).reshape(n_dof, n_dof)
+        for el in elements)
+
+
 def assemble_beam(x_nodes, section: Callable, pitch: Callable,
                   root: RootSprings | None = None, tension: Callable | None = None) -> BeamModel:
     """Assemble a rotating beam clamped at ``x_nodes[0]`` with root springs.
@@ -198,19 +304,10 @@ def assemble_beam(x_nodes, section: Callable, pitch: Callable,
     BeamModel
     """
     xn = np.asarray(x_nodes, float)
-    if xn.ndim != 1 or len(xn) < 2 or np.any(np.diff(xn) <= 0):
-        raise ValueError("x_nodes must be a strictly increasing 1-D array of >= 2 stations")
     root = root or RootSprings()
-    n_el = len(xn) - 1
-    n_dof = 6 * (n_el + 1) + 3 * n_el
     tension = tension or tension_from_mass(lambda s: section(s)["mass"], xn[0])
-    elements = element_matrices(xn[:-1], np.diff(xn), section, pitch, tension)
-    dmap = _dof_map(n_el)
-    flat = (dmap[:, :, None] * n_dof + dmap[:, None, :]).ravel()
-    # scatter-add all four element sets at once (bincount is the fast add.at)
-    mass, k_elastic, k_cf_g, gyro = (
-        np.bincount(flat, weights=el.ravel(), minlength=n_dof * n_dof).reshape(n_dof, n_dof)
-        for el in elements)
+    mass, k_elastic, k_cf_g, gyro = component_matrices(xn, section, pitch, tension)
+    n_dof = mass.shape[0]
     damp = np.zeros((n_dof, n_dof))
     fixed = [0, 1, 3]                   # u, v, w at the root
     for dof, k in ((2, root.lag), (4, root.flap), (5, root.torsion)):
@@ -268,8 +365,16 @@ class BladeModes:
         return df
 
 
-def classify(vectors: np.ndarray, mass: np.ndarray, n_el: int):
+def classify(vectors: np.ndarray, mass: np.ndarray, owner):
     """Label modes by the field that carries most of their kinetic energy.
+
+    Parameters
+    ----------
+    vectors : ndarray, shape (n_dof, n_modes)
+    mass : ndarray, shape (n_dof, n_dof)
+    owner : ndarray or int
+        Field (index into FIELD_GROUPS) of every dof, or the number of
+        elements of a single beam.
 
     Returns
     -------
@@ -278,13 +383,14 @@ def classify(vectors: np.ndarray, mass: np.ndarray, n_el: int):
         Energy fractions (axial, lag, flap, torsion); the cross terms of the
         mass matrix (CG offset) are left out so the fractions sum to one.
     """
-    groups = _dof_groups(n_el)
+    if np.ndim(owner) == 0:
+        owner = dof_owner(int(owner))
     # the mass restricted to same-group pairs drops the cross terms, and one
     # product gives all four energies
-    owner = _dof_owner(n_el)
     same = owner[:, None] == owner[None, :]
     per_dof = vectors * (np.where(same, mass, 0.0) @ vectors)
-    energy = np.stack([per_dof[groups[kind]].sum(axis=0) for kind in FIELD_GROUPS], axis=1)
+    energy = np.stack([per_dof[owner == i].sum(axis=0) for i in range(len(FIELD_GROUPS))],
+                      axis=1)
     fractions = energy / energy.sum(axis=1, keepdims=True)
     counts = dict.fromkeys(FIELD_GROUPS, 0)
     labels = []
@@ -378,7 +484,9 @@ def beam_modes(beam: BeamModel, n_modes: int = 9, speed_ratio: float = 1.0) -> B
 
     Parameters
     ----------
-    beam : BeamModel
+    beam : BeamModel or tefcore.branched.BranchedBeam
+        Anything with ``mass, stiffness(r), damping(r), gyroscopic, free,
+        owner, slopes`` and ``evaluate``.
     n_modes : int
         Number of modes kept.
     speed_ratio : float
@@ -390,18 +498,14 @@ def beam_modes(beam: BeamModel, n_modes: int = 9, speed_ratio: float = 1.0) -> B
     if n_modes > len(f):
         raise ValueError(f"n_modes = {n_modes} exceeds the {len(f)} free dofs")
     # rows then columns: two contiguous takes, ~4x faster than np.ix_ here
-    lam, vec = _lowest_modes(k[f][:, f], beam.mass[f][:, f], n_modes,
-                             owner=_dof_owner(beam.n_elements)[f])
+    owner, slopes = beam.owner, beam.slopes
+    lam, vec = _lowest_modes(k[f][:, f], beam.mass[f][:, f], n_modes, owner=owner[f])
     full = np.zeros((k.shape[0], n_modes))
     full[f] = vec
-    labels, fractions = classify(full, beam.mass, beam.n_elements)
-    groups = _dof_groups(beam.n_elements)
+    labels, fractions = classify(full, beam.mass, owner)
     # scale: dominant field's translational (or twist) dofs peak at +1
     for j, lab in enumerate(labels):
-        kind = lab.split()[0]
-        idx = groups[kind]
-        if kind in ("lag", "flap"):
-            idx = idx[::2]                      # values, not slopes
+        idx = np.flatnonzero((owner == FIELD_GROUPS.index(lab.split()[0])) & ~slopes)
         k_max = idx[np.argmax(np.abs(full[idx, j]))]
         full[:, j] /= full[k_max, j]
     mm = full.T @ beam.mass @ full
