@@ -376,6 +376,22 @@ def test_undecided_identity_makes_a_claim_ambiguous():
     assert check(tors, t)[0] == "ambiguous"
 
 
+def test_a_tef_branch_that_ends_inside_the_range_is_ambiguous_not_failed():
+    """Found with the branched hub (Fig. 12): the TEF branch ended in a coalescence after
+    one requested point and a trend claim failed "for want of points"; which root is the
+    TEF beyond that point is undecided, so the claim is ambiguous."""
+    t = branch_table()
+    ends = t["tef_branch"] & (t["value_si"] > 0.05)
+    t.loc[ends, "tef_branch"] = False
+    trend = claim(kind="trend", mode="TEF", quantity="real_part", direction="increasing")
+    status, row = check(trend, t)
+    assert status == "ambiguous" and "branch ends at x" in row["reason"]
+    # a claim limited to where the branch exists is still decided
+    early = claim(kind="trend", mode="TEF", quantity="real_part", direction="increasing",
+                  interval=[0.0, 0.05])
+    assert check(early, branch_table())[0] == check(early, t)[0] != "ambiguous"
+
+
 def test_mechanism_claim_fields_are_checked():
     ok = dict(kind="mechanism", mode="TEF", x=0.36, root_kind="flutter")
     assert claim(**ok).root_kind == "flutter"

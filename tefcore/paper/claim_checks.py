@@ -116,6 +116,30 @@ def _doubtful(rows, mode, lo, hi) -> list[float]:
     return sorted(set(np.round(x[bad], 12).tolist()))
 
 
+def _check_branch_covers(frame, branch, lo, hi) -> None:
+    """Raise :class:`_Ambiguous` when the TEF branch stops inside the checked range.
+
+    The branch ends where its root met another in a coalescence that could not
+    be resolved; beyond it, which root is the TEF is not decided -- a claim
+    about the TEF there is ambiguous, not failed for want of points.
+    """
+    own = frame[frame["refinement"] == 0] if "refinement" in frame else frame
+    xs = own["x"].to_numpy(float)
+    xs = xs[np.isfinite(xs)]
+    if xs.size == 0 or branch.empty:
+        return
+    a = xs.min() if lo is None else lo
+    b = xs.max() if hi is None else hi
+    bx = branch["x"].to_numpy(float)
+    slack = X_SLACK * max(abs(a), abs(b), 1e-300)
+    if bx.max() < min(b, xs.max()) - slack:
+        raise _Ambiguous(f"the TEF branch ends at x = {bx.max():.4g} (its root coalesced "
+                         f"with another), before {min(b, xs.max()):.4g}")
+    if bx.min() > max(a, xs.min()) + slack:
+        raise _Ambiguous(f"the TEF branch starts at x = {bx.min():.4g}, after "
+                         f"{max(a, xs.min()):.4g}")
+
+
 def _series(frame, mode, quantity, lo=None, hi=None, identify="track", until=None):
     """(x, y) of one mode and quantity, sorted by x, within [lo, hi].
 
@@ -126,6 +150,8 @@ def _series(frame, mode, quantity, lo=None, hi=None, identify="track", until=Non
     if quantity not in frame:
         raise _Fail(f"the result has no {quantity!r} column")
     t = _select(frame, mode, identify) if mode else frame
+    if mode == "TEF" and identify == "track" and "tef_branch" in frame:
+        _check_branch_covers(frame, t, lo, hi if until is None else until)
     if mode and mode != FLUTTER_ROOT and identify == "track":
         doubt = _doubtful(t, mode, lo, hi if until is None else until)
         if doubt:
