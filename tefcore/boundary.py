@@ -3,14 +3,13 @@
 :func:`stability_boundary` scans a parameter range with
 :func:`tefcore.sweep.sweep` and refines the first sign change of the mode's
 real part with :func:`scipy.optimize.brentq`, following the mode by MAC and
-eigenvalue (:func:`tefcore.tracking.match_modes`).  Also importable from
-:mod:`tefcore.sweep`.
+eigenvalue (:func:`tefcore.tracking.match_modes`).
 
 Examples
 --------
 >>> import numpy as np, pandas as pd
 >>> from types import SimpleNamespace
->>> from tefcore.config import load_config
+>>> from tefcore.config_io import load_config
 >>> def toy(cfg):   # one mode whose real part crosses zero at cg_offset = 0.2
 ...     x = cfg.flap.cg_offset
 ...     return SimpleNamespace(
@@ -36,7 +35,14 @@ import numpy as np
 from scipy.optimize import brentq
 
 from .config import Config
-from .sweep import SweepResult, _check_parameter, _default_point, _shape_vectors, _unpack, sweep
+from .sweep import (
+    SweepResult,
+    check_parameter,
+    check_result,
+    default_point,
+    shape_vectors,
+    sweep,
+)
 from .tracking import match_modes
 
 __all__ = ["BoundaryResult", "stability_boundary"]
@@ -148,7 +154,7 @@ def stability_boundary(cfg: Config, parameter: str, bracket, mode: str = "TEF", 
         The point function failed during the refinement (with the value),
         or the mode could not be followed.
     """
-    parameter = _check_parameter(parameter)
+    parameter = check_parameter(parameter)
     base = cfg.with_overrides(extra_overrides) if extra_overrides else cfg
     try:
         lo, hi = bracket
@@ -170,7 +176,7 @@ def stability_boundary(cfg: Config, parameter: str, bracket, mode: str = "TEF", 
     xtol = 1e-6 * (hi - lo) if xtol is None else float(xtol)
 
     res = sweep(base, parameter, xs, point=point, n_jobs=n_jobs, progress=progress)
-    point = _default_point() if point is None else point
+    point = default_point() if point is None else point
     t = res.table[res.table["status"] == "ok"]
     if t.empty:
         raise ValueError(f"every scan point of {parameter} failed: "
@@ -208,8 +214,8 @@ def stability_boundary(cfg: Config, parameter: str, bracket, mode: str = "TEF", 
         if x not in cache:
             try:
                 result = point(base.with_overrides({parameter: x}))
-                m, v, _ = _unpack(result)
-                v = _shape_vectors(result, v)
+                m, v, _ = check_result(result)
+                v = shape_vectors(result, v)
             except Exception as err:
                 raise RuntimeError(f"{parameter} = {x!r}: point failed while locating the "
                                    f"{mode!r} boundary: {type(err).__name__}: {err}") from err

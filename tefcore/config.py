@@ -45,7 +45,16 @@ from typing import Any
 import numpy as np
 
 from .section_inertia import check_section_inertia
-from .settings import REQUIRED, Param, _close, _fmt, _rebuild, _Section, _section, coerce_value
+from .settings import (
+    REQUIRED,
+    Param,
+    Section,
+    coerce_value,
+    did_you_mean,
+    format_value,
+    rebuild_section,
+    settings_section,
+)
 
 __all__ = [
     "BLADE_PROPERTIES",
@@ -62,9 +71,7 @@ __all__ = [
     "Param",
     "RotorConfig",
     "coerce_value",
-    "load_config",
     "resolve_field",
-    "save_config",
 ]
 
 
@@ -73,8 +80,8 @@ __all__ = [
 _GEOM_TOL = 1e-12
 
 
-@_section("rotor")
-class RotorConfig(_Section):
+@settings_section("rotor")
+class RotorConfig(Section):
     """Rotor geometry, rotor speed, airfoil aerodynamics and atmosphere.
 
     Parameters
@@ -134,8 +141,8 @@ _SCALES = {"mass": "mass_scale", "im_flap": "mass_scale", "im_lag": "mass_scale"
            "ea": "ea_scale"}  # fmt: skip
 
 
-@_section("blade")
-class BladeConfig(_Section):
+@settings_section("blade")
+class BladeConfig(Section):
     """Spanwise blade section properties, piecewise linear between stations.
 
     Property arrays have one value per station; a scalar is broadcast.
@@ -191,11 +198,11 @@ class BladeConfig(_Section):
         if step.size:
             i = int(step[0]) + 1
             raise ValueError(
-                f"blade.stations[{i}] = {_fmt(s[i])} is not greater than "
-                f"blade.stations[{i - 1}] = {_fmt(s[i - 1])}; stations must increase strictly"
+                f"blade.stations[{i}] = {format_value(s[i])} is not greater than "
+                f"blade.stations[{i - 1}] = {format_value(s[i - 1])}; stations must increase strictly"
             )
         if abs(s[-1] - 1.0) > _GEOM_TOL:
-            raise ValueError(f"blade.stations[{s.size - 1}] = {_fmt(s[-1])} must be 1.0 (the tip)")
+            raise ValueError(f"blade.stations[{s.size - 1}] = {format_value(s[-1])} must be 1.0 (the tip)")
         for name in BLADE_PROPERTIES:
             arr = getattr(self, name)
             if arr.ndim == 0:
@@ -230,7 +237,7 @@ class BladeConfig(_Section):
         lo = self.stations[0]
         if x.size and (np.nanmin(x) < lo - _GEOM_TOL or np.nanmax(x) > 1.0 + _GEOM_TOL
                        or np.isnan(x).any()):  # fmt: skip
-            raise ValueError(f"section positions must lie within [{_fmt(lo)}, 1.0]")
+            raise ValueError(f"section positions must lie within [{format_value(lo)}, 1.0]")
         out = {}
         for name in BLADE_PROPERTIES:
             values = np.interp(x, self.stations, getattr(self, name))
@@ -278,8 +285,8 @@ class BladeConfig(_Section):
         return self.reference_mass() * radius**3 / 3.0
 
 
-@_section("hub")
-class HubConfig(_Section):
+@settings_section("hub")
+class HubConfig(Section):
     """Equivalent bearingless hub: control linkage and root springs/damper.
 
     Parameters
@@ -307,8 +314,8 @@ class HubConfig(_Section):
         return self.pitch_link_stiffness * self.pitch_horn_arm**2
 
 
-@_section("flap")
-class FlapConfig(_Section):
+@settings_section("flap")
+class FlapConfig(Section):
     """Trailing-edge flap geometry and inertia (paper notation c_f, c_b, c_cg).
 
     Parameters
@@ -387,8 +394,8 @@ class FlapConfig(_Section):
                 + self.mass_per_span * (self.cg_offset * self.chord_ratio * chord) ** 2)
 
 
-@_section("actuator")
-class ActuatorConfig(_Section):
+@settings_section("actuator")
+class ActuatorConfig(Section):
     """Flap actuator: torsional spring k_a and damper c_a in series with the flap.
 
     Parameters
@@ -402,8 +409,8 @@ class ActuatorConfig(_Section):
     )
 
 
-@_section("flight")
-class FlightConfig(_Section):
+@settings_section("flight")
+class FlightConfig(Section):
     """Flight condition, trim target and prescribed actuator input.
 
     The shaft angle is positive for forward tilt (nose down, as in level
@@ -428,8 +435,8 @@ class FlightConfig(_Section):
     )  # fmt: skip
 
 
-@_section("model")
-class ModelConfig(_Section):
+@settings_section("model")
+class ModelConfig(Section):
     """Discretisation and aerodynamic model choices.
 
     Parameters
@@ -468,7 +475,7 @@ class ModelConfig(_Section):
 
 
 #: Section name -> section class, in file order.
-SECTIONS: dict[str, type[_Section]] = {
+SECTIONS: dict[str, type[Section]] = {
     cls.SECTION: cls
     for cls in (RotorConfig, BladeConfig, HubConfig, FlapConfig, ActuatorConfig,
                 FlightConfig, ModelConfig)
@@ -513,7 +520,7 @@ def resolve_field(key: str) -> tuple[str | None, str]:
     cls = SECTIONS.get(section)
     if cls is None or not dot or name not in {p.name for p in cls.PARAMS}:
         every = [f"{s}.{p.name}" for s, c in SECTIONS.items() for p in c.PARAMS]
-        raise ValueError(f"unknown field {key!r}{_close(key, [*every, *_TOP_LEVEL])}")
+        raise ValueError(f"unknown field {key!r}{did_you_mean(key, [*every, *_TOP_LEVEL])}")
     return section, name
 
 
@@ -573,7 +580,7 @@ class Config:
         for key, raw in self.reference.items():
             p = REFERENCE_PARAMS.get(key)
             if p is None:
-                raise ValueError(f"unknown reference value {key!r}{_close(key, REFERENCE_PARAMS)}")
+                raise ValueError(f"unknown reference value {key!r}{did_you_mean(key, REFERENCE_PARAMS)}")
             reference[key] = coerce_value(p, raw, f"reference.{key}")
             if msg := p.range_error(reference[key], f"reference.{key}", self._lookup):
                 raise ValueError(msg)
@@ -588,18 +595,18 @@ class Config:
     def _check_relations(self) -> None:
         # Ranges that reference other sections (skipped by the sections).
         for sname in SECTIONS:
-            getattr(self, sname)._check_cross_refs(self._lookup)
+            getattr(self, sname).check_cross_refs(self._lookup)
         rotor, flap = self.rotor, self.flap
         s0 = self.blade.stations[0]
         if abs(s0 - rotor.root_offset) > _GEOM_TOL:
             raise ValueError(
-                f"blade.stations[0] = {_fmt(s0)} must equal rotor.root_offset = "
-                f"{_fmt(rotor.root_offset)} (the blade starts at the structural root)"
+                f"blade.stations[0] = {format_value(s0)} must equal rotor.root_offset = "
+                f"{format_value(rotor.root_offset)} (the blade starts at the structural root)"
             )
         if flap.inboard < rotor.root_cutout - _GEOM_TOL:
             raise ValueError(
                 f"flap.midspan - flap.span/2 = {flap.inboard:.6g} lies inboard of "
-                f"rotor.root_cutout = {_fmt(rotor.root_cutout)}"
+                f"rotor.root_cutout = {format_value(rotor.root_cutout)}"
             )
         if flap.outboard > 1.0 + _GEOM_TOL:
             raise ValueError(
@@ -608,9 +615,9 @@ class Config:
         self._check_tip_mach()
         if 1.0 - flap.chord_ratio < rotor.elastic_axis - _GEOM_TOL:
             raise ValueError(
-                f"flap.chord_ratio = {_fmt(flap.chord_ratio)} does not fit behind the elastic "
+                f"flap.chord_ratio = {format_value(flap.chord_ratio)} does not fit behind the elastic "
                 f"axis: flap leading edge at {1.0 - flap.chord_ratio:.6g} c is ahead of "
-                f"rotor.elastic_axis = {_fmt(rotor.elastic_axis)}"
+                f"rotor.elastic_axis = {format_value(rotor.elastic_axis)}"
             )
         # the flap inside its blade section (docs/theory.md section 2.7)
         check_section_inertia(self)
@@ -629,7 +636,7 @@ class Config:
         tip = rotor.rotor_speed * rotor.radius / rotor.speed_of_sound
         if (1.0 + mu) * tip > MACH_MAX:
             raise ValueError(
-                f"flight.advance_ratio = {_fmt(mu)} puts the advancing blade tip at Mach "
+                f"flight.advance_ratio = {format_value(mu)} puts the advancing blade tip at Mach "
                 f"(1 + mu) M_tip = {(1.0 + mu) * tip:.4f} (tip Mach M_tip = Omega R / a "
                 f"= {tip:.4f}), above {MACH_MAX}, the limit of the thin-airfoil aerodynamics; "
                 f"with this rotor.rotor_speed, rotor.radius and rotor.speed_of_sound the "
@@ -647,7 +654,7 @@ class Config:
         # MappingProxyType cannot be pickled: hand plain dicts to the constructor.
         kwargs = {f.name: getattr(self, f.name) for f in dataclasses.fields(self)}
         kwargs.update(reference=dict(self.reference), sources=dict(self.sources))
-        return _rebuild, (Config, kwargs)
+        return rebuild_section, (Config, kwargs)
 
     def get(self, key: str):
         """Value of a dotted field, e.g. ``cfg.get("flap.cg_offset")`` (SI).
@@ -728,16 +735,3 @@ class Config:
         }
         return {k: (v, computed[k]()) for k, v in self.reference.items()}
 
-
-def load_config(path_or_name) -> Config:
-    """Load a TOML file or packaged configuration; see :mod:`tefcore.config_io`."""
-    from .config_io import load_config as _load  # deferred: config_io imports this module
-
-    return _load(path_or_name)
-
-
-def save_config(cfg: Config, path):
-    """Write `cfg` as TOML; see :func:`tefcore.config_io.save_config`."""
-    from .config_io import save_config as _save
-
-    return _save(cfg, path)

@@ -25,7 +25,7 @@ stable root in which the flap participates by at least
 
 Examples
 --------
->>> from tefcore.config import load_config
+>>> from tefcore.config_io import load_config
 >>> cfg = load_config("mdart").with_overrides({"flight.advance_ratio": 0.0})
 >>> res = mechanism(cfg, mode="TEF", knockouts=False)
 >>> bool(abs(res.closure) < 1e-8)

@@ -19,7 +19,7 @@ this module gives the others:
 
 Examples
 --------
->>> from tefcore.config import load_config
+>>> from tefcore.config_io import load_config
 >>> input_digests(load_config("mdart"))   # thin-airfoil aerodynamics: no files read
 {}
 >>> len(model_stamp())

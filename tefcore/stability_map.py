@@ -19,7 +19,7 @@ Examples
 --------
 >>> import numpy as np, pandas as pd
 >>> from types import SimpleNamespace
->>> from tefcore.config import load_config
+>>> from tefcore.config_io import load_config
 >>> def toy(cfg):   # flutter where cg_offset + overhang > 0.5
 ...     g = cfg.flap.cg_offset + cfg.flap.overhang - 0.5
 ...     modes = pd.DataFrame({"mode_id": [0], "label": ["TEF"], "frequency_per_rev": [5.0],

@@ -27,7 +27,7 @@ def one_error_line(capsys):
 def toy_default_point(monkeypatch):
     """`tefcore sweep` evaluates the synthetic point of test_sweep instead of stability."""
     point = ToyPoint()
-    monkeypatch.setattr(tefcore.sweep, "_default_point", lambda: point)
+    monkeypatch.setattr(tefcore.sweep, "default_point", lambda: point)
     return point
 
 
@@ -150,7 +150,7 @@ def test_broken_pipe_ends_quietly():
 
 def test_sweep_exits_nonzero_when_points_failed(tmp_path, monkeypatch, capsys):
     """Finding 10: ``tefcore sweep`` exited 0 when every point failed."""
-    monkeypatch.setattr(tefcore.sweep, "_default_point", lambda: ToyPoint(fail_at=[0.0, 0.1]))
+    monkeypatch.setattr(tefcore.sweep, "default_point", lambda: ToyPoint(fail_at=[0.0, 0.1]))
     csv = tmp_path / "s.csv"
     assert main(["sweep", "flap.cg_offset", "--values", "0.0", "0.1", "0.2", "--csv", str(csv),
                  "--quiet"]) == 1

@@ -9,7 +9,7 @@ import pytest
 from numpy.testing import assert_allclose
 
 from tefcore.paper.calibration import frequency_checks
-from tefcore.config import load_config
+from tefcore.config_io import load_config
 from tefcore.paper.sensitivity import (
     ASSUMPTIONS,
     HEADLINES,

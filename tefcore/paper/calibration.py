@@ -117,7 +117,7 @@ def calibrate_torsion(cfg):
 
 
 def _main() -> int:
-    from ..config import load_config
+    from ..config_io import load_config
 
     base = load_config("mdart")
     fit = calibrate_torsion(base)

@@ -89,7 +89,7 @@ def base_config(aero_model: str = "thin_airfoil", overrides: dict | None = None)
     ``"table"`` (C81 look-up with the shipped *generated* example deck).
     """
     from ..c81 import example_deck_path
-    from ..config import load_config
+    from ..config_io import load_config
 
     cfg = load_config("mdart")
     if aero_model in ("table", "c81"):

@@ -297,7 +297,7 @@ def _baseline_blade(out: Path) -> pd.DataFrame:
 
     from ..blade import blade_modes, fan_plot
     from .calibration import frequency_checks
-    from ..config import load_config
+    from ..config_io import load_config
 
     deterministic_matplotlib()
     cfg = load_config("mdart")

@@ -54,7 +54,7 @@ import pandas as pd
 import scipy.optimize
 
 from .assumptions import ASSUMPTIONS, Assumption, apply_assumption  # re-exported
-from ..config import load_config
+from ..config_io import load_config
 from ..errors import TefcoreError
 from ..mechanism import FLUTTER_PARTICIPATION
 from ..mechanism import flutter_root as mechanism_flutter_root
