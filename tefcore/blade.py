@@ -11,6 +11,7 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
+from .runtime import blas_limit
 from .scaling import RotorUnits
 from .section_inertia import check_positive_definite, lumped_section
 from .structure import (
@@ -148,6 +149,7 @@ def element_nodes(cfg, n: int) -> np.ndarray:
     return nodes
 
 
+@blas_limit()
 def blade_modes(cfg, n_modes: int | None = None, collective: float = 0.0,
                 speed_ratio: float = 1.0, n_elements: int | None = None) -> BladeModes:
     """Coupled natural modes of the configured blade.

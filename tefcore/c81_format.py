@@ -39,6 +39,7 @@ __all__ = [
     "C81PlausibilityWarning",
     "C81RangeError",
     "C81RangeWarning",
+    "coefficient_text",
     "format_c81",
     "write_c81",
 ]
@@ -204,12 +205,36 @@ def _format_axis(values: np.ndarray) -> list[str]:
     return out
 
 
-def _coefficient_text(x: float) -> tuple[str, int]:
-    """A coefficient in at most 6 characters (so a blank separates it from the
-    previous field) rounded to as many decimals as fit, ``d``, the leading zero
-    dropped for |x| < 1 (``-.1234``, ``.12345``, ``.40000``); a value that
-    rounds to zero is ``0.0``.  Returns (text, d): the text is within
-    ``0.5 * 10**-d`` of ``x`` (half the last printed digit)."""
+def coefficient_text(x: float) -> tuple[str, int]:
+    """A coefficient as the writer prints it (``docs/c81_format.md``, section 6).
+
+    At most 6 characters (so a blank separates it from the previous field),
+    rounded to as many decimals as fit, ``d``, the leading zero dropped for
+    |x| < 1 (``-.1234``, ``.12345``, ``.40000``); a value that rounds to zero
+    is ``0.0``.
+
+    Parameters
+    ----------
+    x : float
+        The coefficient.
+
+    Returns
+    -------
+    text : str
+        Within ``0.5 * 10**-d`` of ``x`` (half the last printed digit).
+    d : int
+        Its number of decimals.
+
+    Raises
+    ------
+    ValueError
+        When ``x`` does not fit a 7-column field (``|x| >= 1e5``).
+
+    Examples
+    --------
+    >>> coefficient_text(0.123456), coefficient_text(-1.23456)
+    (('.12346', 5), ('-1.235', 3))
+    """
     x = float(x)
     for d in range(5, -1, -1):
         s = f"{x:.{d}f}"
@@ -236,7 +261,7 @@ def _continuation_lines(texts: list[str]) -> list[str]:
 def _block_lines(alpha, mach, table) -> list[str]:
     lines = _continuation_lines(_format_axis(mach))
     for a_text, row in zip(_format_axis(alpha), table, strict=True):
-        coeffs = [_coefficient_text(v)[0] for v in row]
+        coeffs = [coefficient_text(v)[0] for v in row]
         first, rest = coeffs[:PER_LINE], coeffs[PER_LINE:]
         lines.append(a_text.rjust(FIELD) + "".join(s.rjust(FIELD) for s in first))
         lines.extend(_continuation_lines(rest))

@@ -199,10 +199,12 @@ class BladeConfig(Section):
             i = int(step[0]) + 1
             raise ValueError(
                 f"blade.stations[{i}] = {format_value(s[i])} is not greater than "
-                f"blade.stations[{i - 1}] = {format_value(s[i - 1])}; stations must increase strictly"
+                f"blade.stations[{i - 1}] = {format_value(s[i - 1])}; stations must increase "
+                "strictly"
             )
         if abs(s[-1] - 1.0) > _GEOM_TOL:
-            raise ValueError(f"blade.stations[{s.size - 1}] = {format_value(s[-1])} must be 1.0 (the tip)")
+            raise ValueError(f"blade.stations[{s.size - 1}] = {format_value(s[-1])} must be 1.0 "
+                             "(the tip)")
         for name in BLADE_PROPERTIES:
             arr = getattr(self, name)
             if arr.ndim == 0:
@@ -580,7 +582,8 @@ class Config:
         for key, raw in self.reference.items():
             p = REFERENCE_PARAMS.get(key)
             if p is None:
-                raise ValueError(f"unknown reference value {key!r}{did_you_mean(key, REFERENCE_PARAMS)}")
+                raise ValueError(f"unknown reference value "
+                                 f"{key!r}{did_you_mean(key, REFERENCE_PARAMS)}")
             reference[key] = coerce_value(p, raw, f"reference.{key}")
             if msg := p.range_error(reference[key], f"reference.{key}", self._lookup):
                 raise ValueError(msg)
@@ -615,8 +618,8 @@ class Config:
         self._check_tip_mach()
         if 1.0 - flap.chord_ratio < rotor.elastic_axis - _GEOM_TOL:
             raise ValueError(
-                f"flap.chord_ratio = {format_value(flap.chord_ratio)} does not fit behind the elastic "
-                f"axis: flap leading edge at {1.0 - flap.chord_ratio:.6g} c is ahead of "
+                f"flap.chord_ratio = {format_value(flap.chord_ratio)} does not fit behind the "
+                f"elastic axis: flap leading edge at {1.0 - flap.chord_ratio:.6g} c is ahead of "
                 f"rotor.elastic_axis = {format_value(rotor.elastic_axis)}"
             )
         # the flap inside its blade section (docs/theory.md section 2.7)

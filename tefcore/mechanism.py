@@ -41,6 +41,7 @@ import pandas as pd
 
 from .coupled import FLAP_PIECES
 from .linear_system import SecondOrderSystem, combine
+from .runtime import blas_limit
 from .tracking import FollowResult, follow_root
 
 __all__ = ["FLUTTER_PARTICIPATION", "NOT_REMOVABLE", "TERMS", "MechanismResult",
@@ -346,6 +347,7 @@ def _classify(eta: complex) -> str:
     return "flutter" if growing else "stable oscillatory"
 
 
+@blas_limit()
 def mechanism(cfg, mode: str = "TEF", *, knockouts: bool = True, stability_result=None,
               n_steps: int | None = None, root: complex | None = None) -> MechanismResult:
     """Diagnose one root of a configuration: energy balance, knockouts, kind.

@@ -43,7 +43,8 @@ import platform
 import sys
 import threading
 
-__all__ = ["apply_defaults", "blas_limit", "keep_freed_memory", "limit_blas_threads"]
+__all__ = ["apply_defaults", "blas_limit", "keep_freed_memory", "limit_blas_threads",
+           "worker_init"]
 
 #: ``mallopt`` parameter numbers (glibc ``malloc.h``).
 _M_TRIM_THRESHOLD, _M_MMAP_THRESHOLD = -1, -3
@@ -229,6 +230,18 @@ def apply_defaults() -> None:
         For a malformed environment variable, naming it.
     """
     global _process_applied
+    _process_applied = False
     limit_blas_threads(os.environ.get("TEFCORE_BLAS_THREADS", _DEFAULT_BLAS_THREADS))
     keep_freed_memory(os.environ.get("TEFCORE_MALLOC_TRIM", _DEFAULT_MALLOC_TRIM))
     _process_applied = True
+
+
+def worker_init() -> None:
+    """:func:`apply_defaults` once per process: the entry of tefcore's worker processes.
+
+    Called first by every task a parallel sweep or stability map sends to a
+    joblib (loky) or dask worker; later calls in the same process return at
+    once.
+    """
+    if not _process_applied:
+        apply_defaults()

@@ -216,7 +216,8 @@ class Param:
         unit = f" {self.unit}" if self.unit else ""
         resolved = ""
         if self.refs:
-            resolved = f" = {'[' if lo_in else '('}{format_value(lo)}, {format_value(hi)}{']' if hi_in else ')'}"
+            lo_text, hi_text = format_value(lo), format_value(hi)
+            resolved = f" = {'[' if lo_in else '('}{lo_text}, {hi_text}{']' if hi_in else ')'}"
         return (
             f"{where} = {format_value(arr.flat[i] if arr.ndim else value)}{unit} "
             f"is outside the allowed range {self.range.strip()}{resolved}{unit}"
@@ -374,7 +375,8 @@ def _coerce_array(p: Param, raw, factor: float, dotted: str) -> np.ndarray:
             arr = np.array(raw, dtype=float).reshape(-1)
         except OverflowError:
             i = next(i for i, x in enumerate(raw) if not math.isfinite(_as_float(x)))
-            raise ValueError(f"{dotted}[{i}] = {format_value(raw[i])} is too large for a float") from None
+            raise ValueError(f"{dotted}[{i}] = {format_value(raw[i])} is too large for a "
+                             "float") from None
     else:
         raise ValueError(
             f"{dotted} must be a sequence of numbers, got {type(raw).__name__} {raw!r}"

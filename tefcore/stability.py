@@ -24,6 +24,7 @@ import scipy.optimize
 from .coupled import coupled_model, jacobian_blocks
 from .linear_system import SecondOrderSystem
 from .linear_system import state_matrix as state_matrix
+from .runtime import blas_limit
 from .trim import TrimResult, initial_collective, trim
 
 __all__ = ["REMODE_DEG", "SHARE_KINDS", "StabilityResult", "linear_system", "linearize",
@@ -96,9 +97,9 @@ def _label_modes(frac, labels, freqs, rates, disp):
     the shares, so every coordinate names exactly one mode, even where two
     modes share one coordinate (flutter). Kinetic-energy shares would hide the
     light coordinates: the MDART torsion mode in hover carries 0.5 % of its
-    kinetic energy in torsion but 65 % of its participation (measured). A complex pair whose multipliers have
-    become two real ones (frequency locked to a multiple of 1/2 per rev, or
-    overdamped) gives one mode more than coordinates: the pair shares its
+    kinetic energy in torsion but 65 % of its participation (measured). A
+    complex pair whose multipliers have become two real ones (frequency
+    locked to a multiple of 1/2 per rev, or overdamped) gives one mode more than coordinates: the pair shares its
     coordinate's label, the less damped root carrying it plainly and the
     other with ``(locked)`` appended (the partner is the assigned mode at the
     closest frequency, ties by the MAC of the physical shapes ``disp``).
@@ -128,6 +129,7 @@ def _label_modes(frac, labels, freqs, rates, disp):
     return out
 
 
+@blas_limit()
 def stability(cfg, *, trim_result: TrimResult | None = None, n_steps: int | None = None,
               remode: bool = True, model=None) -> StabilityResult:
     """Trim the configuration and compute its labelled stability modes.

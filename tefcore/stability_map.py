@@ -46,6 +46,7 @@ import pandas as pd
 from scipy.optimize import brentq
 
 from .config import Config
+from .runtime import worker_init
 from .sweep import FLUTTER_SHARE, SweepResult, check_result, default_point, sweep
 
 __all__ = ["MapResult", "stability_map"]
@@ -165,6 +166,12 @@ def _flutter_growth(point, cfg, x_field, x) -> float:
     share = modes["share_TEF"] if "share_TEF" in modes else pd.Series(1.0, index=modes.index)
     cand = modes[share >= FLUTTER_SHARE]
     return float(cand["real_part"].max()) if not cand.empty else np.nan
+
+
+def _refine_in_worker(*args):
+    """The task of a worker process: the process settings first (tefcore.runtime)."""
+    worker_init()
+    return _refine(*args)
 
 
 def _refine(point, cfg, x_field, y_si, a, b, direction, xtol):
@@ -290,12 +297,12 @@ def _boundary(table, cfg, x_field, y_field, y_values, point, n_jobs, backend, cl
         cfgs = {k: cfg.with_overrides({y_field: y_values[k]}) for _, k, *_ in todo}
         args = [(point, cfgs[k], x_field, y_si, a, b, d, xtol) for _, k, a, b, d, y_si in todo]
         if backend == "dask" and client is not None:
-            futures = [client.submit(_refine, *a, pure=False) for a in args]
+            futures = [client.submit(_refine_in_worker, *a, pure=False) for a in args]
             found = client.gather(futures)
         elif n_jobs != 1 and len(args) > 1:
             from joblib import Parallel, delayed
 
-            found = Parallel(n_jobs=n_jobs, backend="loky")(delayed(_refine)(*a) for a in args)
+            found = Parallel(n_jobs=n_jobs, backend="loky")(delayed(_refine_in_worker)(*a) for a in args)
         else:
             found = [_refine(*a) for a in args]
         for (key, *_), rec in zip(todo, found, strict=True):

@@ -54,6 +54,7 @@ from tqdm import tqdm
 
 from .config import SECTIONS, Config, resolve_field
 from .errors import error_text
+from .runtime import worker_init
 from .safe_io import atomic_output
 from .sweep_store import SweepFile, config_hash, jsonable, sweep_header, value_key
 from .tracking import ambiguous_steps, label_changes, track_modes
@@ -274,6 +275,12 @@ def _evaluate(index, point, cfg, parameter, value, key, anchor=False, depth=0):
 # ------------------------------------------------------------------ backends
 
 
+def _evaluate_in_worker(index, *args):
+    """The task of a worker process: the process settings first (tefcore.runtime)."""
+    worker_init()
+    return _evaluate(index, *args)
+
+
 def _run_serial(jobs):
     for i, args in jobs:
         yield _evaluate(i, *args)
@@ -283,7 +290,7 @@ def _run_joblib(jobs, n_jobs):
     from joblib import Parallel, delayed
 
     par = Parallel(n_jobs=n_jobs, backend="loky", return_as="generator_unordered")
-    yield from par(delayed(_evaluate)(i, *args) for i, args in jobs)
+    yield from par(delayed(_evaluate_in_worker)(i, *args) for i, args in jobs)
 
 
 def _dask_client(n_jobs, client):
@@ -308,7 +315,7 @@ def _run_dask(jobs, client):
     args_of = dict(jobs)
     try:
         for i, args in jobs:
-            futures[client.submit(_evaluate, i, *args, pure=False)] = i
+            futures[client.submit(_evaluate_in_worker, i, *args, pure=False)] = i
         for fut in as_completed(list(futures)):
             try:
                 yield fut.result()

@@ -202,7 +202,7 @@ def sweep_header(cfg: Config, parameter: str, chash: str, point_name: str) -> di
     """
     import datetime
 
-    from . import __version__
+    from ._version import __version__
 
     return {"format": FORMAT, "version": FORMAT_VERSION, "parameter": parameter,
             "config_hash": chash, "inputs": input_digests(cfg),

@@ -26,8 +26,8 @@ exponents (``periodic`` points) the frequency difference is taken modulo
 :math:`e^{2\\pi\\lambda}` is unique, and measured against its largest
 possible value, :math:`s_\\omega = 1/2` (two Floquet modes near 10.5 and
 3.2 /rev can have one displacement shape at psi = 0; their frequencies
-differ by 0.3 modulo 1, which is what tells them apart).  The shapes are compared in a basis that does not change along the
-sweep (:meth:`tefcore.coupled.CoupledModel.tracking_basis`).
+differ by 0.3 modulo 1, which is what tells them apart).  The shapes are compared in a basis
+that does not change along the sweep (:meth:`tefcore.coupled.CoupledModel.tracking_basis`).
 
 **Identity is decided, or flagged.**  A match is *clear* when its shape part
 ``1 - MAC`` is at most :data:`CLEAR_COST` (the eigenvalue part alone when no
@@ -413,8 +413,9 @@ def track_modes(points: Sequence, values=None, *, predict: bool = True) -> pd.Da
         the track's: the solver's ``frequency_per_rev`` takes the dominant
         harmonic of the mode's shape, which can jump between points where
         several harmonics are strong; in hover the two are equal) and the
-        remaining columns of the modes tables.  Sorted by step, track.  A pure function of the points and
-        values: the same data give the same table.
+        remaining columns of the modes tables.  Sorted by step, track.  A
+        pure function of the points and values: the same data give the same
+        table.
     """
     if values is None:
         values = np.arange(len(points), dtype=float)

@@ -11,7 +11,6 @@ from test_sweep import ToyPoint
 import tefcore.stability
 import tefcore.sweep
 from tefcore.c81 import example_deck_path
-from tefcore.c81_model import main as c81_main
 from tefcore.cli import main
 from tefcore.trim import TrimError
 
@@ -129,10 +128,10 @@ def test_c81_check_of_a_non_utf8_file_names_the_line(tmp_path, capsys):
     lines[14] = lines[14][:10] + b"\xb2" + lines[14][11:]    # latin-1 superscript two
     bad = tmp_path / "bad.c81"
     bad.write_bytes(b"\n".join(lines))
-    assert c81_main(["check", str(bad)]) == 1
+    assert main(["c81", "check", str(bad)]) == 1
     err = capsys.readouterr().err
     assert f"{bad} line 15, column 11: not UTF-8 text: byte 0xb2" in err
-    assert c81_main(["check", str(tmp_path / "none.c81")]) == 1
+    assert main(["c81", "check", str(tmp_path / "none.c81")]) == 1
     assert "none.c81" in capsys.readouterr().err
 
 

@@ -8,8 +8,8 @@ from pathlib import Path
 import pandas as pd
 import pytest
 
-from tefcore.paper import reproduce as rp
 from tefcore.cli import main
+from tefcore.paper import reproduce as rp
 
 pytest.importorskip("yaml")
 

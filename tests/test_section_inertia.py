@@ -17,8 +17,8 @@ from numpy.testing import assert_allclose
 from tefcore.blade import blade_model, element_nodes, pitch_function, rotor_units
 from tefcore.config_io import load_config
 from tefcore.coupled import coupled_model
-from tefcore.paper.figures import FIGURES, figure_config
 from tefcore.flap_dynamics import flap_properties
+from tefcore.paper.figures import FIGURES, figure_config
 from tefcore.section_inertia import (
     check_coupled_mass,
     check_positive_definite,

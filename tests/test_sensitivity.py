@@ -8,8 +8,8 @@ import pandas as pd
 import pytest
 from numpy.testing import assert_allclose
 
-from tefcore.paper.calibration import frequency_checks
 from tefcore.config_io import load_config
+from tefcore.paper.calibration import frequency_checks
 from tefcore.paper.sensitivity import (
     ASSUMPTIONS,
     HEADLINES,

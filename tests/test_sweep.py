@@ -29,9 +29,9 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
+from tefcore.boundary import stability_boundary
 from tefcore.config import SECTIONS
 from tefcore.config_io import load_config
-from tefcore.boundary import stability_boundary
 from tefcore.sweep import config_hash, sweep
 
 MDART = load_config("mdart")
