@@ -28,6 +28,9 @@ from .blade import blade_modes, pitch_function, rotor_units
 from .flap_dynamics import flap_properties, propeller_moment
 from .section_inertia import check_coupled_mass
 
+__all__ = ["FLAP_PIECES", "RESIDUAL_PIECES", "TRACKING_STATIONS", "Controls",
+           "CoupledModel", "coupled_model", "jacobian_blocks", "section_model"]
+
 
 def section_model(cfg):
     """The configured section aerodynamics (thin-airfoil or C81 table)."""

@@ -31,6 +31,12 @@ import scipy.optimize
 
 from .beam_element import gauss_legendre
 
+__all__ = ["FlapProperties", "FlapResponse", "SectionMotion", "aerodynamic_hinge_moment",
+           "azimuth_grid", "centrifugal_hinge_moment", "flap_natural_frequency",
+           "flap_properties", "flap_response", "hinge_moment_history",
+           "inertial_hinge_moment", "propeller_moment", "rotor_motion",
+           "rotor_section_motion", "section_overhang_study", "spectral_derivative"]
+
 
 @dataclass(frozen=True)
 class FlapProperties:

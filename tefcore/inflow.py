@@ -16,6 +16,8 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.optimize
 
+__all__ = ["Inflow", "drees_gradients", "momentum_inflow", "rotor_inflow"]
+
 
 @dataclass(frozen=True)
 class Inflow:

@@ -43,8 +43,8 @@ import platform
 import sys
 import threading
 
-__all__ = ["apply_defaults", "blas_limit", "keep_freed_memory", "limit_blas_threads",
-           "worker_init"]
+__all__ = ["apply_defaults", "blas_limit", "defaults_applied", "keep_freed_memory",
+           "limit_blas_threads", "worker_init"]
 
 #: ``mallopt`` parameter numbers (glibc ``malloc.h``).
 _M_TRIM_THRESHOLD, _M_MMAP_THRESHOLD = -1, -3
@@ -245,3 +245,13 @@ def worker_init() -> None:
     """
     if not _process_applied:
         apply_defaults()
+
+
+def defaults_applied() -> bool:
+    """Whether :func:`apply_defaults` has run in this process.
+
+    Returns
+    -------
+    bool
+    """
+    return _process_applied

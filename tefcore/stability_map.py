@@ -302,7 +302,8 @@ def _boundary(table, cfg, x_field, y_field, y_values, point, n_jobs, backend, cl
         elif n_jobs != 1 and len(args) > 1:
             from joblib import Parallel, delayed
 
-            found = Parallel(n_jobs=n_jobs, backend="loky")(delayed(_refine_in_worker)(*a) for a in args)
+            found = Parallel(n_jobs=n_jobs, backend="loky")(
+                delayed(_refine_in_worker)(*a) for a in args)
         else:
             found = [_refine(*a) for a in args]
         for (key, *_), rec in zip(todo, found, strict=True):

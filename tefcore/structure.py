@@ -25,6 +25,9 @@ import scipy.sparse.csgraph
 
 from .beam_element import element_matrices, field_operators
 
+__all__ = ["FIELD_GROUPS", "BeamModel", "BladeModes", "RootSprings", "assemble_beam",
+           "beam_modes", "classify", "tension_from_mass", "tension_piecewise_linear"]
+
 FIELD_GROUPS = ("axial", "lag", "flap", "torsion")
 
 

@@ -31,6 +31,9 @@ from .errors import TefcoreError
 from .flap_dynamics import spectral_derivative
 from .inflow import Inflow, drees_gradients, momentum_inflow
 
+__all__ = ["MAX_FLAP_DEFLECTION_DEG", "TrimError", "TrimResult", "fourier_coefficients",
+           "fourier_eval", "initial_collective", "trim"]
+
 
 class TrimError(TefcoreError, RuntimeError):
     """The trim did not converge, or converged to a state beyond the model (a flap
