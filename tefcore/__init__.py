@@ -29,8 +29,8 @@ Sweeps and maps
 Mechanism of an instability
     :func:`~tefcore.mechanism.mechanism`
 Mode tracking
-    :func:`~tefcore.tracking.track_modes`, :func:`~tefcore.tracking.match_modes`,
-    :func:`~tefcore.tracking.mac`
+    :func:`~tefcore.tracking.track_modes`,
+    :func:`~tefcore.mode_matching.match_modes`, :func:`~tefcore.mode_matching.mac`
 C81 airfoil decks
     :func:`~tefcore.c81.read_c81`, :func:`~tefcore.c81.write_c81`,
     :class:`~tefcore.c81.C81FlapTable`
@@ -69,8 +69,8 @@ API = {
     "stability_map": "tefcore.stability_map",
     "mechanism": "tefcore.mechanism",
     "track_modes": "tefcore.tracking",
-    "match_modes": "tefcore.tracking",
-    "mac": "tefcore.tracking",
+    "match_modes": "tefcore.mode_matching",
+    "mac": "tefcore.mode_matching",
     "read_c81": "tefcore.c81",
     "write_c81": "tefcore.c81",
     "C81FlapTable": "tefcore.c81",

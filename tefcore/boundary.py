@@ -3,7 +3,7 @@
 :func:`stability_boundary` scans a parameter range with
 :func:`tefcore.sweep.sweep` and refines the first sign change of the mode's
 real part with :func:`scipy.optimize.brentq`, following the mode by MAC and
-eigenvalue (:func:`tefcore.tracking.match_modes`).
+eigenvalue (:func:`tefcore.mode_matching.match_modes`).
 
 Examples
 --------
@@ -35,6 +35,7 @@ import numpy as np
 from scipy.optimize import brentq
 
 from .config import Config
+from .mode_matching import match_modes
 from .sweep import (
     SweepResult,
     check_parameter,
@@ -43,7 +44,6 @@ from .sweep import (
     shape_vectors,
     sweep,
 )
-from .tracking import match_modes
 
 __all__ = ["BoundaryResult", "stability_boundary"]
 
@@ -109,7 +109,7 @@ def stability_boundary(cfg: Config, parameter: str, bracket, mode: str = "TEF", 
     eigenvalue); the first pair of adjacent scan values where the tracked
     mode's real part changes sign is then refined by
     :func:`scipy.optimize.brentq`, each new evaluation identifying the mode
-    by :func:`tefcore.tracking.match_modes` against the nearest evaluated
+    by :func:`tefcore.mode_matching.match_modes` against the nearest evaluated
     point -- so a frequency crossing with another mode inside the bracket
     does not make the root finder jump to the other mode.
 

@@ -1,7 +1,7 @@
 """How every command-line entry point ends: one clear line, never a traceback for our errors.
 
 :func:`run_command` wraps the body of ``tefcore`` (:mod:`tefcore.cli`),
-``python -m tefcore.c81`` and ``python -m tefcore.paper.calibration``:
+and ``python -m tefcore.paper.calibration``:
 
 * tefcore's own errors (:data:`tefcore.errors.EXPECTED_ERRORS`: invalid
   input as ``ValueError``, :class:`~tefcore.errors.TefcoreError` such as a

@@ -101,8 +101,9 @@ def _label_modes(frac, labels, freqs, rates, disp):
     complex pair whose multipliers have become two real ones (frequency
     locked to a multiple of 1/2 per rev, or overdamped) gives one mode more
     than coordinates: the pair shares its coordinate's label, the less damped
-    root carrying it plainly and the other with ``(locked)`` appended (the partner is the assigned mode at the
-    closest frequency, ties by the MAC of the physical shapes ``disp``).
+    root carrying it plainly and the other with ``(locked)`` appended (the
+    partner is the assigned mode at the closest frequency, ties by the MAC of
+    the physical shapes ``disp``).
     """
     # maximise the product of the shares (sum of logs): a coordinate must
     # participate materially in the mode that carries its name.  Maximising
