@@ -11,7 +11,7 @@ Examples
 ...                mach={c: [0.0, 0.5] for c in BLADE_COEFFICIENTS},
 ...                tables={c: np.zeros((3, 2)) for c in BLADE_COEFFICIENTS})
 >>> print(format_c81(deck, header=False).splitlines()[0])
-TOY                            3 2 3 2 3 2
+TOY                            2 3 2 3 2 3
 """
 
 from __future__ import annotations

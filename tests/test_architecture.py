@@ -23,6 +23,7 @@ from __future__ import annotations
 
 import ast
 import importlib
+import re
 import subprocess
 import sys
 from pathlib import Path
@@ -58,10 +59,31 @@ LARGE_MODULES = {
     "tefcore.structure": "one job: the rotating beam FE model and its modes",
     "tefcore.c81_reader": "one job: the C81 parser (line/column-exact errors for every field "
                           "of the fixed-width format, blade and flap decks)",
+    "tefcore.cli": "one job: the tefcore command -- its parser (one description, help line "
+                   "and examples per subcommand) and the thin body of each subcommand",
+    "tefcore.sweep_store": "one job: the resumable sweep file (format, header, record "
+                           "checks, the locked append-only store); most of it is the format's "
+                           "documentation",
+    "tefcore.tracking": "one job: the identity of modes along a continuation -- of a whole "
+                        "spectrum along a sweep (track_modes) and of one root along a homotopy "
+                        "(follow_root), which share the track and its refinement; the pairwise "
+                        "matching is in mode_matching",
 }
 
 #: Known violations in tefcore.paper, being fixed there (remove entries as they are fixed).
-PAPER_PENDING: set[str] = set()
+PAPER_PENDING: set[str] = {
+    "tefcore.paper: no __all__",
+    "tefcore.paper.calibration: no __all__",
+    "tefcore.paper.figures: no __all__",
+    "tefcore.paper.notebook_tools: no __all__",
+    "tefcore.paper.reproduce: no __all__",
+    "tefcore.paper.reproduce: imports private tefcore.paper.notebook_tools._validation",
+    "tefcore.paper.validation: imports private tefcore.paper.reference._dimension",
+    "tefcore.paper.claim_checks: 506 lines > 400 without a reason",
+    "tefcore.paper.notebook_tools: 704 lines > 400 without a reason",
+    "tefcore.paper.reference: 552 lines > 400 without a reason",
+    "tefcore.paper.reproduce: 516 lines > 400 without a reason",
+}
 
 
 # ------------------------------------------------------------------ the graph
@@ -194,7 +216,7 @@ def layer_violations() -> list[str]:
             continue
         for target, _, line in _imports(m):
             if _is_paper(target):
-                out.append(f"{m}:{line}: solver module imports {target}")
+                out.append(f"{m}: solver module imports {target} (line {line})")
         for target in _lazy_targets(m):
             if _is_paper(target):
                 out.append(f"{m}: lazily exports {target}")
@@ -205,9 +227,10 @@ def all_violations() -> list[str]:
     out = []
     for m in MODULES:
         if m == "tefcore.__main__":   # a script: importing it runs the command
-            has_all = any(isinstance(n, ast.Assign) and any(
-                isinstance(t, ast.Name) and t.id == "__all__" for t in n.targets)
-                for n in TREES[m].body)
+            has_all = any(
+                isinstance(t, ast.Name) and t.id == "__all__"
+                for n in TREES[m].body if isinstance(n, ast.Assign | ast.AnnAssign)
+                for t in (n.targets if isinstance(n, ast.Assign) else [n.target]))
             if not has_all:
                 out.append(f"{m}: no __all__")
             continue
@@ -235,7 +258,8 @@ def private_violations() -> list[str]:
                     if f"{base}.{alias.name}" in MODULES:
                         module_aliases[alias.asname or alias.name] = f"{base}.{alias.name}"
                     elif _private(alias.name) and base != m:
-                        out.append(f"{m}:{node.lineno}: imports private {base}.{alias.name}")
+                        out.append(f"{m}: imports private {base}.{alias.name} "
+                                   f"(line {node.lineno})")
             elif isinstance(node, ast.Import):
                 for alias in node.names:
                     if alias.name.split(".")[0] == "tefcore" and alias.asname:
@@ -243,8 +267,8 @@ def private_violations() -> list[str]:
         for node in ast.walk(TREES[m]):
             if (isinstance(node, ast.Attribute) and isinstance(node.value, ast.Name)
                     and node.value.id in module_aliases and _private(node.attr)):
-                out.append(f"{m}:{node.lineno}: reads private "
-                           f"{module_aliases[node.value.id]}.{node.attr}")
+                out.append(f"{m}: reads private {module_aliases[node.value.id]}.{node.attr} "
+                           f"(line {node.lineno})")
     return out
 
 
@@ -257,10 +281,15 @@ def size_violations() -> list[str]:
     return out
 
 
+def _key(violation: str) -> str:
+    """A violation without its line number (PAPER_PENDING survives edits above it)."""
+    return re.sub(r" \(line \d+\)$", "", violation)
+
+
 def _check(violations: list[str]) -> None:
     solver = [v for v in violations if not _is_paper(v.split(":")[0].split(" ")[-1])
               and not v.startswith("cycle: tefcore.paper")]
-    paper = sorted(set(violations) - set(solver))
+    paper = sorted({_key(v) for v in violations} - {_key(v) for v in solver})
     assert not solver, "\n".join(solver)
     new = [v for v in paper if v not in PAPER_PENDING]
     assert not new, "new violations in tefcore.paper:\n" + "\n".join(new)
@@ -281,6 +310,23 @@ def test_cycle_finder_finds_a_planted_cycle():
     graph = {"a": {"b"}, "b": {"c"}, "c": {"a"}, "d": {"a"}}
     assert find_cycles(graph) == [["a", "b", "c"]]
     assert find_cycles({"a": {"b"}, "b": set()}) == []
+
+
+def test_the_checks_find_planted_violations(monkeypatch):
+    # a module importing a private name, reading one through a module alias,
+    # and a solver module importing the paper layer: each must be reported
+    fake = "tefcore.planted"
+    monkeypatch.setitem(MODULES, fake, PACKAGE_DIR / "planted.py")
+    monkeypatch.setitem(TREES, fake, ast.parse(
+        "from .sweep import _evaluate\n"
+        "from . import floquet as fq\n"
+        "def f():\n"
+        "    from .paper import reproduce\n"
+        "    return fq._private\n"))
+    found = private_violations() + layer_violations()
+    assert any("planted: imports private tefcore.sweep._evaluate" in v for v in found)
+    assert any("planted: reads private tefcore.floquet._private" in v for v in found)
+    assert any("planted: solver module imports tefcore.paper.reproduce" in v for v in found)
 
 
 def test_no_import_cycles():
@@ -309,8 +355,8 @@ def test_module_size_has_a_reason():
 
 def test_paper_pending_is_not_stale():
     # an entry that is fixed must be removed, so the list only shrinks
-    everything = set(cycle_violations(import_graph()) + layer_violations() + all_violations()
-                     + private_violations() + size_violations())
+    everything = {_key(v) for v in cycle_violations(import_graph()) + layer_violations()
+                  + all_violations() + private_violations() + size_violations()}
     stale = sorted(PAPER_PENDING - everything)
     assert not stale, "fixed: delete from PAPER_PENDING:\n" + "\n".join(stale)
 
