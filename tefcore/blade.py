@@ -36,7 +36,17 @@ _SECTION_SCALES = {
 
 
 def rotor_units(cfg) -> RotorUnits:
-    """Reference scales of a configuration (R, Omega, m0 = 3 I_b / R^3)."""
+    """Reference scales of a configuration (R, Omega, m0 = 3 I_b / R^3).
+
+    Parameters
+    ----------
+    cfg : tefcore.config.Config
+        The rotor configuration.
+
+    Returns
+    -------
+    tefcore.scaling.RotorUnits
+    """
     return RotorUnits(radius=cfg.rotor.radius, rotor_speed=cfg.rotor.rotor_speed,
                       mass_per_length=cfg.blade.reference_mass())
 
@@ -46,6 +56,18 @@ def section_function(cfg, units: RotorUnits | None = None):
 
     The tables with the flap's CG offset lumped in over the flap span
     (:func:`tefcore.section_inertia.lumped_section`).
+
+    Parameters
+    ----------
+    cfg : tefcore.config.Config
+        The rotor configuration.
+    units : tefcore.scaling.RotorUnits, optional
+        Reference scales (default :func:`rotor_units` of ``cfg``).
+
+    Returns
+    -------
+    callable
+        ``f(x)``: the nondimensional section properties at stations ``x``.
     """
     units = units or rotor_units(cfg)
 
@@ -57,7 +79,20 @@ def section_function(cfg, units: RotorUnits | None = None):
 
 
 def pitch_function(cfg, collective: float = 0.0):
-    """Geometric pitch ``theta(x) = theta_75 + twist(x) - twist(0.75)`` [rad]."""
+    """Geometric pitch ``theta(x) = theta_75 + twist(x) - twist(0.75)`` [rad].
+
+    Parameters
+    ----------
+    cfg : tefcore.config.Config
+        The rotor configuration.
+    collective : float, optional
+        theta_75 [rad].
+
+    Returns
+    -------
+    callable
+        ``theta(x)`` for stations ``x`` (fractions of R).
+    """
     stations = np.asarray(cfg.blade.stations, float)
     twist = np.asarray(cfg.blade.twist, float)
     t75 = np.interp(0.75, stations, twist)
@@ -70,6 +105,17 @@ def root_springs(cfg, units: RotorUnits | None = None) -> RootSprings:
     The torsion spring is the pitch link (stiffness times horn arm squared)
     plus any flexbeam torsion in parallel; the blade's own GJ sits in series
     with it through the finite elements.
+
+    Parameters
+    ----------
+    cfg : tefcore.config.Config
+        The rotor configuration.
+    units : tefcore.scaling.RotorUnits, optional
+        Reference scales (default :func:`rotor_units` of ``cfg``).
+
+    Returns
+    -------
+    tefcore.structure.RootSprings
     """
     units, hub = units or rotor_units(cfg), cfg.hub
     return RootSprings(flap=units.spring(hub.flap_spring), lag=units.spring(hub.lag_spring),
@@ -84,6 +130,7 @@ def blade_model(cfg, collective: float = 0.0, n_elements: int | None = None) -> 
     Parameters
     ----------
     cfg : tefcore.config.Config
+        The rotor configuration.
     collective : float
         Geometric pitch at 0.75 R [rad]; it rotates the section principal
         axes and so couples flap and lag bending.
@@ -124,6 +171,19 @@ def element_nodes(cfg, n: int) -> np.ndarray:
     element shorter than 5 % of the others (two edges within one element) is
     not made, and the step then lies inside that element.
 
+    Parameters
+    ----------
+    cfg : tefcore.config.Config
+        The rotor configuration.
+    n : int
+        Number of elements.
+
+    Returns
+    -------
+    numpy.ndarray
+        The ``n + 1`` node stations, fractions of R, from
+        ``rotor.root_offset`` to 1.
+
     Examples
     --------
     >>> from tefcore.config_io import load_config
@@ -157,6 +217,7 @@ def blade_modes(cfg, n_modes: int | None = None, collective: float = 0.0,
     Parameters
     ----------
     cfg : tefcore.config.Config
+        The rotor configuration.
     n_modes : int, optional
         Modes kept (default ``cfg.model.n_modes``).
     collective : float
@@ -164,6 +225,7 @@ def blade_modes(cfg, n_modes: int | None = None, collective: float = 0.0,
     speed_ratio : float
         Rotor speed over the configured one; frequencies are per rev of it.
     n_elements : int, optional
+        Finite elements (default ``cfg.model.n_elements``).
 
     Returns
     -------
@@ -178,6 +240,17 @@ def fan_data(cfg, speed_ratios, n_modes: int | None = None,
     """Frequencies of the labelled modes versus rotor speed (tidy table).
 
     The beam is assembled once; only the stiffness is re-scaled with speed.
+
+    Parameters
+    ----------
+    cfg : tefcore.config.Config
+        The rotor configuration.
+    speed_ratios : array_like
+        Rotor speeds, fractions of the configured one.
+    n_modes : int, optional
+        Modes kept (default ``cfg.model.n_modes``).
+    collective : float, optional
+        Pitch at 0.75 R [rad].
 
     Returns
     -------
@@ -203,7 +276,22 @@ def fan_data(cfg, speed_ratios, n_modes: int | None = None,
 def fan_plot(cfg, speed_ratios=None, n_modes: int | None = None, ax=None):
     """Fan plot: modal frequencies [Hz] versus rotor speed, with per-rev rays.
 
-    Returns the matplotlib Axes.
+    The nominal rotor speed is marked.
+
+    Parameters
+    ----------
+    cfg : tefcore.config.Config
+        The rotor configuration.
+    speed_ratios : array_like, optional
+        Rotor speeds, fractions of the configured one (default 0.2 to 1.2).
+    n_modes : int, optional
+        Modes kept (default ``cfg.model.n_modes``).
+    ax : matplotlib.axes.Axes, optional
+        Where to draw (default a new figure).
+
+    Returns
+    -------
+    matplotlib.axes.Axes
     """
     import matplotlib.pyplot as plt
 
