@@ -88,7 +88,9 @@ def mac(phi_a, phi_b) -> np.ndarray:
     Parameters
     ----------
     phi_a : array_like, shape (n,) or (n, p)
+        First set of mode shapes, one per column.
     phi_b : array_like, shape (n,) or (n, q)
+        Second set.
 
     Returns
     -------
@@ -134,6 +136,18 @@ def eigen_distance(a, b, periodic: bool = False) -> np.ndarray:
     1/rev and (for a real system, whose roots come in conjugate pairs) up to
     its sign; the distance is then the smallest over those.
 
+    Parameters
+    ----------
+    a, b : array_like of complex
+        Eigenvalues ``real_part + i frequency_per_rev`` [/rev], shapes (p,) and (q,).
+    periodic : bool, optional
+        Floquet exponents: the frequency is known modulo 1/rev and up to its sign.
+
+    Returns
+    -------
+    numpy.ndarray
+        Shape (p, q).
+
     Examples
     --------
     >>> float(eigen_distance([-0.1 + 2.9j], [-0.1 + 0.7j])[0, 0])
@@ -163,6 +177,18 @@ def _frequency_gap(a, b, periodic):
 def relative_distance(a, b, periodic: bool = False) -> np.ndarray:
     """Eigenvalue distance of :func:`match_cost`: damping-rate and frequency gaps
     each relative to their size, combined (p, q).
+
+    Parameters
+    ----------
+    a, b : array_like of complex
+        Eigenvalues ``real_part + i frequency_per_rev`` [/rev], shapes (p,) and (q,).
+    periodic : bool, optional
+        Floquet exponents: the frequency is known modulo 1/rev and up to its sign.
+
+    Returns
+    -------
+    numpy.ndarray
+        Shape (p, q).
 
     Examples
     --------
@@ -194,9 +220,20 @@ def match_cost(pred, prev_vecs, eig, vecs, periodic: bool = False, *,
     prev_vecs : sequence of ndarray or None, length p
         The tracks' last shapes.
     eig : array_like of complex, shape (q,)
+        Eigenvalues of the new point's modes [/rev].
     vecs : ndarray, shape (d, q), or None
+        Their shapes.
     periodic : bool
         Floquet exponents (see :func:`eigen_distance`).
+    shape_part : bool, optional
+        Also return the ``1 - MAC`` part.
+
+    Returns
+    -------
+    cost : numpy.ndarray
+        Shape (p, q).
+    shape : numpy.ndarray
+        Only with ``shape_part``: the ``1 - MAC`` parts (NaN where unknown).
     """
     pred = np.asarray(pred, complex)
     eig = np.asarray(eig, complex)
@@ -212,13 +249,47 @@ def match_cost(pred, prev_vecs, eig, vecs, periodic: bool = False, *,
 
 def is_clear(best: float, shape: float, alt: float) -> bool:
     """A match of total cost ``best`` (shape part ``shape``, NaN: unknown) with the
-    best alternative at ``alt``: clear or not."""
+    best alternative at ``alt``: clear or not.
+
+    Parameters
+    ----------
+    best : float
+        Total cost of the match.
+    shape : float
+        Its ``1 - MAC`` part (NaN: shapes unknown, the total decides).
+    alt : float
+        Cost of the best alternative.
+
+    Returns
+    -------
+    bool
+        The match's own cost is at most :data:`CLEAR_COST` and it leads by at
+        least :data:`MARGIN`.
+    """
     own = best if np.isnan(shape) else shape
     return bool(own <= CLEAR_COST and alt - best >= MARGIN)
 
 
 def decide(cost, rows, cols, shape=None):
-    """Per assigned pair: clear (bool) and the best alternative's column."""
+    """Per assigned pair: clear (bool) and the best alternative's column.
+
+    Parameters
+    ----------
+    cost : numpy.ndarray
+        Assignment costs, tracks by modes (:func:`match_cost`).
+    rows, cols : sequence of int
+        The assigned pairs (:func:`scipy.optimize.linear_sum_assignment`).
+    shape : numpy.ndarray, optional
+        The ``1 - MAC`` parts of ``cost`` (NaN: shapes unknown).
+
+    Returns
+    -------
+    clear : list of bool
+        Per pair, whether the match is clear (:func:`is_clear`) against every
+        alternative in its row and column.
+    rival : list of int
+        Per pair, the column of the next best mode for the track (-1: none).
+    """
     shape = np.full(cost.shape, np.nan) if shape is None else shape
     clear, rival = [], []
     for r, c in zip(rows, cols, strict=True):
@@ -239,6 +310,21 @@ def is_coalesced(eig, vecs, j, k, periodic) -> bool:
     for Floquet exponents, the two real multipliers of one locked pair
     (equal frequency, a multiple of 1/2 per rev): their identities are two
     halves of one mode, which no finer step separates.
+
+    Parameters
+    ----------
+    eig : numpy.ndarray of complex
+        The point's eigenvalues [/rev].
+    vecs : numpy.ndarray or None
+        Its mode shapes, one column per root.
+    j, k : int
+        The two roots.
+    periodic : bool
+        Floquet exponents.
+
+    Returns
+    -------
+    bool
     """
     if k < 0:
         return False
