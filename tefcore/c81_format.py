@@ -69,7 +69,16 @@ PLAUSIBLE_MAX = 10.0
 class C81FormatError(TefcoreError, ValueError):
     """A malformed C81 deck: ``"<file> line L, column C: <what was expected>"``.
 
-    Attributes ``filename``, ``line`` and ``column`` (1-based) and ``reason``.
+    The arguments are kept as attributes of the same names.
+
+    Parameters
+    ----------
+    filename : str
+        The deck's file name.
+    line, column : int
+        Where the problem is, 1-based.
+    reason : str
+        What was expected.
     """
 
     def __init__(self, filename: str, line: int, column: int, reason: str):
@@ -118,6 +127,8 @@ class C81Deck:
         Flap deflections (deg), strictly increasing, or None for a blade deck.
     header : str
         Provenance / comment text (the ``#`` lines before the title line).
+    source : str
+        Where the deck was read from (for messages; not compared).
     """
 
     name: str
@@ -273,6 +284,17 @@ def format_c81(deck: C81Deck, *, header: bool = True) -> str:
 
     With ``header=False`` the ``#`` provenance lines are left out, so a blade
     deck is a strictly standard C81 deck.
+
+    Parameters
+    ----------
+    deck : C81Deck
+        The deck.
+    header : bool, optional
+        Include the ``#`` provenance lines.
+
+    Returns
+    -------
+    str
     """
     if len(deck.name) > NAME_WIDTH or "\n" in deck.name or deck.name.lstrip().startswith("#"):
         raise ValueError(f"deck name {deck.name!r} must fit columns 1-30 and not start with '#'")
@@ -302,7 +324,21 @@ def format_c81(deck: C81Deck, *, header: bool = True) -> str:
 
 
 def write_c81(deck: C81Deck, path: str | os.PathLike, *, header: bool = True) -> Path:
-    """Write ``deck`` to ``path`` (see :func:`format_c81`); returns the path."""
+    """Write ``deck`` to ``path`` (see :func:`format_c81`); returns the path.
+
+    Parameters
+    ----------
+    deck : C81Deck
+        The deck.
+    path : str or os.PathLike
+        The file (written atomically).
+    header : bool, optional
+        Include the ``#`` provenance lines.
+
+    Returns
+    -------
+    pathlib.Path
+    """
     from .safe_io import atomic_write_text  # deferred: only writing needs it
 
     return atomic_write_text(path, format_c81(deck, header=header))

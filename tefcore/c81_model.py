@@ -206,6 +206,7 @@ class C81FlapTable(C81Airfoil):
     Parameters
     ----------
     deck : C81Deck or path
+        A flap deck, or the file of one.
     chord_ratio : float
         Flap chord / airfoil chord (E).
     overhang : float

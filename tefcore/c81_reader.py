@@ -345,6 +345,17 @@ class _Reader:
 def parse_c81(text: str, filename: str = "<string>") -> C81Deck:
     """Parse the text of a C81 deck (blade or flap; see ``docs/c81_format.md``).
 
+    Parameters
+    ----------
+    text : str
+        The deck.
+    filename : str, optional
+        For messages.
+
+    Returns
+    -------
+    C81Deck
+
     Raises
     ------
     C81FormatError
@@ -420,6 +431,15 @@ def _warn_implausible(rd: _Reader) -> None:
 
 def read_c81(path: str | os.PathLike) -> C81Deck:
     """Read a C81 deck (blade or tefcore flap deck) from a file.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The deck (UTF-8 text).
+
+    Returns
+    -------
+    C81Deck
 
     Raises
     ------

@@ -106,6 +106,7 @@ def linearized_terms(tr, psi=None) -> dict[str, SecondOrderSystem]:
     Parameters
     ----------
     tr : tefcore.trim.TrimResult
+        The trim to linearise about.
     psi : array_like, optional
         Azimuths (default: one in hover, the trim grid in forward flight,
         as :func:`tefcore.stability.linear_system`).
@@ -159,6 +160,19 @@ def coupling_homotopy(system: SecondOrderSystem, n_blade: int, s: float) -> Seco
 
     ``s = 0`` is the uncoupled blade and the flap on its actuator (with its
     own aerodynamic and centrifugal springs); ``s = 1`` the coupled system.
+
+    Parameters
+    ----------
+    system : tefcore.linear_system.SecondOrderSystem
+        Blade coordinates first, the flap last.
+    n_blade : int
+        Number of blade coordinates.
+    s : float
+        Coupling scale, 0 (uncoupled) to 1 (coupled).
+
+    Returns
+    -------
+    tefcore.linear_system.SecondOrderSystem
     """
     mats = []
     for a in (system.m, system.c, system.k):
@@ -185,6 +199,8 @@ def tef_root(system: SecondOrderSystem, *, basis=None, n_steps: int = 72):
     basis : ndarray, optional
         Map from coordinates to the shapes compared between steps
         (:meth:`tefcore.coupled.CoupledModel.tracking_basis`).
+    n_steps : int, optional
+        Floquet steps per period of each eigenproblem on the path.
 
     Returns
     -------
@@ -206,7 +222,20 @@ def tef_root(system: SecondOrderSystem, *, basis=None, n_steps: int = 72):
 
 
 def flutter_root(modes: pd.DataFrame, threshold: float = FLUTTER_PARTICIPATION):
-    """Row of the least stable root with a flap participation >= ``threshold``, or None."""
+    """Row of the least stable root with a flap participation >= ``threshold``, or None.
+
+    Parameters
+    ----------
+    modes : pandas.DataFrame
+        A stability modes table (:attr:`tefcore.stability.StabilityResult.modes`),
+        with a ``participation_TEF`` column.
+    threshold : float, optional
+        Smallest flap participation of a flutter root.
+
+    Returns
+    -------
+    pandas.Series or None
+    """
     cand = modes[modes["share_TEF"] >= threshold]
     if cand.empty:
         return None
@@ -355,6 +384,7 @@ def mechanism(cfg, mode: str = "TEF", *, knockouts: bool = True, stability_resul
     Parameters
     ----------
     cfg : tefcore.config.Config
+        The rotor configuration.
     mode : str
         ``"TEF"`` (the root the flap mode becomes, :func:`tef_root`),
         ``"flutter"`` (:func:`flutter_root`), ``"root"`` (the root nearest

@@ -443,13 +443,41 @@ FLUTTER_SHARE = 0.1
 
 
 def encode_complex(a) -> dict:
-    """A complex array as ``{"re": [...], "im": [...]}`` (exact in JSON)."""
+    """A complex array as ``{"re": [...], "im": [...]}`` (exact in JSON).
+
+    Parameters
+    ----------
+    a : array_like of complex
+        Any shape.
+
+    Returns
+    -------
+    dict
+        Nested lists of the real and imaginary parts.
+
+    Examples
+    --------
+    >>> encode_complex([1 + 2j])
+    {'re': [1.0], 'im': [2.0]}
+    >>> decode_complex(encode_complex([1 + 2j]))
+    array([1.+2.j])
+    """
     a = np.asarray(a)
     return {"re": np.real(a).tolist(), "im": np.imag(a).tolist()}
 
 
 def decode_complex(d) -> np.ndarray:
-    """Inverse of :func:`encode_complex`."""
+    """Inverse of :func:`encode_complex`.
+
+    Parameters
+    ----------
+    d : dict
+        ``{"re": [...], "im": [...]}``.
+
+    Returns
+    -------
+    numpy.ndarray of complex
+    """
     return np.asarray(d["re"], float) + 1j * np.asarray(d["im"], float)
 
 
@@ -655,6 +683,11 @@ def sweep(cfg: Config, parameter: str, values, *, point: Callable | None = None,
         many added points as asked for, whichever is more, for the other
         modes; the added points are rows with
         ``refinement > 0``.
+    anchor : bool
+        Identify the TEF branch at the sweep start by continuation from zero
+        coupling (:func:`tefcore.mechanism.tef_root`) where the point function's
+        result carries its linear system; otherwise by the largest flap
+        participation.
 
     Returns
     -------

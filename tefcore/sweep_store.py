@@ -158,6 +158,17 @@ def config_hash(cfg: Config, exclude: Iterable[str] = ()) -> str:
     ``sources`` or ``reference``), so two configurations with equal fields
     hash alike.  Floats enter by their exact ``repr``.
 
+    Parameters
+    ----------
+    cfg : tefcore.config.Config
+        The configuration.
+    exclude : iterable of str, optional
+        Dotted fields left out (the swept parameter).
+
+    Returns
+    -------
+    str
+
     Examples
     --------
     >>> from tefcore.config_io import load_config

@@ -8,7 +8,8 @@ reached through their public facade) is checked with
 * ``GL08`` -- no docstring at all;
 * ``PR01`` -- a parameter of the signature is not documented (for a class,
   documenting a field under ``Attributes`` counts: result classes that users
-  read rather than build document their fields there);
+  read rather than build document their fields there; a private field,
+  ``_name``, is not part of the API);
 * ``PR02`` -- a documented parameter is not in the signature (a stale
   docstring after a rename);
 * ``PR07`` -- a parameter is listed without a description;
@@ -100,7 +101,7 @@ def problems(module: str, name: str) -> list[str]:
                       for n in p.name.split(",")}
         try:
             params = [p for p in inspect.signature(obj).parameters
-                      if p not in ("self", "args", "kwargs")]
+                      if p not in ("self", "args", "kwargs") and not p.startswith("_")]
         except (TypeError, ValueError):
             params = []
         missing = sorted(set(params) - documented)
