@@ -24,6 +24,15 @@ def damping_ratio(exponents):
 
     Positive for a decaying mode; 0 for ``eta = 0``.
 
+    Parameters
+    ----------
+    exponents : complex or array_like
+        Characteristic exponents ``eta``.
+
+    Returns
+    -------
+    numpy.ndarray
+
     Examples
     --------
     >>> float(damping_ratio(-0.6 + 0.8j))

@@ -116,6 +116,7 @@ def stability_boundary(cfg: Config, parameter: str, bracket, mode: str = "TEF", 
     Parameters
     ----------
     cfg : Config
+        Base configuration.
     parameter : str
         Dotted numeric field.
     bracket : (lo, hi)
@@ -136,6 +137,7 @@ def stability_boundary(cfg: Config, parameter: str, bracket, mode: str = "TEF", 
         true crossing of the point function.  Default ``xtol`` is
         ``1e-6 * (hi - lo)``.
     maxiter : int
+        Of brentq: iterations allowed.
     extra_overrides, n_jobs, progress
         Passed to :func:`sweep` for the scan (`extra_overrides` also for
         the refinement).

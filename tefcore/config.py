@@ -500,6 +500,16 @@ def resolve_field(key: str) -> tuple[str | None, str]:
 
     Returns ``(None, name)`` for the top-level ``name``/``description``.
 
+    Parameters
+    ----------
+    key : str
+        A dotted field name.
+
+    Returns
+    -------
+    section : str or None
+    field : str
+
     Raises
     ------
     ValueError
@@ -534,6 +544,31 @@ class Config:
     `sources` (dotted name -> provenance) and `reference` (stated values,
     see :data:`REFERENCE_PARAMS`) are carried along but are not part of
     equality.
+
+    Parameters
+    ----------
+    rotor : RotorConfig or mapping
+        Rotor geometry, aerodynamics and operating condition.
+    blade : BladeConfig or mapping
+        Blade property tables.
+    hub : HubConfig or mapping
+        Hub springs and control linkage.
+    flap : FlapConfig or mapping
+        Flap geometry and inertia.
+    actuator : ActuatorConfig or mapping
+        Flap actuator.
+    flight : FlightConfig or mapping, optional
+        Flight condition and trim targets.
+    model : ModelConfig or mapping, optional
+        Modelling choices (discretisation, aerodynamic model, flap model).
+    name : str, optional
+        Name of the configuration.
+    description : str, optional
+        Free text.
+    sources : mapping of str to str, optional
+        Dotted field -> where its value comes from.
+    reference : mapping of str to object, optional
+        Stated reference values (:data:`REFERENCE_PARAMS`).
 
     Raises
     ------

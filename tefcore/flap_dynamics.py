@@ -263,11 +263,16 @@ def rotor_section_motion(cfg, x: float, *, advance_ratio: float, collective: flo
     Parameters
     ----------
     cfg : tefcore.config.Config
+        The rotor configuration.
     x : float
         Station, fraction of R.
     advance_ratio, collective, cyclic_cos, cyclic_sin, inflow, coning : float
         mu, theta_75 [rad], theta_1c, theta_1s [rad], inflow ratio lambda
         (positive down through the disk), coning beta_0 [rad].
+
+    Returns
+    -------
+    SectionMotion
     """
     om, rad = cfg.rotor.rotor_speed, cfg.rotor.radius
     tw = np.interp(x, cfg.blade.stations, cfg.blade.twist) - np.interp(
@@ -477,12 +482,6 @@ def hinge_moment_history(aero, props: FlapProperties, motion_at, delta_f, *,
 
     Parameters
     ----------
-    delta_f : callable
-        Flap deflection ``delta_f(psi)`` [rad], e.g.
-        ``lambda p: np.deg2rad(2) * np.cos(4 * p - np.deg2rad(240))``.
-
-    Parameters
-    ----------
     aero : object
         Section aerodynamics with the ``loads`` interface
         (:class:`tefcore.flap_aero.ThinAirfoilFlap` or
@@ -492,6 +491,17 @@ def hinge_moment_history(aero, props: FlapProperties, motion_at, delta_f, *,
     motion_at : callable
         ``motion_at(r)``: the :class:`SectionMotion` at radius ``r`` [m]
         (e.g. :func:`rotor_motion`).
+    delta_f : callable
+        Flap deflection ``delta_f(psi)`` [rad], e.g.
+        ``lambda p: np.deg2rad(2) * np.cos(4 * p - np.deg2rad(240))``.
+    rotor_speed : float
+        Omega [rad/s].
+    density : float
+        Air density [kg/m^3].
+    speed_of_sound : float
+        [m/s].
+    n_psi : int, optional
+        Azimuths per revolution.
 
     Returns
     -------
@@ -638,6 +648,7 @@ def section_overhang_study(cfg, overhangs, delta_a, *, controls: dict, n_psi: in
     Parameters
     ----------
     cfg : tefcore.config.Config
+        The rotor configuration.
     overhangs : sequence of float
         c_b / c_f values.
     delta_a : callable
@@ -648,6 +659,8 @@ def section_overhang_study(cfg, overhangs, delta_a, *, controls: dict, n_psi: in
     aero_factory : callable, optional
         ``aero_factory(cfg) -> section model``; default the thin-airfoil model
         with the configured lift slope.
+    n_psi : int, optional
+        Collocation azimuths per revolution.
 
     Returns
     -------

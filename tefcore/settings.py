@@ -484,12 +484,14 @@ class Section:
         return rebuild_section, (type(self), {p.name: getattr(self, p.name) for p in self.PARAMS})
 
 
-def rebuild_section(cls, kwargs):
-    """``cls(**kwargs)``: how pickled sections and configurations are rebuilt (validated).
+def rebuild_section(section_type, kwargs):
+    """``section_type(**kwargs)``: how pickled sections and configurations are rebuilt.
+
+    Through the constructor, so the copy is validated again.
 
     Parameters
     ----------
-    cls : type
+    section_type : type
         A :class:`Section` subclass (or :class:`tefcore.config.Config`).
     kwargs : dict
         Its constructor arguments.
@@ -499,7 +501,7 @@ def rebuild_section(cls, kwargs):
     object
         The new, validated instance.
     """
-    return cls(**kwargs)
+    return section_type(**kwargs)
 
 
 def settings_section(name: str):

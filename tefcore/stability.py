@@ -45,6 +45,22 @@ def linearize(tr: TrimResult, psi, step: float = 1e-6, scheme: str = "central"):
     the motion there). ``scheme='central'``: truncation error ~``step^2``,
     2n evaluations per matrix; ``'forward'``: error ~``step`` (1e-6 relative,
     far below what moves a damping value), half the evaluations.
+
+    Parameters
+    ----------
+    tr : tefcore.trim.TrimResult
+        The trim to linearise about.
+    psi : array_like
+        Azimuths [rad].
+    step : float, optional
+        Finite-difference step, relative.
+    scheme : {"central", "forward"}, optional
+        Finite-difference scheme.
+
+    Returns
+    -------
+    M, C, K : numpy.ndarray
+        Each ``(len(psi), n, n)``.
     """
     psi = np.atleast_1d(np.asarray(psi, float))
     q, qd, qdd = tr.motion(psi)
@@ -138,6 +154,7 @@ def stability(cfg, *, trim_result: TrimResult | None = None, n_steps: int | None
     Parameters
     ----------
     cfg : tefcore.config.Config
+        The rotor configuration.
     trim_result : TrimResult, optional
         Warm start for the trim (e.g. the previous sweep point).
     n_steps : int, optional
@@ -200,6 +217,15 @@ def linear_system(tr: TrimResult) -> SecondOrderSystem:
     ``n_azimuth / 2``; twice the samples change the exponents by less than
     1e-3 /rev, measured on MDART at mu = 0.3).  Forward differences (step
     1e-6 relative, far below what moves a damping value).
+
+    Parameters
+    ----------
+    tr : tefcore.trim.TrimResult
+        The trim to linearise about.
+
+    Returns
+    -------
+    tefcore.linear_system.SecondOrderSystem
     """
     if tr.model.cfg.flight.advance_ratio == 0.0:
         psi = np.zeros(1)
@@ -215,6 +241,11 @@ def periodic_state_matrix(tr: TrimResult):
     ``M, C, K`` are sampled on the trim's azimuth grid, interpolated by
     trigonometric series and ``A = [[0, I], [-M^-1 K, -M^-1 C]]`` formed at
     each azimuth (:meth:`SecondOrderSystem.state_matrix`).
+
+    Parameters
+    ----------
+    tr : tefcore.trim.TrimResult
+        The trim to linearise about.
 
     Returns
     -------

@@ -211,10 +211,15 @@ def stability_map(cfg: Config, x_field: str, x_values, y_field: str, y_values, *
         Folder for the map's files: ``row_<k>.jsonl`` (one sweep file per y
         value) and ``boundary.jsonl``; re-running resumes (stale inputs are
         refused as for sweeps).
+    resume : bool
+        With ``out``: load the points and boundary crossings already there.
     refine_boundary : bool
         Locate the zero of the flutter growth between grid points of a row
-        where it changes sign (brentq, to ``xtol``, default 1e-4 of the x
-        range).
+        where it changes sign (brentq, to ``xtol``).
+    xtol : float, optional
+        Tolerance of the boundary in x (default 1e-4 of the x range).
+    progress : bool or None
+        tqdm progress bar on stderr; ``None``: only if stderr is a terminal.
 
     Returns
     -------

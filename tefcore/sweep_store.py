@@ -198,6 +198,24 @@ def config_hash(cfg: Config, exclude: Iterable[str] = ()) -> str:
 def sweep_header(cfg: Config, parameter: str, chash: str, point_name: str) -> dict:
     """Header of a new sweep file: what decides every point (module docstring).
 
+    Parameters
+    ----------
+    cfg : tefcore.config.Config
+        The rotor configuration.
+    parameter : str
+        The swept dotted field.
+    chash : str
+        :func:`config_hash` of ``cfg`` without ``parameter``.
+    point_name : str
+        ``module:qualname`` of the point function.
+
+    Returns
+    -------
+    dict
+        The first line of the file: format and version, parameter,
+        configuration hash, input file digests, tefcore version, model stamp
+        and point function, with the creation time.
+
     Raises
     ------
     ValueError

@@ -283,6 +283,18 @@ def ambiguous_steps(tracked: pd.DataFrame, kinds=("ambiguous",)) -> list[int]:
 
     The match into such a step from the previous point was not clear: the
     interval before it is where a finer parameter step is needed.
+
+    Parameters
+    ----------
+    tracked : pandas.DataFrame
+        A :func:`track_modes` table.
+    kinds : tuple of str, optional
+        The ``identity`` values that count as undecided.
+
+    Returns
+    -------
+    list of int
+        The ``step`` values, sorted.
     """
     bad = tracked[tracked["identity"].isin(kinds)]
     return sorted(int(s) for s in bad["step"].unique())
@@ -363,6 +375,7 @@ def follow_root(solve: Callable, start: float, stop: float, root: int, *,
         ``solve(s) -> (eigenvalues (m,), vectors (d, m))``: all roots at
         parameter ``s``.
     start, stop : float
+        The parameter range.
     root : int
         Index of the root at `start`.
     periodic : bool
@@ -371,6 +384,8 @@ def follow_root(solve: Callable, start: float, stop: float, root: int, *,
         Initial equal steps.
     first : tuple, optional
         ``solve(start)`` if already computed.
+    max_halvings : int
+        Halvings of a step allowed before an unclear match is accepted.
 
     Returns
     -------

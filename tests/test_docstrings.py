@@ -92,7 +92,10 @@ def _api(modules) -> list[tuple[str, str]]:
 def problems(module: str, name: str) -> list[str]:
     """The :data:`ERRORS` numpydoc finds in ``module.name``, as ``"CODE message"``."""
     obj = getattr(importlib.import_module(module), name)
-    res = validate(f"{module}.{name}")
+    try:
+        res = validate(f"{module}.{name}")
+    except ValueError as err:   # numpydoc cannot parse it (e.g. a section twice)
+        return [f"unparseable docstring: {err}"]
     errors = [(code, msg) for code, msg in res["errors"] if code in ERRORS]
     if inspect.isclass(obj) and any(code == "PR01" for code, _ in errors):
         # fields documented as Attributes count (see the module docstring)
