@@ -230,6 +230,17 @@ def blade_modes(cfg, n_modes: int | None = None, collective: float = 0.0,
     Returns
     -------
     BladeModes
+
+    Examples
+    --------
+    The MDART blade: a soft-inplane bearingless rotor, its first lag mode
+    below 1/rev and the first flap mode just above it.
+
+    >>> from tefcore.config_io import load_config
+    >>> modes = blade_modes(load_config("mdart"))
+    >>> f = dict(zip(modes.labels, modes.frequencies))
+    >>> bool(f["lag 1"] < 1.0 < f["flap 1"] < 1.2)
+    True
     """
     beam = blade_model(cfg, collective, n_elements)
     return beam_modes(beam, n_modes or cfg.model.n_modes, speed_ratio)

@@ -190,6 +190,23 @@ def stability(cfg, *, trim_result: TrimResult | None = None, n_steps: int | None
         If the Floquet exponents do not meet the default tolerance of
         :func:`tefcore.floquet.floquet_modes` even at 32 times the steps
         (``n_steps`` is the starting value and is doubled as needed).
+
+    References
+    ----------
+    .. [1] *Aeroelastic Stability of Trailing-Edge Flap Helicopter Rotors*,
+       "Stability Analysis": the perturbation equations (5) about the trim
+       and their Floquet eigenanalysis; docs/theory.md sections 5 and 8.
+
+    Examples
+    --------
+    The MDART baseline in hover: the flap mode, well above the blade modes,
+    is stable.
+
+    >>> from tefcore.config_io import load_config
+    >>> res = stability(load_config("mdart"))
+    >>> tef = res.modes[res.modes["label"] == "TEF"].iloc[0]
+    >>> bool(tef["real_part"] < 0), bool(tef["frequency_per_rev"] > 12)
+    (True, True)
     """
     if model is not None:
         if model.cfg != cfg:
