@@ -30,6 +30,7 @@ from .coupled import Controls, CoupledModel, jacobian_blocks
 from .errors import TefcoreError
 from .flap_dynamics import spectral_derivative
 from .inflow import Inflow, drees_gradients, momentum_inflow
+from .runtime import blas_limit
 
 __all__ = ["MAX_FLAP_DEFLECTION_DEG", "TrimError", "TrimResult", "fourier_coefficients",
            "fourier_eval", "initial_collective", "trim"]
@@ -206,6 +207,7 @@ def initial_collective(cfg) -> float:
     return float((6 * f.ct_sigma / cfg.rotor.lift_slope + 1.5 * lam) / (1 + 1.5 * mu2))
 
 
+@blas_limit()
 def trim(model: CoupledModel, *, tol: float = 1e-10, max_iter: int = 40,
          initial: TrimResult | None = None) -> TrimResult:
     """Trim the coupled model (wind-tunnel trim in forward flight).
