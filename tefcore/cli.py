@@ -282,6 +282,13 @@ class _HelpFormatter(argparse.RawDescriptionHelpFormatter):
                 self._action_max_length = max(self._action_max_length,
                                               len(name) + self._current_indent + 4)
 
+    def _format_action_invocation(self, action: argparse.Action) -> str:
+        # argparse cannot show a positional whose metavar is a tuple
+        # ("X_START X_STOP X_NUM"): it fails with a ValueError (bpo-14074)
+        if not action.option_strings and isinstance(action.metavar, tuple):
+            return " ".join(action.metavar)
+        return super()._format_action_invocation(action)
+
     def _fill_text(self, text: str, width: int, indent: str) -> str:
         # paragraphs (blank-line separated) are filled; lines indented by two
         # spaces or more (examples) are kept as written
@@ -369,9 +376,11 @@ def build_parser() -> argparse.ArgumentParser:
              epilog="example:\n  tefcore map flap.cg_offset 0 0.3 7 flap.overhang 0 0.4 5 "
                     "--png map.png")
     p.add_argument("x_field", help="dotted field on the x axis, e.g. flap.cg_offset")
-    p.add_argument("x_range", nargs=3, metavar=("X_START", "X_STOP", "X_NUM"))
+    p.add_argument("x_range", nargs=3, metavar=("X_START", "X_STOP", "X_NUM"),
+                   help="NUM evenly spaced x values from START to STOP")
     p.add_argument("y_field", help="dotted field on the y axis, e.g. flap.overhang")
-    p.add_argument("y_range", nargs=3, metavar=("Y_START", "Y_STOP", "Y_NUM"))
+    p.add_argument("y_range", nargs=3, metavar=("Y_START", "Y_STOP", "Y_NUM"),
+                   help="NUM evenly spaced y values from START to STOP")
     p.add_argument("--csv", default="map.csv", help="tidy table (default: map.csv)")
     p.add_argument("--png", default=None, help="also draw the map to this image")
     p.add_argument("--netcdf", default=None, help="also write the xarray Dataset (netCDF3)")

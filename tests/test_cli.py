@@ -4,6 +4,7 @@ import subprocess
 import sys
 
 import pandas as pd
+import pytest
 
 from tefcore.cli import main
 
@@ -62,6 +63,13 @@ def test_help_lists_each_subcommand_on_one_line_without_markup():
         line = next(li for li in lines if li.strip().split(" ")[0] == name)
         assert len(line.split()) > 2, line
     assert "exit status" in text and "examples:" in text
+
+
+@pytest.mark.parametrize("name", SUBCOMMANDS)
+def test_every_subcommand_has_help(name):
+    # (map's --help failed with a ValueError: argparse and tuple metavars)
+    text = _help(name)
+    assert text.startswith(f"usage: tefcore {name}")
 
 
 def test_every_subcommand_has_a_description():
