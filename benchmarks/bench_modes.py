@@ -11,7 +11,7 @@ import statistics
 import time
 
 from tefcore.blade import blade_model, blade_modes
-from tefcore.config import load_config
+from tefcore.config_io import load_config
 from tefcore.structure import beam_modes
 
 

@@ -18,7 +18,7 @@ The monodromy against a naive solve_ivp is in ``bench_floquet.py``.
 import statistics
 import time
 
-from tefcore.config import load_config
+from tefcore.config_io import load_config
 from tefcore.coupled import coupled_model
 from tefcore.stability import stability
 from tefcore.trim import initial_collective, trim

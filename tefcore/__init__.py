@@ -1,20 +1,95 @@
 """tefcore: aeroelastic stability of helicopter rotors with trailing-edge flaps.
 
-An open replication of *Aeroelastic Stability of Trailing-Edge Flap Helicopter
-Rotors*: a rotating finite-element blade with a trailing-edge flap and its
-actuator, quasi-steady flap aerodynamics, trim and Floquet stability.
+An open replication of *Aeroelastic Stability of Trailing-Edge Flap
+Helicopter Rotors*: a rotating finite-element blade with a trailing-edge flap
+and its actuator, flap aerodynamics (quasi-steady, C81 tables, finite-state
+unsteady), trim and Floquet stability.
 
-The matrices here are small (a few hundred dofs at most).  Importing tefcore
-therefore limits BLAS to one thread and keeps freed heap memory in the
-process (see :mod:`tefcore.runtime` for why, what it measured and the
-environment variables that turn either off).
+The solver is the flat set of modules ``tefcore.*``; the replication of the
+paper (figures, reference data and claims, validation, notebooks, the
+reproduction runner and report) is the subpackage :mod:`tefcore.paper`,
+built on the solver and never imported by it.
+
+The names a rotor dynamicist uses are importable from ``tefcore`` itself
+(loaded on first use, so ``import tefcore`` stays light and changes no
+process setting; see :mod:`tefcore.runtime`):
+
+Configuration
+    :class:`~tefcore.config.Config`, :func:`~tefcore.config_io.load_config`,
+    :func:`~tefcore.config_io.save_config`
+Blade modes
+    :func:`~tefcore.blade.blade_modes`, :func:`~tefcore.blade.fan_plot`
+Trim and stability
+    :func:`~tefcore.trim.trim`, :func:`~tefcore.stability.stability`
+    (:class:`~tefcore.stability.StabilityResult`: ``.modes``, one row per
+    Floquet mode), :func:`~tefcore.floquet.floquet_modes`
+Sweeps and maps
+    :func:`~tefcore.sweep.sweep`, :func:`~tefcore.boundary.stability_boundary`,
+    :func:`~tefcore.stability_map.stability_map`
+Mechanism of an instability
+    :func:`~tefcore.mechanism.mechanism`
+Mode tracking
+    :func:`~tefcore.tracking.track_modes`,
+    :func:`~tefcore.mode_matching.match_modes`, :func:`~tefcore.mode_matching.mac`
+C81 airfoil decks
+    :func:`~tefcore.c81.read_c81`, :func:`~tefcore.c81.write_c81`,
+    :class:`~tefcore.c81.C81FlapTable`
+Units
+    :func:`~tefcore.units.to_si`, :func:`~tefcore.units.from_si`
+Process settings
+    :func:`~tefcore.runtime.apply_defaults`
+Errors
+    :class:`~tefcore.errors.TefcoreError`
+
+Examples
+--------
+>>> import tefcore
+>>> cfg = tefcore.load_config("mdart")
+>>> cfg.flap.overhang
+0.29
 """
 
-import numpy  # noqa: F401  (load both BLAS builds before limiting them:
-import scipy.linalg  # noqa: F401  threadpoolctl only sees libraries already loaded)
+import importlib
 
-from .runtime import apply_defaults
+from ._version import __version__
 
-__version__ = "0.1.0"
+#: Public name -> the module that defines it (loaded on first use, PEP 562).
+API = {
+    "Config": "tefcore.config",
+    "load_config": "tefcore.config_io",
+    "save_config": "tefcore.config_io",
+    "blade_modes": "tefcore.blade",
+    "fan_plot": "tefcore.blade",
+    "trim": "tefcore.trim",
+    "stability": "tefcore.stability",
+    "StabilityResult": "tefcore.stability",
+    "floquet_modes": "tefcore.floquet",
+    "sweep": "tefcore.sweep",
+    "stability_boundary": "tefcore.boundary",
+    "stability_map": "tefcore.stability_map",
+    "mechanism": "tefcore.mechanism",
+    "track_modes": "tefcore.tracking",
+    "match_modes": "tefcore.mode_matching",
+    "mac": "tefcore.mode_matching",
+    "read_c81": "tefcore.c81",
+    "write_c81": "tefcore.c81",
+    "C81FlapTable": "tefcore.c81",
+    "to_si": "tefcore.units",
+    "from_si": "tefcore.units",
+    "apply_defaults": "tefcore.runtime",
+    "TefcoreError": "tefcore.errors",
+}
 
-apply_defaults()
+__all__ = ["__version__", *API]
+
+
+def __getattr__(name: str):
+    if name in API:
+        value = getattr(importlib.import_module(API[name]), name)
+        globals()[name] = value  # later look-ups skip this function
+        return value
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
+
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(API))

@@ -21,6 +21,9 @@ import functools
 
 import numpy as np
 
+__all__ = ["N_DOF", "N_GAUSS", "PHI_DOF", "U_DOF", "V_DOF", "W_DOF", "element_matrices",
+           "field_operators", "gauss_legendre", "hermite", "lagrange"]
+
 N_DOF = 15
 U_DOF = slice(0, 4)
 V_DOF = slice(4, 8)

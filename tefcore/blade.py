@@ -14,6 +14,7 @@ import numpy as np
 import pandas as pd
 
 from .branched import BranchedBeam, Component, Coupling, Joint, assemble_branched
+from .runtime import blas_limit
 from .scaling import RotorUnits
 from .section_inertia import check_positive_definite, lumped_section
 from .structure import (
@@ -39,7 +40,17 @@ _SECTION_SCALES = {
 
 
 def rotor_units(cfg) -> RotorUnits:
-    """Reference scales of a configuration (R, Omega, m0 = 3 I_b / R^3)."""
+    """Reference scales of a configuration (R, Omega, m0 = 3 I_b / R^3).
+
+    Parameters
+    ----------
+    cfg : tefcore.config.Config
+        The rotor configuration.
+
+    Returns
+    -------
+    tefcore.scaling.RotorUnits
+    """
     return RotorUnits(radius=cfg.rotor.radius, rotor_speed=cfg.rotor.rotor_speed,
                       mass_per_length=cfg.blade.reference_mass())
 
@@ -49,6 +60,18 @@ def section_function(cfg, units: RotorUnits | None = None):
 
     The tables with the flap's CG offset lumped in over the flap span
     (:func:`tefcore.section_inertia.lumped_section`).
+
+    Parameters
+    ----------
+    cfg : tefcore.config.Config
+        The rotor configuration.
+    units : tefcore.scaling.RotorUnits, optional
+        Reference scales (default :func:`rotor_units` of ``cfg``).
+
+    Returns
+    -------
+    callable
+        ``f(x)``: the nondimensional section properties at stations ``x``.
     """
     units = units or rotor_units(cfg)
 
@@ -60,7 +83,20 @@ def section_function(cfg, units: RotorUnits | None = None):
 
 
 def pitch_function(cfg, collective: float = 0.0):
-    """Geometric pitch ``theta(x) = theta_75 + twist(x) - twist(0.75)`` [rad]."""
+    """Geometric pitch ``theta(x) = theta_75 + twist(x) - twist(0.75)`` [rad].
+
+    Parameters
+    ----------
+    cfg : tefcore.config.Config
+        The rotor configuration.
+    collective : float, optional
+        theta_75 [rad].
+
+    Returns
+    -------
+    callable
+        ``theta(x)`` for stations ``x`` (fractions of R).
+    """
     stations = np.asarray(cfg.blade.stations, float)
     twist = np.asarray(cfg.blade.twist, float)
     t75 = np.interp(0.75, stations, twist)
@@ -73,6 +109,17 @@ def root_springs(cfg, units: RotorUnits | None = None) -> RootSprings:
     The torsion spring is the pitch link (stiffness times horn arm squared)
     plus any flexbeam torsion in parallel; the blade's own GJ sits in series
     with it through the finite elements.
+
+    Parameters
+    ----------
+    cfg : tefcore.config.Config
+        The rotor configuration.
+    units : tefcore.scaling.RotorUnits, optional
+        Reference scales (default :func:`rotor_units` of ``cfg``).
+
+    Returns
+    -------
+    tefcore.structure.RootSprings
     """
     units, hub = units or rotor_units(cfg), cfg.hub
     return RootSprings(flap=units.spring(hub.flap_spring), lag=units.spring(hub.lag_spring),
@@ -88,6 +135,7 @@ def blade_model(cfg, collective: float = 0.0,
     Parameters
     ----------
     cfg : tefcore.config.Config
+        The rotor configuration.
     collective : float
         Geometric pitch at 0.75 R [rad]; it rotates the section principal
         axes and so couples flap and lag bending.
@@ -280,6 +328,19 @@ def element_nodes(cfg, n: int, start: float | None = None) -> np.ndarray:
     inboard end (default ``rotor.root_offset``; the clevis for the main blade
     of the multiple-load-path hub).
 
+    Parameters
+    ----------
+    cfg : tefcore.config.Config
+        The rotor configuration.
+    n : int
+        Number of elements.
+
+    Returns
+    -------
+    numpy.ndarray
+        The ``n + 1`` node stations, fractions of R, from
+        ``rotor.root_offset`` to 1.
+
     Examples
     --------
     >>> from tefcore.config_io import load_config
@@ -305,6 +366,7 @@ def element_nodes(cfg, n: int, start: float | None = None) -> np.ndarray:
     return nodes
 
 
+@blas_limit()
 def blade_modes(cfg, n_modes: int | None = None, collective: float = 0.0,
                 speed_ratio: float = 1.0, n_elements: int | None = None) -> BladeModes:
     """Coupled natural modes of the configured blade.
@@ -312,6 +374,7 @@ def blade_modes(cfg, n_modes: int | None = None, collective: float = 0.0,
     Parameters
     ----------
     cfg : tefcore.config.Config
+        The rotor configuration.
     n_modes : int, optional
         Modes kept (default ``cfg.model.n_modes``).
     collective : float
@@ -319,10 +382,22 @@ def blade_modes(cfg, n_modes: int | None = None, collective: float = 0.0,
     speed_ratio : float
         Rotor speed over the configured one; frequencies are per rev of it.
     n_elements : int, optional
+        Finite elements (default ``cfg.model.n_elements``).
 
     Returns
     -------
     BladeModes
+
+    Examples
+    --------
+    The MDART blade: a soft-inplane bearingless rotor, its first lag mode
+    below 1/rev and the first flap mode just above it.
+
+    >>> from tefcore.config_io import load_config
+    >>> modes = blade_modes(load_config("mdart"))
+    >>> f = dict(zip(modes.labels, modes.frequencies))
+    >>> bool(f["lag 1"] < 1.0 < f["flap 1"] < 1.2)
+    True
     """
     beam = blade_model(cfg, collective, n_elements)
     return beam_modes(beam, n_modes or cfg.model.n_modes, speed_ratio)
@@ -333,6 +408,17 @@ def fan_data(cfg, speed_ratios, n_modes: int | None = None,
     """Frequencies of the labelled modes versus rotor speed (tidy table).
 
     The beam is assembled once; only the stiffness is re-scaled with speed.
+
+    Parameters
+    ----------
+    cfg : tefcore.config.Config
+        The rotor configuration.
+    speed_ratios : array_like
+        Rotor speeds, fractions of the configured one.
+    n_modes : int, optional
+        Modes kept (default ``cfg.model.n_modes``).
+    collective : float, optional
+        Pitch at 0.75 R [rad].
 
     Returns
     -------
@@ -358,7 +444,22 @@ def fan_data(cfg, speed_ratios, n_modes: int | None = None,
 def fan_plot(cfg, speed_ratios=None, n_modes: int | None = None, ax=None):
     """Fan plot: modal frequencies [Hz] versus rotor speed, with per-rev rays.
 
-    Returns the matplotlib Axes.
+    The nominal rotor speed is marked.
+
+    Parameters
+    ----------
+    cfg : tefcore.config.Config
+        The rotor configuration.
+    speed_ratios : array_like, optional
+        Rotor speeds, fractions of the configured one (default 0.2 to 1.2).
+    n_modes : int, optional
+        Modes kept (default ``cfg.model.n_modes``).
+    ax : matplotlib.axes.Axes, optional
+        Where to draw (default a new figure).
+
+    Returns
+    -------
+    matplotlib.axes.Axes
     """
     import matplotlib.pyplot as plt
 

@@ -3,14 +3,13 @@
 :func:`stability_boundary` scans a parameter range with
 :func:`tefcore.sweep.sweep` and refines the first sign change of the mode's
 real part with :func:`scipy.optimize.brentq`, following the mode by MAC and
-eigenvalue (:func:`tefcore.tracking.match_modes`).  Also importable from
-:mod:`tefcore.sweep`.
+eigenvalue (:func:`tefcore.mode_matching.match_modes`).
 
 Examples
 --------
 >>> import numpy as np, pandas as pd
 >>> from types import SimpleNamespace
->>> from tefcore.config import load_config
+>>> from tefcore.config_io import load_config
 >>> def toy(cfg):   # one mode whose real part crosses zero at cg_offset = 0.2
 ...     x = cfg.flap.cg_offset
 ...     return SimpleNamespace(
@@ -36,8 +35,15 @@ import numpy as np
 from scipy.optimize import brentq
 
 from .config import Config
-from .sweep import SweepResult, _check_parameter, _default_point, _shape_vectors, _unpack, sweep
-from .tracking import match_modes
+from .mode_matching import match_modes
+from .sweep import (
+    SweepResult,
+    check_parameter,
+    check_result,
+    default_point,
+    shape_vectors,
+    sweep,
+)
 
 __all__ = ["BoundaryResult", "stability_boundary"]
 
@@ -103,13 +109,14 @@ def stability_boundary(cfg: Config, parameter: str, bracket, mode: str = "TEF", 
     eigenvalue); the first pair of adjacent scan values where the tracked
     mode's real part changes sign is then refined by
     :func:`scipy.optimize.brentq`, each new evaluation identifying the mode
-    by :func:`tefcore.tracking.match_modes` against the nearest evaluated
+    by :func:`tefcore.mode_matching.match_modes` against the nearest evaluated
     point -- so a frequency crossing with another mode inside the bracket
     does not make the root finder jump to the other mode.
 
     Parameters
     ----------
     cfg : Config
+        Base configuration.
     parameter : str
         Dotted numeric field.
     bracket : (lo, hi)
@@ -130,6 +137,7 @@ def stability_boundary(cfg: Config, parameter: str, bracket, mode: str = "TEF", 
         true crossing of the point function.  Default ``xtol`` is
         ``1e-6 * (hi - lo)``.
     maxiter : int
+        Of brentq: iterations allowed.
     extra_overrides, n_jobs, progress
         Passed to :func:`sweep` for the scan (`extra_overrides` also for
         the refinement).
@@ -148,7 +156,7 @@ def stability_boundary(cfg: Config, parameter: str, bracket, mode: str = "TEF", 
         The point function failed during the refinement (with the value),
         or the mode could not be followed.
     """
-    parameter = _check_parameter(parameter)
+    parameter = check_parameter(parameter)
     base = cfg.with_overrides(extra_overrides) if extra_overrides else cfg
     try:
         lo, hi = bracket
@@ -170,7 +178,7 @@ def stability_boundary(cfg: Config, parameter: str, bracket, mode: str = "TEF", 
     xtol = 1e-6 * (hi - lo) if xtol is None else float(xtol)
 
     res = sweep(base, parameter, xs, point=point, n_jobs=n_jobs, progress=progress)
-    point = _default_point() if point is None else point
+    point = default_point() if point is None else point
     t = res.table[res.table["status"] == "ok"]
     if t.empty:
         raise ValueError(f"every scan point of {parameter} failed: "
@@ -208,8 +216,8 @@ def stability_boundary(cfg: Config, parameter: str, bracket, mode: str = "TEF", 
         if x not in cache:
             try:
                 result = point(base.with_overrides({parameter: x}))
-                m, v, _ = _unpack(result)
-                v = _shape_vectors(result, v)
+                m, v, _ = check_result(result)
+                v = shape_vectors(result, v)
             except Exception as err:
                 raise RuntimeError(f"{parameter} = {x!r}: point failed while locating the "
                                    f"{mode!r} boundary: {type(err).__name__}: {err}") from err

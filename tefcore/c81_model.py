@@ -1,24 +1,25 @@
-"""C81 table models: interpolation in a :class:`~tefcore.c81.C81Deck`, generated decks.
+"""C81 table models: interpolation in a :class:`~tefcore.c81_format.C81Deck`, generated decks.
 
-The decks themselves (reading, writing, errors) are in :mod:`tefcore.c81`,
-which re-exports every name of this module.
+The decks themselves are in :mod:`tefcore.c81_format` (the deck, errors,
+writing) and :mod:`tefcore.c81_reader` (reading); :mod:`tefcore.c81` gathers
+the public names of all three.
 
 * :class:`C81Airfoil` interpolates a deck linearly in (alpha, M[, delta]);
   :class:`C81FlapTable` adds the flap geometry and the same interface as
   :class:`tefcore.flap_aero.ThinAirfoilFlap` (``static_coefficients`` and
   ``loads``).  Angles are radians at the API and degrees in the tables.
   Outside the table the inputs are clipped to the table edges with one
-  :class:`~tefcore.c81.C81RangeWarning` per call, or rejected with
-  :class:`~tefcore.c81.C81RangeError` (``out_of_range="raise"``).
+  :class:`~tefcore.c81_format.C81RangeWarning` per call, or rejected with
+  :class:`~tefcore.c81_format.C81RangeError` (``out_of_range="raise"``).
 * :func:`generate_flap_deck` tabulates any model with a
   ``static_coefficients(alpha, mach, delta)`` method; the packaged example
   ``data/example_flap_generated.c81`` is the thin-airfoil MDART flap
-  (``python -m tefcore.c81 example`` regenerates it).  It is GENERATED data,
+  (``tefcore c81 example`` regenerates it).  It is GENERATED data,
   not test data.
 
 Examples
 --------
->>> from tefcore.c81 import parse_c81
+>>> from tefcore.c81_reader import parse_c81
 >>> deck = parse_c81('''\\
 ... TOY                            2 3 2 3 2 3
 ...           0.0    0.5
@@ -41,9 +42,7 @@ Examples
 
 from __future__ import annotations
 
-import argparse
 import os
-import sys
 import warnings
 from importlib import resources
 from pathlib import Path
@@ -51,20 +50,22 @@ from pathlib import Path
 import numpy as np
 from scipy.interpolate import RegularGridInterpolator
 
-from .c81 import (
-    _LABEL,
+from ._version import __version__
+from .c81_format import (
     BLADE_COEFFICIENTS,
+    COEFFICIENT_LABELS,
     COEFFICIENTS,
     C81Deck,
-    C81FormatError,
     C81RangeError,
     C81RangeWarning,
-    read_c81,
-    write_c81,
 )
+from .c81_reader import read_c81
 
 __all__ = [
     "EXAMPLE_DECK_NAME",
+    "EXAMPLE_GRID",
+    "EXAMPLE_HEADER",
+    "EXAMPLE_MODEL",
     "C81Airfoil",
     "C81FlapTable",
     "example_deck_path",
@@ -185,7 +186,7 @@ class C81Airfoil:
     def _out_of_range(self, problems):
         unit = {"alpha": " deg", "mach": "", "delta": " deg"}
         parts = [f"{var} = {worst:.6g}{unit[var]} outside [{lo:g}, {hi:g}] of the "
-                 f"{', '.join(_LABEL[c] for c in coefs)} table(s)"
+                 f"{', '.join(COEFFICIENT_LABELS[c] for c in coefs)} table(s)"
                  for (var, lo, hi), (coefs, worst) in problems.items()]
         where = f"C81 deck {self.deck.name!r}"
         if self.out_of_range == "raise":
@@ -205,6 +206,7 @@ class C81FlapTable(C81Airfoil):
     Parameters
     ----------
     deck : C81Deck or path
+        A flap deck, or the file of one.
     chord_ratio : float
         Flap chord / airfoil chord (E).
     overhang : float
@@ -283,7 +285,6 @@ def make_example_deck() -> C81Deck:
     """The example flap deck: ``ThinAirfoilFlap(0.35, 0.29, compressibility=True)``
     (MDART flap, Table 1) on alpha -10..10 deg (step 2), M 0..0.8 (step 0.1),
     delta -6..6 deg (step 2).  Needs :mod:`tefcore.flap_aero`."""
-    from . import __version__
     from .flap_aero import ThinAirfoilFlap
 
     model = ThinAirfoilFlap(EXAMPLE_MODEL["chord_ratio"], EXAMPLE_MODEL["overhang"],
@@ -300,7 +301,7 @@ def make_example_deck() -> C81Deck:
         "not public; this deck only exercises the C81 machinery with the analytic model.",
         "Grid: alpha -10..10 deg (step 2), Mach 0..0.8 (step 0.1), delta -6..6 deg (step 2).",
         "Layout: tefcore flap deck, see docs/c81_format.md.  Regenerate with",
-        "    python -m tefcore.c81 example",
+        "    tefcore c81 example",
     ])
     return generate_flap_deck(model, EXAMPLE_GRID["alphas_deg"], EXAMPLE_GRID["machs"],
                               EXAMPLE_GRID["deltas_deg"], "TEFCORE THIN-AIRFOIL MDART TEF",
@@ -311,49 +312,3 @@ def example_deck_path() -> Path:
     """Path of the packaged example deck ``data/example_flap_generated.c81``."""
     return Path(str(resources.files("tefcore") / "data" / EXAMPLE_DECK_NAME))
 
-
-# --------------------------------------------------------------------------
-# command line
-
-
-def main(argv: list[str] | None = None) -> int:
-    """``python -m tefcore.c81 example [--out PATH] | check FILE...``.
-
-    ``check`` prints one line per deck (its summary, or its first problem
-    with file, line and column) and exits with 1 when a deck is bad; other
-    errors are one line with exit status 2 (:mod:`tefcore.cli_errors`).
-    """
-    from .cli_errors import run_command
-
-    return run_command(_main, argv, prog="python -m tefcore.c81")
-
-
-def _main(argv: list[str] | None) -> int:
-    p = argparse.ArgumentParser(prog="python -m tefcore.c81",
-                                description="C81 airfoil decks: regenerate the example "
-                                            "deck or check decks")
-    sub = p.add_subparsers(dest="command", required=True)
-    ex = sub.add_parser("example", help="regenerate the packaged example flap deck "
-                                        "from the thin-airfoil model")
-    ex.add_argument("--out", default=None, help=f"output file (default: the packaged "
-                                                f"tefcore/data/{EXAMPLE_DECK_NAME})")
-    ck = sub.add_parser("check", help="parse decks and print a summary")
-    ck.add_argument("files", nargs="+")
-    args = p.parse_args(argv)
-    if args.command == "example":
-        out = write_c81(make_example_deck(), args.out or example_deck_path())
-        print(f"wrote {out}")
-        return 0
-    status = 0
-    for f in args.files:
-        try:
-            deck = read_c81(f)
-        except (C81FormatError, OSError) as exc:
-            print(exc, file=sys.stderr)
-            status = 1
-            continue
-        kind = f"flap deck, {deck.delta.size} deltas" if deck.is_flap else "blade deck"
-        sizes = ", ".join(f"{_LABEL[c]} {deck.alpha[c].size}x{deck.mach[c].size}"
-                          for c in deck.coefficients)
-        print(f"{f}: {deck.name!r} ({kind}; alpha x Mach: {sizes})")
-    return status

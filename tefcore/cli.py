@@ -1,33 +1,65 @@
-"""Command line: ``tefcore modes | fanplot | stability | sweep | map | mechanism | reproduce |
-notebooks``.
+"""The ``tefcore`` command.
 
-``tefcore reproduce`` and ``tefcore notebooks`` belong to the paper layer
-(:mod:`tefcore.paper.commands`).
+Subcommands: ``modes``, ``fanplot``, ``stability``, ``sweep``, ``map``,
+``mechanism``, ``c81 example|check``, and from the paper layer
+(:mod:`tefcore.paper.commands`) ``reproduce`` (executes the notebooks and
+writes the claims report) and ``notebooks`` (lists them, copies them for
+editing); ``tefcore --help`` lists them and ``tefcore SUBCOMMAND --help``
+describes one.
 
 Values given with ``--set`` (and ``sweep --values/--range``) follow the
 units rules of :mod:`tefcore.text_input`: a dimensional field needs its
 unit.  Output files are checked before anything is computed and written
-atomically (:mod:`tefcore.safe_io`).  Exit status: 0 success; 1 the
-command ran but its result is not clean (failed sweep points, failing
-notebooks or claims); 2 an error, printed as one line
-(:mod:`tefcore.cli_errors`); 130 interrupted; 141 output pipe closed.
+atomically (:mod:`tefcore.safe_io`).  The command applies the process
+settings of :func:`tefcore.runtime.apply_defaults` before it runs.  Exit
+status: 0 success; 1 the command ran but its result is not clean (failed
+sweep points, bad C81 decks, failing notebooks or claims); 2 an error,
+printed as one line (:mod:`tefcore.cli_errors`); 130 interrupted; 141
+output pipe closed.
 """
 
 from __future__ import annotations
 
 import argparse
 import sys
+import textwrap
 from pathlib import Path
 
 import numpy as np
 
+from ._version import __version__
 from .cli_errors import run_command
 from .safe_io import atomic_output, check_output_file
 from .text_input import sweep_values
 
+__all__ = ["build_parser", "main"]
+
+#: ``tefcore --help``: what the command is, and where the details are.
+DESCRIPTION = """\
+Floquet aeroelastic stability of helicopter rotor blades with trailing-edge
+flaps: blade modes, trim and stability, sweeps and stability maps, the
+mechanism of an instability, C81 airfoil decks, and the reproduction of the
+paper's figures and claims."""
+
+EPILOG = """\
+examples:
+  tefcore stability
+  tefcore stability --set flap.cg_offset=0.2 --csv modes.csv
+  tefcore sweep flap.overhang --range 0 0.4 9 --jobs 2
+  tefcore c81 check my_deck.c81
+  tefcore SUBCOMMAND --help
+
+values given with --set need their unit when the field has one
+('hub.pitch_link_stiffness=800 lb/in'); output files are checked before
+anything is computed and written atomically.
+
+exit status: 0 success; 1 ran, but the result is not clean (failed sweep
+points, bad C81 decks, failing notebooks or claims); 2 an error (one line);
+130 interrupted; 141 output pipe closed."""
+
 
 def _load(args):
-    from .config import load_config
+    from .config_io import load_config
     from .text_input import parse_overrides
 
     cfg = load_config(args.config)
@@ -197,26 +229,123 @@ def cmd_map(args) -> int:
     return 1 if n_bad else 0
 
 
+def cmd_c81_example(args) -> int:
+    from .c81_format import write_c81
+    from .c81_model import example_deck_path, make_example_deck
+
+    out = args.out or example_deck_path()
+    check_output_file(out, "--out")
+    print(f"wrote {write_c81(make_example_deck(), out)}")
+    return 0
+
+
+def cmd_c81_check(args) -> int:
+    from .c81_format import COEFFICIENT_LABELS, C81FormatError
+    from .c81_reader import read_c81
+
+    status = 0
+    for f in args.files:
+        try:
+            deck = read_c81(f)
+        except (C81FormatError, OSError) as exc:
+            print(exc, file=sys.stderr)
+            status = 1
+            continue
+        kind = f"flap deck, {deck.delta.size} deltas" if deck.is_flap else "blade deck"
+        sizes = ", ".join(f"{COEFFICIENT_LABELS[c]} {deck.alpha[c].size}x{deck.mach[c].size}"
+                          for c in deck.coefficients)
+        print(f"{f}: {deck.name!r} ({kind}; alpha x Mach: {sizes})")
+    return status
+
+
+class _HelpFormatter(argparse.RawDescriptionHelpFormatter):
+    """Descriptions and epilogs as written; each subcommand's help on its own line."""
+
+    def __init__(self, prog: str) -> None:
+        super().__init__(prog, max_help_position=32)
+
+    def add_argument(self, action: argparse.Action) -> None:
+        super().add_argument(action)
+        if action.nargs == argparse.PARSER and action.help is not argparse.SUPPRESS:
+            # argparse measures the subcommand names without the 4 columns of
+            # indentation they are printed with, and wraps the longer ones
+            for name in action.choices:
+                self._action_max_length = max(self._action_max_length,
+                                              len(name) + self._current_indent + 4)
+
+    def _format_action_invocation(self, action: argparse.Action) -> str:
+        # argparse cannot show a positional whose metavar is a tuple
+        # ("X_START X_STOP X_NUM"): it fails with a ValueError (bpo-14074)
+        if not action.option_strings and isinstance(action.metavar, tuple):
+            return " ".join(action.metavar)
+        return super()._format_action_invocation(action)
+
+    def _fill_text(self, text: str, width: int, indent: str) -> str:
+        # paragraphs (blank-line separated) are filled; lines indented by two
+        # spaces or more (examples) are kept as written
+        out = []
+        for para in text.split("\n\n"):
+            if all(line.startswith("  ") or not line.strip() for line in para.splitlines()) \
+                    or para.startswith(("examples:", "example:")):
+                out.append("\n".join(indent + line for line in para.splitlines()))
+            else:
+                out.append(textwrap.fill(" ".join(para.split()), width, initial_indent=indent,
+                                         subsequent_indent=indent))
+        return "\n\n".join(out)
+
+
+def _add(sub, name: str, help: str, description: str, func, *, common: bool = True,
+         epilog: str | None = None):
+    """One subcommand: a one-line ``help`` for ``tefcore --help``, a description."""
+    p = sub.add_parser(name, help=help, description=description, epilog=epilog,
+                       formatter_class=_HelpFormatter)
+    if common:
+        _common(p)
+    p.set_defaults(func=func)
+    return p
+
+
 def build_parser() -> argparse.ArgumentParser:
-    parser = argparse.ArgumentParser(prog="tefcore", description=__doc__)
-    sub = parser.add_subparsers(dest="command", required=True)
-    p = sub.add_parser("modes", help="coupled blade modes as a table")
-    _common(p)
-    p.add_argument("--n-modes", type=int, default=None)
+    """The argument parser of the ``tefcore`` command.
+
+    Returns
+    -------
+    argparse.ArgumentParser
+        With one subparser per subcommand; each sets ``func``, the function
+        that runs it (``func(args) -> exit status``).
+    """
+    parser = argparse.ArgumentParser(prog="tefcore", description=DESCRIPTION, epilog=EPILOG,
+                                     formatter_class=_HelpFormatter)
+    parser.add_argument("--version", action="version", version=f"tefcore {__version__}")
+    sub = parser.add_subparsers(dest="command", required=True, metavar="SUBCOMMAND",
+                                title="subcommands")
+    p = _add(sub, "modes", "coupled blade modes (frequencies, labels) as a table",
+             "Rotating blade modes of the configuration (finite elements, flap included) "
+             "at one collective pitch: frequency (/rev) and label of each mode.", cmd_modes)
+    p.add_argument("--n-modes", type=int, default=None, help="number of modes (default: the "
+                   "configuration's model.n_modes)")
     p.add_argument("--collective", type=float, default=0.0, help="pitch at 0.75R [deg]")
     p.add_argument("--csv", default=None, help="also write the table to this CSV file")
-    p.set_defaults(func=cmd_modes)
-    p = sub.add_parser("fanplot", help="fan plot (frequency vs rotor speed) to an image")
-    _common(p)
-    p.add_argument("--n-modes", type=int, default=None)
-    p.add_argument("--out", default="fanplot.png")
-    p.set_defaults(func=cmd_fanplot)
-    p = sub.add_parser("stability", help="trim + Floquet stability, one row per mode")
-    _common(p)
+    p = _add(sub, "fanplot", "fan plot (frequency vs rotor speed) to an image",
+             "Blade mode frequencies against rotor speed (fan plot), written to an image "
+             "whose format follows the file name (png, pdf, svg, ...).", cmd_fanplot)
+    p.add_argument("--n-modes", type=int, default=None, help="number of modes")
+    p.add_argument("--out", default="fanplot.png", help="image file (default: fanplot.png)")
+    p = _add(sub, "stability", "trim + Floquet stability, one row per mode",
+             "Trim the rotor, linearise about the periodic trim and compute the Floquet "
+             "modes: frequency (/rev), real part (/rev), damping ratio and label of each "
+             "mode, and the trim controls.", cmd_stability,
+             epilog="example:\n  tefcore stability --set flight.advance_ratio=0.3 "
+                    "--csv modes.csv")
     p.add_argument("--csv", default=None, help="also write the mode table to this CSV file")
-    p.set_defaults(func=cmd_stability)
-    p = sub.add_parser("sweep", help="stability over one parameter, tidy CSV")
-    _common(p)
+    p = _add(sub, "sweep", "stability over one parameter, tidy CSV",
+             "Stability at each value of one configuration field, the modes tracked from "
+             "point to point (tidy CSV, one row per mode and point). A failed point is "
+             "recorded with its reason and the sweep goes on (exit status 1).", cmd_sweep,
+             epilog="examples:\n"
+                    "  tefcore sweep flap.cg_offset --values 0 0.1 0.2 0.3\n"
+                    "  tefcore sweep hub.pitch_link_stiffness --range '400 lb/in' "
+                    "'800 lb/in' 5 --out run.jsonl")
     p.add_argument("parameter", help="dotted field, e.g. flap.cg_offset")
     p.add_argument("--values", nargs="+",
                    help="values: numbers (dimensionless fields) or 'value unit' "
@@ -230,18 +359,19 @@ def build_parser() -> argparse.ArgumentParser:
                    help="stream points to this JSON-lines file; re-running resumes it")
     p.add_argument("--jobs", type=int, default=1, help="parallel processes (joblib)")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
-    p.set_defaults(func=cmd_sweep)
-    p = sub.add_parser(
-        "map", help="stability over a grid of two fields: flutter growth and boundary",
-        description="Stability map: one sweep of FIELD_X per value of FIELD_Y (resumable "
-                    "with --out), the flutter root's growth rate at every point and the "
-                    "flutter boundary refined between grid points. Ranges are START STOP "
-                    "NUM, numbers (SI or fractions) or 'value unit' strings.")
-    _common(p)
+    p = _add(sub, "map", "stability map over two fields: flutter growth, boundary",
+             "Stability map: one sweep of FIELD_X per value of FIELD_Y (resumable with "
+             "--out), the flutter root's growth rate at every point and the flutter "
+             "boundary refined between grid points. Ranges are START STOP NUM, numbers "
+             "(SI or fractions) or 'value unit' strings.", cmd_map,
+             epilog="example:\n  tefcore map flap.cg_offset 0 0.3 7 flap.overhang 0 0.4 5 "
+                    "--png map.png")
     p.add_argument("x_field", help="dotted field on the x axis, e.g. flap.cg_offset")
-    p.add_argument("x_range", nargs=3, metavar=("X_START", "X_STOP", "X_NUM"))
+    p.add_argument("x_range", nargs=3, metavar=("X_START", "X_STOP", "X_NUM"),
+                   help="NUM evenly spaced x values from START to STOP")
     p.add_argument("y_field", help="dotted field on the y axis, e.g. flap.overhang")
-    p.add_argument("y_range", nargs=3, metavar=("Y_START", "Y_STOP", "Y_NUM"))
+    p.add_argument("y_range", nargs=3, metavar=("Y_START", "Y_STOP", "Y_NUM"),
+                   help="NUM evenly spaced y values from START to STOP")
     p.add_argument("--csv", default="map.csv", help="tidy table (default: map.csv)")
     p.add_argument("--png", default=None, help="also draw the map to this image")
     p.add_argument("--netcdf", default=None, help="also write the xarray Dataset (netCDF3)")
@@ -252,32 +382,56 @@ def build_parser() -> argparse.ArgumentParser:
                         "local processes)")
     p.add_argument("--no-refine", action="store_true", help="do not refine the boundary")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
-    p.set_defaults(func=cmd_map)
-    p = sub.add_parser(
-        "mechanism", help="why a root is (un)stable: work of each physical term, knockouts",
-        description="Decompose one root's growth rate into the work of the named terms of "
-                    "the linearised equations (they add up to its real part), and follow "
-                    "the root with each term knocked out. CSV columns: term, "
-                    "contribution_real, contribution_imag; rows: one per term, 'total' "
-                    "(the root's eigenvalue, /rev) and 'knockout <term>' (the root's "
-                    "eigenvalue with that term removed).")
-    _common(p)
+    p = _add(sub, "mechanism", "why a root is (un)stable: work of each term, knockouts",
+             "Decompose one root's growth rate into the work of the named terms of the "
+             "linearised equations (they add up to its real part), and follow the root with "
+             "each term knocked out. CSV columns: term, contribution_real, "
+             "contribution_imag; rows: one per term, 'total' (the root's eigenvalue, /rev) "
+             "and 'knockout <term>' (the root's eigenvalue with that term removed).",
+             cmd_mechanism)
     p.add_argument("--mode", default="TEF",
                    help="'TEF' (the root the flap mode becomes), 'flutter' (least stable "
                         "root the flap takes part in) or a label, e.g. 'blade torsion 1'")
     p.add_argument("--csv", default=None, help="write the decomposition to this CSV file")
     p.add_argument("--no-knockouts", action="store_true", help="skip the knockouts (faster)")
-    p.set_defaults(func=cmd_mechanism)
-    from .paper.commands import add_commands  # reproduce, notebooks
+    p = _add(sub, "c81", "C81 airfoil decks: check decks, regenerate the example deck",
+             "C81 airfoil decks (layout: docs/c81_format.md).", None, common=False)
+    c81 = p.add_subparsers(dest="c81_command", required=True, metavar="C81COMMAND",
+                           title="subcommands")
+    q = _add(c81, "check", "parse decks and print a one-line summary of each",
+             "Parse each deck and print its summary, or its first problem with file, line "
+             "and column. Exit status 1 when a deck is bad.", cmd_c81_check, common=False)
+    q.add_argument("files", nargs="+", metavar="FILE", help="C81 deck (blade or flap)")
+    q = _add(c81, "example", "regenerate the packaged example flap deck",
+             "Write the example flap deck, tabulated from the thin-airfoil model of the "
+             "MDART flap (GENERATED data, not test data).", cmd_c81_example, common=False)
+    q.add_argument("--out", default=None, help="output file (default: the packaged "
+                                                "tefcore/data/example_flap_generated.c81)")
+    from .paper.commands import add_commands  # reproduce, notebooks: the paper layer
 
-    add_commands(sub)
+    add_commands(sub, formatter_class=_HelpFormatter)
     return parser
 
 
-def main(argv=None) -> int:
-    """Run the ``tefcore`` command; errors are one line, exit 2 (:mod:`tefcore.cli_errors`)."""
+def main(argv: list[str] | None = None) -> int:
+    """Run the ``tefcore`` command.
+
+    Parameters
+    ----------
+    argv : list of str, optional
+        The arguments (default: ``sys.argv[1:]``).
+
+    Returns
+    -------
+    int
+        The exit status; errors are one line on stderr with status 2
+        (:mod:`tefcore.cli_errors`).
+    """
     def body():
         args = build_parser().parse_args(argv)
+        from .runtime import apply_defaults
+
+        apply_defaults()  # the command owns its process (tefcore.runtime)
         return args.func(args)
 
     return run_command(body, prog="tefcore")

@@ -1,7 +1,7 @@
 """How every command-line entry point ends: one clear line, never a traceback for our errors.
 
 :func:`run_command` wraps the body of ``tefcore`` (:mod:`tefcore.cli`),
-``python -m tefcore.c81`` and ``python -m tefcore.paper.calibration``:
+and ``python -m tefcore.paper.calibration``:
 
 * tefcore's own errors (:data:`tefcore.errors.EXPECTED_ERRORS`: invalid
   input as ``ValueError``, :class:`~tefcore.errors.TefcoreError` such as a
@@ -49,6 +49,17 @@ def error_line(exc: BaseException, limit: int = MAX_MESSAGE) -> str:
 
     An ``OSError`` with a file name reads ``<file>: <reason>``.
 
+    Parameters
+    ----------
+    exc : BaseException
+        The exception.
+    limit : int, optional
+        Longest line.
+
+    Returns
+    -------
+    str
+
     Examples
     --------
     >>> error_line(FileNotFoundError(2, "No such file or directory", "cfg.toml"))
@@ -77,7 +88,23 @@ def _quiet_stdout() -> None:
 
 
 def run_command(func: Callable[..., int], *args, prog: str = "tefcore") -> int:
-    """Run a command body and turn its ending into an exit status (module docstring)."""
+    """Run a command body and turn its ending into an exit status (module docstring).
+
+    Parameters
+    ----------
+    func : callable
+        The command body; returns the exit status.
+    *args
+        Its arguments.
+    prog : str, optional
+        The program name for messages.
+
+    Returns
+    -------
+    int
+        ``func``'s status, or 2 (an expected error), 130 (interrupted), 141
+        (output pipe closed).
+    """
     try:
         code = func(*args)
         sys.stdout.flush()

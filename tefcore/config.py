@@ -54,7 +54,16 @@ from .hub_config import (
     check_hub_relations,
 )
 from .section_inertia import check_section_inertia
-from .settings import REQUIRED, Param, _close, _fmt, _rebuild, _Section, _section, coerce_value
+from .settings import (
+    REQUIRED,
+    Param,
+    Section,
+    coerce_value,
+    did_you_mean,
+    format_value,
+    rebuild_section,
+    settings_section,
+)
 
 __all__ = [
     "BLADE_PROPERTIES",
@@ -75,9 +84,7 @@ __all__ = [
     "SnubberConfig",
     "TorqueTubeConfig",
     "coerce_value",
-    "load_config",
     "resolve_field",
-    "save_config",
 ]
 
 
@@ -86,8 +93,8 @@ __all__ = [
 _GEOM_TOL = 1e-12
 
 
-@_section("rotor")
-class RotorConfig(_Section):
+@settings_section("rotor")
+class RotorConfig(Section):
     """Rotor geometry, rotor speed, airfoil aerodynamics and atmosphere.
 
     Parameters
@@ -147,8 +154,8 @@ _SCALES = {"mass": "mass_scale", "im_flap": "mass_scale", "im_lag": "mass_scale"
            "ea": "ea_scale"}  # fmt: skip
 
 
-@_section("blade")
-class BladeConfig(_Section):
+@settings_section("blade")
+class BladeConfig(Section):
     """Spanwise blade section properties, piecewise linear between stations.
 
     Property arrays have one value per station; a scalar is broadcast.
@@ -204,11 +211,13 @@ class BladeConfig(_Section):
         if step.size:
             i = int(step[0]) + 1
             raise ValueError(
-                f"blade.stations[{i}] = {_fmt(s[i])} is not greater than "
-                f"blade.stations[{i - 1}] = {_fmt(s[i - 1])}; stations must increase strictly"
+                f"blade.stations[{i}] = {format_value(s[i])} is not greater than "
+                f"blade.stations[{i - 1}] = {format_value(s[i - 1])}; stations must increase "
+                "strictly"
             )
         if abs(s[-1] - 1.0) > _GEOM_TOL:
-            raise ValueError(f"blade.stations[{s.size - 1}] = {_fmt(s[-1])} must be 1.0 (the tip)")
+            raise ValueError(f"blade.stations[{s.size - 1}] = {format_value(s[-1])} must be 1.0 "
+                             "(the tip)")
         for name in BLADE_PROPERTIES:
             arr = getattr(self, name)
             if arr.ndim == 0:
@@ -243,7 +252,7 @@ class BladeConfig(_Section):
         lo = self.stations[0]
         if x.size and (np.nanmin(x) < lo - _GEOM_TOL or np.nanmax(x) > 1.0 + _GEOM_TOL
                        or np.isnan(x).any()):  # fmt: skip
-            raise ValueError(f"section positions must lie within [{_fmt(lo)}, 1.0]")
+            raise ValueError(f"section positions must lie within [{format_value(lo)}, 1.0]")
         out = {}
         for name in BLADE_PROPERTIES:
             values = np.interp(x, self.stations, getattr(self, name))
@@ -291,8 +300,8 @@ class BladeConfig(_Section):
         return self.reference_mass() * radius**3 / 3.0
 
 
-@_section("hub")
-class HubConfig(_Section):
+@settings_section("hub")
+class HubConfig(Section):
     """Bearingless hub: which model, control linkage and equivalent root springs/damper.
 
     ``model = "equivalent"`` (docs/theory.md section 2.5) uses the root springs,
@@ -331,8 +340,8 @@ class HubConfig(_Section):
         return self.pitch_link_stiffness * self.pitch_horn_arm**2
 
 
-@_section("flap")
-class FlapConfig(_Section):
+@settings_section("flap")
+class FlapConfig(Section):
     """Trailing-edge flap geometry and inertia (paper notation c_f, c_b, c_cg).
 
     Parameters
@@ -411,8 +420,8 @@ class FlapConfig(_Section):
                 + self.mass_per_span * (self.cg_offset * self.chord_ratio * chord) ** 2)
 
 
-@_section("actuator")
-class ActuatorConfig(_Section):
+@settings_section("actuator")
+class ActuatorConfig(Section):
     """Flap actuator: torsional spring k_a and damper c_a in series with the flap.
 
     Parameters
@@ -426,8 +435,8 @@ class ActuatorConfig(_Section):
     )
 
 
-@_section("flight")
-class FlightConfig(_Section):
+@settings_section("flight")
+class FlightConfig(Section):
     """Flight condition, trim target and prescribed actuator input.
 
     The shaft angle is positive for forward tilt (nose down, as in level
@@ -452,8 +461,8 @@ class FlightConfig(_Section):
     )  # fmt: skip
 
 
-@_section("model")
-class ModelConfig(_Section):
+@settings_section("model")
+class ModelConfig(Section):
     """Discretisation and aerodynamic model choices.
 
     Parameters
@@ -492,7 +501,7 @@ class ModelConfig(_Section):
 
 
 #: Section name -> section class, in file order.
-SECTIONS: dict[str, type[_Section]] = {
+SECTIONS: dict[str, type[Section]] = {
     cls.SECTION: cls
     for cls in (RotorConfig, BladeConfig, HubConfig, FlexbeamConfig, TorqueTubeConfig,
                 PitchLinkConfig, SnubberConfig, FlapConfig, ActuatorConfig, FlightConfig,
@@ -516,6 +525,16 @@ def resolve_field(key: str) -> tuple[str | None, str]:
 
     Returns ``(None, name)`` for the top-level ``name``/``description``.
 
+    Parameters
+    ----------
+    key : str
+        A dotted field name.
+
+    Returns
+    -------
+    section : str or None
+    field : str
+
     Raises
     ------
     ValueError
@@ -538,7 +557,7 @@ def resolve_field(key: str) -> tuple[str | None, str]:
     cls = SECTIONS.get(section)
     if cls is None or not dot or name not in {p.name for p in cls.PARAMS}:
         every = [f"{s}.{p.name}" for s, c in SECTIONS.items() for p in c.PARAMS]
-        raise ValueError(f"unknown field {key!r}{_close(key, [*every, *_TOP_LEVEL])}")
+        raise ValueError(f"unknown field {key!r}{did_you_mean(key, [*every, *_TOP_LEVEL])}")
     return section, name
 
 
@@ -550,6 +569,31 @@ class Config:
     `sources` (dotted name -> provenance) and `reference` (stated values,
     see :data:`REFERENCE_PARAMS`) are carried along but are not part of
     equality.
+
+    Parameters
+    ----------
+    rotor : RotorConfig or mapping
+        Rotor geometry, aerodynamics and operating condition.
+    blade : BladeConfig or mapping
+        Blade property tables.
+    hub : HubConfig or mapping
+        Hub springs and control linkage.
+    flap : FlapConfig or mapping
+        Flap geometry and inertia.
+    actuator : ActuatorConfig or mapping
+        Flap actuator.
+    flight : FlightConfig or mapping, optional
+        Flight condition and trim targets.
+    model : ModelConfig or mapping, optional
+        Modelling choices (discretisation, aerodynamic model, flap model).
+    name : str, optional
+        Name of the configuration.
+    description : str, optional
+        Free text.
+    sources : mapping of str to str, optional
+        Dotted field -> where its value comes from.
+    reference : mapping of str to object, optional
+        Stated reference values (:data:`REFERENCE_PARAMS`).
 
     Raises
     ------
@@ -602,7 +646,8 @@ class Config:
         for key, raw in self.reference.items():
             p = REFERENCE_PARAMS.get(key)
             if p is None:
-                raise ValueError(f"unknown reference value {key!r}{_close(key, REFERENCE_PARAMS)}")
+                raise ValueError(f"unknown reference value "
+                                 f"{key!r}{did_you_mean(key, REFERENCE_PARAMS)}")
             reference[key] = coerce_value(p, raw, f"reference.{key}")
             if msg := p.range_error(reference[key], f"reference.{key}", self._lookup):
                 raise ValueError(msg)
@@ -617,18 +662,18 @@ class Config:
     def _check_relations(self) -> None:
         # Ranges that reference other sections (skipped by the sections).
         for sname in SECTIONS:
-            getattr(self, sname)._check_cross_refs(self._lookup)
+            getattr(self, sname).check_cross_refs(self._lookup)
         rotor, flap = self.rotor, self.flap
         s0 = self.blade.stations[0]
         if abs(s0 - rotor.root_offset) > _GEOM_TOL:
             raise ValueError(
-                f"blade.stations[0] = {_fmt(s0)} must equal rotor.root_offset = "
-                f"{_fmt(rotor.root_offset)} (the blade starts at the structural root)"
+                f"blade.stations[0] = {format_value(s0)} must equal rotor.root_offset = "
+                f"{format_value(rotor.root_offset)} (the blade starts at the structural root)"
             )
         if flap.inboard < rotor.root_cutout - _GEOM_TOL:
             raise ValueError(
                 f"flap.midspan - flap.span/2 = {flap.inboard:.6g} lies inboard of "
-                f"rotor.root_cutout = {_fmt(rotor.root_cutout)}"
+                f"rotor.root_cutout = {format_value(rotor.root_cutout)}"
             )
         if flap.outboard > 1.0 + _GEOM_TOL:
             raise ValueError(
@@ -637,9 +682,9 @@ class Config:
         self._check_tip_mach()
         if 1.0 - flap.chord_ratio < rotor.elastic_axis - _GEOM_TOL:
             raise ValueError(
-                f"flap.chord_ratio = {_fmt(flap.chord_ratio)} does not fit behind the elastic "
-                f"axis: flap leading edge at {1.0 - flap.chord_ratio:.6g} c is ahead of "
-                f"rotor.elastic_axis = {_fmt(rotor.elastic_axis)}"
+                f"flap.chord_ratio = {format_value(flap.chord_ratio)} does not fit behind the "
+                f"elastic axis: flap leading edge at {1.0 - flap.chord_ratio:.6g} c is ahead of "
+                f"rotor.elastic_axis = {format_value(rotor.elastic_axis)}"
             )
         # the multiple-load-path hub's parts, when selected (docs/theory.md 2.5a)
         check_hub_relations(self)
@@ -660,7 +705,7 @@ class Config:
         tip = rotor.rotor_speed * rotor.radius / rotor.speed_of_sound
         if (1.0 + mu) * tip > MACH_MAX:
             raise ValueError(
-                f"flight.advance_ratio = {_fmt(mu)} puts the advancing blade tip at Mach "
+                f"flight.advance_ratio = {format_value(mu)} puts the advancing blade tip at Mach "
                 f"(1 + mu) M_tip = {(1.0 + mu) * tip:.4f} (tip Mach M_tip = Omega R / a "
                 f"= {tip:.4f}), above {MACH_MAX}, the limit of the thin-airfoil aerodynamics; "
                 f"with this rotor.rotor_speed, rotor.radius and rotor.speed_of_sound the "
@@ -678,7 +723,7 @@ class Config:
         # MappingProxyType cannot be pickled: hand plain dicts to the constructor.
         kwargs = {f.name: getattr(self, f.name) for f in dataclasses.fields(self)}
         kwargs.update(reference=dict(self.reference), sources=dict(self.sources))
-        return _rebuild, (Config, kwargs)
+        return rebuild_section, (Config, kwargs)
 
     def get(self, key: str):
         """Value of a dotted field, e.g. ``cfg.get("flap.cg_offset")`` (SI).
@@ -759,16 +804,3 @@ class Config:
         }
         return {k: (v, computed[k]()) for k, v in self.reference.items()}
 
-
-def load_config(path_or_name) -> Config:
-    """Load a TOML file or packaged configuration; see :mod:`tefcore.config_io`."""
-    from .config_io import load_config as _load  # deferred: config_io imports this module
-
-    return _load(path_or_name)
-
-
-def save_config(cfg: Config, path):
-    """Write `cfg` as TOML; see :func:`tefcore.config_io.save_config`."""
-    from .config_io import save_config as _save
-
-    return _save(cfg, path)

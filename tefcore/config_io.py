@@ -193,6 +193,15 @@ def config_to_dict(cfg: Config) -> dict[str, Any]:
 
     Optional fields set to None are left out (absent means None on loading).
 
+    Parameters
+    ----------
+    cfg : tefcore.config.Config
+        The rotor configuration.
+
+    Returns
+    -------
+    dict
+
     Examples
     --------
     >>> d = config_to_dict(load_config("mdart"))
@@ -231,6 +240,15 @@ def dumps_config(cfg: Config) -> str:
 
     Scalars are written as inline tables; blade arrays as sub-tables with
     several values per line.
+
+    Parameters
+    ----------
+    cfg : tefcore.config.Config
+        The rotor configuration.
+
+    Returns
+    -------
+    str
     """
     data = config_to_dict(cfg)
     lines = [
@@ -256,6 +274,25 @@ def loads_config(text: str, *, origin: str = "<string>", base_dir=None) -> Confi
 
     Dimensional fields need their units (module docstring); relative file
     paths are relative to `base_dir` (default: the working directory).
+
+    Parameters
+    ----------
+    text : str
+        TOML text.
+    origin : str, optional
+        Where the text comes from, for messages.
+    base_dir : str or os.PathLike, optional
+        Folder that relative file paths are relative to.
+
+    Returns
+    -------
+    tefcore.config.Config
+
+    Raises
+    ------
+    ValueError
+        A TOML syntax error or an invalid field, naming ``origin`` and the
+        dotted field.
     """
     try:
         data = tomllib.loads(text)
@@ -327,6 +364,13 @@ def load_config(path_or_name: str | os.PathLike) -> Config:
 
 def save_config(cfg: Config, path: str | os.PathLike) -> Path:
     """Write `cfg` to `path` as TOML; ``load_config(path) == cfg`` exactly.
+
+    Parameters
+    ----------
+    cfg : tefcore.config.Config
+        The rotor configuration.
+    path : str or os.PathLike
+        The TOML file (written atomically).
 
     Returns
     -------

@@ -28,9 +28,24 @@ from .blade import blade_modes, pitch_function, rotor_units
 from .flap_dynamics import flap_properties, propeller_moment
 from .section_inertia import check_coupled_mass
 
+__all__ = ["FLAP_PIECES", "RESIDUAL_PIECES", "TRACKING_STATIONS", "Controls",
+           "CoupledModel", "coupled_model", "jacobian_blocks", "section_model"]
+
 
 def section_model(cfg):
-    """The configured section aerodynamics (thin-airfoil or C81 table)."""
+    """The configured section aerodynamics (thin-airfoil or C81 table).
+
+    Parameters
+    ----------
+    cfg : tefcore.config.Config
+        The rotor configuration.
+
+    Returns
+    -------
+    tefcore.flap_aero.ThinAirfoilFlap or tefcore.c81.C81FlapTable
+        With the configured flap chord and overhang (a quasi-static 20 % flap
+        without overhang when the flap is not a degree of freedom).
+    """
     r, f = cfg.rotor, cfg.flap
     chord_ratio = f.chord_ratio if cfg.model.tef == "dynamic" else 0.2
     overhang = f.overhang if cfg.model.tef == "dynamic" else 0.0
@@ -62,7 +77,15 @@ _FIELDS = ("w", "dw", "v", "dv", "phi")
 
 @dataclass
 class Controls:
-    """Blade pitch controls [rad]: ``theta = theta_0 + theta_1c cos psi + theta_1s sin psi``."""
+    """Blade pitch controls [rad]: ``theta = theta_0 + theta_1c cos psi + theta_1s sin psi``.
+
+    Attributes
+    ----------
+    collective : float
+        theta_0, at 0.75 R [rad].
+    cyclic_cos, cyclic_sin : float
+        theta_1c and theta_1s [rad].
+    """
 
     collective: float = 0.0
     cyclic_cos: float = 0.0
@@ -77,6 +100,39 @@ class CoupledModel:
     """Blade modes + flap dof with their aerodynamic and inertial couplings.
 
     Build it with :func:`coupled_model`.
+
+    Attributes
+    ----------
+    cfg : tefcore.config.Config
+        The configuration.
+    modes : tefcore.structure.BladeModes
+        The blade modes.
+    n_modes : int
+        Number of blade modes.
+    has_flap : bool
+        Whether the flap is a degree of freedom (``model.tef = "dynamic"``).
+    x, w : numpy.ndarray
+        Aerodynamic stations (fractions of R) and their quadrature weights.
+    flap_stations : slice
+        The stations on the flap span.
+    shapes : dict of str to numpy.ndarray
+        Mode shapes at ``x``: ``w, dw, v, dv, phi``, each ``(n_stations, n_modes)``.
+    shape_stack : numpy.ndarray
+        The same side by side, ``(n_modes, 5 n_stations)``.
+    tip_flap : numpy.ndarray
+        Flap deflection ``w(1)`` of each mode.
+    twist : numpy.ndarray
+        Pretwist at ``x`` relative to 0.75 R [rad].
+    m_s, c_s, k_s : numpy.ndarray
+        Modal mass, damping (structural plus Coriolis) and stiffness (rotor units).
+    d_s, g_s : numpy.ndarray
+        The structural (lag damper) and Coriolis (skew) parts of ``c_s``.
+    flap : dict
+        Nondimensional flap properties.
+    aero : object
+        The section aerodynamics (:func:`section_model`).
+    scale : dict
+        The reference scales of the nondimensionalisation.
     """
 
     cfg: object
@@ -374,11 +430,16 @@ def coupled_model(cfg, collective: float = 0.0, modes=None) -> CoupledModel:
     Parameters
     ----------
     cfg : tefcore.config.Config
+        The rotor configuration.
     collective : float
         Pitch at 0.75 R [rad] at which the blade modes are computed (the
         structural flap-lag coupling depends on it).
     modes : BladeModes, optional
         Precomputed modes (else computed here).
+
+    Returns
+    -------
+    CoupledModel
     """
     units = rotor_units(cfg)
     modes = modes or blade_modes(cfg, collective=collective)
@@ -439,6 +500,20 @@ def jacobian_blocks(model: CoupledModel, psi, q, qd, qdd, controls, inflow, *,
         Differentiate each named piece of the residual
         (:meth:`CoupledModel.residual_pieces`) separately: ``jac`` is then a
         dict piece -> array, whose sum is the Jacobian of the residual.
+    model : CoupledModel
+        The coupled model.
+    psi : numpy.ndarray
+        Azimuths [rad].
+    q, qd, qdd : numpy.ndarray
+        Coordinates and their psi-derivatives at ``psi``, ``(n_dof, n_psi)``.
+    controls : Controls
+        Pitch controls.
+    inflow : tefcore.inflow.Inflow
+        Inflow.
+    step : float, optional
+        Finite-difference step (rotor units).
+    scheme : {"forward", "central"}, optional
+        Finite-difference scheme.
 
     Returns
     -------

@@ -86,6 +86,17 @@ def wake_skew(advance_ratio: float, total_inflow: float) -> float:
 
     >>> round(math.degrees(wake_skew(0.3, 0.03)), 4)
     84.2894
+
+    Parameters
+    ----------
+    advance_ratio : float
+        mu.
+    total_inflow : float
+        lambda, the total inflow ratio (positive down through the disk).
+
+    Returns
+    -------
+    float
     """
     mu = _finite("advance_ratio", advance_ratio)
     lam = _finite("total_inflow", total_inflow)
@@ -98,6 +109,16 @@ def wake_skew(advance_ratio: float, total_inflow: float) -> float:
 
 def l_matrix(chi: float) -> np.ndarray:
     """Pitt-Peters ``L`` (per unit flow parameter) at wake skew ``chi`` in [0, pi/2] rad.
+
+    Parameters
+    ----------
+    chi : float
+        Wake skew angle [rad] in [0, pi/2].
+
+    Returns
+    -------
+    numpy.ndarray
+        3 x 3, rows and columns (mean, sine, cosine).
 
     References
     ----------
@@ -119,7 +140,18 @@ def l_matrix(chi: float) -> np.ndarray:
 
 
 def apparent_mass(kind: str = "pitt_peters") -> np.ndarray:
-    """``M = diag(m0, 16/(45 pi), 16/(45 pi))`` with ``m0 = APPARENT_MASS[kind]``."""
+    """``M = diag(m0, 16/(45 pi), 16/(45 pi))`` with ``m0 = APPARENT_MASS[kind]``.
+
+    Parameters
+    ----------
+    kind : {"pitt_peters", "peters_haquang"}, optional
+        Source of the mean-inflow apparent mass (:data:`APPARENT_MASS`).
+
+    Returns
+    -------
+    numpy.ndarray
+        3 x 3 diagonal.
+    """
     if kind not in APPARENT_MASS:
         raise ValueError(f"apparent mass must be one of {sorted(APPARENT_MASS)}, got {kind!r}")
     m1 = 16.0 / (45.0 * math.pi)
@@ -128,7 +160,21 @@ def apparent_mass(kind: str = "pitt_peters") -> np.ndarray:
 
 def mass_flow(advance_ratio: float, total_inflow: float, induced: float) -> tuple[float, float]:
     """``(v_T, v)``: total flow ``sqrt(mu^2 + lambda^2)`` and mass-flow parameter
-    ``(mu^2 + lambda (lambda + lambda_0)) / v_T`` (Peters & HaQuang 1988)."""
+    ``(mu^2 + lambda (lambda + lambda_0)) / v_T`` (Peters & HaQuang 1988).
+
+    Parameters
+    ----------
+    advance_ratio : float
+        mu.
+    total_inflow : float
+        lambda, the total inflow ratio (positive down through the disk).
+    induced : float
+        lambda_0, the induced part of the inflow.
+
+    Returns
+    -------
+    v_total, v_mass : float
+    """
     mu, lam, li = (_finite(n, v) for n, v in (("advance_ratio", advance_ratio),
                                               ("total_inflow", total_inflow),
                                               ("induced", induced)))
@@ -145,6 +191,19 @@ class SteadyInflow:
 
     ``freestream`` is ``mu tan(alpha_s)``, ``chi`` the wake skew angle, ``v_total``
     and ``v_mass`` the flow parameters, ``advance_ratio`` the flight condition.
+
+    Attributes
+    ----------
+    mean, sine, cosine : float
+        lambda_0, lambda_s, lambda_c (induced, positive down).
+    freestream : float
+        mu tan(alpha_s).
+    chi : float
+        Wake skew angle [rad].
+    v_total, v_mass : float
+        Total flow and mass-flow parameters (:func:`mass_flow`).
+    advance_ratio : float
+        mu.
     """
 
     mean: float
@@ -172,6 +231,19 @@ def steady_inflow(ct: float, cs: float = 0.0, cc: float = 0.0, *, advance_ratio:
     ``lam = L V^-1 C`` with ``V = diag(v_T, v, v)``: the mean is Glauert's
     momentum solution ``lambda_0 = C_T / (2 v_T)`` (:func:`tefcore.inflow.momentum_inflow`),
     the harmonics follow from ``L``.  ``shaft_angle`` forward tilt [rad].
+
+    Parameters
+    ----------
+    ct, cs, cc : float
+        Thrust, sine and cosine moment coefficients C_T, C_s, C_c.
+    advance_ratio : float
+        mu.
+    shaft_angle : float, optional
+        Forward shaft tilt alpha_s [rad].
+
+    Returns
+    -------
+    SteadyInflow
     """
     ct, cs, cc = (_finite(n, v) for n, v in (("ct", ct), ("cs", cs), ("cc", cc)))
     mu = _finite("advance_ratio", advance_ratio)
@@ -197,6 +269,17 @@ class InflowPerturbation:
     ``damping = v L^-1`` (``v`` the mass-flow parameter); ``time_constants`` are
     the reciprocal eigenvalues of ``mass^-1 damping`` [rad of azimuth], sorted
     as (mean, sine, cosine) in hover.
+
+    Attributes
+    ----------
+    mass : numpy.ndarray
+        Apparent mass ``M`` (3 x 3).
+    damping : numpy.ndarray
+        ``v L^-1`` (3 x 3).
+    l : numpy.ndarray
+        The ``L`` matrix at the steady skew angle (per unit flow parameter).
+    v_mass : float
+        The mass-flow parameter ``v``.
     """
 
     mass: np.ndarray
@@ -223,6 +306,17 @@ def perturbation_matrices(steady: SteadyInflow, kind: str = "pitt_peters") -> In
     states; the mean row is the linearised momentum equation,
     ``d C_T / d lambda_0 = 2 v`` at fixed ``mu`` and shaft angle.  ``L`` is frozen at
     the steady skew angle.
+
+    Parameters
+    ----------
+    steady : SteadyInflow
+        The steady inflow to linearise about (:func:`steady_inflow`).
+    kind : {"pitt_peters", "peters_haquang"}, optional
+        Source of the mean-inflow apparent mass (:data:`APPARENT_MASS`).
+
+    Returns
+    -------
+    InflowPerturbation
     """
     ell = l_matrix(steady.chi)
     return InflowPerturbation(mass=apparent_mass(kind),

@@ -59,6 +59,17 @@ def error_text(err: BaseException, limit: int = MAX_ERROR_TEXT) -> str:
     For failed results stored in tables and files: whitespace (line breaks
     of an array printout, say) is collapsed and an overlong message is cut.
 
+    Parameters
+    ----------
+    err : BaseException
+        The exception.
+    limit : int, optional
+        Longest message kept.
+
+    Returns
+    -------
+    str
+
     Examples
     --------
     >>> error_text(ValueError("x = 2\\n is outside [0, 1]"))

@@ -75,6 +75,15 @@ def prandtl_glauert(mach) -> np.ndarray:
     1.25
     >>> float(prandtl_glauert(0.95)) == float(prandtl_glauert(0.9))
     True
+
+    Parameters
+    ----------
+    mach : float or array_like
+        Mach number.
+
+    Returns
+    -------
+    numpy.ndarray
     """
     m = np.asarray(mach, dtype=float)
     # min/max propagate NaN, and every comparison with NaN is False
@@ -283,6 +292,29 @@ def section_loads(static_model, *, alpha, alpha_rate, alpha_accel, plunge_rate, 
     scipy.linalg): for callers that check their own results, such as the
     coupled model, whose trim stops on a non-finite residual.  The Mach
     range is always checked.
+
+    Parameters
+    ----------
+    static_model : object
+        The static coefficients and flap geometry (see above).
+    alpha, alpha_rate, alpha_accel : float or array_like
+        Angle of attack [rad], nose up, and its time derivatives.
+    plunge_rate, plunge_accel : float or array_like
+        Velocity [m/s] and acceleration [m/s^2] of the axis point, up.
+    delta, delta_rate, delta_accel : float or array_like
+        Flap deflection [rad], trailing edge down, and its time derivatives.
+    velocity : float or array_like
+        Airspeed U [m/s], positive.
+    density : float or array_like
+        Air density [kg/m^3].
+    chord : float
+        Blade chord [m].
+    axis : float, optional
+        Pitch axis and moment reference, chord fraction from the leading edge.
+    mach : float or array_like, optional
+        Mach number, 0 .. 0.99.
+    check_finite : bool, optional
+        Check the inputs (see above).
 
     Returns
     -------

@@ -31,6 +31,12 @@ import scipy.optimize
 
 from .beam_element import gauss_legendre
 
+__all__ = ["FlapProperties", "FlapResponse", "SectionMotion", "aerodynamic_hinge_moment",
+           "azimuth_grid", "centrifugal_hinge_moment", "flap_natural_frequency",
+           "flap_properties", "flap_response", "hinge_moment_history",
+           "inertial_hinge_moment", "propeller_moment", "rotor_motion",
+           "rotor_section_motion", "section_overhang_study", "spectral_derivative"]
+
 
 @dataclass(frozen=True)
 class FlapProperties:
@@ -95,6 +101,15 @@ def flap_properties(cfg) -> FlapProperties:
     ``(1 - E) c`` from the leading edge; the elastic axis is at
     ``rotor.elastic_axis * c``.  Mass and inertia are per span at the
     configured chord (:attr:`tefcore.config.FlapConfig.mass_per_span`).
+
+    Parameters
+    ----------
+    cfg : tefcore.config.Config
+        The rotor configuration.
+
+    Returns
+    -------
+    FlapProperties
     """
     r, f = cfg.rotor, cfg.flap
     # per-span mass and inertia at the configured chord (flap.scaling rule); the
@@ -115,6 +130,23 @@ def propeller_moment(inertia_hinge, first_moment, hinge_from_ea, pitch, delta):
     (SI here, rotor units in :mod:`tefcore.coupled`). It sits on the inertial
     side of the flap equation, so it restores the flap toward the plane of
     rotation.
+
+    Parameters
+    ----------
+    inertia_hinge : float
+        I_h, flap inertia about the hinge per unit span.
+    first_moment : float
+        S_f, flap first moment about the hinge per unit span (positive: CG aft).
+    hinge_from_ea : float
+        eta_h, hinge position from the elastic axis, positive toward the leading edge.
+    pitch : float or numpy.ndarray
+        Section pitch Theta [rad].
+    delta : float or numpy.ndarray
+        Flap deflection [rad].
+
+    Returns
+    -------
+    float or numpy.ndarray
     """
     phi = pitch + delta
     return (inertia_hinge * np.sin(phi) * np.cos(phi)
@@ -122,7 +154,24 @@ def propeller_moment(inertia_hinge, first_moment, hinge_from_ea, pitch, delta):
 
 
 def centrifugal_hinge_moment(props: FlapProperties, rotor_speed, pitch, delta):
-    """Centrifugal (propeller) moment on the flap per unit span [N m/m]."""
+    """Centrifugal (propeller) moment on the flap per unit span [N m/m].
+
+    Parameters
+    ----------
+    props : FlapProperties
+        The flap (:func:`flap_properties`).
+    rotor_speed : float
+        Omega [rad/s].
+    pitch : float or numpy.ndarray
+        Section pitch Theta [rad].
+    delta : float or numpy.ndarray
+        Flap deflection [rad].
+
+    Returns
+    -------
+    float or numpy.ndarray
+        ``Omega^2`` times :func:`propeller_moment` of the flap.
+    """
     return rotor_speed**2 * propeller_moment(props.inertia_hinge, props.first_moment,
                                              props.hinge_from_ea, pitch, delta)
 
@@ -133,6 +182,20 @@ def flap_natural_frequency(props: FlapProperties, rotor_speed: float, pitch: flo
     ``omega_f^2 = [k_a + b_f Omega^2 (I_h cos 2Theta - S_f eta_h cos^2 Theta)] / (b_f I_h)``,
     the linearisation of :func:`centrifugal_hinge_moment`; in vacuum
     (no aerodynamic stiffness or apparent mass).
+
+    Parameters
+    ----------
+    props : FlapProperties
+        The flap (:func:`flap_properties`).
+    rotor_speed : float
+        Omega [rad/s].
+    pitch : float, optional
+        Section pitch Theta [rad].
+
+    Returns
+    -------
+    float
+        omega_f [rad/s].
 
     Examples
     --------
@@ -157,6 +220,23 @@ class SectionMotion:
     acceleration of the elastic axis, and the section pitch ``pitch`` with
     ``pitch_accel`` (for the flap inertia), ``flap_slope`` w' and
     ``flap_accel`` (w** of the section, for the flap's first moment).
+
+    Attributes
+    ----------
+    velocity : callable
+        Tangential velocity U_T [m/s].
+    alpha : callable
+        Angle of attack [rad].
+    alpha_rate, alpha_accel : callable
+        Its first and second time derivatives [rad/s, rad/s^2].
+    plunge_rate, plunge_accel : callable
+        Upward velocity [m/s] and acceleration [m/s^2] of the elastic axis.
+    pitch, pitch_accel : callable
+        Section pitch Theta [rad] and its second time derivative [rad/s^2].
+    flap_slope : callable
+        Blade flap slope w' [-].
+    flap_accel : callable
+        Flap-wise acceleration w** of the section [m/s^2].
     """
 
     velocity: object
@@ -183,11 +263,16 @@ def rotor_section_motion(cfg, x: float, *, advance_ratio: float, collective: flo
     Parameters
     ----------
     cfg : tefcore.config.Config
+        The rotor configuration.
     x : float
         Station, fraction of R.
     advance_ratio, collective, cyclic_cos, cyclic_sin, inflow, coning : float
         mu, theta_75 [rad], theta_1c, theta_1s [rad], inflow ratio lambda
         (positive down through the disk), coning beta_0 [rad].
+
+    Returns
+    -------
+    SectionMotion
     """
     om, rad = cfg.rotor.rotor_speed, cfg.rotor.radius
     tw = np.interp(x, cfg.blade.stations, cfg.blade.twist) - np.interp(
@@ -224,7 +309,21 @@ def rotor_section_motion(cfg, x: float, *, advance_ratio: float, collective: flo
 
 
 def rotor_motion(cfg, **controls):
-    """Factory ``motion_at(r)`` of :func:`rotor_section_motion` by radius [m]."""
+    """Factory ``motion_at(r)`` of :func:`rotor_section_motion` by radius [m].
+
+    Parameters
+    ----------
+    cfg : tefcore.config.Config
+        The rotor configuration.
+    **controls
+        Keyword arguments of :func:`rotor_section_motion` (``advance_ratio``,
+        ``collective``, ...).
+
+    Returns
+    -------
+    callable
+        ``motion_at(r) -> SectionMotion``.
+    """
     radius = cfg.rotor.radius
     return lambda r: rotor_section_motion(cfg, r / radius, **controls)
 
@@ -234,6 +333,16 @@ def spectral_derivative(n: int) -> np.ndarray:
 
     Exact for trigonometric polynomials of degree below n/2 (the Nyquist
     term, whose derivative is ambiguous on the grid, is dropped).
+
+    Parameters
+    ----------
+    n : int
+        Number of points.
+
+    Returns
+    -------
+    numpy.ndarray
+        The ``(n, n)`` differentiation matrix (a copy: callers may change it).
 
     Examples
     --------
@@ -253,7 +362,18 @@ def _spectral_derivative(n: int) -> np.ndarray:
 
 
 def azimuth_grid(n: int = 72) -> np.ndarray:
-    """``n`` equally spaced azimuths over one revolution [rad]."""
+    """``n`` equally spaced azimuths over one revolution [rad].
+
+    Parameters
+    ----------
+    n : int, optional
+        Number of azimuths.
+
+    Returns
+    -------
+    numpy.ndarray
+        ``2 pi k / n``, k = 0 .. n-1.
+    """
     return np.linspace(0.0, 2 * np.pi, n, endpoint=False)
 
 
@@ -272,6 +392,33 @@ def aerodynamic_hinge_moment(aero, props: FlapProperties, motion_at, psi, delta,
     ``aero`` is a section model with the ``loads`` interface
     (:class:`tefcore.flap_aero.ThinAirfoilFlap` or a C81 table model).
     ``delta_rate``/``delta_accel`` are time derivatives [rad/s, rad/s^2].
+
+    Parameters
+    ----------
+    aero : object
+        Section aerodynamics with the ``loads`` interface
+        (:class:`tefcore.flap_aero.ThinAirfoilFlap` or
+        :class:`tefcore.c81.C81FlapTable`).
+    props : FlapProperties
+        The flap (:func:`flap_properties`).
+    motion_at : callable
+        ``motion_at(r)``: the :class:`SectionMotion` at radius ``r`` [m]
+        (e.g. :func:`rotor_motion`).
+    psi : numpy.ndarray
+        Azimuths [rad].
+    delta, delta_rate, delta_accel : numpy.ndarray
+        Flap deflection [rad] and its time derivatives [rad/s, rad/s^2] at ``psi``.
+    density : float
+        Air density [kg/m^3].
+    speed_of_sound : float
+        [m/s], for the Mach number of each strip.
+    n_span : int, optional
+        Gauss points over the flap span.
+
+    Returns
+    -------
+    numpy.ndarray
+        The hinge moment at ``psi`` [N m].
     """
     total = 0.0
     for _, wgt, m in _strips(props, motion_at, n_span):
@@ -293,6 +440,27 @@ def inertial_hinge_moment(props: FlapProperties, motion_at, psi, delta, delta_ac
     + M_cf(Theta, delta) - Omega^2 S_f r w' cos Theta] dr`` for a section with
     no lag motion (the lag and Coriolis terms of docs/theory.md section 4
     enter through the coupled model).
+
+    Parameters
+    ----------
+    props : FlapProperties
+        The flap (:func:`flap_properties`).
+    motion_at : callable
+        ``motion_at(r)``: the :class:`SectionMotion` at radius ``r`` [m]
+        (e.g. :func:`rotor_motion`).
+    psi : numpy.ndarray
+        Azimuths [rad].
+    delta, delta_accel : numpy.ndarray
+        Flap deflection [rad] and its second time derivative [rad/s^2] at ``psi``.
+    rotor_speed : float
+        Omega [rad/s].
+    n_span : int, optional
+        Gauss points over the flap span.
+
+    Returns
+    -------
+    numpy.ndarray
+        The moment at ``psi`` [N m].
     """
     total = 0.0
     ih, sf, eta = props.inertia_hinge, props.first_moment, props.hinge_from_ea
@@ -314,9 +482,26 @@ def hinge_moment_history(aero, props: FlapProperties, motion_at, delta_f, *,
 
     Parameters
     ----------
+    aero : object
+        Section aerodynamics with the ``loads`` interface
+        (:class:`tefcore.flap_aero.ThinAirfoilFlap` or
+        :class:`tefcore.c81.C81FlapTable`).
+    props : FlapProperties
+        The flap (:func:`flap_properties`).
+    motion_at : callable
+        ``motion_at(r)``: the :class:`SectionMotion` at radius ``r`` [m]
+        (e.g. :func:`rotor_motion`).
     delta_f : callable
         Flap deflection ``delta_f(psi)`` [rad], e.g.
         ``lambda p: np.deg2rad(2) * np.cos(4 * p - np.deg2rad(240))``.
+    rotor_speed : float
+        Omega [rad/s].
+    density : float
+        Air density [kg/m^3].
+    speed_of_sound : float
+        [m/s].
+    n_psi : int, optional
+        Azimuths per revolution.
 
     Returns
     -------
@@ -336,7 +521,23 @@ def hinge_moment_history(aero, props: FlapProperties, motion_at, delta_f, *,
 
 @dataclass
 class FlapResponse:
-    """Periodic flap response to an actuator input, with actuation power."""
+    """Periodic flap response to an actuator input, with actuation power.
+
+    Attributes
+    ----------
+    psi : numpy.ndarray
+        Azimuths of one revolution [rad].
+    delta_a : numpy.ndarray
+        Actuator input [rad] at ``psi``.
+    delta_f : numpy.ndarray
+        Flap deflection [rad], positive trailing edge down.
+    hinge_moment_aero : numpy.ndarray
+        Aerodynamic hinge moment of the whole flap [N m].
+    actuator_torque : numpy.ndarray
+        Torque the actuator spring and damper apply to the flap [N m].
+    power : numpy.ndarray
+        Actuation power, torque times actuator rate [W].
+    """
 
     psi: np.ndarray
     delta_a: np.ndarray
@@ -369,6 +570,34 @@ def flap_response(aero, props: FlapProperties, motion_at, delta_a, *, rotor_spee
     Solves, by Fourier collocation on ``n_psi`` azimuths (harmonic balance),
     ``inertial(delta) + c_a (delta* - delta_a*) + k_a (delta - delta_a)
     = H_aero(delta, delta*, delta**)`` for the periodic ``delta_f(psi)``.
+
+    Parameters
+    ----------
+    aero : object
+        Section aerodynamics with the ``loads`` interface
+        (:class:`tefcore.flap_aero.ThinAirfoilFlap` or
+        :class:`tefcore.c81.C81FlapTable`).
+    props : FlapProperties
+        The flap (:func:`flap_properties`).
+    motion_at : callable
+        ``motion_at(r)``: the :class:`SectionMotion` at radius ``r`` [m]
+        (e.g. :func:`rotor_motion`).
+    delta_a : callable
+        Actuator input ``delta_a(psi)`` [rad].
+    rotor_speed : float
+        Omega [rad/s].
+    density : float
+        Air density [kg/m^3].
+    speed_of_sound : float
+        [m/s].
+    n_psi : int, optional
+        Collocation azimuths per revolution.
+    tol : float, optional
+        Tolerance of :func:`scipy.optimize.root` on the residual (in radians).
+
+    Returns
+    -------
+    FlapResponse
 
     Raises
     ------
@@ -419,6 +648,7 @@ def section_overhang_study(cfg, overhangs, delta_a, *, controls: dict, n_psi: in
     Parameters
     ----------
     cfg : tefcore.config.Config
+        The rotor configuration.
     overhangs : sequence of float
         c_b / c_f values.
     delta_a : callable
@@ -429,6 +659,8 @@ def section_overhang_study(cfg, overhangs, delta_a, *, controls: dict, n_psi: in
     aero_factory : callable, optional
         ``aero_factory(cfg) -> section model``; default the thin-airfoil model
         with the configured lift slope.
+    n_psi : int, optional
+        Collocation azimuths per revolution.
 
     Returns
     -------

@@ -33,7 +33,7 @@ ValueError: torque_tube.inboard = 0.3 must lie in [rotor.root_offset, flexbeam.c
 
 from __future__ import annotations
 
-from .settings import Param, _fmt, _Section, _section
+from .settings import Param, Section, format_value, settings_section
 
 __all__ = ["HUB_SECTIONS", "FlexbeamConfig", "PitchLinkConfig", "SnubberConfig",
            "TorqueTubeConfig", "check_hub_relations"]
@@ -63,8 +63,8 @@ def _beam_params(what: str) -> tuple[Param, ...]:
     )  # fmt: skip
 
 
-@_section("flexbeam")
-class FlexbeamConfig(_Section):
+@settings_section("flexbeam")
+class FlexbeamConfig(Section):
     """Flexbeam: flap/lag/torsion flexure from the hub clamp to the clevis.
 
     Parameters
@@ -87,8 +87,8 @@ class FlexbeamConfig(_Section):
     )  # fmt: skip
 
 
-@_section("torque_tube")
-class TorqueTubeConfig(_Section):
+@settings_section("torque_tube")
+class TorqueTubeConfig(Section):
     """Torque tube (pitchcase): from its inboard end (pitch horn, snubber) to the clevis.
 
     Parameters
@@ -106,8 +106,8 @@ class TorqueTubeConfig(_Section):
     )  # fmt: skip
 
 
-@_section("pitch_link")
-class PitchLinkConfig(_Section):
+@settings_section("pitch_link")
+class PitchLinkConfig(Section):
     """Pitch horn and link geometry of the multiple-load-path hub.
 
     The link's stiffness is ``hub.pitch_link_stiffness``.  Its attachment on
@@ -134,8 +134,8 @@ class PitchLinkConfig(_Section):
     )  # fmt: skip
 
 
-@_section("snubber")
-class SnubberConfig(_Section):
+@settings_section("snubber")
+class SnubberConfig(Section):
     """Elastomeric snubber/damper between the torque tube's inboard end and the flexbeam.
 
     Springs ``K'`` in flap, lag and pitch; in lag (the chordwise
@@ -193,19 +193,20 @@ def check_hub_relations(cfg) -> None:
     r0, cutout, chord = cfg.rotor.root_offset, cfg.rotor.root_cutout, cfg.rotor.chord
     fb, tt, pl = cfg.flexbeam, cfg.torque_tube, cfg.pitch_link
     if not r0 < fb.clevis <= cutout + _GEOM_TOL:
-        raise ValueError(f"flexbeam.clevis = {_fmt(fb.clevis)} must lie in "
-                         f"(rotor.root_offset, rotor.root_cutout] = ({_fmt(r0)}, {_fmt(cutout)}]")
+        raise ValueError(f"flexbeam.clevis = {format_value(fb.clevis)} must lie in "
+                         f"(rotor.root_offset, rotor.root_cutout] = "
+                         f"({format_value(r0)}, {format_value(cutout)}]")
     if not 0.0 < abs(pl.horn_arm) < chord:
-        raise ValueError(f"pitch_link.horn_arm = {_fmt(pl.horn_arm)} m must be nonzero and "
-                         f"shorter than rotor.chord = {_fmt(chord)} m (allowed: "
-                         f"(-{_fmt(chord)}, 0) or (0, {_fmt(chord)}) m)")
+        raise ValueError(f"pitch_link.horn_arm = {format_value(pl.horn_arm)} m must be nonzero and "
+                         f"shorter than rotor.chord = {format_value(chord)} m (allowed: "
+                         f"(-{format_value(chord)}, 0) or (0, {format_value(chord)}) m)")
     if not abs(pl.radial_offset) < chord:
-        raise ValueError(f"pitch_link.radial_offset = {_fmt(pl.radial_offset)} m must be "
-                         f"shorter than rotor.chord = {_fmt(chord)} m")
+        raise ValueError(f"pitch_link.radial_offset = {format_value(pl.radial_offset)} m must be "
+                         f"shorter than rotor.chord = {format_value(chord)} m")
     if not r0 - _GEOM_TOL <= tt.inboard < fb.clevis:
-        raise ValueError(f"torque_tube.inboard = {_fmt(tt.inboard)} must lie in "
-                         f"[rotor.root_offset, flexbeam.clevis) = [{_fmt(r0)}, "
-                         f"{_fmt(fb.clevis)})")
+        raise ValueError(f"torque_tube.inboard = {format_value(tt.inboard)} must lie in "
+                         f"[rotor.root_offset, flexbeam.clevis) = [{format_value(r0)}, "
+                         f"{format_value(fb.clevis)})")
     for sec in (fb, tt):
         if sec.im_flap + sec.im_lag <= 0.0:
             raise ValueError(f"{sec.SECTION}.im_flap + {sec.SECTION}.im_lag = 0.0 kg*m^2/m: "

@@ -16,6 +16,8 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.optimize
 
+__all__ = ["Inflow", "drees_gradients", "momentum_inflow", "rotor_inflow"]
+
 
 @dataclass(frozen=True)
 class Inflow:
@@ -63,8 +65,13 @@ def momentum_inflow(ct: float, advance_ratio: float, shaft_angle: float = 0.0) -
     ct : float
         Thrust coefficient (negative thrust gives negative inflow).
     advance_ratio : float
+        mu.
     shaft_angle : float
         Forward tilt [rad].
+
+    Returns
+    -------
+    float
 
     Examples
     --------
@@ -93,6 +100,17 @@ def drees_gradients(advance_ratio: float, total_inflow: float) -> tuple[float, f
 
     ``kx = 4/3 (1 - cos chi - 1.8 mu^2) / sin chi``, ``ky = -2 mu``, with the
     wake skew angle ``chi = atan(mu / lambda)``; zero in hover.
+
+    Parameters
+    ----------
+    advance_ratio : float
+        mu.
+    total_inflow : float
+        lambda, the total inflow ratio.
+
+    Returns
+    -------
+    kx, ky : float
     """
     mu = advance_ratio
     if mu == 0.0:
@@ -109,6 +127,16 @@ def rotor_inflow(ct: float, advance_ratio: float, shaft_angle: float = 0.0,
     ----------
     model : {'linear', 'uniform'}
         'linear' adds the Drees gradients in forward flight.
+    ct : float
+        Thrust coefficient C_T.
+    advance_ratio : float
+        mu.
+    shaft_angle : float, optional
+        Forward shaft tilt [rad].
+
+    Returns
+    -------
+    Inflow
     """
     if model not in ("linear", "uniform"):
         raise ValueError(f"inflow model must be 'linear' or 'uniform', got {model!r}")

@@ -43,8 +43,11 @@ def trig_interpolate(samples, psi, derivative: int = 0) -> np.ndarray:
     Parameters
     ----------
     samples : array_like, shape (N, ...)
+        Values at the azimuths ``2 pi j / N``.
     psi : array_like, shape (m,)
+        Azimuths to evaluate at [rad].
     derivative : int
+        Order of the psi-derivative.
 
     Returns
     -------
@@ -153,7 +156,18 @@ def combine(parts, scales=None) -> SecondOrderSystem:
 
 
 def state_matrix(m, c, k):
-    """First-order ``A = [[0, I], [-M^-1 K, -M^-1 C]]`` for stacked matrices."""
+    """First-order ``A = [[0, I], [-M^-1 K, -M^-1 C]]`` for stacked matrices.
+
+    Parameters
+    ----------
+    m, c, k : numpy.ndarray
+        Mass, damping and stiffness matrices, ``(..., n, n)``.
+
+    Returns
+    -------
+    numpy.ndarray
+        ``(..., 2 n, 2 n)``.
+    """
     n = m.shape[-1]
     minv_k = np.linalg.solve(m, k)
     minv_c = np.linalg.solve(m, c)

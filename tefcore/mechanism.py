@@ -25,7 +25,7 @@ stable root in which the flap participates by at least
 
 Examples
 --------
->>> from tefcore.config import load_config
+>>> from tefcore.config_io import load_config
 >>> cfg = load_config("mdart").with_overrides({"flight.advance_ratio": 0.0})
 >>> res = mechanism(cfg, mode="TEF", knockouts=False)
 >>> bool(abs(res.closure) < 1e-8)
@@ -41,6 +41,7 @@ import pandas as pd
 
 from .coupled import FLAP_PIECES
 from .linear_system import SecondOrderSystem, combine
+from .runtime import blas_limit
 from .tracking import FollowResult, follow_root
 
 __all__ = ["FLUTTER_PARTICIPATION", "NOT_REMOVABLE", "TERMS", "MechanismResult",
@@ -105,6 +106,7 @@ def linearized_terms(tr, psi=None) -> dict[str, SecondOrderSystem]:
     Parameters
     ----------
     tr : tefcore.trim.TrimResult
+        The trim to linearise about.
     psi : array_like, optional
         Azimuths (default: one in hover, the trim grid in forward flight,
         as :func:`tefcore.stability.linear_system`).
@@ -158,6 +160,19 @@ def coupling_homotopy(system: SecondOrderSystem, n_blade: int, s: float) -> Seco
 
     ``s = 0`` is the uncoupled blade and the flap on its actuator (with its
     own aerodynamic and centrifugal springs); ``s = 1`` the coupled system.
+
+    Parameters
+    ----------
+    system : tefcore.linear_system.SecondOrderSystem
+        Blade coordinates first, the flap last.
+    n_blade : int
+        Number of blade coordinates.
+    s : float
+        Coupling scale, 0 (uncoupled) to 1 (coupled).
+
+    Returns
+    -------
+    tefcore.linear_system.SecondOrderSystem
     """
     mats = []
     for a in (system.m, system.c, system.k):
@@ -184,6 +199,8 @@ def tef_root(system: SecondOrderSystem, *, basis=None, n_steps: int = 72):
     basis : ndarray, optional
         Map from coordinates to the shapes compared between steps
         (:meth:`tefcore.coupled.CoupledModel.tracking_basis`).
+    n_steps : int, optional
+        Floquet steps per period of each eigenproblem on the path.
 
     Returns
     -------
@@ -205,7 +222,20 @@ def tef_root(system: SecondOrderSystem, *, basis=None, n_steps: int = 72):
 
 
 def flutter_root(modes: pd.DataFrame, threshold: float = FLUTTER_PARTICIPATION):
-    """Row of the least stable root with a flap participation >= ``threshold``, or None."""
+    """Row of the least stable root with a flap participation >= ``threshold``, or None.
+
+    Parameters
+    ----------
+    modes : pandas.DataFrame
+        A stability modes table (:attr:`tefcore.stability.StabilityResult.modes`),
+        with a ``participation_TEF`` column.
+    threshold : float, optional
+        Smallest flap participation of a flutter root.
+
+    Returns
+    -------
+    pandas.Series or None
+    """
     cand = modes[modes["share_TEF"] >= threshold]
     if cand.empty:
         return None
@@ -346,6 +376,7 @@ def _classify(eta: complex) -> str:
     return "flutter" if growing else "stable oscillatory"
 
 
+@blas_limit()
 def mechanism(cfg, mode: str = "TEF", *, knockouts: bool = True, stability_result=None,
               n_steps: int | None = None, root: complex | None = None) -> MechanismResult:
     """Diagnose one root of a configuration: energy balance, knockouts, kind.
@@ -353,6 +384,7 @@ def mechanism(cfg, mode: str = "TEF", *, knockouts: bool = True, stability_resul
     Parameters
     ----------
     cfg : tefcore.config.Config
+        The rotor configuration.
     mode : str
         ``"TEF"`` (the root the flap mode becomes, :func:`tef_root`),
         ``"flutter"`` (:func:`flutter_root`), ``"root"`` (the root nearest

@@ -19,7 +19,7 @@ this module gives the others:
 
 Examples
 --------
->>> from tefcore.config import load_config
+>>> from tefcore.config_io import load_config
 >>> input_digests(load_config("mdart"))   # thin-airfoil aerodynamics: no files read
 {}
 >>> len(model_stamp())
@@ -54,6 +54,15 @@ PRESENTATION_MODULES = frozenset({
 def file_digest(path) -> str:
     """``"sha256:<hex>"`` of the content of `path`.
 
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The file.
+
+    Returns
+    -------
+    str
+
     Raises
     ------
     OSError
@@ -67,7 +76,18 @@ def file_digest(path) -> str:
 
 
 def input_files(cfg) -> dict[str, Path]:
-    """Dotted field -> file that the computation for `cfg` reads."""
+    """Dotted field -> file that the computation for `cfg` reads.
+
+    Parameters
+    ----------
+    cfg : tefcore.config.Config
+        The rotor configuration.
+
+    Returns
+    -------
+    dict of str to pathlib.Path
+        Empty when the computation reads no file (the thin-airfoil model).
+    """
     if cfg.model.aero_model == "c81" and cfg.model.c81_deck:
         return {"model.c81_deck": Path(cfg.model.c81_deck)}
     return {}
@@ -75,6 +95,15 @@ def input_files(cfg) -> dict[str, Path]:
 
 def input_digests(cfg) -> dict[str, str]:
     """Dotted field -> :func:`file_digest` of each of :func:`input_files`.
+
+    Parameters
+    ----------
+    cfg : tefcore.config.Config
+        The rotor configuration.
+
+    Returns
+    -------
+    dict of str to str
 
     Raises
     ------
@@ -106,7 +135,17 @@ def model_stamp() -> str:
 
 
 def describe_digest(digest: str | None) -> str:
-    """Short form of a digest for messages (``sha256 1a2b3c4d5e6f``)."""
+    """Short form of a digest for messages (``sha256 1a2b3c4d5e6f``).
+
+    Parameters
+    ----------
+    digest : str or None
+        ``"sha256:<hex>"`` (None: no file).
+
+    Returns
+    -------
+    str
+    """
     if not isinstance(digest, str):
         return repr(digest)
     algo, _, hexa = digest.partition(":")

@@ -1,9 +1,8 @@
 """Process settings that make many small numerical problems fast.
 
-tefcore solves thousands of small problems (matrices of a few hundred rows)
-in one process.  Two process-wide defaults of the numerical stack are tuned
-for large problems and cost time here, so ``import tefcore`` changes them;
-each can be turned off with an environment variable set before the import.
+tefcore solves thousands of small problems (matrices of a few hundred rows).
+Two process-wide defaults of the numerical stack are tuned for large
+problems and cost time here:
 
 * BLAS threads (``TEFCORE_BLAS_THREADS``, default ``1``; ``default`` leaves
   them alone).  On two cores a threaded OpenBLAS took 320 ms for one
@@ -18,35 +17,187 @@ each can be turned off with an environment variable set before the import.
   one.  Measured on the 2-core VM: ~5100 page faults and 13 ms of system
   time per mu = 0.3 stability point, 59 ms against 36 ms per point.  The
   cost is that up to the threshold of freed memory stays with the process.
+
+``import tefcore`` changes neither.  Both are applied by
+:func:`apply_defaults` where tefcore owns the process: the ``tefcore``
+command, the worker processes of a parallel sweep (joblib, dask) and the
+notebooks (which call it in their set-up cell); a script that computes many
+points may call it too.  Inside the solver, the main entry points
+(:func:`tefcore.stability.stability`, :func:`tefcore.trim.trim`,
+:func:`tefcore.blade.blade_modes`, :func:`tefcore.mechanism.mechanism`, the
+Floquet analysis) run under
+:func:`blas_limit`, which limits BLAS threads for the duration of the call
+only and restores them after: a plain ``import tefcore`` followed by
+``stability(cfg)`` gets the BLAS setting without the process keeping it.
+The allocator setting cannot be scoped like that (glibc has no way back to
+its dynamic thresholds), so it is only ever applied by
+:func:`apply_defaults`; ``benchmarks/bench_runtime.py`` measures what that
+costs a plain script.  Measured on the shared 2-core VM (CPU time of the
+process per MDART mu = 0.3 stability point, medians of 9 fresh processes,
+load average ~5): 34 ms after :func:`apply_defaults`, as when ``import
+tefcore`` applied both; 46 ms in a plain script (the BLAS limit of the
+solver alone); the first point of a process 45 against 60 ms.
 """
 
 from __future__ import annotations
 
+import contextlib
 import ctypes
 import os
 import platform
 import sys
+import threading
 
-from threadpoolctl import threadpool_limits
+__all__ = ["apply_defaults", "blas_limit", "defaults_applied", "keep_freed_memory",
+           "limit_blas_threads", "worker_init"]
 
 #: ``mallopt`` parameter numbers (glibc ``malloc.h``).
 _M_TRIM_THRESHOLD, _M_MMAP_THRESHOLD = -1, -3
 #: Largest mmap threshold glibc accepts on 64-bit systems (32 MiB).
 _MMAP_THRESHOLD_MAX = 32 * 2**20
+_DEFAULT_BLAS_THREADS = "1"
+_DEFAULT_MALLOC_TRIM = str(128 * 2**20)
+
+_state = threading.local()
+_controller = None
+_lock = threading.Lock()
+_process_applied = False
+
+
+def _blas_threads_setting() -> int | None:
+    """Threads from ``TEFCORE_BLAS_THREADS`` (None for ``default``)."""
+    value = os.environ.get("TEFCORE_BLAS_THREADS", _DEFAULT_BLAS_THREADS)
+    if value == "default":
+        return None
+    try:
+        n = int(value)
+    except ValueError:
+        n = 0
+    if n < 1:
+        raise ValueError(f"TEFCORE_BLAS_THREADS = {value!r}: expected 'default' or a whole "
+                         "number of threads >= 1")
+    return n
+
+
+def _threadpool_controller():
+    """One :class:`threadpoolctl.ThreadpoolController` per process (made once:
+    making one scans the loaded libraries, ~1 ms; limiting through it ~20 us)."""
+    global _controller
+    with _lock:
+        if _controller is None:
+            import numpy  # noqa: F401  (load both BLAS builds first: the
+            import scipy.linalg  # noqa: F401  controller only sees loaded libraries)
+            from threadpoolctl import ThreadpoolController
+
+            _controller = ThreadpoolController()
+        return _controller
 
 
 def limit_blas_threads(value: str) -> None:
-    """Limit BLAS to ``int(value)`` threads, or do nothing for ``"default"``."""
-    if value != "default":
-        threadpool_limits(int(value), user_api="blas")
+    """Limit BLAS to ``int(value)`` threads for the rest of the process.
+
+    Parameters
+    ----------
+    value : str
+        A whole number of threads (>= 1), or ``"default"`` to leave BLAS
+        alone.
+
+    Raises
+    ------
+    ValueError
+        For anything else.
+    """
+    if value == "default":
+        return
+    try:
+        n = int(value)
+    except ValueError:
+        n = 0
+    if n < 1:
+        raise ValueError(f"TEFCORE_BLAS_THREADS = {value!r}: expected 'default' or a whole "
+                         "number of threads >= 1")
+    _threadpool_controller().limit(limits=n, user_api="blas")
+
+
+@contextlib.contextmanager
+def _blas_limit_context():
+    depth = getattr(_state, "depth", 0)
+    if depth or _process_applied:
+        # nested in another limited call, or the process is already set up:
+        # nothing to do (this keeps the cost of a nested entry ~1 us)
+        _state.depth = depth + 1
+        try:
+            yield
+        finally:
+            _state.depth = depth
+        return
+    n = _blas_threads_setting()
+    if n is None:
+        yield
+        return
+    _state.depth = 1
+    try:
+        with _threadpool_controller().limit(limits=n, user_api="blas"):
+            yield
+    finally:
+        _state.depth = 0
+
+
+class _BlasLimit(contextlib.ContextDecorator):
+    def __enter__(self):
+        self._cm = _blas_limit_context()
+        return self._cm.__enter__()
+
+    def __exit__(self, *exc):
+        return self._cm.__exit__(*exc)
+
+
+def blas_limit() -> contextlib.ContextDecorator:
+    """Limit BLAS threads (``TEFCORE_BLAS_THREADS``) inside a ``with`` block or a call.
+
+    A context manager and a decorator; the previous thread counts are
+    restored on exit.  Nested uses, and any use after
+    :func:`apply_defaults`, cost about a microsecond; the outermost one
+    about 40 us (the thread pools are switched twice).
+
+    Returns
+    -------
+    contextlib.ContextDecorator
+
+    Examples
+    --------
+    With ``TEFCORE_BLAS_THREADS`` unset (one thread):
+
+    >>> from threadpoolctl import threadpool_info
+    >>> with blas_limit():
+    ...     inside = {lib["num_threads"] for lib in threadpool_info()
+    ...               if lib["user_api"] == "blas"}
+    >>> inside
+    {1}
+    """
+    return _BlasLimit()
 
 
 def keep_freed_memory(value: str) -> bool:
-    """Raise glibc's heap trim threshold to ``int(value)`` bytes.
+    """Raise glibc's heap trim threshold to ``int(value)`` bytes (and the mmap threshold).
 
-    Returns ``True`` when the setting was applied; ``False`` on ``"default"``
-    or where the C library is not glibc (macOS, Windows, musl), which leaves
-    the allocator untouched.
+    Parameters
+    ----------
+    value : str
+        Bytes, ``0 <= int(value) < 2**31``, or ``"default"`` to leave the
+        allocator alone.
+
+    Returns
+    -------
+    bool
+        ``True`` when the setting was applied; ``False`` on ``"default"`` or
+        where the C library is not glibc (macOS, Windows, musl), which leaves
+        the allocator untouched.
+
+    Raises
+    ------
+    ValueError
+        For a value out of range or not a number (on glibc).
     """
     if value == "default" or not sys.platform.startswith("linux") \
             or platform.libc_ver()[0] != "glibc":
@@ -71,6 +222,41 @@ def keep_freed_memory(value: str) -> bool:
 
 
 def apply_defaults() -> None:
-    """Apply both settings from the environment (called by ``import tefcore``)."""
-    limit_blas_threads(os.environ.get("TEFCORE_BLAS_THREADS", "1"))
-    keep_freed_memory(os.environ.get("TEFCORE_MALLOC_TRIM", str(128 * 2**20)))
+    """Apply both settings to this process, from the environment.
+
+    For processes tefcore owns: the ``tefcore`` command, the workers of a
+    parallel sweep, the notebooks (their set-up cell).  Calling it again
+    re-reads the environment.  ``TEFCORE_BLAS_THREADS`` and
+    ``TEFCORE_MALLOC_TRIM`` (module docstring) set or turn off either.
+
+    Raises
+    ------
+    ValueError
+        For a malformed environment variable, naming it.
+    """
+    global _process_applied
+    _process_applied = False
+    limit_blas_threads(os.environ.get("TEFCORE_BLAS_THREADS", _DEFAULT_BLAS_THREADS))
+    keep_freed_memory(os.environ.get("TEFCORE_MALLOC_TRIM", _DEFAULT_MALLOC_TRIM))
+    _process_applied = True
+
+
+def worker_init() -> None:
+    """:func:`apply_defaults` once per process: the entry of tefcore's worker processes.
+
+    Called first by every task a parallel sweep or stability map sends to a
+    joblib (loky) or dask worker; later calls in the same process return at
+    once.
+    """
+    if not _process_applied:
+        apply_defaults()
+
+
+def defaults_applied() -> bool:
+    """Whether :func:`apply_defaults` has run in this process.
+
+    Returns
+    -------
+    bool
+    """
+    return _process_applied

@@ -70,6 +70,19 @@ __all__ = [
 def check_output_folder(folder, what: str = "output folder", *, create: bool = False) -> Path:
     """Check that `folder` is (or, with `create`, can be made) a writable folder.
 
+    Parameters
+    ----------
+    folder : str or os.PathLike
+        The folder.
+    what : str, optional
+        What it is, for messages (e.g. ``"--out"``).
+    create : bool, optional
+        Create it (with its parents) when missing.
+
+    Returns
+    -------
+    pathlib.Path
+
     Raises
     ------
     OutputError
@@ -161,6 +174,24 @@ def atomic_output(path, mode: str = "w", *, encoding: str | None = "utf-8",
     On an exception inside the block the temporary file is removed and
     `path` is untouched.
 
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The destination.
+    mode : {"w", "wb"}, optional
+        Text or binary.
+    encoding : str or None, optional
+        Text encoding (text mode).
+    newline : str or None, optional
+        As for :func:`open` (``""`` for CSV).
+    what : str, optional
+        What the file is, for messages (e.g. ``"--csv"``).
+
+    Yields
+    ------
+    file object
+        Write to it inside the ``with`` block.
+
     Examples
     --------
     >>> import tempfile, pathlib
@@ -189,7 +220,21 @@ def atomic_output(path, mode: str = "w", *, encoding: str | None = "utf-8",
 
 
 def atomic_write_bytes(path, data: bytes, *, what: str = "output file") -> Path:
-    """Write `data` to `path` atomically (see :func:`atomic_output`); return the path."""
+    """Write `data` to `path` atomically (see :func:`atomic_output`); return the path.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The destination.
+    data : bytes
+        The content.
+    what : str, optional
+        What the file is, for messages (e.g. ``"--csv"``).
+
+    Returns
+    -------
+    pathlib.Path
+    """
     with atomic_output(path, "wb", what=what) as f:
         f.write(data)
     return Path(path)
@@ -197,12 +242,46 @@ def atomic_write_bytes(path, data: bytes, *, what: str = "output file") -> Path:
 
 def atomic_write_text(path, text: str, *, encoding: str = "utf-8",
                       what: str = "output file") -> Path:
-    """Write `text` to `path` atomically (see :func:`atomic_output`); return the path."""
+    """Write `text` to `path` atomically (see :func:`atomic_output`); return the path.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The destination.
+    text : str
+        The content.
+    encoding : str, optional
+        Text encoding.
+    what : str, optional
+        What the file is, for messages (e.g. ``"--csv"``).
+
+    Returns
+    -------
+    pathlib.Path
+    """
     return atomic_write_bytes(path, text.encode(encoding), what=what)
 
 
 def open_append(path, what: str = "output file") -> int:
-    """File descriptor for appending to an existing `path`, refusing a symbolic link."""
+    """File descriptor for appending to an existing `path`, refusing a symbolic link.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        An existing file.
+    what : str, optional
+        What the file is, for messages (e.g. ``"--csv"``).
+
+    Returns
+    -------
+    int
+        A file descriptor opened for appending (close it with :func:`os.close`).
+
+    Raises
+    ------
+    OutputError
+        For a symbolic link or a file that cannot be opened.
+    """
     flags = os.O_WRONLY | os.O_APPEND | getattr(os, "O_NOFOLLOW", 0) | getattr(os, "O_CLOEXEC", 0)
     try:
         return os.open(path, flags)

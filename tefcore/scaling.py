@@ -24,6 +24,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+__all__ = ["RotorUnits"]
+
 
 @dataclass(frozen=True)
 class RotorUnits:

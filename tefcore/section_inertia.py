@@ -104,6 +104,7 @@ def flap_share(cfg, balanced: bool = False) -> FlapShare:
     Parameters
     ----------
     cfg : tefcore.config.Config
+        The rotor configuration.
     balanced : bool
         The share of the mass-balanced flap (CG on the hinge), which the
         blade tables contain, instead of the configured one.
@@ -128,7 +129,19 @@ def flap_share(cfg, balanced: bool = False) -> FlapShare:
 
 
 def flap_span_mask(cfg, x) -> np.ndarray:
-    """True where ``x`` (fractions of R) lies on the flap span ``[inboard, outboard)``."""
+    """True where ``x`` (fractions of R) lies on the flap span ``[inboard, outboard)``.
+
+    Parameters
+    ----------
+    cfg : tefcore.config.Config
+        The rotor configuration.
+    x : float or array_like
+        Radial stations, fractions of R.
+
+    Returns
+    -------
+    numpy.ndarray of bool
+    """
     x = np.asarray(x, float)
     return (x >= cfg.flap.inboard) & (x < cfg.flap.outboard)
 
@@ -141,6 +154,19 @@ def lumped_section(cfg, x) -> dict[str, np.ndarray]:
     polar inertia moved by the flap CG offset: ``cg_offset`` changes by
     ``-S_f / m`` and ``im_lag`` by ``S_f (c_cg - 2 eta_h)``.  The flap is thin,
     so its inertia is all chordwise (``im_lag``).  Mass is unchanged.
+
+    Parameters
+    ----------
+    cfg : tefcore.config.Config
+        The rotor configuration.
+    x : float or array_like
+        Radial stations, fractions of R.
+
+    Returns
+    -------
+    dict of str to numpy.ndarray
+        The section properties of :meth:`tefcore.config.BladeConfig.section`
+        at ``x``.
 
     Examples
     --------
@@ -176,6 +202,13 @@ def _check_points(cfg) -> np.ndarray:
 def host_section(cfg, x) -> dict[str, np.ndarray]:
     """The section without the (balanced) flap: mass, first moment, polar inertia (SI).
 
+    Parameters
+    ----------
+    cfg : tefcore.config.Config
+        The rotor configuration.
+    x : float or array_like
+        Radial stations, fractions of R.
+
     Returns
     -------
     dict
@@ -204,6 +237,19 @@ def flap_mass_limit(cfg, x=None) -> float:
     ``m < (A M - S^2) / (A + M eta_h^2 - 2 S eta_h)``, ``A = I - I_cg``;
     the smallest over the flap span (or over ``x``) is returned.  It is below
     ``M`` whenever the section itself is physical.
+
+    Parameters
+    ----------
+    cfg : tefcore.config.Config
+        The rotor configuration.
+    x : float or array_like, optional
+        Stations (fractions of R) to take the bound at; default the flap span
+        (its edges and the table stations between).
+
+    Returns
+    -------
+    float
+        The bound [kg/m].
     """
     x = _check_points(cfg) if x is None else np.atleast_1d(np.asarray(x, float))
     sec = cfg.blade.section(x)
@@ -235,6 +281,13 @@ def section_mass_block(cfg, x) -> np.ndarray:
     ``[[m_f, m_f eta_h - S_f, -S_f], [., m_f eta_h^2 - 2 eta_h S_f + I_h, I_h - eta_h S_f],
     [., ., I_h]]``.  Off the flap span only the host (the whole section) and a
     zero flap row remain.
+
+    Parameters
+    ----------
+    cfg : tefcore.config.Config
+        The rotor configuration.
+    x : float or array_like
+        Radial stations, fractions of R.
 
     Returns
     -------
@@ -273,6 +326,17 @@ def check_section_inertia(cfg) -> None:
 
     Cost: a few dozen flops per station (no assembly); called by
     :class:`tefcore.config.Config` on every construction and override.
+
+    Parameters
+    ----------
+    cfg : tefcore.config.Config
+        The rotor configuration.
+
+    Raises
+    ------
+    ValueError
+        Naming the station, the fields and the bound (e.g. the largest flap
+        mass that fits).
     """
     b = cfg.blade
     st = np.asarray(b.stations, float)
@@ -340,6 +404,20 @@ def check_positive_definite(matrix, what: str, fields: str) -> None:
     A Cholesky factorisation (the cheapest test). ``what`` names the matrix
     and ``fields`` the configuration fields that build it, for the message.
 
+    Parameters
+    ----------
+    matrix : array_like
+        A symmetric matrix.
+    what : str
+        What it is, for the message (``"the coupled mass matrix"``).
+    fields : str
+        The configuration fields that build it, for the message.
+
+    Raises
+    ------
+    ValueError
+        With the smallest eigenvalue.
+
     Examples
     --------
     >>> check_positive_definite(np.eye(2), "a mass matrix", "blade.mass")
@@ -366,6 +444,17 @@ def coupled_mass_matrix(model) -> np.ndarray:
     the ``delta**`` terms of the flap reactions and the flap equation of
     :class:`tefcore.coupled.CoupledModel` at the pitch the modes were computed
     for (aerodynamic apparent mass excluded).
+
+    Parameters
+    ----------
+    model : tefcore.coupled.CoupledModel
+        The coupled model.
+
+    Returns
+    -------
+    numpy.ndarray
+        ``(n_modes + 1, n_modes + 1)`` with the flap, ``(n_modes, n_modes)``
+        without.
     """
     m_s = np.asarray(model.m_s, float)
     if not model.has_flap:
@@ -391,6 +480,16 @@ def check_coupled_mass(model) -> None:
     With the sections checked by :func:`check_section_inertia` it always is
     (the kinetic energy of host plus flap is positive at every station);
     failing here means the modal basis or the flap terms are inconsistent.
+
+    Parameters
+    ----------
+    model : tefcore.coupled.CoupledModel
+        The coupled model (its modes and flap).
+
+    Raises
+    ------
+    ValueError
+        Naming the matrix and the fields that build it.
     """
     check_positive_definite(
         coupled_mass_matrix(model), "the coupled blade/flap mass matrix",

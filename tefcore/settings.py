@@ -2,13 +2,13 @@
 
 A settings section is a frozen dataclass generated from a table of
 :class:`Param` rows (name, dimension, default, allowed range, description)
-by the :func:`_section` decorator on a :class:`_Section` subclass.  Input is
+by the :func:`settings_section` decorator on a :class:`Section` subclass.  Input is
 converted to SI with :mod:`tefcore.units` (:func:`coerce_value`), checked
 against the declared ranges, and the ``{params}`` placeholder of the class
 docstring is filled with a numpydoc entry per field.  A range bound may be a
 small expression of sibling fields (``"radius/2"``) or of fields of other
 sections (``"-rotor.chord"``); the latter are checked by the owner of all
-sections (:meth:`_Section._check_cross_refs`).  Nothing here knows about
+sections (:meth:`Section._check_cross_refs`).  Nothing here knows about
 rotors: the concrete sections are in :mod:`tefcore.config`.  (Over ~400
 lines because the range grammar, coercion and section base are one unit.)
 
@@ -35,7 +35,8 @@ import numpy as np
 
 from .units import DIMENSIONS, SI_UNITS, parse_quantity, parse_unit
 
-__all__ = ["REQUIRED", "Param", "coerce_value"]
+__all__ = ["REQUIRED", "Param", "Section", "coerce_value", "did_you_mean", "format_value",
+           "rebuild_section", "settings_section"]
 
 
 class _Required:
@@ -215,14 +216,32 @@ class Param:
         unit = f" {self.unit}" if self.unit else ""
         resolved = ""
         if self.refs:
-            resolved = f" = {'[' if lo_in else '('}{_fmt(lo)}, {_fmt(hi)}{']' if hi_in else ')'}"
+            lo_text, hi_text = format_value(lo), format_value(hi)
+            resolved = f" = {'[' if lo_in else '('}{lo_text}, {hi_text}{']' if hi_in else ')'}"
         return (
-            f"{where} = {_fmt(arr.flat[i] if arr.ndim else value)}{unit} "
+            f"{where} = {format_value(arr.flat[i] if arr.ndim else value)}{unit} "
             f"is outside the allowed range {self.range.strip()}{resolved}{unit}"
         )
 
 
-def _fmt(value) -> str:
+def format_value(value) -> str:
+    """A number as error messages show it: ``repr(float)``, exact integers, ``?`` for None.
+
+    Parameters
+    ----------
+    value : object
+        A number (huge integers are summarised by their digit count), None
+        or anything else (shown with ``repr``).
+
+    Returns
+    -------
+    str
+
+    Examples
+    --------
+    >>> format_value(0.1), format_value(3), format_value(None), format_value(10**100)
+    ('0.1', '3', '?', '<an integer of 101 digits>')
+    """
     if value is None:
         return "?"
     if isinstance(value, numbers.Integral) and not isinstance(value, bool):
@@ -326,10 +345,10 @@ def coerce_value(p: Param, raw, dotted: str):
     except OverflowError:
         value = math.inf
     if not math.isfinite(value):
-        raise ValueError(f"{dotted} = {_fmt(raw)} is not finite (or too large for a float)")
+        raise ValueError(f"{dotted} = {format_value(raw)} is not finite (or too large for a float)")
     if p.kind == "int":
         if value != int(value):
-            raise ValueError(f"{dotted} = {_fmt(raw)} must be an integer")
+            raise ValueError(f"{dotted} = {format_value(raw)} must be an integer")
         return int(value)
     return value
 
@@ -356,7 +375,8 @@ def _coerce_array(p: Param, raw, factor: float, dotted: str) -> np.ndarray:
             arr = np.array(raw, dtype=float).reshape(-1)
         except OverflowError:
             i = next(i for i, x in enumerate(raw) if not math.isfinite(_as_float(x)))
-            raise ValueError(f"{dotted}[{i}] = {_fmt(raw[i])} is too large for a float") from None
+            raise ValueError(f"{dotted}[{i}] = {format_value(raw[i])} is too large for a "
+                             "float") from None
     else:
         raise ValueError(
             f"{dotted} must be a sequence of numbers, got {type(raw).__name__} {raw!r}"
@@ -365,7 +385,7 @@ def _coerce_array(p: Param, raw, factor: float, dotted: str) -> np.ndarray:
     bad = np.flatnonzero(~np.isfinite(arr))
     if bad.size:
         where = f"{dotted}[{bad[0]}]" if arr.ndim else dotted
-        raise ValueError(f"{where} = {_fmt(arr.flat[bad[0]])} is not finite")
+        raise ValueError(f"{where} = {format_value(arr.flat[bad[0]])} is not finite")
     arr.setflags(write=False)
     return arr
 
@@ -377,15 +397,23 @@ def _param_doc(p: Param) -> str:
         spec.append(f"range {p.range}")
     if p.choices:
         spec.append("one of " + ", ".join(map(repr, p.choices)))
-    spec.append("required" if p.required else f"default {_fmt(p.default)}")
+    spec.append("required" if p.required else f"default {format_value(p.default)}")
     opt = "" if p.required else ", optional"
     return (
         f"{p.name} : {kind}{' or None' if p.optional else ''}{opt}\n    {p.doc} {'; '.join(spec)}."
     )
 
 
-class _Section:
-    """Base of the section dataclasses: coercion, checks and equality."""
+class Section:
+    """Base of the section dataclasses: coercion, range checks and equality.
+
+    A subclass declares ``PARAMS`` (a tuple of :class:`Param`) and is
+    decorated with :func:`settings_section`; on construction every field is
+    coerced (:func:`coerce_value`) and checked against its range, then the
+    hooks ``_normalize`` and ``_validate`` run.  Ranges that name fields of
+    other sections are checked by :meth:`check_cross_refs`, called by the
+    owner of all sections.
+    """
 
     SECTION = ""
     PARAMS: tuple[Param, ...] = ()
@@ -415,8 +443,19 @@ class _Section:
     def _validate(self) -> None:
         """Hook: checks involving several fields of this section."""
 
-    def _check_cross_refs(self, lookup: Callable[[str], Any]) -> None:
-        """Check the ranges that reference other sections; `lookup` maps dotted names."""
+    def check_cross_refs(self, lookup: Callable[[str], Any]) -> None:
+        """Check the ranges that reference fields of other sections.
+
+        Parameters
+        ----------
+        lookup : callable
+            Maps a dotted field name (``"rotor.chord"``) to its value.
+
+        Raises
+        ------
+        ValueError
+            Naming the first field outside its range.
+        """
 
         def both(key):
             return lookup(key) if "." in key else getattr(self, key)
@@ -442,15 +481,45 @@ class _Section:
     def __reduce__(self):
         # Rebuild through the constructor so that unpickled copies (joblib
         # workers, deepcopy) are re-validated and their arrays read-only.
-        return _rebuild, (type(self), {p.name: getattr(self, p.name) for p in self.PARAMS})
+        return rebuild_section, (type(self), {p.name: getattr(self, p.name) for p in self.PARAMS})
 
 
-def _rebuild(cls, kwargs):
-    return cls(**kwargs)
+def rebuild_section(section_type, kwargs):
+    """``section_type(**kwargs)``: how pickled sections and configurations are rebuilt.
+
+    Through the constructor, so the copy is validated again.
+
+    Parameters
+    ----------
+    section_type : type
+        A :class:`Section` subclass (or :class:`tefcore.config.Config`).
+    kwargs : dict
+        Its constructor arguments.
+
+    Returns
+    -------
+    object
+        The new, validated instance.
+    """
+    return section_type(**kwargs)
 
 
-def _section(name: str):
-    """Turn a `_Section` subclass with a PARAMS table into a frozen dataclass."""
+def settings_section(name: str):
+    """Class decorator: a :class:`Section` subclass with a ``PARAMS`` table becomes a
+    frozen dataclass named ``name`` in dotted field names.
+
+    Parameters
+    ----------
+    name : str
+        The section's name (``"flap"`` for ``flap.overhang``).
+
+    Returns
+    -------
+    callable
+        The decorator; it sets the fields' annotations and defaults and fills
+        the ``{params}`` placeholder of the class docstring with one numpydoc
+        entry per field.
+    """
 
     def wrap(cls):
         cls.SECTION = name
@@ -467,7 +536,24 @@ def _section(name: str):
     return wrap
 
 
-def _close(word: str, options) -> str:
-    """``"; did you mean ...?"`` suffix naming close matches of `word`, or ``""``."""
+def did_you_mean(word: str, options) -> str:
+    """A ``"; did you mean ...?"`` suffix naming close matches of `word`, or ``""``.
+
+    Parameters
+    ----------
+    word : str
+        What was given (an unknown name).
+    options : iterable of str
+        The allowed names.
+
+    Returns
+    -------
+    str
+
+    Examples
+    --------
+    >>> did_you_mean("flap.overhnag", ["flap.overhang", "flap.chord_ratio"])
+    "; did you mean 'flap.overhang'?"
+    """
     near = difflib.get_close_matches(word, list(options), n=3, cutoff=0.6)
     return f"; did you mean {' or '.join(map(repr, near))}?" if near else ""

@@ -24,6 +24,7 @@ import scipy.optimize
 from .coupled import coupled_model, jacobian_blocks
 from .linear_system import SecondOrderSystem
 from .linear_system import state_matrix as state_matrix
+from .runtime import blas_limit
 from .trim import TrimResult, initial_collective, trim
 
 __all__ = ["REMODE_DEG", "SHARE_KINDS", "StabilityResult", "linear_system", "linearize",
@@ -44,6 +45,22 @@ def linearize(tr: TrimResult, psi, step: float = 1e-6, scheme: str = "central"):
     the motion there). ``scheme='central'``: truncation error ~``step^2``,
     2n evaluations per matrix; ``'forward'``: error ~``step`` (1e-6 relative,
     far below what moves a damping value), half the evaluations.
+
+    Parameters
+    ----------
+    tr : tefcore.trim.TrimResult
+        The trim to linearise about.
+    psi : array_like
+        Azimuths [rad].
+    step : float, optional
+        Finite-difference step, relative.
+    scheme : {"central", "forward"}, optional
+        Finite-difference scheme.
+
+    Returns
+    -------
+    M, C, K : numpy.ndarray
+        Each ``(len(psi), n, n)``.
     """
     psi = np.atleast_1d(np.asarray(psi, float))
     q, qd, qdd = tr.motion(psi)
@@ -97,12 +114,12 @@ def _label_modes(frac, labels, freqs, rates, disp):
     modes share one coordinate (flutter). Kinetic-energy shares would hide the
     light coordinates: the MDART torsion mode in hover carries 0.5 % of its
     kinetic energy in torsion but 65 % of its participation (measured). A
-    complex pair whose multipliers have
-    become two real ones (frequency locked to a multiple of 1/2 per rev, or
-    overdamped) gives one mode more than coordinates: the pair shares its
-    coordinate's label, the less damped root carrying it plainly and the
-    other with ``(locked)`` appended (the partner is the assigned mode at the
-    closest frequency, ties by the MAC of the physical shapes ``disp``).
+    complex pair whose multipliers have become two real ones (frequency
+    locked to a multiple of 1/2 per rev, or overdamped) gives one mode more
+    than coordinates: the pair shares its coordinate's label, the less damped
+    root carrying it plainly and the other with ``(locked)`` appended (the
+    partner is the assigned mode at the closest frequency, ties by the MAC of
+    the physical shapes ``disp``).
     """
     # maximise the product of the shares (sum of logs): a coordinate must
     # participate materially in the mode that carries its name.  Maximising
@@ -129,6 +146,7 @@ def _label_modes(frac, labels, freqs, rates, disp):
     return out
 
 
+@blas_limit()
 def stability(cfg, *, trim_result: TrimResult | None = None, n_steps: int | None = None,
               remode: bool = True, model=None) -> StabilityResult:
     """Trim the configuration and compute its labelled stability modes.
@@ -136,6 +154,7 @@ def stability(cfg, *, trim_result: TrimResult | None = None, n_steps: int | None
     Parameters
     ----------
     cfg : tefcore.config.Config
+        The rotor configuration.
     trim_result : TrimResult, optional
         Warm start for the trim (e.g. the previous sweep point).
     n_steps : int, optional
@@ -171,6 +190,23 @@ def stability(cfg, *, trim_result: TrimResult | None = None, n_steps: int | None
         If the Floquet exponents do not meet the default tolerance of
         :func:`tefcore.floquet.floquet_modes` even at 32 times the steps
         (``n_steps`` is the starting value and is doubled as needed).
+
+    References
+    ----------
+    .. [1] *Aeroelastic Stability of Trailing-Edge Flap Helicopter Rotors*,
+       "Stability Analysis": the perturbation equations (5) about the trim
+       and their Floquet eigenanalysis; docs/theory.md sections 5 and 8.
+
+    Examples
+    --------
+    The MDART baseline in hover: the flap mode, well above the blade modes,
+    is stable.
+
+    >>> from tefcore.config_io import load_config
+    >>> res = stability(load_config("mdart"))
+    >>> tef = res.modes[res.modes["label"] == "TEF"].iloc[0]
+    >>> bool(tef["real_part"] < 0), bool(tef["frequency_per_rev"] > 12)
+    (True, True)
     """
     if model is not None:
         if model.cfg != cfg:
@@ -198,6 +234,15 @@ def linear_system(tr: TrimResult) -> SecondOrderSystem:
     ``n_azimuth / 2``; twice the samples change the exponents by less than
     1e-3 /rev, measured on MDART at mu = 0.3).  Forward differences (step
     1e-6 relative, far below what moves a damping value).
+
+    Parameters
+    ----------
+    tr : tefcore.trim.TrimResult
+        The trim to linearise about.
+
+    Returns
+    -------
+    tefcore.linear_system.SecondOrderSystem
     """
     if tr.model.cfg.flight.advance_ratio == 0.0:
         psi = np.zeros(1)
@@ -213,6 +258,11 @@ def periodic_state_matrix(tr: TrimResult):
     ``M, C, K`` are sampled on the trim's azimuth grid, interpolated by
     trigonometric series and ``A = [[0, I], [-M^-1 K, -M^-1 C]]`` formed at
     each azimuth (:meth:`SecondOrderSystem.state_matrix`).
+
+    Parameters
+    ----------
+    tr : tefcore.trim.TrimResult
+        The trim to linearise about.
 
     Returns
     -------

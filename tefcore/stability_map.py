@@ -19,7 +19,7 @@ Examples
 --------
 >>> import numpy as np, pandas as pd
 >>> from types import SimpleNamespace
->>> from tefcore.config import load_config
+>>> from tefcore.config_io import load_config
 >>> def toy(cfg):   # flutter where cg_offset + overhang > 0.5
 ...     g = cfg.flap.cg_offset + cfg.flap.overhang - 0.5
 ...     modes = pd.DataFrame({"mode_id": [0], "label": ["TEF"], "frequency_per_rev": [5.0],
@@ -46,6 +46,7 @@ import pandas as pd
 from scipy.optimize import brentq
 
 from .config import Config
+from .runtime import worker_init
 from .sweep import FLUTTER_SHARE, SweepResult, check_result, default_point, sweep
 
 __all__ = ["MapResult", "stability_map"]
@@ -167,6 +168,12 @@ def _flutter_growth(point, cfg, x_field, x) -> float:
     return float(cand["real_part"].max()) if not cand.empty else np.nan
 
 
+def _refine_in_worker(*args):
+    """The task of a worker process: the process settings first (tefcore.runtime)."""
+    worker_init()
+    return _refine(*args)
+
+
 def _refine(point, cfg, x_field, y_si, a, b, direction, xtol):
     """Zero of the flutter growth between two grid x (brentq); never raises."""
     try:
@@ -204,10 +211,15 @@ def stability_map(cfg: Config, x_field: str, x_values, y_field: str, y_values, *
         Folder for the map's files: ``row_<k>.jsonl`` (one sweep file per y
         value) and ``boundary.jsonl``; re-running resumes (stale inputs are
         refused as for sweeps).
+    resume : bool
+        With ``out``: load the points and boundary crossings already there.
     refine_boundary : bool
         Locate the zero of the flutter growth between grid points of a row
-        where it changes sign (brentq, to ``xtol``, default 1e-4 of the x
-        range).
+        where it changes sign (brentq, to ``xtol``).
+    xtol : float, optional
+        Tolerance of the boundary in x (default 1e-4 of the x range).
+    progress : bool or None
+        tqdm progress bar on stderr; ``None``: only if stderr is a terminal.
 
     Returns
     -------
@@ -290,12 +302,13 @@ def _boundary(table, cfg, x_field, y_field, y_values, point, n_jobs, backend, cl
         cfgs = {k: cfg.with_overrides({y_field: y_values[k]}) for _, k, *_ in todo}
         args = [(point, cfgs[k], x_field, y_si, a, b, d, xtol) for _, k, a, b, d, y_si in todo]
         if backend == "dask" and client is not None:
-            futures = [client.submit(_refine, *a, pure=False) for a in args]
+            futures = [client.submit(_refine_in_worker, *a, pure=False) for a in args]
             found = client.gather(futures)
         elif n_jobs != 1 and len(args) > 1:
             from joblib import Parallel, delayed
 
-            found = Parallel(n_jobs=n_jobs, backend="loky")(delayed(_refine)(*a) for a in args)
+            found = Parallel(n_jobs=n_jobs, backend="loky")(
+                delayed(_refine_in_worker)(*a) for a in args)
         else:
             found = [_refine(*a) for a in args]
         for (key, *_), rec in zip(todo, found, strict=True):

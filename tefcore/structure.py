@@ -37,6 +37,15 @@ class RootSprings:
     """Equivalent hub restraints at the structural root (rotor units).
 
     ``numpy.inf`` clamps the corresponding slope or twist.
+
+    Attributes
+    ----------
+    flap, lag : float
+        Rotational springs on the flap and lag slopes.
+    torsion : float
+        Torsional spring on the root twist.
+    lag_damper : float
+        Rotational damper on the lag slope.
     """
 
     flap: float = 0.0
@@ -148,6 +157,20 @@ def tension_from_mass(mass: Callable, x_root: float, n: int = 2001) -> Callable:
 
     Integrated with cumulative Simpson's rule on a fine grid (exact for the
     quadratic integrand of a linearly varying mass) and interpolated.
+
+    Parameters
+    ----------
+    mass : callable
+        Mass per length ``m(x)`` (rotor units).
+    x_root : float
+        Inboard end of the integration grid, fraction of R.
+    n : int, optional
+        Points of the integration grid.
+
+    Returns
+    -------
+    callable
+        ``T(x)``.
     """
     s = np.linspace(x_root, 1.0, n)
     f = mass(s) * s
@@ -163,6 +186,18 @@ def tension_piecewise_linear(stations, mass) -> Callable:
     (the last station is the tip): the integrand is quadratic on every
     segment, so Simpson's rule on each segment (and on the partial segment
     from ``x``) is exact.
+
+    Parameters
+    ----------
+    stations : array_like
+        Stations, fractions of R, increasing to the tip.
+    mass : array_like
+        Mass per length at ``stations`` (rotor units).
+
+    Returns
+    -------
+    callable
+        ``T(x)``.
 
     Examples
     --------
@@ -194,6 +229,18 @@ class BeamModel:
 
     ``stiffness(r)`` gives the stiffness at rotor speed ``r * Omega_ref``
     expressed in units of the *new* speed (so eigenvalues are (/rev)^2).
+
+    Attributes
+    ----------
+    x_nodes : numpy.ndarray
+        Node stations, fractions of R.
+    mass, k_elastic, k_centrifugal, damping_matrix, gyroscopic : numpy.ndarray
+        Global mass, elastic and centrifugal stiffness (per (reference speed)^2),
+        structural damping and Coriolis matrices (rotor units).
+    free : numpy.ndarray of bool
+        The unconstrained dofs.
+    pitch : callable
+        Geometric pitch ``theta(x)`` [rad] the sections were assembled at.
     """
 
     x_nodes: np.ndarray
@@ -337,7 +384,9 @@ class BladeModes:
     fractions : ndarray, shape (n_modes, 4)
         Kinetic-energy fractions in axial, lag, flap, torsion motion.
     modal_mass, modal_stiffness, modal_damping, modal_gyroscopic : ndarray
-        Generalised matrices ``Phi^T M Phi`` etc. (rotor units).
+            Generalised matrices ``Phi^T M Phi`` etc. (rotor units).
+    beam : BeamModel
+        The beam the modes are of (for :meth:`shapes`).
     """
 
     frequencies: np.ndarray
@@ -370,9 +419,11 @@ def classify(vectors: np.ndarray, mass: np.ndarray, owner):
 
     Parameters
     ----------
-    vectors : ndarray, shape (n_dof, n_modes)
-    mass : ndarray, shape (n_dof, n_dof)
-    owner : ndarray or int
+    vectors : numpy.ndarray, shape (n_dof, n_modes)
+        Global mode shapes, one column per mode.
+    mass : numpy.ndarray, shape (n_dof, n_dof)
+        The global mass matrix.
+    owner : numpy.ndarray or int
         Field (index into FIELD_GROUPS) of every dof, or the number of
         elements of a single beam.
 
@@ -492,6 +543,10 @@ def beam_modes(beam: BeamModel, n_modes: int = 9, speed_ratio: float = 1.0) -> B
     speed_ratio : float
         Rotor speed over the reference speed; frequencies are per rev of the
         new speed.
+
+    Returns
+    -------
+    BladeModes
     """
     f = beam.free
     k = beam.stiffness(speed_ratio)

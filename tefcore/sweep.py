@@ -11,14 +11,14 @@ A point that fails (invalid configuration, trim not converged: any
 ``out=path`` every finished point is appended to a JSON-lines file at once,
 so an interrupted sweep can be resumed without losing or recomputing a
 point; the file format and its store are in :mod:`tefcore.sweep_store`.
-:func:`~tefcore.boundary.stability_boundary` (in :mod:`tefcore.boundary`,
-re-exported here) finds where a mode's damping crosses zero.
+:func:`tefcore.boundary.stability_boundary` finds where a mode's damping
+crosses zero.
 
 Examples
 --------
 >>> import numpy as np, pandas as pd
 >>> from types import SimpleNamespace
->>> from tefcore.config import load_config
+>>> from tefcore.config_io import load_config
 >>> def toy(cfg):   # one mode whose real part crosses zero at cg_offset = 0.2
 ...     x = cfg.flap.cg_offset
 ...     return SimpleNamespace(
@@ -46,7 +46,7 @@ import time
 from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 import numpy as np
 import pandas as pd
@@ -54,16 +54,14 @@ from tqdm import tqdm
 
 from .config import SECTIONS, Config, resolve_field
 from .errors import error_text
+from .runtime import worker_init
 from .safe_io import atomic_output
-from .sweep_store import _jsonable, _SweepFile, _value_key, config_hash, sweep_header
+from .sweep_store import SweepFile, config_hash, jsonable, sweep_header, value_key
 from .tracking import ambiguous_steps, label_changes, track_modes
 
-if TYPE_CHECKING:  # at run time re-exported by __getattr__ (end of the module)
-    from .boundary import BoundaryResult, stability_boundary
-
-__all__ = ["FLUTTER_SHARE", "MAX_REFINE", "BoundaryResult", "SweepResult", "check_result",
-           "config_hash", "decode_complex", "default_point", "encode_complex",
-           "stability_boundary", "sweep"]
+__all__ = ["FLUTTER_SHARE", "MAX_REFINE", "REQUIRED_MODE_COLUMNS", "SweepResult",
+           "check_parameter", "check_result", "config_hash", "decode_complex", "default_point",
+           "encode_complex", "shape_vectors", "sweep"]
 
 #: Columns a point function's ``modes`` table must have.
 REQUIRED_MODE_COLUMNS = ("mode_id", "label", "frequency_per_rev", "real_part", "damping_ratio")
@@ -73,7 +71,14 @@ _NUMERIC_MODE_COLUMNS = ("frequency_per_rev", "real_part", "damping_ratio")
 # ------------------------------------------------------------------ helpers
 
 
-def _default_point() -> Callable:
+def default_point() -> Callable:
+    """The default point function, :func:`tefcore.stability.stability`.
+
+    Returns
+    -------
+    callable
+        ``stability(cfg)``: one configuration to its modes, eigenvectors and trim.
+    """
     from .stability import stability  # deferred: heavy, and written separately
 
     return stability
@@ -84,7 +89,25 @@ def _point_name(point) -> str:
     return f"{getattr(target, '__module__', '?')}:{getattr(target, '__qualname__', '?')}"
 
 
-def _check_parameter(parameter) -> str:
+def check_parameter(parameter: str) -> str:
+    """Check that ``parameter`` is a scalar configuration field one can sweep.
+
+    Parameters
+    ----------
+    parameter : str
+        Dotted field name, e.g. ``"flap.cg_offset"``.
+
+    Returns
+    -------
+    str
+        ``parameter`` unchanged.
+
+    Raises
+    ------
+    ValueError
+        For an unknown field (with a close match), a top-level field
+        (``name``) or an array field.
+    """
     try:
         section, name = resolve_field(parameter)
     except ValueError as err:
@@ -106,7 +129,7 @@ def _check_values(values) -> tuple[list, list[str]]:
     values = list(np.asarray(values).tolist() if isinstance(values, np.ndarray) else values)
     if not values:
         raise ValueError("values is empty: nothing to sweep")
-    keys = [_value_key(v) for v in values]
+    keys = [value_key(v) for v in values]
     seen: dict[str, int] = {}
     for i, k in enumerate(keys):
         if k in seen:
@@ -115,8 +138,33 @@ def _check_values(values) -> tuple[list, list[str]]:
     return values, keys
 
 
-def _unpack(result) -> tuple[pd.DataFrame, np.ndarray | None, dict]:
-    """Check a point function's result; return (modes, eigenvectors, trim)."""
+def check_result(result) -> tuple[pd.DataFrame, np.ndarray | None, dict]:
+    """Check a point function's result and take it apart.
+
+    Parameters
+    ----------
+    result : object
+        What a point function returned: an object with a ``modes``
+        DataFrame (the columns of :data:`REQUIRED_MODE_COLUMNS`, finite) and
+        optionally ``eigenvectors`` (one column per mode) and ``trim`` (a
+        mapping).
+
+    Returns
+    -------
+    modes : pandas.DataFrame
+        The modes table, index reset.
+    eigenvectors : numpy.ndarray or None
+    trim : dict
+        The trim values, made JSON-serialisable.
+
+    Raises
+    ------
+    TypeError
+        Without a ``modes`` DataFrame.
+    ValueError
+        For missing columns, no modes, non-finite values or eigenvectors
+        that do not match the modes.
+    """
     modes = getattr(result, "modes", None)
     if not isinstance(modes, pd.DataFrame):
         raise TypeError(f"point function returned {type(result).__name__} without a "
@@ -138,11 +186,29 @@ def _unpack(result) -> tuple[pd.DataFrame, np.ndarray | None, dict]:
             raise ValueError(f"eigenvectors of shape {vecs.shape} do not match {len(modes)} "
                              "modes (one column per mode)")
     trim = getattr(result, "trim", None) or {}
-    return modes, vecs, {str(k): _jsonable(v) for k, v in dict(trim).items()}
+    return modes, vecs, {str(k): jsonable(v) for k, v in dict(trim).items()}
 
 
-def _shape_vectors(result, eigenvectors):
-    """The shapes tracking compares (``result.vectors``, else the eigenvectors)."""
+def shape_vectors(result, eigenvectors):
+    """The mode shapes tracking compares: ``result.vectors``, else the eigenvectors.
+
+    Parameters
+    ----------
+    result : object
+        A point function's result (see :func:`check_result`).
+    eigenvectors : numpy.ndarray or None
+        Its eigenvectors, as returned by :func:`check_result`.
+
+    Returns
+    -------
+    numpy.ndarray or None
+        One column per mode, or None when the result has neither.
+
+    Raises
+    ------
+    ValueError
+        For non-finite shapes.
+    """
     vecs = getattr(result, "vectors", None)
     vecs = eigenvectors if vecs is None else np.asarray(vecs)
     if vecs is None:
@@ -169,7 +235,7 @@ def _anchor_root(result) -> dict | None:
 
 
 def _failed_record(key, value, err) -> dict:
-    return {"key": key, "value": _jsonable(value), "value_si": None, "status": "failed",
+    return {"key": key, "value": jsonable(value), "value_si": None, "status": "failed",
             "error": error_text(err), "trim": {}, "modes": None}
 
 
@@ -181,19 +247,19 @@ def _evaluate(index, point, cfg, parameter, value, key, anchor=False, depth=0):
     caller asked for, k for a point added by the k-th refinement.
     """
     start = time.perf_counter()
-    rec: dict[str, Any] = {"key": key, "value": _jsonable(value), "value_si": None,
+    rec: dict[str, Any] = {"key": key, "value": jsonable(value), "value_si": None,
                            "status": "failed", "error": None, "trim": {}, "modes": None}
     if depth:
         rec["refinement"] = depth
     vecs = None
     try:
         cfg_v = cfg.with_overrides({parameter: value})
-        rec["value_si"] = _jsonable(cfg_v.get(parameter))
+        rec["value_si"] = jsonable(cfg_v.get(parameter))
         result = point(cfg_v)
-        modes, vecs, trim = _unpack(result)
-        shapes = _shape_vectors(result, vecs)
+        modes, vecs, trim = check_result(result)
+        shapes = shape_vectors(result, vecs)
         rec.update(status="ok", trim=trim,
-                   modes={c: _jsonable(modes[c].to_numpy()) for c in modes.columns},
+                   modes={c: jsonable(modes[c].to_numpy()) for c in modes.columns},
                    periodic=bool(getattr(result, "periodic", False)))
         if shapes is not None:
             rec["vectors"] = encode_complex(shapes)
@@ -209,6 +275,12 @@ def _evaluate(index, point, cfg, parameter, value, key, anchor=False, depth=0):
 # ------------------------------------------------------------------ backends
 
 
+def _evaluate_in_worker(index, *args):
+    """The task of a worker process: the process settings first (tefcore.runtime)."""
+    worker_init()
+    return _evaluate(index, *args)
+
+
 def _run_serial(jobs):
     for i, args in jobs:
         yield _evaluate(i, *args)
@@ -218,7 +290,7 @@ def _run_joblib(jobs, n_jobs):
     from joblib import Parallel, delayed
 
     par = Parallel(n_jobs=n_jobs, backend="loky", return_as="generator_unordered")
-    yield from par(delayed(_evaluate)(i, *args) for i, args in jobs)
+    yield from par(delayed(_evaluate_in_worker)(i, *args) for i, args in jobs)
 
 
 def _dask_client(n_jobs, client):
@@ -243,7 +315,7 @@ def _run_dask(jobs, client):
     args_of = dict(jobs)
     try:
         for i, args in jobs:
-            futures[client.submit(_evaluate, i, *args, pure=False)] = i
+            futures[client.submit(_evaluate_in_worker, i, *args, pure=False)] = i
         for fut in as_completed(list(futures)):
             try:
                 yield fut.result()
@@ -371,13 +443,41 @@ FLUTTER_SHARE = 0.1
 
 
 def encode_complex(a) -> dict:
-    """A complex array as ``{"re": [...], "im": [...]}`` (exact in JSON)."""
+    """A complex array as ``{"re": [...], "im": [...]}`` (exact in JSON).
+
+    Parameters
+    ----------
+    a : array_like of complex
+        Any shape.
+
+    Returns
+    -------
+    dict
+        Nested lists of the real and imaginary parts.
+
+    Examples
+    --------
+    >>> encode_complex([1 + 2j])
+    {'re': [1.0], 'im': [2.0]}
+    >>> decode_complex(encode_complex([1 + 2j]))
+    array([1.+2.j])
+    """
     a = np.asarray(a)
     return {"re": np.real(a).tolist(), "im": np.imag(a).tolist()}
 
 
 def decode_complex(d) -> np.ndarray:
-    """Inverse of :func:`encode_complex`."""
+    """Inverse of :func:`encode_complex`.
+
+    Parameters
+    ----------
+    d : dict
+        ``{"re": [...], "im": [...]}``.
+
+    Returns
+    -------
+    numpy.ndarray of complex
+    """
     return np.asarray(d["re"], float) + 1j * np.asarray(d["im"], float)
 
 
@@ -583,6 +683,11 @@ def sweep(cfg: Config, parameter: str, values, *, point: Callable | None = None,
         many added points as asked for, whichever is more, for the other
         modes; the added points are rows with
         ``refinement > 0``.
+    anchor : bool
+        Identify the TEF branch at the sweep start by continuation from zero
+        coupling (:func:`tefcore.mechanism.tef_root`) where the point function's
+        result carries its linear system; otherwise by the largest flap
+        participation.
 
     Returns
     -------
@@ -606,7 +711,7 @@ def sweep(cfg: Config, parameter: str, values, *, point: Callable | None = None,
     KeyboardInterrupt
         Propagated; the points finished so far are in `out`.
     """
-    parameter = _check_parameter(parameter)
+    parameter = check_parameter(parameter)
     values, keys = _check_values(values)
     if extra_overrides:
         if parameter in extra_overrides:
@@ -618,7 +723,7 @@ def sweep(cfg: Config, parameter: str, values, *, point: Callable | None = None,
         raise ValueError(f"n_jobs must be a non-zero integer, got {n_jobs!r}")
     if backend not in ("joblib", "dask"):
         raise ValueError(f"backend must be 'joblib' or 'dask', got {backend!r}")
-    point = _default_point() if point is None else point
+    point = default_point() if point is None else point
     if not callable(point):
         raise ValueError(f"point must be callable, got {point!r}")
 
@@ -627,7 +732,7 @@ def sweep(cfg: Config, parameter: str, values, *, point: Callable | None = None,
     store = None
     if out is not None:
         header = sweep_header(cfg, parameter, chash, _point_name(point))
-        store = _SweepFile(out, header, resume)
+        store = SweepFile(out, header, resume)
         for k, rec in store.records.items():
             if not (retry_failed and rec["status"] != "ok"):
                 records[k] = rec
@@ -694,11 +799,11 @@ def sweep(cfg: Config, parameter: str, values, *, point: Callable | None = None,
             if not any(budgets.values()):
                 break
             mids = [m for m in _refinements(active(), budgets, main, anchor)
-                    if _value_key(m[0]) not in wanted and _value_key(m[0]) not in main]
+                    if value_key(m[0]) not in wanted and value_key(m[0]) not in main]
             if not mids:
                 break
             for x, depth, which in mids:
-                key = _value_key(x)
+                key = value_key(x)
                 wanted[key] = depth
                 budgets[which] -= 1
                 if key not in records or (retry_failed and records[key]["status"] != "ok"):
@@ -733,32 +838,3 @@ def _anchor_key(cfg, parameter, values, keys):
         if isinstance(si, numbers.Real) and (best is None or si < best[0]):
             best = (float(si), k)
     return None if best is None else best[1]
-
-
-def default_point() -> Callable:
-    """The default point function, :func:`tefcore.stability.stability`."""
-    return _default_point()
-
-
-def check_result(result) -> tuple[pd.DataFrame, np.ndarray | None, dict]:
-    """Check a point function's result: ``(modes, eigenvectors, trim)`` or ``ValueError``."""
-    return _unpack(result)
-
-
-# ------------------------------------------------------------------ re-exports
-
-# tefcore.boundary imports this module, so its names are looked up on first
-# use (PEP 562) rather than imported here: no import cycle either way round.
-_BOUNDARY_NAMES = frozenset({"BoundaryResult", "stability_boundary"})
-
-
-def __getattr__(name: str):
-    if name in _BOUNDARY_NAMES:
-        from . import boundary
-
-        return getattr(boundary, name)
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
-
-
-def __dir__() -> list[str]:
-    return sorted(set(globals()) | _BOUNDARY_NAMES)

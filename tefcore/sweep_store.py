@@ -75,7 +75,8 @@ from .errors import SweepFileError
 from .provenance import describe_digest, input_digests, model_stamp
 from .safe_io import FileLock, atomic_write_text, check_output_file, open_append
 
-__all__ = ["RECORD_MODE_COLUMNS", "config_hash", "sweep_header"]
+__all__ = ["FORMAT", "FORMAT_VERSION", "RECORD_MODE_COLUMNS", "SweepFile", "config_hash",
+           "jsonable", "sweep_header", "value_key"]
 
 FORMAT = "tefcore.sweep"
 FORMAT_VERSION = 3
@@ -86,21 +87,59 @@ RECORD_MODE_COLUMNS = ("mode_id", "label", "frequency_per_rev", "real_part", "da
 # ------------------------------------------------------------------ identities
 
 
-def _jsonable(v):
-    """Plain JSON-able Python value (numpy scalars/arrays converted)."""
+def jsonable(v):
+    """A plain JSON-able Python value: numpy scalars and arrays converted, recursively.
+
+    Parameters
+    ----------
+    v : object
+        A value, mapping, list or tuple possibly holding numpy values.
+
+    Returns
+    -------
+    object
+        The same value with numpy arrays as lists, numpy scalars as Python
+        scalars and mapping keys as strings.
+
+    Examples
+    --------
+    >>> jsonable({"a": np.arange(2), 1: np.float64(0.5)})
+    {'a': [0, 1], '1': 0.5}
+    """
     if isinstance(v, np.ndarray):
         return v.tolist()
     if isinstance(v, np.generic):
         return v.item()
     if isinstance(v, Mapping):
-        return {str(k): _jsonable(x) for k, x in v.items()}
+        return {str(k): jsonable(x) for k, x in v.items()}
     if isinstance(v, list | tuple):
-        return [_jsonable(x) for x in v]
+        return [jsonable(x) for x in v]
     return v
 
 
-def _value_key(v) -> str:
-    """Canonical key of a sweep value (see the file format)."""
+def value_key(v) -> str:
+    """Canonical key of a sweep value (see the file format above).
+
+    Parameters
+    ----------
+    v : float or str
+        A number (keyed by ``repr(float(v))``) or a ``'value unit'`` string
+        (keyed with its whitespace normalised).
+
+    Returns
+    -------
+    str
+
+    Raises
+    ------
+    ValueError
+        For booleans, empty strings and anything else.
+
+    Examples
+    --------
+    >>> value_key(2), value_key("  400  lb/in ")
+    ('2.0', '400 lb/in')
+    """
     if isinstance(v, bool | np.bool_):
         raise ValueError(f"sweep values must be numbers or 'value unit' strings, got {v!r}")
     if isinstance(v, numbers.Real):
@@ -119,9 +158,20 @@ def config_hash(cfg: Config, exclude: Iterable[str] = ()) -> str:
     ``sources`` or ``reference``), so two configurations with equal fields
     hash alike.  Floats enter by their exact ``repr``.
 
+    Parameters
+    ----------
+    cfg : tefcore.config.Config
+        The configuration.
+    exclude : iterable of str, optional
+        Dotted fields left out (the swept parameter).
+
+    Returns
+    -------
+    str
+
     Examples
     --------
-    >>> from tefcore.config import load_config
+    >>> from tefcore.config_io import load_config
     >>> cfg = load_config("mdart")
     >>> config_hash(cfg) == config_hash(cfg.with_overrides({"name": "other"}))
     True
@@ -133,7 +183,7 @@ def config_hash(cfg: Config, exclude: Iterable[str] = ()) -> str:
     """
     skip = set(exclude)
     data = {
-        f"{s}.{p.name}": _jsonable(getattr(getattr(cfg, s), p.name))
+        f"{s}.{p.name}": jsonable(getattr(getattr(cfg, s), p.name))
         for s, cls in SECTIONS.items()
         for p in cls.PARAMS
         if f"{s}.{p.name}" not in skip
@@ -148,6 +198,24 @@ def config_hash(cfg: Config, exclude: Iterable[str] = ()) -> str:
 def sweep_header(cfg: Config, parameter: str, chash: str, point_name: str) -> dict:
     """Header of a new sweep file: what decides every point (module docstring).
 
+    Parameters
+    ----------
+    cfg : tefcore.config.Config
+        The rotor configuration.
+    parameter : str
+        The swept dotted field.
+    chash : str
+        :func:`config_hash` of ``cfg`` without ``parameter``.
+    point_name : str
+        ``module:qualname`` of the point function.
+
+    Returns
+    -------
+    dict
+        The first line of the file: format and version, parameter,
+        configuration hash, input file digests, tefcore version, model stamp
+        and point function, with the creation time.
+
     Raises
     ------
     ValueError
@@ -155,7 +223,7 @@ def sweep_header(cfg: Config, parameter: str, chash: str, point_name: str) -> di
 
     Examples
     --------
-    >>> from tefcore.config import load_config
+    >>> from tefcore.config_io import load_config
     >>> cfg = load_config("mdart")
     >>> head = sweep_header(cfg, "flap.cg_offset", config_hash(cfg), "m:f")
     >>> head["version"] == FORMAT_VERSION, head["inputs"], len(head["model_stamp"])
@@ -163,7 +231,7 @@ def sweep_header(cfg: Config, parameter: str, chash: str, point_name: str) -> di
     """
     import datetime
 
-    from . import __version__
+    from ._version import __version__
 
     return {"format": FORMAT, "version": FORMAT_VERSION, "parameter": parameter,
             "config_hash": chash, "inputs": input_digests(cfg),
@@ -295,8 +363,23 @@ def _decode(line: bytes):
         raise ValueError(str(err)) from None
 
 
-class _SweepFile:
-    """Append-only JSON-lines store of finished points (module docstring)."""
+class SweepFile:
+    """Append-only JSON-lines store of finished sweep points (format above).
+
+    Opening takes the file's lock (:class:`tefcore.safe_io.FileLock`) until
+    :meth:`close`; with ``resume`` an existing file is checked against
+    ``header`` (a stale file is refused) and its records loaded into
+    :attr:`records`, an incomplete last line (an interrupted write) dropped.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The JSON-lines file (its folder is created).
+    header : dict
+        First line of the file (:func:`sweep_header`).
+    resume : bool
+        Keep and load an existing file; otherwise start it anew.
+    """
 
     def __init__(self, path, header: dict, resume: bool):
         self.path = check_output_file(path, "sweep file", create_folder=True)
@@ -345,6 +428,13 @@ class _SweepFile:
             good += len(line) + 1
 
     def append(self, rec: dict) -> None:
+        """Append one record as a JSON line and flush it to disk (``fsync``).
+
+        Parameters
+        ----------
+        rec : dict
+            One point's record (JSON-able: :func:`jsonable`).
+        """
         data = (json.dumps(rec, separators=(",", ":"), allow_nan=True) + "\n").encode()
         view = memoryview(data)
         while view:
@@ -352,5 +442,6 @@ class _SweepFile:
         os.fsync(self.fd)
 
     def close(self) -> None:
+        """Close the file and release its lock."""
         os.close(self.fd)
         self.lock.release()

@@ -63,6 +63,15 @@ _NUMBER = re.compile(r"^\s*[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?\s*$")
 def field_param(dotted: str) -> Param | None:
     """The :class:`~tefcore.settings.Param` of a dotted field (None for ``name``/``description``).
 
+    Parameters
+    ----------
+    dotted : str
+        A dotted field name, e.g. ``"flap.overhang"``.
+
+    Returns
+    -------
+    tefcore.settings.Param or None
+
     Raises
     ------
     ValueError
@@ -139,6 +148,16 @@ def _value_of_text(dotted: str, text: str):
 def parse_overrides(items: Iterable[str]) -> dict:
     """``["name=value", ...]`` from ``--set`` -> ``{dotted: value}`` (rule above).
 
+    Parameters
+    ----------
+    items : iterable of str
+        ``"name=value"`` items.
+
+    Returns
+    -------
+    dict of str to str
+        Dotted field -> value text (converted when the configuration takes it).
+
     Raises
     ------
     ValueError
@@ -179,6 +198,20 @@ def sweep_values(parameter: str, values: Sequence[str] | None = None,
     strings, or text (string fields).  ``--range`` takes START and STOP as
     numbers or as quantities with units; with one unit on both the values
     are ``"value unit"`` strings in that unit, otherwise numbers in SI.
+
+    Parameters
+    ----------
+    parameter : str
+        The swept dotted field.
+    values : sequence of str, optional
+        The ``--values`` items.
+    range_ : sequence of str, optional
+        ``(START, STOP, NUM)`` of ``--range``.
+
+    Returns
+    -------
+    list
+        Numbers or ``"value unit"`` strings, as :func:`tefcore.sweep.sweep` takes them.
 
     Raises
     ------

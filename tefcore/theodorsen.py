@@ -85,6 +85,18 @@ def t_functions(c, a=0.0) -> dict[str, np.ndarray]:
     >>> t = t_functions(-1 + 1e-12)        # hinge at the leading edge: whole airfoil
     >>> round(float(t["T10"]), 6), round(float(t["T4"]), 6)
     (3.141593, -3.141593)
+
+    Parameters
+    ----------
+    c : float or array_like
+        Flap hinge, semichords from mid-chord (aft positive), ``-1 < c < 1``.
+    a : float or array_like, optional
+        Pitch axis, semichords from mid-chord.
+
+    Returns
+    -------
+    dict
+        ``"T1"`` ... ``"T14"`` (no T6), broadcast arrays.
     """
     c = _hinge(c)
     a = np.asarray(a, dtype=float)
@@ -140,9 +152,29 @@ def quasi_steady_loads(*, alpha, alpha_dot, alpha_ddot, h, h_dot, h_ddot, beta, 
     plunge stiffness in potential flow); it is accepted for completeness.
     ``P_flap`` is derived in section 3.4 of the theory (not in NACA 496).
 
+    Parameters
+    ----------
+    alpha, alpha_dot, alpha_ddot : float or array_like
+        Pitch angle, nose up [rad], and its time derivatives.
+    h, h_dot, h_ddot : float or array_like
+        Plunge, positive down [m], and its time derivatives.
+    beta, beta_dot, beta_ddot : float or array_like
+        Flap angle, trailing edge down [rad], and its time derivatives.
+    U : float or array_like
+        Airspeed [m/s].
+    b : float
+        Semichord [m].
+    rho : float
+        Air density [kg/m^3].
+    a : float
+        Pitch axis, semichords from mid-chord (aft positive).
+    c : float
+        Flap hinge, semichords from mid-chord, ``-1 < c < 1``.
+
     Returns
     -------
-    dict with ``'P', 'M_alpha', 'M_beta', 'P_flap'`` (broadcast arrays).
+    dict
+        ``'P', 'M_alpha', 'M_beta', 'P_flap'`` (broadcast arrays).
     """
     del h  # translation invariance: the loads do not depend on h itself
     t = t_functions(c, a)
@@ -193,6 +225,23 @@ def motion_to_theodorsen(*, alpha, alpha_rate, alpha_accel, plunge_rate, plunge_
     >>> motion_to_theodorsen(alpha=0.1, alpha_rate=0, alpha_accel=0, plunge_rate=2.0,
     ...                      plunge_accel=0, delta=0, delta_rate=0, delta_accel=0)["h_dot"]
     -2.0
+
+    Parameters
+    ----------
+    alpha, alpha_rate, alpha_accel : float or array_like
+        Angle of attack, nose up [rad], and its time derivatives.
+    plunge_rate, plunge_accel : float or array_like
+        Plunge velocity [m/s] and acceleration [m/s^2], positive up.
+    delta, delta_rate, delta_accel : float or array_like
+        Flap deflection, trailing edge down [rad], and its time derivatives.
+    plunge : float or array_like, optional
+        Plunge displacement [m], positive up (enters no load).
+
+    Returns
+    -------
+    dict
+        ``alpha, alpha_dot, alpha_ddot, h, h_dot, h_ddot, beta, beta_dot,
+        beta_ddot``.
     """
     return {"alpha": alpha, "alpha_dot": alpha_rate, "alpha_ddot": alpha_accel,
             "h": -plunge, "h_dot": -plunge_rate, "h_ddot": -plunge_accel,
@@ -204,6 +253,16 @@ def loads_to_tefcore(loads: dict) -> dict:
 
     ``lift = -P``, ``flap_lift = -P_flap``; ``moment = M_alpha`` (nose up in
     both) and ``hinge_moment = M_beta`` (trailing edge down in both).
+
+    Parameters
+    ----------
+    loads : dict
+        ``P, M_alpha, M_beta, P_flap`` of :func:`quasi_steady_loads`.
+
+    Returns
+    -------
+    dict
+        ``lift, moment, hinge_moment, flap_lift`` in tefcore's signs.
     """
     return {"lift": -loads["P"], "moment": loads["M_alpha"],
             "hinge_moment": loads["M_beta"], "flap_lift": -loads["P_flap"]}
@@ -248,6 +307,22 @@ def kutta_circulation(w, *, b=1.0, breaks=()) -> float:
     tanh-sinh quadrature split at ``breaks`` (discontinuities of ``w``).
     ``w`` is a vectorised callable of ``x`` in semichords, positive UP
     (tefcore); ``Gamma > 0`` is clockwise (lift up).
+
+    Parameters
+    ----------
+    w : callable
+        Upwash ``w(x)`` [m/s], vectorised, ``x`` in semichords from mid-chord
+        (aft positive), positive up.
+    b : float, optional
+        Semichord [m].
+    breaks : sequence of float, optional
+        Stations (semichords) where ``w`` or its derivative jumps (the flap
+        hinge): the quadrature is split there.
+
+    Returns
+    -------
+    float
+        Gamma [m^2/s].
     """
     left, _, wgt = _TS
     total = 0.0
@@ -266,6 +341,24 @@ def apparent_mass_potential(w, x, *, b=1.0, breaks=()) -> np.ndarray:
     sin t dt`` with ``x = -cos theta``.  Evaluated by tanh-sinh quadrature on
     segments split at ``theta`` (log singularity) and at ``breaks``.  For
     ``w = 1``, ``dphi = -2 b sqrt(1 - x^2)``.
+
+    Parameters
+    ----------
+    w : callable
+        Upwash ``w(x)`` [m/s], vectorised, ``x`` in semichords from mid-chord
+        (aft positive), positive up.
+    x : float or array_like
+        Stations (semichords) to evaluate at.
+    b : float, optional
+        Semichord [m].
+    breaks : sequence of float, optional
+        Stations (semichords) where ``w`` or its derivative jumps (the flap
+        hinge): the quadrature is split there.
+
+    Returns
+    -------
+    numpy.ndarray
+        The potential jump at ``x`` [m^2/s].
     """
     left, right, wgt = _TS
     x = np.atleast_1d(np.asarray(x, dtype=float))

@@ -1,45 +1,23 @@
 """Mode tracking along a parameter: one curve is one physical mode, or says it is not sure.
 
-An eigen-solver returns the modes of each sweep point in its own order
-(usually by frequency), so where two modes cross in frequency, "mode 3" at
-one point is "mode 4" at the next.  :func:`track_modes` orders them into
-continuous tracks by matching the modes of consecutive points (in the order
-of the parameter, whatever order they were computed in) with an optimal
-assignment (:func:`scipy.optimize.linear_sum_assignment`) on the cost
-
-.. math::
-
-    C_{ij} = (1 - \\text{MAC}_{ij}) + \\min\\Big(1, \\sqrt{
-        \\Big(\\frac{\\Delta\\sigma}{1/2 + (|\\hat\\sigma_i| + |\\sigma_j|)/2}\\Big)^2
-      + \\Big(\\frac{\\Delta\\omega}{s_\\omega}\\Big)^2}\\Big),
-    \\qquad s_\\omega = 1 + (|\\hat\\omega_i| + |\\omega_j|)/2
-
-between track *i* (its last shape and its eigenvalue
-:math:`\\hat\\lambda_i = \\hat\\sigma_i + i\\hat\\omega_i` extrapolated linearly
-to the new parameter value) and mode *j* of the new point, with eigenvalues
-:math:`\\lambda = \\text{real\\_part} + i\\,\\text{frequency\\_per\\_rev}` in
-/rev: damping-rate and frequency differences each relative to their own
-size (a damping-rate difference of 0.7 /rev between two roots near 8 and
-14 /rev is large, though small against the frequencies).  For Floquet
-exponents (``periodic`` points) the frequency difference is taken modulo
-1/rev and up to its sign, since only the multiplier
-:math:`e^{2\\pi\\lambda}` is unique, and measured against its largest
-possible value, :math:`s_\\omega = 1/2` (two Floquet modes near 10.5 and
-3.2 /rev can have one displacement shape at psi = 0; their frequencies
-differ by 0.3 modulo 1, which is what tells them apart).  The shapes are
-compared in a basis that does not change along the sweep
-(:meth:`tefcore.coupled.CoupledModel.tracking_basis`).
+:func:`track_modes` orders the modes of successive sweep points into
+continuous tracks, matching the modes of consecutive points (in the order of
+the parameter, whatever order they were computed in) by the cost of
+:mod:`tefcore.mode_matching` (MAC and eigenvalue distance), each track's
+eigenvalue extrapolated linearly to the new parameter value.
 
 **Identity is decided, or flagged.**  A match is *clear* when its shape part
-``1 - MAC`` is at most :data:`CLEAR_COST` (the eigenvalue part alone when no
-shapes are known) and every alternative -- another mode for the track, or
-another track for the mode -- costs at least :data:`MARGIN` more.
+``1 - MAC`` is at most :data:`~tefcore.mode_matching.CLEAR_COST` (the
+eigenvalue part alone when no shapes are known) and every alternative --
+another mode for the track, or another track for the mode -- costs at least
+:data:`~tefcore.mode_matching.MARGIN` more.
 Otherwise the row's ``identity`` is ``"ambiguous"``; :func:`tefcore.sweep.sweep`
 then refines the parameter step between the two points (bisection, bounded)
 and tracks again.  Where two roots have the same shape and eigenvalue
-(MAC >= :data:`COALESCED_MAC`, :func:`relative_distance` within
-:data:`COALESCED_DISTANCE`), or are the two real multipliers of one locked
-pair (equal frequency at a multiple of 1/2 per rev), no refinement can
+(MAC >= :data:`~tefcore.mode_matching.COALESCED_MAC`,
+:func:`~tefcore.mode_matching.relative_distance` within
+:data:`~tefcore.mode_matching.COALESCED_DISTANCE`), or are the two real
+multipliers of one locked pair (equal frequency at a multiple of 1/2 per rev), no refinement can
 separate them: a coalescence, and the identity is ``"coalescence"``; the
 track then goes on with the less stable root of the pair (the one that
 matters for stability), by convention -- the table says where.
@@ -77,285 +55,32 @@ b [2.0, 1.6, 1.2] ['start', 'clear', 'clear']
 
 from __future__ import annotations
 
-from collections.abc import Callable, Mapping, Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 
 import numpy as np
 import pandas as pd
 from scipy.optimize import linear_sum_assignment
 
-__all__ = ["CLEAR_COST", "COALESCED_DISTANCE", "EXCHANGE_MAC", "COALESCED_MAC", "MARGIN",
-           "FollowResult",
-           "ambiguous_steps", "eigen_distance", "follow_root", "label_changes", "mac",
-           "relative_distance",
-           "match_cost", "match_modes", "track_modes"]
+from .mode_matching import (
+    as_point,
+    decide,
+    eigenvalues,
+    is_clear,
+    is_coalesced,
+    mac,
+    match_cost,
+)
 
-#: Columns every modes table must have.
-MODE_COLUMNS = ("mode_id", "label", "frequency_per_rev", "real_part")
+__all__ = ["EXCHANGE_MAC", "FollowResult", "ambiguous_steps", "follow_root", "label_changes",
+           "track_modes"]
 
-#: Largest shape cost ``1 - MAC`` of a clear match: shapes sharing at least
-#: half their (kinematic) norm -- a mode whose shape changed more than that in
-#: one step has not been resolved by the step.  (The eigenvalue part is not
-#: held to it: a flap mode at 18 /rev moves 0.25 /rev in a 0.01 c_f step of
-#: the CG offset, half the range a Floquet frequency is known in, with its
-#: shape unchanged, MAC 1.0 -- measured.)
-CLEAR_COST = 0.5
-#: Smallest lead of a clear match over every alternative.  0.25 is a MAC
-#: difference of a quarter (or an eigenvalue distance of a quarter of the
-#: scale): a lead that round-off or a smooth change over one step does not
-#: overturn; two candidates closer than that are a coin toss and refined.
-MARGIN = 0.25
 #: Two tracks passing close in one step are a possible veering when one's new
 #: shape carries at least this share of the other's old shape (MAC): a veering
 #: exchanges the shapes (sin^2 of the turn, 0.13 over a step that spans the
 #: veering of a 2 x 2 family), modes crossing without coupling keep theirs
 #: (MAC between distinct MDART modes below 0.05, measured).
 EXCHANGE_MAC = 0.1
-#: Two roots of one point with a MAC above this ...
-COALESCED_MAC = 0.9
-#: ... and a :func:`relative_distance` below this are one coalesced pair.
-COALESCED_DISTANCE = 0.05
-
-
-def mac(phi_a, phi_b) -> np.ndarray:
-    """Modal assurance criterion between the columns of two (complex) mode sets.
-
-    ``MAC[i, j] = |phi_a[:, i]^H phi_b[:, j]|^2 / ((phi_a_i^H phi_a_i)(phi_b_j^H phi_b_j))``,
-    which is 1 for parallel vectors (whatever their complex scaling) and 0
-    for orthogonal ones.
-
-    Parameters
-    ----------
-    phi_a : array_like, shape (n,) or (n, p)
-    phi_b : array_like, shape (n,) or (n, q)
-
-    Returns
-    -------
-    ndarray, shape (p, q)
-        (A 1-D input counts as one column.)
-
-    Raises
-    ------
-    ValueError
-        Different vector lengths, or a zero (or non-finite) vector.
-
-    Examples
-    --------
-    >>> import numpy as np
-    >>> a = np.array([[1, 0], [1j, 1], [0, 0]])
-    >>> mac(a, a * (2 - 3j)).round(3)
-    array([[1. , 0.5],
-           [0.5, 1. ]])
-    """
-    a = np.asarray(phi_a)
-    b = np.asarray(phi_b)
-    a = a[:, None] if a.ndim == 1 else a
-    b = b[:, None] if b.ndim == 1 else b
-    if a.ndim != 2 or b.ndim != 2:
-        raise ValueError(f"mode sets must be 1-D or 2-D, got shapes {a.shape} and {b.shape}")
-    if a.shape[0] != b.shape[0]:
-        raise ValueError(f"mode vectors differ in length: {a.shape[0]} and {b.shape[0]}")
-    na = np.einsum("ij,ij->j", a.conj(), a).real
-    nb = np.einsum("ij,ij->j", b.conj(), b).real
-    for name, norms in (("phi_a", na), ("phi_b", nb)):
-        bad = ~(np.isfinite(norms) & (norms > 0))
-        if bad.any():
-            raise ValueError(f"{name} column(s) {np.flatnonzero(bad).tolist()} are zero or "
-                             "non-finite: MAC undefined")
-    cross = a.conj().T @ b
-    return np.abs(cross) ** 2 / np.outer(na, nb)
-
-
-def eigen_distance(a, b, periodic: bool = False) -> np.ndarray:
-    """Distances [1/rev] between eigenvalues ``a`` (p,) and ``b`` (q,), shape (p, q).
-
-    ``periodic``: Floquet exponents, whose frequency is defined modulo
-    1/rev and (for a real system, whose roots come in conjugate pairs) up to
-    its sign; the distance is then the smallest over those.
-
-    Examples
-    --------
-    >>> float(eigen_distance([-0.1 + 2.9j], [-0.1 + 0.7j])[0, 0])
-    2.2
-    >>> round(float(eigen_distance([-0.1 + 2.9j], [-0.1 + 0.7j], periodic=True)[0, 0]), 12)
-    0.2
-    >>> float(eigen_distance([-0.1 + 2.9j], [-0.1 + 0.1j], periodic=True)[0, 0])  # conjugate
-    0.0
-    """
-    a = np.atleast_1d(np.asarray(a, complex))
-    b = np.atleast_1d(np.asarray(b, complex))
-    return np.hypot(a.real[:, None] - b.real[None, :], _frequency_gap(a, b, periodic))
-
-
-def _frequency_gap(a, b, periodic):
-    """|frequency difference| (p, q), modulo 1/rev and sign when periodic."""
-    d = np.abs(a.imag[:, None] - b.imag[None, :])
-    if not periodic:
-        return d
-
-    def circ(x):
-        return np.abs((x + 0.5) % 1.0 - 0.5)
-
-    return np.minimum(circ(d), circ(a.imag[:, None] + b.imag[None, :]))
-
-
-def relative_distance(a, b, periodic: bool = False) -> np.ndarray:
-    """Eigenvalue distance of :func:`match_cost`: damping-rate and frequency gaps
-    each relative to their size, combined (p, q).
-
-    Examples
-    --------
-    >>> round(float(relative_distance([-0.2 + 8j], [-0.9 + 14.2j], periodic=True)[0, 0]), 3)
-    0.777
-    """
-    a = np.atleast_1d(np.asarray(a, complex))
-    b = np.atleast_1d(np.asarray(b, complex))
-    ds = np.abs(a.real[:, None] - b.real[None, :])
-    ss = 0.5 + 0.5 * (np.abs(a.real)[:, None] + np.abs(b.real)[None, :])
-    # a Floquet frequency is known modulo 1/rev: its gap lies in [0, 1/2]
-    # whatever the frequencies, so it is measured against that range
-    sw = 0.5 if periodic else 1.0 + 0.5 * (np.abs(a.imag)[:, None] + np.abs(b.imag)[None, :])
-    return np.hypot(ds / ss, _frequency_gap(a, b, periodic) / sw)
-
-
-def match_cost(pred, prev_vecs, eig, vecs, periodic: bool = False, *,
-               shape_part: bool = False):
-    """Assignment cost between tracks (rows) and the modes of a new point (columns).
-
-    ``(1 - MAC)`` where both shapes are known and of one length (else 0) plus
-    the :func:`relative_distance` of the eigenvalues, capped at 1.  With
-    ``shape_part``, also the ``1 - MAC`` part alone (NaN where no shapes).
-
-    Parameters
-    ----------
-    pred : array_like of complex, shape (p,)
-        Eigenvalues expected for the tracks at the new point.
-    prev_vecs : sequence of ndarray or None, length p
-        The tracks' last shapes.
-    eig : array_like of complex, shape (q,)
-    vecs : ndarray, shape (d, q), or None
-    periodic : bool
-        Floquet exponents (see :func:`eigen_distance`).
-    """
-    pred = np.asarray(pred, complex)
-    eig = np.asarray(eig, complex)
-    cost = np.minimum(1.0, relative_distance(pred, eig, periodic))
-    shape = np.full(cost.shape, np.nan)
-    if vecs is not None:
-        for i, v in enumerate(prev_vecs):
-            if v is not None and v.shape[0] == vecs.shape[0]:
-                shape[i] = 1.0 - mac(v, vecs)[0]
-                cost[i] += shape[i]
-    return (cost, shape) if shape_part else cost
-
-
-def _is_clear(best: float, shape: float, alt: float) -> bool:
-    """A match of total cost ``best`` (shape part ``shape``, NaN: unknown) with the
-    best alternative at ``alt``: clear or not."""
-    own = best if np.isnan(shape) else shape
-    return bool(own <= CLEAR_COST and alt - best >= MARGIN)
-
-
-def _decide(cost, rows, cols, shape=None):
-    """Per assigned pair: clear (bool) and the best alternative's column."""
-    shape = np.full(cost.shape, np.nan) if shape is None else shape
-    clear, rival = [], []
-    for r, c in zip(rows, cols, strict=True):
-        best = cost[r, c]
-        row_alt = np.delete(cost[r], c)
-        col_alt = np.delete(cost[:, c], r)
-        alt = min(row_alt.min(initial=np.inf), col_alt.min(initial=np.inf))
-        clear.append(_is_clear(best, shape[r, c], alt))
-        others = [j for j in range(cost.shape[1]) if j != c]
-        rival.append(min(others, key=lambda j: cost[r, j]) if others else -1)
-    return clear, rival
-
-
-def _coalesced(eig, vecs, j, k, periodic) -> bool:
-    """Roots ``j`` and ``k`` of one point are one coalesced pair.
-
-    Either (nearly) one shape and eigenvalue -- an exceptional point -- or,
-    for Floquet exponents, the two real multipliers of one locked pair
-    (equal frequency, a multiple of 1/2 per rev): their identities are two
-    halves of one mode, which no finer step separates.
-    """
-    if k < 0:
-        return False
-    if periodic and abs(eig[j].imag - eig[k].imag) <= 1e-6 and abs(
-            2 * eig[j].imag - round(2 * eig[j].imag)) <= 1e-6:
-        return True
-    if vecs is None:        # without shapes two near roots may as well be two modes
-        return False
-    d = relative_distance(eig[[j]], eig[[k]], periodic)[0, 0]
-    return bool(mac(vecs[:, j], vecs[:, k])[0, 0] >= COALESCED_MAC and d <= COALESCED_DISTANCE)
-
-
-def match_modes(prev, curr, *, predicted=None, periodic: bool | None = None) -> np.ndarray:
-    """Which mode of `curr` continues each mode of `prev`.
-
-    Parameters
-    ----------
-    prev, curr
-        Points: a result object with ``modes`` (DataFrame) and ``vectors``
-        (or ``eigenvectors``) attributes, a ``(modes, vectors)`` tuple, a
-        mapping with those keys, or a bare modes DataFrame (no vectors).
-    predicted : array_like of complex, optional
-        Eigenvalues of `prev` extrapolated to `curr` (default: as in `prev`).
-    periodic : bool, optional
-        Floquet exponents (default: either point says so).
-
-    Returns
-    -------
-    ndarray of int, one per row of ``prev.modes``
-        Row index in ``curr.modes``, or -1 when `curr` has fewer modes and
-        this one is left unmatched.
-    """
-    pm, pv, pp = _as_point(prev)
-    cm, cv, cp = _as_point(curr)
-    periodic = (pp or cp) if periodic is None else periodic
-    pred = _eig(pm) if predicted is None else np.asarray(predicted, complex)
-    vecs_prev = [None if pv is None else pv[:, i] for i in range(len(pm))]
-    cost = match_cost(pred, vecs_prev, _eig(cm), cv, periodic)
-    rows, cols = linear_sum_assignment(cost)
-    out = np.full(len(pm), -1)
-    out[rows] = cols
-    return out
-
-
-def _eig(modes: pd.DataFrame) -> np.ndarray:
-    return modes["real_part"].to_numpy(float) + 1j * modes["frequency_per_rev"].to_numpy(float)
-
-
-def _as_point(p):
-    """Normalise a point to (modes DataFrame, vectors ndarray or None, periodic)."""
-    periodic = False
-    if isinstance(p, pd.DataFrame):
-        modes, vecs = p, None
-    elif isinstance(p, Mapping):
-        modes = p["modes"]
-        vecs = p.get("vectors", p.get("eigenvectors"))
-        periodic = bool(p.get("periodic", False))
-    elif isinstance(p, tuple) and len(p) in (2, 3):
-        modes, vecs = p[0], p[1]
-        periodic = bool(p[2]) if len(p) == 3 else False
-    elif hasattr(p, "modes"):
-        modes = p.modes
-        vecs = getattr(p, "vectors", None)
-        if vecs is None:
-            vecs = getattr(p, "eigenvectors", None)
-        periodic = bool(getattr(p, "periodic", False))
-    else:
-        raise TypeError(f"cannot read modes from {type(p).__name__}")
-    missing = [c for c in MODE_COLUMNS if c not in modes.columns]
-    if missing:
-        raise ValueError(f"modes table lacks column(s) {missing}")
-    modes = modes.reset_index(drop=True)
-    if vecs is not None:
-        vecs = np.asarray(vecs)
-        if vecs.ndim != 2 or vecs.shape[1] != len(modes):
-            raise ValueError(f"vectors of shape {vecs.shape} do not match "
-                             f"{len(modes)} modes (one column per mode)")
-    return modes, vecs, periodic
 
 
 @dataclass
@@ -415,9 +140,9 @@ def track_modes(points: Sequence, values=None, *, predict: bool = True) -> pd.Da
         the track's: the solver's ``frequency_per_rev`` takes the dominant
         harmonic of the mode's shape, which can jump between points where
         several harmonics are strong; in hover the two are equal) and the
-        remaining columns of the modes tables.  Sorted by step, track.  A pure
-        function of the points and
-        values: the same data give the same table.
+        remaining columns of the modes tables.  Sorted by step, track.  A
+        pure function of the points and values: the same data give the same
+        table.
     """
     if values is None:
         values = np.arange(len(points), dtype=float)
@@ -431,12 +156,12 @@ def track_modes(points: Sequence, values=None, *, predict: bool = True) -> pd.Da
     for step, (p, x) in enumerate(zip(points, values, strict=True)):
         if p is None:
             continue
-        modes, vecs, periodic = _as_point(p)
+        modes, vecs, periodic = as_point(p)
         try:
             x = float(x)
         except (TypeError, ValueError):
             x = float(step)
-        eig = _eig(modes)
+        eig = eigenvalues(modes)
         col_vec = [None if vecs is None else vecs[:, j] for j in range(len(modes))]
         assigned = np.full(len(modes), -1)
         identity = np.full(len(modes), "start", dtype=object)
@@ -445,13 +170,13 @@ def track_modes(points: Sequence, values=None, *, predict: bool = True) -> pd.Da
             cost, shape = match_cost(pred, [tracks[t].vec for t in alive], eig, vecs,
                                      periodic or prev_periodic, shape_part=True)
             rows, cols = linear_sum_assignment(cost)
-            clear, rival = _decide(cost, rows, cols, shape)
+            clear, rival = decide(cost, rows, cols, shape)
             partner = {}
             for r, c, ok, k in zip(rows, cols, clear, rival, strict=True):
                 assigned[c] = alive[r]
                 if ok:
                     identity[c] = "clear"
-                elif _coalesced(eig, vecs, c, k, periodic or prev_periodic):
+                elif is_coalesced(eig, vecs, c, k, periodic or prev_periodic):
                     identity[c] = "coalescence"
                     partner[c] = k
                 else:
@@ -558,6 +283,18 @@ def ambiguous_steps(tracked: pd.DataFrame, kinds=("ambiguous",)) -> list[int]:
 
     The match into such a step from the previous point was not clear: the
     interval before it is where a finer parameter step is needed.
+
+    Parameters
+    ----------
+    tracked : pandas.DataFrame
+        A :func:`track_modes` table.
+    kinds : tuple of str, optional
+        The ``identity`` values that count as undecided.
+
+    Returns
+    -------
+    list of int
+        The ``step`` values, sorted.
     """
     bad = tracked[tracked["identity"].isin(kinds)]
     return sorted(int(s) for s in bad["step"].unique())
@@ -638,6 +375,7 @@ def follow_root(solve: Callable, start: float, stop: float, root: int, *,
         ``solve(s) -> (eigenvalues (m,), vectors (d, m))``: all roots at
         parameter ``s``.
     start, stop : float
+        The parameter range.
     root : int
         Index of the root at `start`.
     periodic : bool
@@ -646,6 +384,8 @@ def follow_root(solve: Callable, start: float, stop: float, root: int, *,
         Initial equal steps.
     first : tuple, optional
         ``solve(start)`` if already computed.
+    max_halvings : int
+        Halvings of a step allowed before an unclear match is accepted.
 
     Returns
     -------
@@ -683,7 +423,7 @@ def follow_root(solve: Callable, start: float, stop: float, root: int, *,
                                  periodic, shape_part=True)
         j = int(np.argmin(cost[0]))
         alt = np.delete(cost[0], j).min(initial=np.inf)
-        ok = _is_clear(cost[0, j], shape[0, j], alt)
+        ok = is_clear(cost[0, j], shape[0, j], alt)
         if not ok and abs(step) > min_h * (1 + 1e-12):
             h = step / 2
             continue

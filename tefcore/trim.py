@@ -30,11 +30,23 @@ from .coupled import Controls, CoupledModel, jacobian_blocks
 from .errors import TefcoreError
 from .flap_dynamics import spectral_derivative
 from .inflow import Inflow, drees_gradients, momentum_inflow
+from .runtime import blas_limit
+
+__all__ = ["MAX_FLAP_DEFLECTION_DEG", "TrimError", "TrimResult", "fourier_coefficients",
+           "fourier_eval", "initial_collective", "trim"]
 
 
 class TrimError(TefcoreError, RuntimeError):
     """The trim did not converge, or converged to a state beyond the model (a flap
-    diverged statically); ``history`` holds the residual per iteration."""
+    diverged statically); ``history`` holds the residual per iteration.
+
+    Parameters
+    ----------
+    message : str
+        What went wrong.
+    history : list of dict, optional
+        The residual of each Newton iteration.
+    """
 
     def __init__(self, message: str, history: list[dict] | None = None):
         super().__init__(message)
@@ -42,7 +54,21 @@ class TrimError(TefcoreError, RuntimeError):
 
 
 def fourier_coefficients(samples: np.ndarray) -> np.ndarray:
-    """Complex Fourier coefficients (last axis = equally spaced azimuths)."""
+    """Complex Fourier coefficients (last axis = equally spaced azimuths).
+
+    Parameters
+    ----------
+    samples : numpy.ndarray
+        Periodic samples; the last axis is ``N`` equally spaced azimuths
+        from 0.
+
+    Returns
+    -------
+    numpy.ndarray
+        ``numpy.fft.rfft(samples) / N``: the coefficients ``c_k``, k = 0 .. N/2,
+        of ``x(psi) = c_0 + 2 Re sum_k c_k exp(i k psi)`` (below the Nyquist
+        term).
+    """
     return np.fft.rfft(samples, axis=-1) / samples.shape[-1]
 
 
@@ -52,6 +78,20 @@ def fourier_eval(samples: np.ndarray, psi, derivative: int = 0) -> np.ndarray:
     Exact for trigonometric polynomials of degree below ``N/2``; the Nyquist
     term is kept as a cosine in the value and dropped from derivatives (as in
     :func:`tefcore.flap_dynamics.spectral_derivative`).
+
+    Parameters
+    ----------
+    samples : numpy.ndarray
+        Periodic samples; the last axis is ``N`` equally spaced azimuths from 0.
+    psi : array_like
+        Azimuths to evaluate at [rad].
+    derivative : int, optional
+        Order of the psi-derivative.
+
+    Returns
+    -------
+    numpy.ndarray
+        Shape ``samples.shape[:-1] + (len(psi),)``.
 
     Examples
     --------
@@ -81,7 +121,28 @@ def _fourier_series(samples, psi, derivatives):
 
 @dataclass
 class TrimResult:
-    """Converged trim: controls, inflow and the periodic response."""
+    """Converged trim: controls, inflow and the periodic response.
+
+    Attributes
+    ----------
+    model : tefcore.coupled.CoupledModel
+        The model trimmed.
+    psi : numpy.ndarray
+        Collocation azimuths [rad].
+    q : numpy.ndarray
+        Periodic response, ``(n_dof, len(psi))`` (modal coordinates, then the
+        flap deflection [rad]).
+    controls : tefcore.coupled.Controls
+        Trimmed pitch controls.
+    inflow : tefcore.inflow.Inflow
+        Trimmed inflow.
+    ct_sigma : float
+        Thrust coefficient over solidity reached.
+    history : list
+        Residual per Newton iteration.
+    jacobian : numpy.ndarray or None
+        Jacobian of the trim equations at the solution.
+    """
 
     model: CoupledModel
     psi: np.ndarray
@@ -124,7 +185,17 @@ def initial_collective(cfg) -> float:
     """First estimate of the collective [rad]: the prescribed one, or blade
     element momentum theory for a linearly twisted blade,
     ``C_T/sigma = a/6 [theta_75 (1 + 3/2 mu^2) - 3/2 lambda]`` with momentum
-    inflow (Johnson, *Helicopter Theory*, ch. 5)."""
+    inflow (Johnson, *Helicopter Theory*, ch. 5).
+
+    Parameters
+    ----------
+    cfg : tefcore.config.Config
+        The rotor configuration.
+
+    Returns
+    -------
+    float
+    """
     f = cfg.flight
     if f.collective is not None:
         return float(f.collective)
@@ -136,6 +207,7 @@ def initial_collective(cfg) -> float:
     return float((6 * f.ct_sigma / cfg.rotor.lift_slope + 1.5 * lam) / (1 + 1.5 * mu2))
 
 
+@blas_limit()
 def trim(model: CoupledModel, *, tol: float = 1e-10, max_iter: int = 40,
          initial: TrimResult | None = None) -> TrimResult:
     """Trim the coupled model (wind-tunnel trim in forward flight).
@@ -143,10 +215,12 @@ def trim(model: CoupledModel, *, tol: float = 1e-10, max_iter: int = 40,
     Parameters
     ----------
     model : CoupledModel
+        The coupled model (:func:`tefcore.coupled.coupled_model`).
     tol : float
         Convergence on the largest residual (rotor units) and the largest
         Newton update.
     max_iter : int
+        Newton iterations allowed.
     initial : TrimResult, optional
         Warm start (e.g. the previous point of a sweep).
 

@@ -234,6 +234,15 @@ def resolve_dimension(dimension: str | Sequence[int]) -> Dims:
 def format_dims(dims: Sequence[int]) -> str:
     """Format a dimension vector, e.g. ``M L^2 T^-1``; ``1`` if dimensionless.
 
+    Parameters
+    ----------
+    dims : sequence of int
+        Exponents of (M, L, T, angle).
+
+    Returns
+    -------
+    str
+
     Examples
     --------
     >>> format_dims((1, 2, -1))
@@ -245,6 +254,15 @@ def format_dims(dims: Sequence[int]) -> str:
 
 def dimension_name(dims: Sequence[int]) -> str:
     """Describe a dimension vector by its exponents and any matching names.
+
+    Parameters
+    ----------
+    dims : sequence of int
+        Exponents of (M, L, T, angle).
+
+    Returns
+    -------
+    str
 
     Examples
     --------

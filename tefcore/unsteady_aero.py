@@ -85,6 +85,15 @@ def theodorsen_function(k) -> np.ndarray:
     ``H_n = H_n^(2)`` are Hankel functions of the second kind (``scipy.special.hankel2``),
     ``k = omega b / U >= 0`` the reduced frequency; ``C(0) = 1`` (the limit).
 
+    Parameters
+    ----------
+    k : float or array_like
+        Reduced frequency ``omega b / U >= 0``.
+
+    Returns
+    -------
+    numpy.ndarray of complex
+
     References
     ----------
     Theodorsen, T., "General theory of aerodynamic instability and the mechanism
@@ -116,6 +125,15 @@ def wagner_function(s) -> np.ndarray:
     value): ``phi(0) = 1/2``, ``phi -> 1``.  Adaptive quadrature
     (``scipy.integrate.quad``, a cosine-weighted Fourier integral on the tail);
     about 1e-7 absolute.
+
+    Parameters
+    ----------
+    s : float or array_like
+        Reduced time ``U t / b >= 0``.
+
+    Returns
+    -------
+    numpy.ndarray
 
     References
     ----------
@@ -350,6 +368,19 @@ class SectionMatrices:
     ``F = (U/b) I``.  The rows of ``(Mx, Cx, Kx)`` for ``(L, M, H)`` are the
     generalised forces of ``(h, alpha, delta)``: ``-Mx[[0, 1, 3]]`` is the
     apparent-mass matrix, symmetric positive definite.
+
+    Attributes
+    ----------
+    Mx, Cx, Kx : numpy.ndarray
+        Load per motion acceleration, rate and displacement, ``(4, 3)``.
+    D : numpy.ndarray
+        Load per wake state, ``(4, N)``.
+    E, F : numpy.ndarray
+        Wake-state equations, ``(N, N)``.
+    cvec : numpy.ndarray
+        Input vector of the wake states, ``(N,)``.
+    q0, q1 : numpy.ndarray
+        The circulatory downwash ``Q`` per motion and per motion rate, ``(3,)``.
     """
 
     Mx: np.ndarray

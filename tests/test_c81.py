@@ -18,15 +18,15 @@ from tefcore.c81 import (
     C81FormatError,
     C81RangeError,
     C81RangeWarning,
-    _coefficient_text,
     example_deck_path,
     format_c81,
     generate_flap_deck,
-    main,
     parse_c81,
     read_c81,
     write_c81,
 )
+from tefcore.c81_format import coefficient_text
+from tefcore.cli import main as tefcore_main
 
 HAVE_FLAP_AERO = importlib.util.find_spec("tefcore.flap_aero") is not None
 needs_flap_aero = pytest.mark.skipif(
@@ -114,7 +114,7 @@ DELTA      2.0
 def print_tol(x):
     """Half the last printed digit of each written coefficient (plus a few ulp
     for the decimal -> binary conversion)."""
-    d = np.vectorize(lambda v: _coefficient_text(v)[1])(x)
+    d = np.vectorize(lambda v: coefficient_text(v)[1])(x)
     return 0.5 * 10.0 ** (-d) + 1e-12
 
 
@@ -300,19 +300,19 @@ def test_header_false_writes_a_standard_deck():
 
 @given(st.floats(min_value=-9999.0, max_value=99999.0, allow_nan=False))
 def test_coefficient_text_fits_and_is_within_half_a_digit(x):
-    s, d = _coefficient_text(x)
+    s, d = coefficient_text(x)
     assert len(s) <= 6  # leaves a separating blank in the 7-column field
     assert abs(float(s) - x) <= 0.5 * 10.0 ** (-d) * (1 + 1e-9) + 1e-12
-    assert _coefficient_text(float(s))[0] == s  # writing what was read is stable
+    assert coefficient_text(float(s))[0] == s  # writing what was read is stable
 
 
 def test_coefficient_precision_is_as_documented():
     # docs/c81_format.md section 6
-    assert _coefficient_text(0.123456) == (".12346", 5)
-    assert _coefficient_text(-0.123456) == ("-.1235", 4)
-    assert _coefficient_text(1.23456) == ("1.2346", 4)
-    assert _coefficient_text(-1.23456) == ("-1.235", 3)
-    assert _coefficient_text(-1e-7)[0] == "0.0"
+    assert coefficient_text(0.123456) == (".12346", 5)
+    assert coefficient_text(-0.123456) == ("-.1235", 4)
+    assert coefficient_text(1.23456) == ("1.2346", 4)
+    assert coefficient_text(-1.23456) == ("-1.235", 3)
+    assert coefficient_text(-1e-7)[0] == "0.0"
 
 
 def test_writer_rejects_long_names_and_counts():
@@ -697,9 +697,9 @@ def test_cli_check(tmp_path, capsys):
     good.write_text(TOY)
     bad = tmp_path / "bad.c81"
     bad.write_text(replace_line(TOY, 9, "    0.0   .008    x.3"))
-    assert main(["check", str(good)]) == 0
+    assert tefcore_main(["c81", "check", str(good)]) == 0
     assert "blade deck" in capsys.readouterr().out
-    assert main(["check", str(good), str(bad)]) == 1
+    assert tefcore_main(["c81", "check", str(good), str(bad)]) == 1
     assert "line 9, column 19" in capsys.readouterr().err
 
 
@@ -756,10 +756,10 @@ def test_example_deck_reproduces_the_model_at_table_points(thin_airfoil):
 
 @needs_flap_aero
 def test_example_deck_is_the_current_model(thin_airfoil, tmp_path):
-    # The shipped file is what `python -m tefcore.c81 example` writes today
+    # The shipped file is what `tefcore c81 example` writes today
     # (else: regenerate it).  Values may differ by one in the last digit at
     # rounding ties, so compare through the reader at print precision.
-    assert main(["example", "--out", str(tmp_path / "new.c81")]) == 0
+    assert tefcore_main(["c81", "example", "--out", str(tmp_path / "new.c81")]) == 0
     new, shipped = read_c81(tmp_path / "new.c81"), read_c81(EXAMPLE)
     assert new.header == shipped.header and new.name == shipped.name
     for c in COEFFICIENTS:

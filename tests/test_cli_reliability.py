@@ -11,7 +11,6 @@ from test_sweep import ToyPoint
 import tefcore.stability
 import tefcore.sweep
 from tefcore.c81 import example_deck_path
-from tefcore.c81_model import main as c81_main
 from tefcore.cli import main
 from tefcore.trim import TrimError
 
@@ -27,7 +26,7 @@ def one_error_line(capsys):
 def toy_default_point(monkeypatch):
     """`tefcore sweep` evaluates the synthetic point of test_sweep instead of stability."""
     point = ToyPoint()
-    monkeypatch.setattr(tefcore.sweep, "_default_point", lambda: point)
+    monkeypatch.setattr(tefcore.sweep, "default_point", lambda: point)
     return point
 
 
@@ -129,10 +128,10 @@ def test_c81_check_of_a_non_utf8_file_names_the_line(tmp_path, capsys):
     lines[14] = lines[14][:10] + b"\xb2" + lines[14][11:]    # latin-1 superscript two
     bad = tmp_path / "bad.c81"
     bad.write_bytes(b"\n".join(lines))
-    assert c81_main(["check", str(bad)]) == 1
+    assert main(["c81", "check", str(bad)]) == 1
     err = capsys.readouterr().err
     assert f"{bad} line 15, column 11: not UTF-8 text: byte 0xb2" in err
-    assert c81_main(["check", str(tmp_path / "none.c81")]) == 1
+    assert main(["c81", "check", str(tmp_path / "none.c81")]) == 1
     assert "none.c81" in capsys.readouterr().err
 
 
@@ -150,7 +149,7 @@ def test_broken_pipe_ends_quietly():
 
 def test_sweep_exits_nonzero_when_points_failed(tmp_path, monkeypatch, capsys):
     """Finding 10: ``tefcore sweep`` exited 0 when every point failed."""
-    monkeypatch.setattr(tefcore.sweep, "_default_point", lambda: ToyPoint(fail_at=[0.0, 0.1]))
+    monkeypatch.setattr(tefcore.sweep, "default_point", lambda: ToyPoint(fail_at=[0.0, 0.1]))
     csv = tmp_path / "s.csv"
     assert main(["sweep", "flap.cg_offset", "--values", "0.0", "0.1", "0.2", "--csv", str(csv),
                  "--quiet"]) == 1

@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 from numpy.testing import assert_allclose
 
-from tefcore.config import load_config
+from tefcore.config_io import load_config
 from tefcore.flap_dynamics import (
     FlapProperties,
     SectionMotion,

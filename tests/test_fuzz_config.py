@@ -12,8 +12,8 @@ import tomli_w
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from tefcore.config import SECTIONS, Config, load_config
-from tefcore.config_io import dumps_config, loads_config
+from tefcore.config import SECTIONS, Config
+from tefcore.config_io import dumps_config, load_config, loads_config
 from tefcore.text_input import parse_overrides
 
 MDART = load_config("mdart")

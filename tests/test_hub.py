@@ -31,7 +31,8 @@ from tefcore.blade import (
     section_function,
 )
 from tefcore.branched import Component, Joint, assemble_branched
-from tefcore.config import SECTIONS, load_config
+from tefcore.config import SECTIONS
+from tefcore.config_io import load_config
 from tefcore.hub_models import kinematic_pitch_ratio, pitch_flap_delta3, pitch_input_response
 from tefcore.paper.calibration import frequency_checks, lag_damping_ratio, mode_frequency
 from tefcore.structure import RootSprings, assemble_beam, beam_modes, tension_piecewise_linear

@@ -20,7 +20,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from tefcore.config import load_config
+from tefcore.config_io import load_config
 from tefcore.sweep import sweep
 from tefcore.tracking import track_modes
 

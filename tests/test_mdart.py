@@ -10,7 +10,7 @@ import pytest
 from numpy.testing import assert_allclose
 
 from tefcore.blade import blade_modes, fan_data
-from tefcore.config import load_config
+from tefcore.config_io import load_config
 from tefcore.paper.calibration import TORSION_TARGETS, frequency_checks, mode_frequency
 
 

@@ -15,7 +15,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from tefcore.config import load_config
+from tefcore.config_io import load_config
 from tefcore.linear_system import SecondOrderSystem, combine
 from tefcore.mechanism import (
     NOT_REMOVABLE,

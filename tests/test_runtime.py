@@ -1,14 +1,16 @@
-"""Process settings applied by ``import tefcore`` (tefcore.runtime)."""
+"""Process settings of tefcore.runtime: never at import; in the CLI, the workers, the solver."""
 
+import json
 import os
 import platform
 import subprocess
 import sys
+import textwrap
+from types import SimpleNamespace
 
 import pytest
 from hypothesis import given
 from hypothesis import strategies as st
-from threadpoolctl import threadpool_info
 
 from tefcore import runtime
 
@@ -24,16 +26,115 @@ def _parses_as_int(text):
 GLIBC = sys.platform.startswith("linux") and platform.libc_ver()[0] == "glibc"
 
 
-def test_import_limits_blas_to_one_thread():
-    blas = [lib for lib in threadpool_info() if lib["user_api"] == "blas"]
-    assert blas, "numpy/scipy BLAS not found by threadpoolctl"
-    assert all(lib["num_threads"] == 1 for lib in blas)
+BLAS_THREADS = """
+from threadpoolctl import threadpool_info
+def blas_threads():
+    return sorted({lib["num_threads"] for lib in threadpool_info() if lib["user_api"] == "blas"})
+"""
+
+
+def run_python(code: str, **env) -> dict:
+    """Run ``code`` (after :data:`BLAS_THREADS`) in a fresh interpreter; it prints
+    one JSON line, returned parsed."""
+    out = subprocess.run([sys.executable, "-c", BLAS_THREADS + textwrap.dedent(code)],
+                         env=dict(os.environ, **env), capture_output=True, text=True, check=True)
+    return json.loads(out.stdout.strip().splitlines()[-1])
+
+
+# the BLAS thread counts of a fresh process that never imported tefcore
+UNTOUCHED = run_python("""
+import json, numpy, scipy.linalg
+print(json.dumps(blas_threads()))
+""")
+SEVERAL_THREADS = UNTOUCHED != [1]
+needs_threads = pytest.mark.skipif(not SEVERAL_THREADS,
+                                   reason="BLAS has one thread here: a limit cannot be seen")
+
+
+@needs_threads
+def test_import_changes_no_process_setting():
+    # importing the package and the whole solver leaves BLAS as it was
+    got = run_python("""
+    import json, numpy, scipy.linalg
+    import tefcore, tefcore.stability, tefcore.sweep, tefcore.mechanism, tefcore.blade
+    print(json.dumps(blas_threads()))
+    """)
+    assert got == UNTOUCHED
+
+
+@needs_threads
+def test_solver_limits_blas_only_during_the_call():
+    # floquet_modes calls A(psi) inside its limit: the count seen there is 1,
+    # and the process has its own count back afterwards
+    got = run_python("""
+    import json
+    import numpy as np
+    from tefcore.floquet import floquet_modes
+    seen = []
+    def A(psi):
+        seen.append(blas_threads())
+        return np.broadcast_to(np.array([[0.0, 1.0], [-1.0, -0.1]]), (psi.size, 2, 2))
+    floquet_modes(A)
+    print(json.dumps({"inside": seen[0], "after": blas_threads()}))
+    """)
+    assert got == {"inside": [1], "after": UNTOUCHED}
+
+
+@needs_threads
+def test_apply_defaults_sets_the_process():
+    got = run_python("""
+    import json
+    from tefcore.runtime import apply_defaults
+    apply_defaults()
+    print(json.dumps(blas_threads()))
+    """)
+    assert got == [1]
+
+
+@needs_threads
+def test_the_command_applies_the_settings():
+    # the CLI's body runs after apply_defaults: seen from a subcommand
+    got = run_python("""
+    import json, tefcore.cli
+    seen = []
+    tefcore.cli.cmd_c81_check = lambda args: seen.append(blas_threads()) or 0
+    tefcore.cli.main(["c81", "check", "x.c81"])
+    print(json.dumps(seen[0]))
+    """)
+    assert got == [1]
+
+
+def test_blas_thread_setting_is_validated():
+    for bad in ("0", "-2", "many"):
+        with pytest.raises(ValueError, match="TEFCORE_BLAS_THREADS"):
+            runtime.limit_blas_threads(bad)
+
+
+def _settings_point(cfg):
+    """A sweep point that reports whether its process has tefcore's settings."""
+    from tefcore.runtime import defaults_applied
+
+    modes = __import__("pandas").DataFrame({"mode_id": [0], "label": ["TEF"],
+                                            "frequency_per_rev": [3.0], "real_part": [-0.1],
+                                            "damping_ratio": [0.03]})
+    return SimpleNamespace(modes=modes, trim={"applied": float(defaults_applied())})
+
+
+def test_sweep_workers_apply_the_settings():
+    # (loky limits BLAS threads in its workers by itself, so the BLAS count
+    # would not tell whether tefcore's worker entry ran)
+    from tefcore.config_io import load_config
+    from tefcore.sweep import sweep
+
+    res = sweep(load_config("mdart"), "flap.cg_offset", [0.0, 0.1], point=_settings_point,
+                n_jobs=2, progress=False)
+    assert set(res.table["trim_applied"]) == {1.0}
 
 
 @pytest.mark.skipif(not GLIBC, reason="mallopt is glibc's")
 def test_trim_threshold_applied_on_glibc():
     assert runtime.keep_freed_memory(str(64 * 2**20)) is True
-    runtime.keep_freed_memory(str(128 * 2**20))        # restore the import's value
+    runtime.keep_freed_memory(str(128 * 2**20))        # back to apply_defaults' value
 
 
 def test_default_leaves_the_allocator_alone():
@@ -58,8 +159,19 @@ def test_any_out_of_range_or_non_numeric_threshold_is_rejected(bad):
         runtime.keep_freed_memory(bad)
 
 
-def test_both_settings_can_be_turned_off_before_import():
-    env = dict(os.environ, TEFCORE_BLAS_THREADS="default", TEFCORE_MALLOC_TRIM="default")
-    out = subprocess.run([sys.executable, "-c", "import tefcore; print(tefcore.__version__)"],
-                         env=env, capture_output=True, text=True, check=True)
-    assert out.stdout.strip() == __import__("tefcore").__version__
+@needs_threads
+def test_both_settings_can_be_turned_off():
+    got = run_python("""
+    import json
+    import numpy as np
+    from tefcore.floquet import floquet_modes
+    from tefcore.runtime import apply_defaults
+    apply_defaults()
+    seen = []
+    def A(psi):
+        seen.append(blas_threads())
+        return np.broadcast_to(np.array([[0.0, 1.0], [-1.0, -0.1]]), (psi.size, 2, 2))
+    floquet_modes(A)
+    print(json.dumps({"inside": seen[0], "after": blas_threads()}))
+    """, TEFCORE_BLAS_THREADS="default", TEFCORE_MALLOC_TRIM="default")
+    assert got == {"inside": UNTOUCHED, "after": UNTOUCHED}

@@ -15,7 +15,7 @@ from hypothesis import strategies as st
 from numpy.testing import assert_allclose
 
 from tefcore.blade import blade_model, element_nodes, pitch_function, rotor_units
-from tefcore.config import load_config
+from tefcore.config_io import load_config
 from tefcore.coupled import coupled_model
 from tefcore.flap_dynamics import flap_properties
 from tefcore.paper.figures import FIGURES, figure_config

@@ -8,7 +8,7 @@ import pandas as pd
 import pytest
 from numpy.testing import assert_allclose
 
-from tefcore.config import load_config
+from tefcore.config_io import load_config
 from tefcore.paper.calibration import frequency_checks
 from tefcore.paper.sensitivity import (
     ASSUMPTIONS,

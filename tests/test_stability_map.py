@@ -13,7 +13,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from tefcore.config import load_config
+from tefcore.config_io import load_config
 from tefcore.stability_map import stability_map
 
 MDART = load_config("mdart")

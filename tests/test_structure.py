@@ -265,7 +265,7 @@ def test_mdart_axial_block_is_skipped_by_inertia(monkeypatch):
     # eigenvalue below the 9th one, so it is never solved
     import tefcore.structure as structure
     from tefcore.blade import blade_model
-    from tefcore.config import load_config
+    from tefcore.config_io import load_config
 
     beam = blade_model(load_config("mdart"), collective=np.deg2rad(8.0))
     f = beam.free

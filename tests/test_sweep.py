@@ -29,8 +29,10 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from tefcore.config import SECTIONS, load_config
-from tefcore.sweep import config_hash, stability_boundary, sweep
+from tefcore.boundary import stability_boundary
+from tefcore.config import SECTIONS
+from tefcore.config_io import load_config
+from tefcore.sweep import config_hash, sweep
 
 MDART = load_config("mdart")
 PARAM = "flap.cg_offset"

@@ -7,7 +7,8 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from hypothesis.extra import numpy as hnp
 
-from tefcore.tracking import ambiguous_steps, label_changes, mac, match_modes, track_modes
+from tefcore.mode_matching import mac, match_modes
+from tefcore.tracking import ambiguous_steps, label_changes, track_modes
 
 # ------------------------------------------------------------------ MAC
 

@@ -8,7 +8,7 @@ from numpy.testing import assert_allclose
 
 from tefcore import floquet
 from tefcore.blade import blade_modes
-from tefcore.config import load_config
+from tefcore.config_io import load_config
 from tefcore.coupled import coupled_model
 from tefcore.flap_dynamics import flap_natural_frequency, flap_properties
 from tefcore.paper.calibration import mode_frequency

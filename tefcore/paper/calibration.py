@@ -189,7 +189,7 @@ def calibrate_multiple_load_path(cfg):
 
 
 def _main() -> int:
-    from ..config import load_config
+    from ..config_io import load_config
 
     base = load_config("mdart")
     fit = calibrate_torsion(base)

@@ -12,7 +12,7 @@ in the paper's symbols, so a title never says "μ = 0.30" when the user ran
 
 Examples
 --------
->>> from tefcore.config import load_config
+>>> from tefcore import load_config
 >>> cfg = load_config("mdart").with_overrides({"flight.advance_ratio": 0.2})
 >>> conditions(cfg, exclude=("flap.cg_offset",)).split(", ")  # doctest: +NORMALIZE_WHITESPACE
 ['μ = 0.20', 'C_T/σ = 0.075', 'c_b/c_f = 0.29', 'actuator 81.5 ft-lb/rad',

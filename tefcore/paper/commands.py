@@ -75,15 +75,17 @@ def cmd_notebooks(args) -> int:
     return 0
 
 
-def add_commands(sub) -> None:
+def add_commands(sub, formatter_class=argparse.RawDescriptionHelpFormatter) -> None:
     """Add ``reproduce`` and ``notebooks`` to the ``tefcore`` subparsers ``sub``.
 
     Parameters
     ----------
     sub : argparse._SubParsersAction
         From :meth:`argparse.ArgumentParser.add_subparsers`.
+    formatter_class : type
+        Help formatter of the subcommands (the ``tefcore`` command's own).
     """
-    fmt = argparse.RawDescriptionHelpFormatter
+    fmt = formatter_class
     p = sub.add_parser("reproduce", formatter_class=fmt, description=_REPRODUCE,
                        help="run the notebooks, check the paper's claims, write the report")
     p.add_argument("--out", default="output", help="output folder (default: output)")

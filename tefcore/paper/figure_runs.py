@@ -26,7 +26,7 @@ import numpy as np
 import pandas as pd
 
 from ..c81 import example_deck_path
-from ..config import load_config
+from ..config_io import load_config
 from .claim_checks import variant_key
 from .figures import FIGURES, figure_config
 from .plotting import split_value, x_values

@@ -16,7 +16,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import pandas as pd
 
-from ..config import load_config
+from ..config_io import load_config
 from ..coupled import coupled_model
 from ..flap_dynamics import SectionMotion, aerodynamic_hinge_moment, flap_properties
 from ..sweep import sweep

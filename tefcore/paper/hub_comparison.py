@@ -14,7 +14,7 @@ import numpy as np
 import pandas as pd
 
 from ..blade import blade_modes, fan_data
-from ..config import load_config
+from ..config_io import load_config
 from ..hub_models import HUB_MODELS
 from .figures import run_figure
 

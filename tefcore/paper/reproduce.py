@@ -241,7 +241,7 @@ def _baseline_blade(out: Path) -> pd.DataFrame:
     import matplotlib.pyplot as plt
 
     from ..blade import blade_modes, fan_plot
-    from ..config import load_config
+    from ..config_io import load_config
     from .calibration import frequency_checks
 
     deterministic_matplotlib()

@@ -53,7 +53,7 @@ import numpy as np
 import pandas as pd
 import scipy.optimize
 
-from ..config import load_config
+from ..config_io import load_config
 from ..errors import TefcoreError
 from ..mechanism import FLUTTER_PARTICIPATION
 from ..mechanism import flutter_root as mechanism_flutter_root
