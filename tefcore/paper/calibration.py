@@ -20,6 +20,17 @@ that blade.
 :func:`calibrate_torsion` is the least-squares fit that produced the assumed
 GJ, pitch-horn arm and baseline pitch-link stiffness (run it through
 ``python -m tefcore.paper.calibration`` to reproduce the numbers in the TOML).
+
+Examples
+--------
+>>> for name, _, stated, _ in TORSION_TARGETS:
+...     print(f"{name}: {stated}/rev")
+pitch link 158 lb/in: 2.3/rev
+pitch link 800 lb/in: 4.2/rev
+0.75 x GJ: 2.96/rev
+2.0 x GJ: 3.18/rev
+>>> round(LBF_PER_IN, 3)
+175.127
 """
 
 from __future__ import annotations
@@ -30,6 +41,9 @@ import scipy.optimize
 
 from ..blade import blade_modes
 from ..units import to_si
+
+__all__ = ["FIGURE_CONDITION", "LBF_PER_IN", "TORSION_TARGETS", "calibrate_torsion",
+           "frequency_checks", "mode_frequency"]
 
 LBF_PER_IN = to_si(1.0, "lbf/in")        # N/m per lb/in
 
@@ -52,7 +66,26 @@ TORSION_TARGETS = [
 
 
 def mode_frequency(modes, label: str) -> float:
-    """Frequency of the mode with the given label (e.g. ``"torsion 1"``)."""
+    """Frequency of the mode with the given label (e.g. ``"torsion 1"``).
+
+    Parameters
+    ----------
+    modes : tefcore.structure.BladeModes
+        Natural modes of a blade (:func:`tefcore.blade.blade_modes`), with
+        ``labels`` and ``frequencies`` [/rev].
+    label : str
+        The mode's label: ``"flap 1"``, ``"lag 1"``, ``"torsion 1"``, ...
+
+    Returns
+    -------
+    float
+        Its natural frequency, per rev of the configured rotor speed.
+
+    Raises
+    ------
+    ValueError
+        No mode has that label (the message lists the labels there are).
+    """
     try:
         return float(modes.frequencies[modes.labels.index(label)])
     except ValueError:
@@ -61,6 +94,14 @@ def mode_frequency(modes, label: str) -> float:
 
 def frequency_checks(cfg, n_modes: int | None = None) -> pd.DataFrame:
     """First-torsion frequency at each stated calibration point.
+
+    Parameters
+    ----------
+    cfg : tefcore.config.Config
+        Blade to check (normally the MDART baseline); each target's
+        overrides (:data:`TORSION_TARGETS`) are applied over it.
+    n_modes : int, optional
+        Coupled natural modes computed (default ``cfg.model.n_modes``).
 
     Returns
     -------
@@ -86,6 +127,13 @@ def calibrate_torsion(cfg):
     Least squares on the relative errors of the four stated torsion
     frequencies. The torsional inertia and the shape of the GJ distribution
     stay as assumed; only levels are fitted.
+
+    Parameters
+    ----------
+    cfg : tefcore.config.Config
+        Starting point of the fit and everything it keeps (section inertia,
+        GJ distribution, flap); its GJ scale, horn arm and pitch-link
+        stiffness are the initial guess.
 
     Returns
     -------
