@@ -174,9 +174,21 @@ def blade_model(cfg, collective: float = 0.0,
 def hub_beam_section(sec, units: RotorUnits, ka: float = 0.0):
     """Nondimensional uniform section ``f(x)`` of a hub beam (flexbeam or torque tube).
 
-    ``sec`` is a :class:`tefcore.hub_config.FlexbeamConfig` or
-    :class:`~tefcore.hub_config.TorqueTubeConfig`; elastic axis, CG and
-    tension axis coincide.
+    Elastic axis, CG and tension axis coincide.
+
+    Parameters
+    ----------
+    sec : tefcore.hub_config.FlexbeamConfig or tefcore.hub_config.TorqueTubeConfig
+        The beam's uniform properties (SI).
+    units : RotorUnits
+        Conversion to rotor units (:func:`rotor_units`).
+    ka : float
+        Polar radius of gyration of the tension [m] (tension-torsion stiffening).
+
+    Returns
+    -------
+    callable
+        ``section(x) -> dict`` of nondimensional properties, constant along x.
     """
     props = {"mass": units.mass_per_len(sec.mass), "ei_flap": units.bending_stiffness(sec.ei_flap),
              "ei_lag": units.bending_stiffness(sec.ei_lag),
@@ -213,6 +225,8 @@ def multiple_load_path_model(cfg, collective: float = 0.0, n_elements: int | Non
     Parameters
     ----------
     cfg : tefcore.config.Config
+        Configuration with the hub sections ``flexbeam``, ``torque_tube``,
+        ``pitch_link`` and ``snubber``.
     collective : float
         Geometric pitch at 0.75 R [rad].
     n_elements : int, optional
@@ -334,6 +348,8 @@ def element_nodes(cfg, n: int, start: float | None = None) -> np.ndarray:
         The rotor configuration.
     n : int
         Number of elements.
+    start : float, optional
+        Inboard end [fraction of R] (default ``rotor.root_offset``).
 
     Returns
     -------

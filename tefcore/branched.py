@@ -57,9 +57,20 @@ __all__ = ["BranchedBeam", "Component", "Coupling", "Joint", "assemble_branched"
 class Component:
     """One beam of a branched structure (rotor units, stations in fractions of R).
 
-    ``section``, ``pitch`` and ``tension`` as for
-    :func:`tefcore.structure.assemble_beam`; ``tension`` is this beam's own
-    centrifugal tension per Omega^2 (negative: compression).
+    Parameters
+    ----------
+    name : str
+        Name the joints and couplings refer to (``"flexbeam"``, ``"blade"``).
+    x_nodes : numpy.ndarray
+        Node stations [fraction of R], increasing.
+    section : callable
+        ``section(x) -> dict`` of nondimensional section properties, as for
+        :func:`tefcore.structure.assemble_beam`.
+    pitch : callable
+        ``pitch(x)`` [rad]: the beam's built-in and collective pitch.
+    tension : callable
+        ``tension(x)``: this beam's own centrifugal tension per Omega^2
+        (rotor units; negative: compression).
     """
 
     name: str
@@ -72,7 +83,19 @@ class Component:
 @dataclass(frozen=True)
 class Joint:
     """Multi-point constraint: node ``slave_node`` of ``slave`` moves with ``master_node``
-    of ``master`` (all six node dofs; the two nodes must be at the same station)."""
+    of ``master`` (all six node dofs; the two nodes must be at the same station).
+
+    Parameters
+    ----------
+    master : str
+        Component whose dofs are kept.
+    master_node : int
+        Its node index (0 = inboard end).
+    slave : str
+        Component whose node dofs are eliminated.
+    slave_node : int
+        Its node index.
+    """
 
     master: str
     master_node: int
@@ -84,10 +107,18 @@ class Joint:
 class Coupling:
     """Spring and damper on ``b^T q = sum coefficient * field(component, station)``.
 
-    ``terms``: ``(component, station, field, coefficient)`` with ``field`` one
-    of ``u, v, dv, w, dw, phi`` (see :func:`tefcore.structure.field_rows`);
-    ``stiffness`` enters the elastic stiffness (it scales as 1/Omega^2 in
-    rotor units), ``damping`` the damping matrix.
+    Parameters
+    ----------
+    name : str
+        Name of the coupling (its row is kept in :attr:`BranchedBeam.couplings`).
+    terms : tuple
+        ``(component, station, field, coefficient)`` with ``field`` one of
+        ``u, v, dv, w, dw, phi`` (see :func:`tefcore.structure.field_rows`).
+    stiffness : float
+        Spring on ``b^T q`` (rotor units); enters the elastic stiffness, so it
+        scales as 1/Omega^2 with rotor speed.
+    damping : float
+        Damper on ``b^T q`` (rotor units); enters the damping matrix.
     """
 
     name: str
@@ -102,10 +133,32 @@ class BranchedBeam:
 
     The same interface as :class:`tefcore.structure.BeamModel`:
     ``mass, k_elastic, k_centrifugal, damping_matrix, gyroscopic, free,
-    pitch, stiffness(r), damping(r), owner, slopes, evaluate``.  Fields are
-    evaluated on ``span``: the components, in order, whose stations cover the
-    blade from the structural root to the tip (the first that contains a
-    station gives it).
+    pitch, stiffness(r), damping(r), owner, slopes, evaluate``.  Built by
+    :func:`assemble_branched`.
+
+    Parameters
+    ----------
+    components : dict
+        Component name -> :class:`Component`.
+    index : dict
+        Component name -> global index of each of its dofs (after the joints).
+    mass, k_elastic, k_centrifugal, damping_matrix, gyroscopic : numpy.ndarray
+        Global matrices, rotor units; the stiffness at a rotor-speed ratio
+        ``r`` is ``k_elastic / r**2 + k_centrifugal``.
+    free : numpy.ndarray
+        Global dofs not clamped.
+    owner : numpy.ndarray
+        Field group (index into :data:`tefcore.structure.FIELD_GROUPS`) of every dof.
+    slopes : numpy.ndarray
+        True for the slope dofs (``dv, dw``).
+    span : tuple
+        Components, in order, whose stations cover the blade from the
+        structural root to the tip; fields are evaluated on the first that
+        contains a station.
+    couplings : dict
+        Coupling name -> its global row ``b``.
+    pitch : callable, optional
+        The blade's pitch, for the section-inertia checks.
     """
 
     components: dict
@@ -221,7 +274,9 @@ def assemble_branched(components: Sequence[Component], joints: Sequence[Joint] =
     components : sequence of Component
         Joint masters must come before their slaves.
     joints : sequence of Joint
+        Multi-point constraints (the clevis).
     couplings : sequence of Coupling
+        Point springs and dampers (pitch link, snubber).
     clamps : sequence of (component, node)
         Nodes whose six dofs are fixed.
     span : sequence of str, optional

@@ -586,6 +586,9 @@ class Config:
         Flight condition and trim targets.
     model : ModelConfig or mapping, optional
         Modelling choices (discretisation, aerodynamic model, flap model).
+    flexbeam, torque_tube, pitch_link, snubber : mapping or section, optional
+        The multiple-load-path hub (:mod:`tefcore.hub_config`; used when
+        ``hub.model = "multiple_load_path"``).
     name : str, optional
         Name of the configuration.
     description : str, optional

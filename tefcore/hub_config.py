@@ -174,6 +174,11 @@ def check_hub_relations(cfg) -> None:
     configuration does not use these fields; their own ranges are always
     checked).
 
+    Parameters
+    ----------
+    cfg : tefcore.config.Config
+        The configuration.
+
     Raises
     ------
     ValueError

@@ -109,6 +109,16 @@ def pitch_flap_delta3(cfg) -> float:
     (``d = pitch_link.radial_offset`` outboard, ``a = pitch_link.horn_arm``
     ahead of the axis) by ``d w' + a phi``, so ``phi = -w' tan(delta_3)``:
     positive delta_3 pitches down as the blade flaps up.
+
+    Parameters
+    ----------
+    cfg : tefcore.config.Config
+        A configuration with ``hub.model = "multiple_load_path"``.
+
+    Returns
+    -------
+    float
+        delta_3 [rad].
     """
     _require_mlp(cfg)
     return float(np.arctan(cfg.pitch_link.radial_offset / cfg.pitch_link.horn_arm))

@@ -307,6 +307,17 @@ def component_matrices(x_nodes, section: Callable, pitch: Callable, tension: Cal
     per element); no supports.  :func:`assemble_beam` and the branched hub
     (:mod:`tefcore.branched`) build on it.
 
+    Parameters
+    ----------
+    x_nodes : array_like
+        Node stations [fraction of R], strictly increasing.
+    section : callable
+        ``section(x) -> dict`` of nondimensional section properties.
+    pitch : callable
+        ``pitch(x)`` [rad].
+    tension : callable
+        ``tension(x)``: centrifugal tension per Omega^2 (rotor units).
+
     Returns
     -------
     mass, k_elastic, k_centrifugal, gyroscopic : ndarray, (n_dof, n_dof)

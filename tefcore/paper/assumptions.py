@@ -71,10 +71,33 @@ def _set(field_name: str, value) -> Callable:
 class Assumption:
     """One assumed property and the plausible range it is varied over.
 
-    ``low`` and ``high`` map the baseline Config to the overrides of the two
-    ends; ``basis`` says why the range is what it is; ``recalibrate`` re-fits
-    GJ, horn arm and pitch-link stiffness to the stated torsion frequencies
-    after the change.
+    The MDART property tables are not public (Table 1 gives only rotor and
+    flap data), so ``tefcore/data/mdart.toml`` assumes them; an assumption
+    says how far each could plausibly be off.
+
+    Parameters
+    ----------
+    name : str
+        Short name used in tables and plots (``"flap mass"``), and by
+        :func:`assumption_named`.
+    fields : tuple of str
+        Dotted configuration fields the assumption changes
+        (``("flap.mass",)``).
+    low, high : callable
+        ``Config -> dict`` of dotted overrides giving the low and the high end
+        of the range from the baseline (e.g. the flap mass times 0.75 and
+        1.25); applied by :func:`apply_assumption`.
+    low_label, high_label : str
+        How each end is shown in the tornado table (``"x0.75"``, ``"0.23 c"``).
+    basis : str
+        Why the range is what it is: a construction estimate, the band where
+        soft-inplane bearingless blades have their modes, the rounding of a
+        value the text states.
+    recalibrate : bool
+        After the change, re-fit GJ scale, pitch-horn arm and pitch-link
+        stiffness to the four first-torsion frequencies the text states
+        (:func:`tefcore.paper.calibration.calibrate_torsion`), for
+        assumptions that move them.
     """
 
     name: str
@@ -137,7 +160,28 @@ ASSUMPTIONS = (
 
 
 def assumption_named(name: str) -> Assumption:
-    """The assumption of :data:`ASSUMPTIONS` called ``name`` (ValueError if none)."""
+    """The assumption of :data:`ASSUMPTIONS` called ``name``.
+
+    Parameters
+    ----------
+    name : str
+        :attr:`Assumption.name`, exactly (``"flap mass"``, ``"lift slope"``).
+
+    Returns
+    -------
+    Assumption
+        The assumption with that name.
+
+    Raises
+    ------
+    ValueError
+        No assumption has that name (the message lists the known ones).
+
+    Examples
+    --------
+    >>> assumption_named("lag damper").fields
+    ('hub.lag_damper',)
+    """
     for a in ASSUMPTIONS:
         if a.name == name:
             return a
@@ -149,7 +193,23 @@ def apply_assumption(cfg, assumption: Assumption | str, end: str):
     """The configuration with one assumption at its ``'low'`` or ``'high'`` end.
 
     Re-calibrates the torsion (GJ scale, horn arm, pitch-link stiffness) when
-    the assumption asks for it.
+    the assumption asks for it, so the stated first-torsion frequencies of
+    Figs. 10a and 11a still hold.
+
+    Parameters
+    ----------
+    cfg : tefcore.config.Config
+        Baseline configuration (normally MDART); the end's overrides are
+        computed from it.
+    assumption : Assumption or str
+        The assumption, or its name in :data:`ASSUMPTIONS`.
+    end : {"low", "high"}
+        Which end of its plausible range.
+
+    Returns
+    -------
+    tefcore.config.Config
+        A new configuration; ``cfg`` is unchanged.
 
     Raises
     ------

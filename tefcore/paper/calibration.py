@@ -30,6 +30,17 @@ torsion frequencies.  The flexbeam's bending stiffnesses place flap 1 and lag
 1 the same structural damping -- the equivalent hub's values are themselves
 assumed (docs/theory.md 2.8), so the two hubs differ in their kinematics and
 mode shapes, not in where the fundamental modes sit.
+
+Examples
+--------
+>>> for name, _, stated, _ in TORSION_TARGETS:
+...     print(f"{name}: {stated}/rev")
+pitch link 158 lb/in: 2.3/rev
+pitch link 800 lb/in: 4.2/rev
+0.75 x GJ: 2.96/rev
+2.0 x GJ: 3.18/rev
+>>> round(LBF_PER_IN, 3)
+175.127
 """
 
 from __future__ import annotations
@@ -40,6 +51,10 @@ import scipy.optimize
 
 from ..blade import blade_modes
 from ..units import to_si
+
+__all__ = ["FIGURE_CONDITION", "LBF_PER_IN", "MLP_FITTED", "TORSION_TARGETS",
+           "calibrate_multiple_load_path", "calibrate_torsion", "frequency_checks",
+           "lag_damping_ratio", "mode_frequency"]
 
 LBF_PER_IN = to_si(1.0, "lbf/in")        # N/m per lb/in
 
@@ -62,7 +77,26 @@ TORSION_TARGETS = [
 
 
 def mode_frequency(modes, label: str) -> float:
-    """Frequency of the mode with the given label (e.g. ``"torsion 1"``)."""
+    """Frequency of the mode with the given label (e.g. ``"torsion 1"``).
+
+    Parameters
+    ----------
+    modes : tefcore.structure.BladeModes
+        Natural modes of a blade (:func:`tefcore.blade.blade_modes`), with
+        ``labels`` and ``frequencies`` [/rev].
+    label : str
+        The mode's label: ``"flap 1"``, ``"lag 1"``, ``"torsion 1"``, ...
+
+    Returns
+    -------
+    float
+        Its natural frequency, per rev of the configured rotor speed.
+
+    Raises
+    ------
+    ValueError
+        No mode has that label (the message lists the labels there are).
+    """
     try:
         return float(modes.frequencies[modes.labels.index(label)])
     except ValueError:
@@ -71,6 +105,14 @@ def mode_frequency(modes, label: str) -> float:
 
 def frequency_checks(cfg, n_modes: int | None = None) -> pd.DataFrame:
     """First-torsion frequency at each stated calibration point.
+
+    Parameters
+    ----------
+    cfg : tefcore.config.Config
+        Blade to check (normally the MDART baseline); each target's
+        overrides (:data:`TORSION_TARGETS`) are applied over it.
+    n_modes : int, optional
+        Coupled natural modes computed (default ``cfg.model.n_modes``).
 
     Returns
     -------
@@ -96,6 +138,13 @@ def calibrate_torsion(cfg):
     Least squares on the relative errors of the four stated torsion
     frequencies. The torsional inertia and the shape of the GJ distribution
     stay as assumed; only levels are fitted.
+
+    Parameters
+    ----------
+    cfg : tefcore.config.Config
+        Starting point of the fit and everything it keeps (section inertia,
+        GJ distribution, flap); its GJ scale, horn arm and pitch-link
+        stiffness are the initial guess.
 
     Returns
     -------
@@ -127,7 +176,18 @@ def calibrate_torsion(cfg):
 
 
 def lag_damping_ratio(modes) -> float:
-    """Structural damping ratio of ``lag 1`` in vacuum, ``C_ii / (2 omega_i M_ii)``."""
+    """Structural damping ratio of ``lag 1`` in vacuum, ``C_ii / (2 omega_i M_ii)``.
+
+    Parameters
+    ----------
+    modes : tefcore.structure.BladeModes
+        Blade modes with their modal mass and damping matrices.
+
+    Returns
+    -------
+    float
+        The damping ratio (fraction of critical).
+    """
     i = modes.labels.index("lag 1")
     return float(modes.modal_damping[i, i]
                  / (2.0 * modes.frequencies[i] * modes.modal_mass[i, i]))
@@ -149,6 +209,11 @@ def calibrate_multiple_load_path(cfg):
     snubber's lag stiffness, whose complex stiffness is taken at the lag
     frequency (``snubber.reference_frequency``).  The equivalent hub's values
     are computed from ``cfg`` at its baseline (mass-balanced flap).
+
+    Parameters
+    ----------
+    cfg : tefcore.config.Config
+        Configuration with the hub sections (its ``hub.model`` is set here).
 
     Returns
     -------

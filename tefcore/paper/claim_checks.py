@@ -39,7 +39,30 @@ class _NotEvaluated(Exception):
 
 
 def variant_key(overrides: dict) -> str:
-    """Canonical key of a configuration variant (``""`` for the figure itself)."""
+    """Canonical key of a configuration variant (``""`` for the figure itself).
+
+    Claims about a variant of a figure (e.g. Fig. 12a's mass-balanced flap,
+    ``{"flap.cg_offset": 0.0}``) look their result up under this key, so two
+    claims with the same overrides share one run.
+
+    Parameters
+    ----------
+    overrides : dict
+        Dotted configuration fields of the variant (a claim's ``overrides``
+        or ``other_overrides``); empty or None for the figure as captioned.
+
+    Returns
+    -------
+    str
+        JSON of ``overrides`` with sorted keys, or ``""``.
+
+    Examples
+    --------
+    >>> variant_key({"flap.cg_offset": 0.0, "flight.advance_ratio": 0.3})
+    '{"flap.cg_offset": 0.0, "flight.advance_ratio": 0.3}'
+    >>> variant_key({})
+    ''
+    """
     return json.dumps(overrides, sort_keys=True) if overrides else ""
 
 
@@ -470,7 +493,7 @@ def validate_figure(name: str, result, claims=None, *, cfg=None, variants=None, 
     name : str
         ``"fig3"`` ... ``"fig17"`` (stability figures of
         :data:`tefcore.paper.figures.FIGURES`) or ``"fig5"``, ``"fig6"``, ``"fig7"``.
-    result
+    result : tefcore.sweep.SweepResult, DataFrame, dict or None
         The figure's output: SweepResult (or its table), the DataFrame of
         figs. 5 and 7, or the dict of fig. 6.  ``None``: computed when needed.
     claims : list of Claim, optional

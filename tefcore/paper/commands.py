@@ -42,7 +42,22 @@ examples:
 
 
 def cmd_reproduce(args) -> int:
-    """Run ``tefcore reproduce`` with parsed arguments; return the exit status."""
+    """Run ``tefcore reproduce`` with parsed arguments; return the exit status.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        The parsed ``reproduce`` options: ``out`` (output folder),
+        ``params`` (YAML parameter file or None), ``param`` (``-p NAME
+        VALUE`` pairs), ``only`` (notebooks to run or None), ``jobs``
+        (notebooks executed at once) and ``no_progress``.
+
+    Returns
+    -------
+    int
+        0 when every notebook ran and no claim is worse than its recorded
+        status, 1 otherwise (:func:`tefcore.paper.reproduce.reproduce`).
+    """
     from .reproduce import reproduce
     from .run_params import load_params_file, parse_cli_params
 
@@ -54,7 +69,24 @@ def cmd_reproduce(args) -> int:
 
 
 def cmd_notebooks(args) -> int:
-    """Run ``tefcore notebooks`` with parsed arguments; return the exit status."""
+    """Run ``tefcore notebooks`` with parsed arguments; return the exit status.
+
+    Lists the numbered notebooks with the paper figures each reproduces, or
+    copies them for editing.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        The parsed ``notebooks`` options: ``copy`` (folder to copy the
+        ``.ipynb`` and ``.py`` files into, or None to list) and ``only``
+        (notebook names or number prefixes, or None for all).
+
+    Returns
+    -------
+    int
+        0 (errors such as an existing file in the copy folder are raised,
+        and the CLI prints them as one line).
+    """
     from .notebook_files import (
         NOTEBOOK_FIGURES,
         NOTEBOOKS,

@@ -20,8 +20,23 @@ X_SLACK = 1e-9
 def zero_crossings(x, y) -> list[tuple[float, str]]:
     """Interpolated zero crossings of ``y(x)`` (x increasing), with their direction.
 
-    ``y >= 0`` counts as unstable.  Returns ``[(x0, "destabilising" |
-    "stabilising"), ...]``.
+    ``y >= 0`` counts as unstable, so a crossing is where a real part of a
+    root changes sign: a stability threshold such as Fig. 9b's flap CG offset
+    0.26 c_f.
+
+    Parameters
+    ----------
+    x : array_like
+        Sample positions, increasing (a figure's swept values).
+    y : array_like
+        Samples at ``x`` (a root's real part [1/rev]; positive: unstable).
+
+    Returns
+    -------
+    list of tuple of (float, str)
+        ``(x0, direction)`` per sign change, in order: ``x0`` on the straight
+        line between the two samples, ``direction`` ``"destabilising"``
+        (stable to unstable with increasing x) or ``"stabilising"``.
 
     Examples
     --------
@@ -40,6 +55,25 @@ def zero_crossings(x, y) -> list[tuple[float, str]]:
 
 def stability_intervals(x, y, state: str = "unstable") -> list[tuple[float, float]]:
     """Intervals of x where ``y >= 0`` (``"unstable"``) or ``y < 0`` (``"stable"``).
+
+    An interval's ends are the interpolated zero crossings
+    (:func:`zero_crossings`) or the ends of the samples; a range claim such as
+    Fig. 15's "unstable with the flap chord in the range of 0.15 to 0.40"
+    compares with them.
+
+    Parameters
+    ----------
+    x : array_like
+        Sample positions, increasing.
+    y : array_like
+        Samples at ``x`` (a root's real part [1/rev]).
+    state : {"unstable", "stable"}
+        Which intervals: ``y >= 0`` or ``y < 0``.
+
+    Returns
+    -------
+    list of tuple of (float, float)
+        ``(start, end)`` of each interval, in order.
 
     Examples
     --------

@@ -70,7 +70,28 @@ def explorer_config(base=None, *, cg_offset: float, overhang: float, actuator_sc
 
 @dataclass
 class RootMap:
-    """The roots of one configuration: ``modes`` table, TEF root and flutter root."""
+    """The roots of one configuration: ``modes`` table, TEF root and flutter root.
+
+    Parameters
+    ----------
+    modes : pandas.DataFrame
+        The Floquet roots (:attr:`tefcore.stability.StabilityResult.modes`):
+        ``label``, ``frequency_per_rev``, ``real_part`` [1/rev, > 0
+        unstable], ``share_TEF`` (flap participation) ...; empty when the
+        configuration has no roots (``error`` says why).
+    tef : complex or None
+        The TEF root, ``real_part + 1j * frequency_per_rev`` [1/rev]: the root
+        the flap's own mode becomes when its coupling to the blade is switched
+        on (:func:`tefcore.mechanism.tef_root`); None without a flap.
+    flutter : int or None
+        Index in ``modes`` of the flutter root, the least stable root with a
+        flap participation of at least
+        :data:`tefcore.mechanism.FLUTTER_PARTICIPATION`; None if no root
+        carries the flap.
+    error : str
+        Why there are no roots (a refused configuration, a failed trim);
+        ``""`` when there are.
+    """
 
     modes: pd.DataFrame
     tef: complex | None

@@ -27,10 +27,35 @@ FIG7_OVERHANGS = inspect.signature(
 def figure_frame(name: str, result) -> pd.DataFrame:
     """A figure's result as one long table with an ``x`` column.
 
-    Stability figures (SweepResult or its ``.table``): the ok rows with
-    ``x = value_si`` (``value`` if there is no ``value_si``), ``track``,
-    ``label`` and the quantities, plus ``damping = -real_part``.  Fig. 5:
-    ``x = psi_deg``; fig. 6: one row (``x`` NaN); fig. 7: ``x = overhang``.
+    Parameters
+    ----------
+    name : str
+        The figure: a stability figure of
+        :data:`tefcore.paper.reference.FIGURES` (``"fig3"`` ... ``"fig17"``),
+        or ``"fig5"``, ``"fig6"``, ``"fig7"``.
+    result : tefcore.sweep.SweepResult, DataFrame or dict
+        The figure's result: a stability figure's SweepResult (or its
+        ``.table``), the DataFrame of :func:`tefcore.paper.figures.hinge_moment_figure`
+        (Fig. 5) or :func:`~tefcore.paper.figures.overhang_actuation_figure`
+        (Fig. 7), the dict of :func:`~tefcore.paper.figures.flap_response_figure`
+        (Fig. 6).
+
+    Returns
+    -------
+    pandas.DataFrame
+        Stability figures: the ok rows with ``x = value_si`` (SI value of the
+        swept field; ``value`` if there is no ``value_si``), ``track``,
+        ``label`` and the quantities, plus ``damping = -real_part`` [1/rev].
+        Fig. 5: ``x = psi_deg``; Fig. 6: one row (``x`` NaN) with the half
+        peak-to-peak response and the powers; Fig. 7: ``x = overhang``.
+
+    Raises
+    ------
+    ValueError
+        Unknown figure.
+    TypeError
+        A stability figure's result that is neither a SweepResult nor a
+        DataFrame.
     """
     if name in FIGURES:
         t = getattr(result, "table", result)
@@ -54,7 +79,33 @@ def figure_frame(name: str, result) -> pd.DataFrame:
 
 
 def natural_frequency_frame(name, frame, cfg, overrides) -> pd.DataFrame:
-    """Blade natural frequencies (:func:`tefcore.blade.blade_modes`) at the frame's x."""
+    """Blade natural frequencies (:func:`tefcore.blade.blade_modes`) at the frame's x.
+
+    The quantity ``natural_frequency_per_rev`` of the claims: the rotating
+    blade's natural frequencies (flap mass lumped into its sections, no flap
+    degree of freedom, no aerodynamics, zero collective) of Figs. 10a and
+    11a, whose torsion frequencies the text states, computed at every x of
+    the figure.
+
+    Parameters
+    ----------
+    name : str
+        Stability figure (its swept field is set to each x).
+    frame : pandas.DataFrame
+        The figure's frame (:func:`figure_frame`); only its ``x`` column (SI
+        values of the swept field) is used.
+    cfg : tefcore.config.Config or None
+        Base configuration (None: MDART); the figure's fixed parameters are
+        applied over it.
+    overrides : dict
+        Dotted fields of a variant of the figure (empty for the figure itself).
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per x and blade mode: ``x``, ``label`` and ``track``
+        (``"blade flap 1"``, ...) and ``natural_frequency_per_rev``.
+    """
     from ..blade import blade_modes
 
     base = figures.figure_config(name, cfg).with_overrides(overrides)
@@ -68,7 +119,34 @@ def natural_frequency_frame(name, frame, cfg, overrides) -> pd.DataFrame:
 
 
 def compute_figure(name, cfg=None, values=None, overrides=None, n_jobs=1, progress=False):
-    """Run one figure (optionally with configuration overrides)."""
+    """Run one figure (optionally with configuration overrides).
+
+    Parameters
+    ----------
+    name : str
+        A stability figure of :data:`tefcore.paper.reference.FIGURES`, or
+        ``"fig5"``, ``"fig6"``, ``"fig7"`` (flap-response analyses).
+    cfg : tefcore.config.Config, optional
+        Base configuration (default: MDART).
+    values : sequence, optional
+        Swept values instead of the paper's (stability figures), or the
+        overhangs of Fig. 7 (default :data:`FIG7_OVERHANGS`); ignored for
+        Figs. 5 and 6.
+    overrides : dict, optional
+        Dotted fields of a variant of a stability figure (e.g. Fig. 12a's
+        mass-balanced flap, ``{"flap.cg_offset": 0.0}``), applied after the
+        caption's fixed parameters.
+    n_jobs : int
+        Processes of the sweep (:func:`tefcore.sweep.sweep`); 1 runs serially.
+    progress : bool
+        Show the sweep's progress bar.
+
+    Returns
+    -------
+    tefcore.sweep.SweepResult, pandas.DataFrame or dict
+        As :func:`tefcore.paper.figures.run_figure` for a stability figure;
+        the DataFrame of Figs. 5 and 7 or the dict of Fig. 6.
+    """
     if name == "fig5":
         return figures.hinge_moment_figure(cfg)
     if name == "fig6":

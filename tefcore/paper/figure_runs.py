@@ -55,6 +55,7 @@ def base_config(aero_model: str = "thin_airfoil", overrides: dict | None = None)
     Returns
     -------
     tefcore.config.Config
+        The MDART baseline with the section aerodynamics set, then ``overrides``.
     """
     cfg = load_config("mdart")
     if aero_model in ("table", "c81"):
@@ -193,6 +194,9 @@ def run_stability_figure(name: str, base=None, overrides: dict | None = None,
     Returns
     -------
     tefcore.sweep.SweepResult
+        One Floquet analysis per value (trim warnings counted into the
+        table's ``trim_numerical_warnings``), with tracked modes, the TEF
+        branch and the flutter root.
     """
     from ..sweep import sweep
 

@@ -7,6 +7,16 @@ Figures 5-7 are flap-response analyses about a trimmed forward-flight state
 (:func:`hinge_moment_figure`, :func:`flap_response_figure`,
 :func:`overhang_actuation_figure`). Notebooks and :mod:`tefcore.paper.validation`
 both call these, so a figure is computed the same way everywhere.
+
+Examples
+--------
+>>> FIGURES["fig9"].parameter, [float(v) for v in FIGURES["fig9"].values[:3]]
+('flap.cg_offset', [0.0, 0.04, 0.08])
+>>> FIGURES["fig10"].values[0], FIGURES["fig10"].values[-1]
+('150 lb/in', '800 lb/in')
+>>> cfg = figure_config("fig10")
+>>> cfg.flight.advance_ratio, cfg.flap.overhang, cfg.flap.cg_offset
+(0.3, 0.29, 0.33)
 """
 
 from __future__ import annotations
@@ -22,8 +32,14 @@ from ..flap_dynamics import SectionMotion, aerodynamic_hinge_moment, flap_proper
 from ..sweep import sweep
 from ..trim import fourier_eval, trim
 
+__all__ = ["FIG5_FLIGHT", "FIGURES", "FORWARD_03", "IMBALANCED", "RESPONSE_TITLES", "Figure",
+           "figure_config", "flap_response_figure", "hinge_moment_figure",
+           "overhang_actuation_figure", "response_config", "run_figure",
+           "trimmed_section_motion"]
+
 #: the mass-imbalanced flap of Figs. 10-17 and Fig. 9's overhang
 IMBALANCED = {"flap.overhang": 0.29, "flap.cg_offset": 0.33}
+#: the forward flight of Figs. 9-15 and 16b: "advance ratio of 0.30"
 FORWARD_03 = {"flight.advance_ratio": 0.30}
 #: Figs. 5-7: "mu = 0.2, C_T/sigma = 0.0774, c_cg/c_f = 0"
 FIG5_FLIGHT = {"flight.advance_ratio": 0.2, "flight.ct_sigma": 0.0774, "flap.cg_offset": 0.0}
@@ -31,7 +47,29 @@ FIG5_FLIGHT = {"flight.advance_ratio": 0.2, "flight.ct_sigma": 0.0774, "flap.cg_
 
 @dataclass(frozen=True)
 class Figure:
-    """A stability figure: the swept field, its values and the fixed parameters."""
+    """A stability figure: the swept field, its values and the fixed parameters.
+
+    Parameters
+    ----------
+    name : str
+        The figure's name in tefcore (``"fig9"``; Fig. 16's panels are
+        ``"fig16a"`` and ``"fig16b"``), the key of :data:`FIGURES`.
+    caption : str
+        Short caption in the paper's symbols, with the fixed parameters.
+    parameter : str
+        Dotted configuration field swept along the figure's x axis
+        (``"flap.cg_offset"``, ``"hub.pitch_link_stiffness"``, ...).
+    values : tuple
+        The paper's x values: SI numbers (fractions of a chord or of R, a GJ
+        factor, radians of collective) or ``"value unit"`` strings where the
+        paper gives a dimensional axis (``"150 lb/in"``, ``"81.520 ft-lb/rad"``).
+    fixed : dict, optional
+        Dotted fields set before sweeping: the caption's flight condition and
+        flap (e.g. :data:`IMBALANCED` and ``mu = 0.3`` for Figs. 10-15).
+    unit : str, optional
+        Unit of numeric ``values`` when they are not fractions (``"rad"`` for
+        the collective of Figs. 3, 4 and 16).
+    """
 
     name: str
     caption: str
@@ -86,7 +124,20 @@ FIGURES = {f.name: f for f in (
 
 
 def figure_config(name: str, cfg=None):
-    """Baseline configuration with the figure's fixed parameters applied."""
+    """Baseline configuration with the figure's fixed parameters applied.
+
+    Parameters
+    ----------
+    name : str
+        Stability figure, a key of :data:`FIGURES` (``"fig3"`` ... ``"fig17"``).
+    cfg : tefcore.config.Config, optional
+        Base configuration (default: the MDART baseline, ``load_config("mdart")``).
+
+    Returns
+    -------
+    tefcore.config.Config
+        ``cfg`` with :attr:`Figure.fixed` applied, before the swept field is set.
+    """
     fig = FIGURES[name]
     return (cfg or load_config("mdart")).with_overrides(fig.fixed)
 
@@ -94,7 +145,30 @@ def figure_config(name: str, cfg=None):
 def run_figure(name: str, cfg=None, values=None, **sweep_kw):
     """Run a stability figure's sweep; ``values`` override the default range.
 
-    Returns the :class:`tefcore.sweep.SweepResult` (``.table`` is tidy).
+    Parameters
+    ----------
+    name : str
+        Stability figure, a key of :data:`FIGURES`.
+    cfg : tefcore.config.Config, optional
+        Base configuration (default: MDART); the figure's fixed parameters
+        are applied over it (:func:`figure_config`).
+    values : sequence, optional
+        Values of the swept field instead of the paper's :attr:`Figure.values`
+        (SI numbers or ``"value unit"`` strings).
+    **sweep_kw
+        Passed to :func:`tefcore.sweep.sweep` (``n_jobs``, ``out``, ``refine``,
+        ...); ``progress`` defaults to False.
+
+    Returns
+    -------
+    tefcore.sweep.SweepResult
+        One Floquet analysis per value; ``.table`` is tidy (one row per root
+        and point, with the tracked mode, the TEF branch and the flutter root).
+
+    Raises
+    ------
+    ValueError
+        ``name`` is not a stability figure (the message lists the known ones).
     """
     if name not in FIGURES:
         raise ValueError(f"unknown figure {name!r}; known: {', '.join(FIGURES)}")
@@ -110,6 +184,22 @@ def trimmed_section_motion(tr, x: float) -> SectionMotion:
     Includes the elastic twist and flap bending of the trimmed response, so
     the flap sees the same angle of attack as in the coupled analysis (the
     kinematics are the coupled model's own, :meth:`CoupledModel.kinematics`).
+
+    Parameters
+    ----------
+    tr : tefcore.trim.TrimResult
+        Converged trim of a coupled blade/flap model: its periodic response
+        (``tr.motion(psi)``), controls and inflow.
+    x : float
+        Radial station as a fraction of the rotor radius R (e.g. the flap
+        midspan, 0.83 in Table 1).
+
+    Returns
+    -------
+    tefcore.flap_dynamics.SectionMotion
+        Callables of the azimuth [rad] giving the section's speed [m/s],
+        angle of attack [rad] and its rates, plunge acceleration, pitch and
+        bending slope in SI units (dimensional with ``Omega`` and ``R``).
     """
     model = tr.model
     rad, om = model.cfg.rotor.radius, model.cfg.rotor.rotor_speed
@@ -163,8 +253,29 @@ def hinge_moment_figure(cfg=None, aero=None, n_psi: int = 72, **over) -> pd.Data
 
     ``delta_f = 2 deg cos(4 psi - 240 deg)`` on the trimmed blade at
     ``mu = 0.2, C_T/sigma = 0.0774`` (:func:`response_config`; ``over``
-    wins); ``aero`` is a section model (default: the configured one).
-    Returns ``psi_deg, delta_deg, hinge_moment`` [N m].
+    wins).  The paper compares UMARC's table look-up and Theodorsen-based
+    hinge moments with CAMRAD II's; here the section model decides which.
+
+    Parameters
+    ----------
+    cfg : tefcore.config.Config, optional
+        Base configuration (default: MDART).
+    aero : object, optional
+        Section aerodynamics model evaluating the hinge moment
+        (:func:`tefcore.coupled.section_model`, e.g. from
+        :func:`tefcore.paper.figure_runs.section_aero`); default: the trimmed
+        model's own.
+    n_psi : int
+        Azimuth samples over one revolution (72: every 5 deg).
+    **over
+        Dotted configuration fields that win over Fig. 5's condition
+        (e.g. ``**{"flap.overhang": 0.0}``).
+
+    Returns
+    -------
+    pandas.DataFrame
+        ``psi_deg`` (azimuth [deg]), ``delta_deg`` (prescribed flap
+        deflection [deg], positive flap down) and ``hinge_moment`` [N m].
     """
     cfg, tr = _fig5_trim(cfg, **over)
     props = flap_properties(cfg)
@@ -186,9 +297,26 @@ def flap_response_figure(cfg=None, **over) -> dict:
     """Fig. 6: coupled trimmed flap response to ``delta_a = 2 deg cos(4 psi - 240 deg)``.
 
     The actuator input enters the coupled blade/flap trim (as in the paper);
-    returns the azimuthal histories and the half peak-to-peak response, the
-    actuator torque ``k_a (delta_a - delta_f) + c_a (...)*`` and the power it
-    delivers ``T_a delta_a*`` [W].
+    the flap answers through the actuator spring ``k_a`` and damper ``c_a``,
+    so its half peak-to-peak differs from the input's 2 deg (the paper: 15 %
+    larger with the baseline actuator).
+
+    Parameters
+    ----------
+    cfg : tefcore.config.Config, optional
+        Base configuration (default: MDART).
+    **over
+        Dotted configuration fields that win over Fig. 6's condition and the
+        actuator input (e.g. ``**{"flap.overhang": 0.4}``).
+
+    Returns
+    -------
+    dict
+        ``table`` (``psi_deg, delta_a_deg, delta_f_deg, actuator_torque``
+        [N m] ``= k_a (delta_a - delta_f) + c_a (...)*``, ``power`` [W]
+        ``= T_a delta_a*``), ``half_peak_to_peak_deg`` of the flap response,
+        ``input_half_peak_to_peak_deg`` (2.0), ``peak_power`` and
+        ``mean_power`` (of ``|power|``, [W]) and the ``trim`` summary.
     """
     act = {"flight.actuator_amplitude": float(np.deg2rad(2.0)),
            "flight.actuator_harmonic": 4, "flight.actuator_phase": float(np.deg2rad(240.0))}
@@ -215,7 +343,25 @@ def overhang_actuation_figure(cfg=None, overhangs=(0.0, 0.1, 0.2, 0.29, 0.35, 0.
     """Fig. 7: actuation power and half peak-to-peak response versus overhang.
 
     Each overhang is :func:`flap_response_figure` with ``over`` (which wins
-    over the figures' flight condition).
+    over the figures' flight condition).  The paper: the power falls by 60 %
+    from no overhang to 0.29 c_f (Fig. 7a), the response grows with the
+    overhang, steeply above 0.40 c_f (Fig. 7b).
+
+    Parameters
+    ----------
+    cfg : tefcore.config.Config, optional
+        Base configuration (default: MDART).
+    overhangs : sequence of float
+        Flap overhangs ``c_b/c_f`` (hinge behind the flap nose, fraction of
+        the flap chord) at which to trim.
+    **over
+        Dotted configuration fields that win over Fig. 7's condition.
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per overhang: ``overhang``, ``half_peak_to_peak_deg``,
+        ``peak_power`` and ``mean_power`` [W].
     """
     rows = []
     for ov in overhangs:

@@ -101,8 +101,17 @@ def compare_hub_models(cfg=None, *, speed_ratios=None, figures=("fig3", "fig4"),
 def plot_hub_models(comparison: HubComparison, cfg=None):
     """Fan plots of both hubs and the lag damping of Figs. 3-4, side by side.
 
-    Returns the matplotlib Figure (two fan plots on top, the lag damping of
-    each figure below).
+    Parameters
+    ----------
+    comparison : HubComparison
+        From :func:`compare_hub_models`.
+    cfg : tefcore.config.Config, optional
+        Its configuration, for the nominal rotor speed (default MDART).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        Two fan plots on top, the lag damping of each figure below.
     """
     import matplotlib.pyplot as plt
 

@@ -40,6 +40,24 @@ _NUM_UNIT = re.compile(r"^\s*([-+0-9.eE]+)\s*(.*)$")
 def split_value(value) -> tuple[float, str]:
     """A swept value as ``(number, unit)``: ``"150 lb/in"`` -> ``(150.0, "lb/in")``.
 
+    Parameters
+    ----------
+    value : str or float
+        A figure's swept value: a number (SI or a fraction) or a ``"value
+        unit"`` string as in :data:`tefcore.paper.figures.FIGURES` (Figs. 10
+        and 12 give the pitch-link and actuator stiffness in lb/in and
+        ft-lb/rad, the paper's units).
+
+    Returns
+    -------
+    tuple of (float, str)
+        The number, and the unit as written (``""`` for a number).
+
+    Raises
+    ------
+    ValueError
+        A string that does not start with a number.
+
     Examples
     --------
     >>> split_value("150 lb/in"), split_value(0.25)
@@ -115,14 +133,19 @@ def savefig(fig, output_dir, stem: str, figure: str = "", caption: str = "") -> 
     stem : str
         File name without suffix.
     figure : str
-        The paper figure it belongs to (``"fig9"``), for the report.
+        The paper figure it belongs to (``"fig9"``), for the report; several
+        separated by spaces when one figure shows them all (``"fig16a
+        fig16b"``), the first owning it.
     caption : str
-        Caption for the report (:func:`figure_caption`); written with
-        ``figure`` to ``<stem>.json`` beside the PNG when either is given.
+        Caption for the report (:func:`tefcore.paper.captions.figure_caption`);
+        written with ``figure`` to ``<stem>.json`` beside the PNG when either
+        is given.
 
+    Notes
+    -----
     Returns None, so that a notebook cell ending with it displays nothing
     extra (nbval executes cells without history, where IPython's trailing
-    ``;`` does not suppress the result).
+    ``;`` does not suppress the result).  Both files are written atomically.
     """
     out = Path(output_dir)
     with atomic_output(out / f"{stem}.png", "wb") as f:
@@ -135,7 +158,23 @@ def savefig(fig, output_dir, stem: str, figure: str = "", caption: str = "") -> 
 def legend_below(ax, ncol: int = 3, **kw):
     """A legend under the axes, where it cannot cover a curve.
 
-    Returns the :class:`matplotlib.legend.Legend` (or None when nothing is labelled).
+    The paper's damping panels have curves everywhere between the modes, so a
+    legend inside the axes would hide a crossing of zero damping.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        Axes whose labelled artists are listed.
+    ncol : int
+        Columns of legend entries.
+    **kw
+        Passed to :meth:`matplotlib.axes.Axes.legend` (``fontsize`` defaults
+        to ``"x-small"``).
+
+    Returns
+    -------
+    matplotlib.legend.Legend or None
+        The legend, or None when nothing in ``ax`` is labelled.
     """
     handles, labels = ax.get_legend_handles_labels()
     if not handles:

@@ -98,11 +98,129 @@ class ReferenceDataError(ValueError):
 
 @dataclass(frozen=True)
 class Claim:
-    """One checkable statement (fields: ``reference_data/README.md``).
+    """One checkable statement of the paper (fields: ``reference_data/README.md``).
 
-    x values are in ``x_unit`` as written.  ``points`` (curves only) has
-    ``x`` (unit of the result table), ``y`` (canonical unit of ``quantity``),
-    ``band`` (y half-width) and ``x_band`` (x half-width).
+    Made by :func:`parse_claim` (which checks every field for its kind) from a
+    ``[[claim]]`` of ``claims.toml`` or a dataset of a digitised-curve
+    sidecar; checked by :func:`tefcore.paper.claim_checks.validate_figure`.
+    x values are in ``x_unit`` as written; expected values of a quantity are
+    in its canonical unit (:data:`QUANTITIES`).  Fields that do not apply to
+    a claim's kind keep their empty defaults.
+
+    Parameters
+    ----------
+    id : str
+        Unique identifier, ``[a-z0-9][a-z0-9._:-]*``
+        (``"fig9b-tef-unstable-after-0.26"``).
+    figure : str
+        The analysis it is about: a stability figure (``"fig3"`` ...
+        ``"fig17"``, ``"fig16a"``/``"fig16b"``) or ``"fig5"``-``"fig7"``.
+    kind : str
+        One of :data:`KINDS`: how the statement is checked.
+    tag : str
+        ``"validation"`` (never used to set a property; counted in the score)
+        or ``"calibration"`` (used to set an assumed property: the four stated
+        torsion frequencies).
+    statement : str
+        The paper's sentence(s), quoted exactly.
+    source : str
+        Where the claim was read (file, record or dataset, id), for messages.
+    panel : str
+        ``"a"``, ``"b"`` or ``""``: the figure's panel.
+    condition : str
+        The flight condition and fixed parameters of the caption.
+    recorded_status : str
+        The status tefcore had when last recorded (one of :data:`STATUSES` or
+        ``""``); a later run worse than it is a regression.
+    notes : str
+        Interpretation choices (e.g. which root "the TEF mode" is).
+    mode : str
+        Tracked mode of a stability figure (``"TEF"``, ``"blade torsion 1"``,
+        ``"flutter root"``); ``""`` for Figs. 5-7.
+    quantity : str
+        A key of :data:`QUANTITIES`: ``real_part`` [1/rev, eigenvalue over
+        Omega, > 0 unstable], ``damping``, ``frequency_per_rev``,
+        ``hinge_moment`` [N m], ``peak_power`` [W], ...
+    x_unit : str
+        Unit of the claim's x values (``"lb/in"``, ``"deg"``, ``"percent"``);
+        ``""``: the SI unit or fraction of the swept field.
+    overrides : dict
+        Dotted configuration fields of a variant of the figure the claim is
+        about (Fig. 12a's balanced flap: ``{"flap.cg_offset": 0.0}``).
+    tolerance : float or None
+        The allowance: on the value (``value``), on the x of a crossing or
+        interval end in ``x_unit`` (``threshold``, ``range``), on the
+        peak-to-peak (``constant`` trend), the least ``|r|`` (correlation),
+        the least share of the growth rate a knockout removes (mechanism) or
+        the y band of a digitised curve.
+    tolerance_reason : str
+        Why the tolerance is what it is (the precision of the statement,
+        never a fit).
+    tolerance_type : str
+        ``"absolute"``, ``"relative"`` (times the expected value, or the
+        mean magnitude for a trend) or ``"relative_to_mode"`` (times the
+        peak-to-peak of ``reference_mode``).
+    x : float or None
+        Where a ``value`` or ``mechanism`` claim is evaluated, in ``x_unit``.
+    relative_to : float or None
+        The x of the reference value: the claim is then about the relative change
+        ``q(x)/q(relative_to) - 1`` (Fig. 7a's "reduced by 60 %").
+    expected : float or None
+        Expected value (``value``, canonical unit) or crossing x
+        (``threshold``, ``x_unit``).
+    lower, upper : float or None
+        Bounds of a ``value`` claim stated as an inequality.
+    interval : tuple of (float, float) or None
+        ``(low, high)`` x range, in ``x_unit``, the claim is restricted to.
+    expected_interval : tuple of (float, float) or None
+        The stated stable or unstable x interval of a ``range`` claim (Fig.
+        15: unstable from 0.15 to 0.40 airfoil chord).
+    state : str
+        ``"unstable"`` (real part >= 0) or ``"stable"``, for a ``range``.
+    direction : str
+        ``"destabilising"``/``"stabilising"`` with increasing x (threshold),
+        or ``"increasing"``/``"decreasing"``/``"constant"`` (trend).
+    method : str
+        Sign of a trend: ``"slope"`` (least-squares slope) or ``"net_change"``
+        (last minus first).
+    reference_mode : str
+        Mode whose peak-to-peak scales a ``relative_to_mode`` tolerance.
+    statistic : str
+        Of a comparison: ``"slope"``, ``"abs_slope"``, ``"peak_to_peak"`` or
+        ``"correlation"``.
+    relation : str
+        ``"less"``/``"greater"`` (or ``"positive"``/``"negative"`` for a
+        correlation): how the claim's curve stands to the other one.
+    other_figure, other_mode, other_quantity : str
+        The second curve of a comparison (each defaults to the claim's own).
+    other_interval : tuple of (float, float) or None
+        The x range of the second curve (default: ``interval``).
+    other_overrides : dict
+        Configuration variant of the second curve (Fig. 12a's balanced
+        against imbalanced flap).
+    root_kind : str
+        Of a mechanism claim: ``"flutter"`` (oscillatory, growing) or
+        ``"divergence"`` (real, growing); see :data:`ROOT_KINDS`.
+    driving_terms : tuple of str
+        Terms of :data:`tefcore.mechanism.TERMS`, one of which must do the
+        largest destabilising work on the root.
+    min_participation : dict
+        Least participation share by kind of coordinate (``"flap"``,
+        ``"lag"``, ``"torsion"``, ``"axial"``, ``"TEF"``) in [0, 1]: Fig. 9b's
+        "flap-blade torsion flutter" needs both the flap and the torsion.
+    knockout_terms : tuple of str
+        Terms of which at least one, removed from the equations (a knockout),
+        must take away ``tolerance`` or more of the root's growth rate.
+    reason : str
+        Why a ``not_reproducible`` claim cannot be checked (e.g. it compares
+        with test data tefcore does not have).
+    example : bool
+        A synthetic demonstration curve, never a claim of the paper; loaded
+        only with ``include_examples``.
+    points : pandas.DataFrame or None
+        Digitised points of a ``curve``: ``x`` (unit of the result table),
+        ``y`` (canonical unit of ``quantity``), ``band`` (y half-width) and
+        ``x_band`` (x half-width).
     """
 
     id: str
@@ -156,7 +274,24 @@ def reference_dir() -> Path:
 
 
 def swept_dimension(figure: str) -> str:
-    """Physical dimension of a stability figure's swept field (e.g. ``"angle"``)."""
+    """Physical dimension of a stability figure's swept field (e.g. ``"angle"``).
+
+    Parameters
+    ----------
+    figure : str
+        Stability figure, a key of :data:`tefcore.paper.figures.FIGURES`.
+
+    Returns
+    -------
+    str
+        The dimension of the configuration field it sweeps, as declared in
+        :mod:`tefcore.config` (used to convert ``"150 lb/in"`` to SI).
+
+    Examples
+    --------
+    >>> swept_dimension("fig3"), swept_dimension("fig10")
+    ('angle', 'force_per_length')
+    """
     section, name = resolve_field(FIGURES[figure].parameter)
     return next(p.dimension for p in SECTIONS[section].PARAMS if p.name == name)
 
@@ -164,8 +299,33 @@ def swept_dimension(figure: str) -> str:
 def x_to_si(figure: str, values, unit: str = ""):
     """Convert x values of `figure` from `unit` to the unit of its result table.
 
-    Stability figures: SI of the swept field (``""``: already SI); fig5:
-    azimuth in deg; fig7: overhang fraction.  ``ValueError`` for a bad unit.
+    Parameters
+    ----------
+    figure : str
+        A stability figure, ``"fig5"`` or ``"fig7"`` (Fig. 6 has no x).
+    values : float or array_like
+        The x values as the claim writes them.
+    unit : str
+        Their unit: stability figures accept any unit of the swept field's
+        dimension (``"lb/in"``, ``"deg"``, ``"percent"``; ``""``: already SI);
+        Fig. 5 ``""``, ``"deg"`` or ``"rad"`` of azimuth; Fig. 7 ``""``,
+        ``"%"`` or ``"percent"`` of the flap chord.
+
+    Returns
+    -------
+    float or numpy.ndarray
+        ``values`` in the unit of the figure's result table: SI of the swept
+        field, Fig. 5's azimuth in deg, Fig. 7's overhang as a fraction.
+
+    Raises
+    ------
+    ValueError
+        A unit the figure does not accept.
+
+    Examples
+    --------
+    >>> float(x_to_si("fig7", 29, "percent"))
+    0.29
     """
     if figure in FIGURES:
         return to_si(values, unit, swept_dimension(figure)) if unit else values
@@ -176,7 +336,37 @@ def x_to_si(figure: str, values, unit: str = ""):
 
 
 def y_to_canonical(quantity: str, values, unit: str, rotor_speed: float | None = None):
-    """Convert `values` of `quantity` from `unit` to its canonical unit (:data:`QUANTITIES`)."""
+    """Convert `values` of `quantity` from `unit` to its canonical unit (:data:`QUANTITIES`).
+
+    Parameters
+    ----------
+    quantity : str
+        A key of :data:`QUANTITIES` (``"real_part"``, ``"hinge_moment"``, ...).
+    values : float or array_like
+        Values as digitised or stated.
+    unit : str
+        Their unit, one of those :data:`QUANTITIES` accepts for the quantity
+        (``"1/s"``, ``"Hz"``, ``"%"``, ``"ft-lb"``, ``"hp"``, ...).
+    rotor_speed : float, optional
+        Rotor speed Omega [rad/s] of the figure, needed to turn a rate per
+        second (``"1/s"``) or ``"Hz"`` into per rev.
+
+    Returns
+    -------
+    numpy.ndarray
+        The values in the canonical unit (1/rev, /rev, N m, W, deg or 1).
+
+    Raises
+    ------
+    ValueError
+        A unit not accepted for the quantity, or a per-second unit without
+        ``rotor_speed``.
+
+    Examples
+    --------
+    >>> y_to_canonical("damping_ratio", [2.0], "%")
+    array([0.02])
+    """
     table = QUANTITIES[quantity][2]
     if unit not in table:
         raise ValueError(f"unit {unit!r} not accepted for {quantity}; use one of {list(table)}")

@@ -75,17 +75,62 @@ _STATUS_CLASS = {"pass": "pass", "fail": "fail", "ambiguous": "ambig",
 
 @dataclass
 class Image:
-    """One figure file of a section."""
+    """One figure file of a section.
 
-    src: str            # path relative to the report (markdown link)
-    data: str           # base64 PNG (HTML embedding)
+    Parameters
+    ----------
+    src : str
+        Path of the PNG relative to the report folder (the markdown link).
+    data : str
+        The PNG, base64-encoded (embedded in the HTML page, which is
+        self-contained).
+    caption : str
+        Caption as plain text (the JSON written beside the PNG by
+        :func:`tefcore.paper.plotting.savefig`, markdown marks removed).
+    anchor : str
+        HTML id of the image, a slug of its file name.
+    """
+
+    src: str
+    data: str
     caption: str
     anchor: str
 
 
 @dataclass
 class Section:
-    """One paper figure (or group) in the report."""
+    """One paper figure (or group) in the report.
+
+    Parameters
+    ----------
+    key : str
+        The paper figure (``"fig9"``), or the notebook's name for a section
+        of its further results.
+    title : str
+        Heading: the paper's own caption (:data:`FIGURE_TITLES`).
+    anchor : str
+        HTML id, linked from the summary's thumbnails.
+    notebook : str
+        Name of the notebook that computed it (``"04_cg_offset"``).
+    notebook_html : str
+        Link to the executed notebook's HTML export, relative to the report.
+    images : list of Image
+        The figure files the notebook saved for this figure.
+    claims : list of dict
+        The figure's claims as plain-text rows of the claims table, each with
+        its status and a ``css`` class for the status colour.
+    departures : str
+        Where the model departs from the paper for this figure (markdown,
+        :func:`tefcore.paper.departures.load_departures`).
+    shown_with : str
+        Key of the section whose figure also shows this one (Fig. 16a and
+        16b share one figure), when this one has no image of its own.
+    thumb : str
+        Base64 PNG of the summary's thumbnail (its first image or the one
+        it is shown with).
+    tally : str
+        The claims' statuses, e.g. ``"3 pass, 1 fail"``.
+    """
 
     key: str
     title: str
@@ -95,14 +140,49 @@ class Section:
     images: list = field(default_factory=list)
     claims: list = field(default_factory=list)
     departures: str = ""
-    shown_with: str = ""     # the section whose figure also shows this one
-    thumb: str = ""          # base64 PNG of the summary's thumbnail
-    tally: str = ""          # the claims' statuses, e.g. "3 pass, 1 fail"
+    shown_with: str = ""
+    thumb: str = ""
+    tally: str = ""
 
 
 @dataclass
 class Report:
-    """Everything the report shows, rendered by :func:`render`."""
+    """Everything the report shows, rendered by :func:`render`.
+
+    Parameters
+    ----------
+    title : str
+        Page title.
+    intro : str
+        Opening paragraph (markdown): what is replicated and what the
+        statuses mean.
+    passed : int
+        Validation claims that pass (the score; calibration targets are
+        listed, not scored).
+    total : int
+        Validation claims checked.
+    counts : dict
+        Claims by status over all claims: ``{"pass": n, "fail": n,
+        "ambiguous": n, "not reproducible": n}``.
+    worse : list of dict
+        Claims whose status is worse than their recorded status (the
+        regressions), as plain-text rows.
+    notebooks : list of dict
+        Each notebook run: ``name``, ``status``, ``error`` and ``html`` (link
+        to its HTML export).
+    sections : list of Section
+        One per paper figure, in the paper's order within each notebook.
+    checks : list of dict
+        The first-torsion frequencies stated in the text against the model's
+        (:func:`tefcore.paper.calibration.frequency_checks`), rounded.
+    version : str
+        The version of tefcore, shown in the summary.
+    fanplot : Image or None
+        Fan plot of the (assumed) MDART blade's coupled modes, if written.
+    departures : str
+        Departures from the paper common to all figures (markdown); each
+        section has its own part.
+    """
 
     title: str
     intro: str
@@ -115,7 +195,7 @@ class Report:
     checks: list
     version: str
     fanplot: Image | None = None
-    departures: str = ""     # common to all figures; each section has its own part
+    departures: str = ""
 
 
 def _slug(text: str) -> str:
@@ -205,13 +285,14 @@ def build_report(out, runs, claims: pd.DataFrame, worse: pd.DataFrame, *, figure
     checks : DataFrame, optional
         The stated blade frequencies against the model's.
     version : str
-        tefcore's version, shown in the summary.  (Run times are printed by
-        :func:`tefcore.paper.reproduce.reproduce`, not kept in the report, so
-        that two runs write identical reports.)
+        The version of tefcore, shown in the summary.  Run times are printed
+        by :func:`tefcore.paper.reproduce.reproduce`, not kept in the report,
+        so that two runs write identical reports.
 
     Returns
     -------
     Report
+        The model :func:`render` turns into markdown or HTML.
     """
     out = Path(out)
     status = claims.get("status", pd.Series(dtype=str))
@@ -304,14 +385,48 @@ def _inline(text) -> str:
 
 
 def render(report: Report, fmt: str = "html") -> str:
-    """The report as ``"html"`` (self-contained, figures embedded) or ``"md"``."""
+    """The report as ``"html"`` (self-contained, figures embedded) or ``"md"``.
+
+    Parameters
+    ----------
+    report : Report
+        What to show (:func:`build_report`).
+    fmt : {"html", "md"}
+        Output format: one responsive HTML page with the figures embedded as
+        base64, or markdown linking the PNGs beside it.
+
+    Returns
+    -------
+    str
+        The rendered text (jinja2 templates ``tefcore/paper/templates``).
+
+    Raises
+    ------
+    ValueError
+        Another format.
+    """
     if fmt not in ("html", "md"):
         raise ValueError(f"format must be 'html' or 'md', got {fmt!r}")
     return _environment().get_template(f"report.{fmt}.j2").render(r=report)
 
 
 def write_report(report: Report, out) -> tuple[Path, Path]:
-    """Write ``report.md`` and ``report.html`` into ``out``; return their paths."""
+    """Write ``report.md`` and ``report.html`` into ``out``; return their paths.
+
+    Each file is written atomically (:func:`tefcore.safe_io.atomic_write_text`).
+
+    Parameters
+    ----------
+    report : Report
+        What to show.
+    out : path
+        Existing reproduction folder (the markdown links the PNGs in it).
+
+    Returns
+    -------
+    tuple of pathlib.Path
+        ``(out/report.md, out/report.html)``.
+    """
     out = Path(out)
     paths = out / "report.md", out / "report.html"
     for path, fmt in zip(paths, ("md", "html"), strict=True):

@@ -61,10 +61,27 @@ class ReproductionError(TefcoreError, RuntimeError):
 
 @dataclass
 class NotebookRun:
-    """How one notebook's execution went."""
+    """How one notebook's execution went.
+
+    Parameters
+    ----------
+    name : str
+        The notebook (``"04_cg_offset"``).
+    status : str
+        ``"not run"`` until executed, then ``"ok"`` or ``"failed"``.
+    error : str
+        Why it failed (the exception's type and last line) and whether its
+        HTML export failed; ``""`` when neither.
+    seconds : float
+        Wall-clock time of the execution and HTML export [s]; printed, never
+        written into the report (two runs must write identical reports).
+    parameters : dict
+        The papermill parameters it was executed with (after merging the
+        layers of :mod:`tefcore.paper.run_params`).
+    """
 
     name: str
-    status: str = "not run"          # ok | failed
+    status: str = "not run"
     error: str = ""
     seconds: float = 0.0
     parameters: dict = field(default_factory=dict)

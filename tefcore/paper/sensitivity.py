@@ -57,6 +57,7 @@ from ..config_io import load_config
 from ..errors import TefcoreError
 from ..mechanism import FLUTTER_PARTICIPATION
 from ..mechanism import flutter_root as mechanism_flutter_root
+from ..runtime import worker_init
 from .assumptions import ASSUMPTIONS, Assumption, apply_assumption  # re-exported
 
 __all__ = [
@@ -85,13 +86,20 @@ def flutter_root(result, threshold: float = FLUTTER_PARTICIPATION) -> pd.Series:
     Parameters
     ----------
     result : tefcore.stability.StabilityResult
+        Floquet analysis of a configuration with the flap degree of freedom.
     threshold : float
         Least flap participation (``share_TEF``) of a root that counts.
 
     Returns
     -------
     pandas.Series
-        The row of ``result.modes``.
+        The row of ``result.modes`` (``real_part`` [1/rev],
+        ``frequency_per_rev``, ``label``, participation shares ...).
+
+    Raises
+    ------
+    ValueError
+        No root carries the flap (``model.tef = "none"``).
     """
     row = mechanism_flutter_root(result.modes, threshold)
     if row is None:
@@ -110,6 +118,28 @@ class Headline:
     ``fixed`` is applied over the configuration; an onset scans ``field``
     over ``grid`` (upwards) for the first sign change of the flutter root's
     real part and refines it with ``scipy.optimize.brentq``.
+
+    Parameters
+    ----------
+    name : str
+        Short identifier, the ``headline`` column of the tables
+        (``"fig9_onset"``).
+    description : str
+        What is computed, in the paper's symbols and condition.
+    fixed : dict
+        Dotted configuration fields set for this headline (flight condition,
+        flap overhang and CG offset).
+    field : str or None
+        Dotted field scanned for an onset (``"flap.cg_offset"``); None for a
+        growth rate at the ``fixed`` point.
+    grid : tuple of float
+        Increasing values of ``field`` scanned for the first stable-to-unstable
+        crossing (the paper's sweep points); empty for a growth rate.
+    unit : str
+        Unit of the result: the swept quantity's (``"c_cg/c_f"``) for an
+        onset, ``"1/rev"`` for a growth rate (real part over Omega).
+    paper : str
+        What the paper states for comparison (``"0.26"``, ``"above 0.50"``).
     """
 
     name: str
@@ -122,6 +152,7 @@ class Headline:
 
     @property
     def is_onset(self) -> bool:
+        """True for an onset along ``field``, False for a growth rate."""
         return self.field is not None
 
 
@@ -197,6 +228,7 @@ def headline_results(cfg=None, *, identify: Callable = flutter_root,
         ``StabilityResult -> row`` (with ``real_part``) of the root to follow;
         default :func:`flutter_root`.
     headlines : sequence of Headline
+        The results to compute (default :data:`HEADLINES`).
     xtol : float
         Absolute tolerance of the onsets in the swept field (1e-4: far below the
         0.01-0.05 steps of the paper's sweeps).
@@ -221,6 +253,7 @@ def headline_results(cfg=None, *, identify: Callable = flutter_root,
 
 
 def _case(cfg, a, end, identify, headlines, xtol):
+    worker_init()          # a joblib worker is a process tefcore owns (tefcore.runtime)
     label = "baseline" if a is None else getattr(a, f"{end}_label")
     try:
         c = cfg if a is None else apply_assumption(cfg, a, end)
@@ -242,9 +275,12 @@ def sensitivity(cfg=None, assumptions=ASSUMPTIONS, *, identify: Callable = flutt
     cfg : Config, optional
         Baseline (default MDART).
     assumptions : sequence of Assumption
+        Assumptions varied one at a time, each to its low and high end
+        (default: all of :data:`ASSUMPTIONS`).
     identify : callable
         Root to follow (default :func:`flutter_root`).
     headlines : sequence of Headline
+        The results computed for each case (default :data:`HEADLINES`).
     n_jobs : int
         Cases run in joblib processes (1: serially).
     xtol : float
@@ -277,6 +313,20 @@ def tornado_table(table: pd.DataFrame, digits: int = 3) -> pd.DataFrame:
 
     Rows are ordered by the largest change of any headline relative to its
     own baseline spread (the tornado order); values rounded to ``digits``.
+
+    Parameters
+    ----------
+    table : pandas.DataFrame
+        Tidy result of :func:`sensitivity`.
+    digits : int
+        Decimals kept (3: a thousandth of c_f for the onsets, of 1/rev for
+        the growth rates).
+
+    Returns
+    -------
+    pandas.DataFrame
+        Index: the assumptions, most influential first, then ``"baseline"``;
+        columns: ``(headline, "low" | "high")``.  A missing onset is NaN.
     """
     t = table[table["end"] != "baseline"]
     wide = t.pivot_table(index="assumption", columns=["headline", "end"], values="value",
@@ -298,7 +348,24 @@ def tornado_plot(table: pd.DataFrame, headline: str, ax=None, *, labels: Mapping
     Bars are centred on the baseline value and sorted by their span; a
     missing end (onset outside the scanned range, or a configuration the
     data do not admit) is drawn as a hatched stub and named in the label.
-    Returns the Axes.
+
+    Parameters
+    ----------
+    table : pandas.DataFrame
+        Tidy result of :func:`sensitivity`.
+    headline : str
+        Which headline to plot (``"fig9_onset"``).
+    ax : matplotlib.axes.Axes, optional
+        Axes to draw in; default: a new figure sized to the number of
+        assumptions.
+    labels : mapping, optional
+        Display names of the assumptions (``{"flap mass": "m_f"}``); others
+        keep their own.
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+        The axes drawn in; the x axis is the headline in its unit.
     """
     import matplotlib.pyplot as plt
 

@@ -41,11 +41,38 @@ def mechanism_summary(cfg, x=None, name=None, root=None, knockouts=True,
                       digits: int = 3) -> pd.DataFrame:
     """:func:`tefcore.mechanism.mechanism` of one root, as a rounded table.
 
-    ``name``/``x``: the figure's configuration at that x (its swept value);
-    ``root``: the eigenvalue of the root (e.g. the TEF branch there), else
-    the root the flap mode becomes (``mode="TEF"``).  Prints the kind and
-    participation; returns ``term, contribution_real`` (terms with at least
-    0.001 /rev, largest first) and the knockouts.
+    Why a root is (un)stable: the work each term of the linearised equations
+    does on it over a period (its contribution to the real part), and what
+    knocking a term out does to the root.  Prints the root's kind
+    (flutter, divergence, stable) and participation.
+
+    Parameters
+    ----------
+    cfg : tefcore.config.Config or None
+        The configuration; with ``name``, the base configuration of the
+        figure (None: MDART).
+    x : float or str, optional
+        With ``name``: the value of the figure's swept field, SI or a ``"value
+        unit"`` string (a flap CG offset 0.33 for Fig. 9, ``"400 lb/in"``
+        for Fig. 10).
+    name : str, optional
+        Stability figure; the root is analysed at its caption's configuration
+        with the swept field at ``x``.
+    root : complex, optional
+        Eigenvalue of the root to analyse, ``real_part + 1j *
+        frequency_per_rev`` [1/rev] (e.g. the TEF branch of a sweep there);
+        default: the root the flap mode becomes (``mode="TEF"``).
+    knockouts : bool
+        Also follow the root with each removable term knocked out.
+    digits : int
+        Decimals printed and kept; terms smaller than ``10**-digits`` /rev
+        are left out.
+
+    Returns
+    -------
+    pandas.DataFrame
+        ``term, contribution_real`` [1/rev]: the terms, largest first, then
+        the knockouts (the root's real part with that term removed).
     """
     if name is not None:
         cfg = figure_config(name, cfg).with_overrides({FIGURES[name].parameter: x})
@@ -67,7 +94,35 @@ def mechanism_summary(cfg, x=None, name=None, root=None, knockouts=True,
 def mode_summary(name: str, table: pd.DataFrame | None, labels=PAPER_MODES,
                  measure: str = "decay_rate", quantity: str = "damping",
                  digits: int = 3, natural: pd.DataFrame | None = None) -> pd.DataFrame:
-    """Wide table (x by mode), rounded, for printing in checked cells."""
+    """Wide table (x by mode), rounded, for printing in checked cells.
+
+    Parameters
+    ----------
+    name : str
+        Stability figure (sets the x axis and its label, :data:`AXES`).
+    table : pandas.DataFrame or None
+        Sweep table (:attr:`tefcore.sweep.SweepResult.table`); may be None
+        when ``natural`` is given.
+    labels : tuple of str
+        Modes (columns), in order: ``"TEF"`` is the TEF branch.
+    measure : {"decay_rate", "damping_ratio"}
+        Damping measure: ``-Re(s)/Omega`` [1/rev] or ``zeta`` [%]
+        (:data:`tefcore.paper.plotting.MEASURES`).
+    quantity : {"damping", "frequency"}
+        Which value fills the table (frequency in /rev).
+    digits : int
+        Decimals kept.
+    natural : pandas.DataFrame, optional
+        Curves of blade natural frequencies
+        (:func:`tefcore.paper.figure_runs.natural_frequencies`) to tabulate
+        instead of the sweep's roots.
+
+    Returns
+    -------
+    pandas.DataFrame
+        Index: the figure's own x values in the paper's units, named by the
+        axis label; one column per mode present.
+    """
     cv = natural if natural is not None else curves(name, table, labels, measure)
     cv = cv[cv["refinement"] == 0]               # the figure's own points
     col = "frequency_per_rev" if quantity == "frequency" else "damping"
@@ -81,14 +136,52 @@ def mode_summary(name: str, table: pd.DataFrame | None, labels=PAPER_MODES,
 
 
 def clean(df: pd.DataFrame) -> pd.DataFrame:
-    """Replace ``-0.0`` by ``0.0`` (so printed tables do not flip sign)."""
+    """Replace ``-0.0`` by ``0.0`` (so printed tables do not flip sign).
+
+    Parameters
+    ----------
+    df : pandas.DataFrame
+        A rounded table; only its float columns change.
+
+    Returns
+    -------
+    pandas.DataFrame
+        A copy with every zero of a float column a positive zero.
+
+    Examples
+    --------
+    >>> clean(pd.DataFrame({"d": [-0.0, -0.5]}))["d"].tolist()
+    [0.0, -0.5]
+    """
     return df.apply(lambda c: c.mask(c == 0, 0.0) if c.dtype.kind == "f" else c)
 
 
 def sign_changes(name: str, table: pd.DataFrame, label: str = "TEF",
                  measure: str = "decay_rate") -> list:
-    """Where a mode's damping changes sign (:func:`tefcore.paper.curve_metrics.zero_crossings`
-    of its real part, on the figure's own points), paper units."""
+    """Where a mode's damping changes sign, in the paper's x units.
+
+    The zero crossings (:func:`tefcore.paper.curve_metrics.zero_crossings`)
+    of the mode's real part, linearly interpolated between the figure's own
+    points (points added by refinement left out): e.g. Fig. 9b's TEF mode
+    "becomes unstable after a flap CG offset of 0.26 flap chord".
+
+    Parameters
+    ----------
+    name : str
+        Stability figure (sets the x axis).
+    table : pandas.DataFrame
+        Sweep table.
+    label : str
+        The mode (``"TEF"``: the TEF branch; ``"blade torsion 1"``, ...).
+    measure : {"decay_rate", "damping_ratio"}
+        Damping measure whose sign is followed (both change sign together).
+
+    Returns
+    -------
+    list of tuple of (float, str)
+        ``(x, "stable -> unstable" | "unstable -> stable")``, x rounded to
+        3 decimals, in order along each track.
+    """
     cv = curves(name, table, (label,), measure)
     cv = cv[cv["refinement"] == 0]
     out = []
@@ -106,7 +199,14 @@ def report_identity(name: str, result) -> None:
     Where the TEF branch starts and how it was anchored, how many points the
     refinement added, where the branch's identity is undecided, and where
     the flutter root (least stable root the flap takes part in) is a root
-    other than the TEF branch's.
+    other than the TEF branch's.  Printed; nothing is returned.
+
+    Parameters
+    ----------
+    name : str
+        Stability figure (sets the x axis of the printed positions).
+    result : tefcore.sweep.SweepResult
+        The figure's sweep (its ``table`` and the TEF branch's ``anchor``).
     """
     t = result.table
     ok = t[t["status"] == "ok"]
@@ -136,12 +236,36 @@ def report_identity(name: str, result) -> None:
 
 def explain(name: str, result, x: float, base=None, overrides: dict | None = None,
             which: str = "TEF branch", knockouts: bool = True) -> pd.DataFrame:
-    """Why the TEF branch (or the flutter root) is (un)stable at the sweep point
-    nearest ``x`` (paper units): :func:`mechanism_summary` of that root.
+    """Why the TEF branch (or the flutter root) is (un)stable near ``x``.
 
-    ``which``: ``"TEF branch"`` or ``"flutter root"``.  Prints the point and
-    the root's kind and participation; returns the terms' work and the
-    knockouts (rounded, for checked cells).
+    :func:`mechanism_summary` of that root at the sweep point nearest ``x``
+    (in the paper's units).  Prints the point, the root's label there, kind
+    and participation.
+
+    Parameters
+    ----------
+    name : str
+        Stability figure.
+    result : tefcore.sweep.SweepResult
+        The figure's sweep.
+    x : float
+        Where to look, in the paper's x units (deg of collective, lb/in,
+        fractions of c_f, ...); the nearest point of the figure's own is used.
+    base : tefcore.config.Config, optional
+        Base configuration the sweep was run with (default: MDART).
+    overrides : dict, optional
+        Dotted fields the sweep was run with over the caption.
+    which : {"TEF branch", "flutter root"}
+        The root to explain: the continuation of the flap's own mode, or the
+        least stable root the flap takes part in.
+    knockouts : bool
+        Also follow the root with each removable term knocked out.
+
+    Returns
+    -------
+    pandas.DataFrame
+        ``term, contribution_real`` [1/rev], rounded, for checked cells; empty
+        when the sweep has no such root.
     """
     t = result.table
     col = "tef_branch" if which == "TEF branch" else "flutter_root"
@@ -160,8 +284,23 @@ def explain(name: str, result, x: float, base=None, overrides: dict | None = Non
 
 
 def unsteadiness(name: str, result, base=None) -> None:
-    """Print the TEF mode's reduced frequency at the flap and Theodorsen's C(k):
-    how far from quasi-steady (C = 1) the flap mode of this sweep is."""
+    """Print the TEF mode's reduced frequency at the flap and Theodorsen's C(k).
+
+    How far from quasi-steady (C = 1) the flap mode of this sweep is: the
+    paper's flap aerodynamics are quasi-steady (adapted from Theodorsen's
+    theory, or table look-up).  ``k = omega b / U`` with the median frequency of the roots
+    labelled TEF, ``b = c/2`` and ``U`` the rotational speed at the flap
+    midspan (hover).
+
+    Parameters
+    ----------
+    name : str
+        Stability figure (its caption's flap and rotor).
+    result : tefcore.sweep.SweepResult
+        The figure's sweep.
+    base : tefcore.config.Config, optional
+        Base configuration (default: MDART).
+    """
     cfg = figure_config(name, base)
     t = result.table
     own_label = t["label_here"].astype(str).str.removesuffix(" (locked)")
@@ -181,8 +320,21 @@ def unsteadiness(name: str, result, base=None) -> None:
 
 @contextmanager
 def counted_warnings(what: str):
-    """Collect the warnings of a block and print one deterministic line counting
-    them by category (nothing when there are none), instead of a stderr flood."""
+    """Collect the warnings of a block and print one line counting them by category.
+
+    Instead of a stderr flood (which nbval would compare), one deterministic
+    line such as ``"fig9: 3 RuntimeWarning"``; nothing when there are none.
+
+    Parameters
+    ----------
+    what : str
+        What the block computes, the start of the printed line.
+
+    Yields
+    ------
+    list of warnings.WarningMessage
+        The warnings caught so far, for a block that wants to look at them.
+    """
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         yield caught
@@ -192,7 +344,17 @@ def counted_warnings(what: str):
 
 
 def report_sweep(name: str, result) -> None:
-    """One deterministic line: points, failures, points with numerical warnings."""
+    """One deterministic line: points, failures, points with numerical warnings.
+
+    Then one line per failed point with its value and error.
+
+    Parameters
+    ----------
+    name : str
+        The figure, the start of the line.
+    result : tefcore.sweep.SweepResult
+        The sweep (its ``table``, ``parameter`` and ``failed`` points).
+    """
     t = result.table
     pts = t.drop_duplicates("point")
     n_warn = int((pts.get("trim_numerical_warnings", pd.Series(dtype=float)).fillna(0) > 0)
@@ -243,7 +405,16 @@ def reference_curves(name: str):
 
 
 def show_claims(table: pd.DataFrame, width: int = 70) -> None:
-    """Print a claims table compactly and deterministically (claim, status, computed)."""
+    """Print a claims table compactly and deterministically (claim, status, computed).
+
+    Parameters
+    ----------
+    table : pandas.DataFrame
+        Claims checked (:func:`claims_table`); the computed values are
+        printed with 4 significant digits (:func:`format_value`).
+    width : int
+        Widest column shown, in characters.
+    """
     if table.empty:
         print("no claims for this figure")
         return
@@ -266,7 +437,18 @@ def _round_number(text: str) -> str:
 
 
 def format_value(v) -> str:
-    """A value printed with 4 significant digits; |x| < 1e-9 (round-off) as 0."""
+    """A value printed with 4 significant digits; |x| < 1e-9 (round-off) as 0.
+
+    Parameters
+    ----------
+    v : float or str
+        A number, or text with numbers in it (each is rounded).
+
+    Returns
+    -------
+    str
+        The value as printed in checked cells (``"nan"`` for NaN).
+    """
     if isinstance(v, float | np.floating):
         return "nan" if math.isnan(v) else _round_number(repr(float(v)))
     return _NUMBER.sub(lambda m: _round_number(m.group()), str(v))

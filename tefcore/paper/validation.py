@@ -51,7 +51,22 @@ def sweep_values(name: str, claims) -> list:
     """A stability figure's sweep values plus the x its value and mechanism claims name.
 
     Sorted, without duplicates (equal within :data:`~tefcore.paper.curve_metrics.X_SLACK`),
-    in the figure's own value format; the sweep :func:`validate_all` runs.
+    in the figure's own value format; the sweep :func:`validate_all` runs, so
+    a value claim is read at a computed point, not between two.
+
+    Parameters
+    ----------
+    name : str
+        Stability figure, a key of :data:`tefcore.paper.figures.FIGURES`.
+    claims : iterable of Claim
+        The figure's claims; the ``x`` and ``relative_to`` of its value and
+        mechanism claims without overrides are added.
+
+    Returns
+    -------
+    list
+        The sweep values: numbers (SI) or ``"value unit"`` strings like the
+        paper's (``"400 lb/in"``) for a dimensional axis.
     """
     values = list(FIGURES[name].values)
     have = [_value_si(name, v) for v in values]
@@ -76,8 +91,11 @@ def validate_all(n_jobs: int = 1, progress: bool = False, *, claims=None, cfg=No
 
     Parameters
     ----------
-    n_jobs, progress
-        Passed to the sweeps (:func:`tefcore.paper.figures.run_figure`).
+    n_jobs : int
+        Processes of each sweep (:func:`tefcore.paper.figures.run_figure`);
+        1 runs serially.
+    progress : bool
+        Show the sweeps' progress bars.
     claims : list of Claim, optional
         Default :func:`tefcore.paper.reference.load_claims`.
     cfg : Config, optional
@@ -128,9 +146,21 @@ def validate_all(n_jobs: int = 1, progress: bool = False, *, claims=None, cfg=No
 def reference_curves(name: str, include_examples: bool = False) -> pd.DataFrame | None:
     """Digitised curves of a figure for plotting, or None when there are none.
 
-    Returns ``id, label`` (the mode, or the claim id for figs. 5-7),
-    ``quantity, x, y, band``: x in the units of the figure's result table
-    (:func:`figure_frame`), y in the canonical unit of the quantity.
+    Parameters
+    ----------
+    name : str
+        The figure (``"fig8"``).
+    include_examples : bool
+        Also the synthetic demonstration curves (``example = true``), never
+        data of the paper.
+
+    Returns
+    -------
+    pandas.DataFrame or None
+        ``id, label`` (the mode, or the claim id for Figs. 5-7),
+        ``quantity, x, y, band``: x in the units of the figure's result table
+        (:func:`figure_frame`), y and its half-width ``band`` in the
+        canonical unit of the quantity; None when the figure has no curves.
     """
     curves = [c for c in load_claims(include_examples=include_examples)
               if c.kind == "curve" and c.figure == name]
@@ -142,14 +172,41 @@ def reference_curves(name: str, include_examples: bool = False) -> pd.DataFrame 
 
 
 def claims_score(table: pd.DataFrame) -> tuple[int, int]:
-    """(passed, total) over the ``validation`` claims of a validation table."""
+    """(passed, total) over the ``validation`` claims of a validation table.
+
+    Calibration targets (the four stated torsion frequencies that set the
+    assumed properties) are not scored.
+
+    Parameters
+    ----------
+    table : pandas.DataFrame
+        Result of :func:`validate_all` (``tag`` and ``status`` columns).
+
+    Returns
+    -------
+    tuple of (int, int)
+        Validation claims with status ``"pass"``, and all validation claims.
+    """
     v = table[table["tag"] == "validation"]
     return int((v["status"] == "pass").sum()), len(v)
 
 
 def worse_than_recorded(table: pd.DataFrame) -> pd.DataFrame:
-    """Rows whose status is worse than their ``recorded_status``
-    (pass > ambiguous > not reproducible > fail).
+    """Rows whose status is worse than their ``recorded_status``.
+
+    Best to worst: pass, ambiguous, not reproducible, fail
+    (:data:`tefcore.paper.reference.STATUSES`).  A claim without a recorded
+    status is never a regression.
+
+    Parameters
+    ----------
+    table : pandas.DataFrame
+        Result of :func:`validate_all` (``status`` and ``recorded_status``).
+
+    Returns
+    -------
+    pandas.DataFrame
+        The regressed rows, with all their columns.
 
     Examples
     --------
@@ -168,8 +225,23 @@ def update_recorded_status(table: pd.DataFrame, path=None) -> int:
     """Write the statuses of `table` as ``recorded_status`` into a claims file.
 
     Edits the ``recorded_status = "..."`` line of each ``[[claim]]`` (adding
-    it after the ``id`` line when absent), keeping everything else. Returns
-    the number of records changed.
+    it after the ``id`` line when absent), keeping everything else; the file
+    is rewritten atomically.  Run after a reviewed full validation: later
+    runs are compared with what it records (:func:`worse_than_recorded`).
+
+    Parameters
+    ----------
+    table : pandas.DataFrame
+        Result of :func:`validate_all` (``id`` and ``status``); claims not in
+        it keep their recorded status.
+    path : path, optional
+        The claims file (default ``claims.toml`` of
+        :func:`tefcore.paper.reference.reference_dir`).
+
+    Returns
+    -------
+    int
+        The number of records changed.
     """
     path = Path(path) if path is not None else reference_dir() / "claims.toml"
     status = dict(zip(table["id"], table["status"], strict=True))
