@@ -467,19 +467,27 @@ def monodromy(A, n_steps=None, period=_TWO_PI, method="rk4"):
 # characteristic multipliers by lifting
 
 
-def _lifted(phis):
+def _lifted(phis, cut=0.0, left=False):
     """Eigen-decomposition of the block-cyclic lift, one root per multiplier.
 
     Returns the selected roots ``mu`` (``mu**K`` are the multipliers), the
     eigenvector blocks ``v_k`` of shape (K, n, n) (``v_0`` is the monodromy
     eigenvector at psi = 0 and ``v_k = Phi_k ... Phi_1 v_0 / mu**k``) and
     whether the roots split into one per multiplier (False: some are at
-    round-off level and unreliable).
+    round-off level and unreliable); with ``cut > 0`` only the roots with
+    ``|mu| >= cut`` are judged (:func:`_select_roots`).  ``left``: also the
+    blocks ``u_k`` of the left eigenvectors (``u_k = Phi_k^H u_{k+1} / conj(mu)``,
+    the adjoint solution at the start of sub-interval ``k``), as a fourth item.
     """
     k_sub, n = phis.shape[0], phis.shape[1]
-    mu, vec = scipy.linalg.eig(_lift(phis))
-    keep, split = _select_roots(mu, k_sub, n)
+    if left:
+        mu, lvec, vec = scipy.linalg.eig(_lift(phis), left=True)
+    else:
+        mu, vec = scipy.linalg.eig(_lift(phis))
+    keep, split = _select_roots(mu, k_sub, n, cut)
     blocks = vec[:, keep].reshape(k_sub, n, n)
+    if left:
+        return mu[keep], blocks, split, lvec[:, keep].reshape(k_sub, n, n)
     return mu[keep], blocks, split
 
 
@@ -492,8 +500,15 @@ def _lift(phis):
     return z
 
 
-def _select_roots(mu, k_sub, n):
-    """Mask of one root ``mu`` per multiplier among the ``K n`` roots of the lift."""
+def _select_roots(mu, k_sub, n, cut=0.0):
+    """Mask of one root ``mu`` per multiplier among the ``K n`` roots of the lift.
+
+    ``cut > 0``: roots with ``|mu| < cut`` need not be resolved (``min_rate`` of
+    :func:`floquet_modes`); the window and the splitting are decided by the
+    others, and the deep ones fill the selection up to ``n``.
+    """
+    if cut > 0.0:
+        return _select_resolved(mu, k_sub, n, cut)
     # The K n eigenvalues are the K K-th roots mu w^j (w = exp(2 pi i / K)) of
     # every multiplier, so modulo 2 pi / K their angles collapse to n points.
     # Any half-open window of width 2 pi / K holds one root per multiplier;
@@ -515,6 +530,32 @@ def _select_roots(mu, k_sub, n):
         keep = np.zeros_like(keep)
         keep[np.concatenate([inside, outside])] = True
     return keep, split
+
+
+def _select_resolved(mu, k_sub, n, cut):
+    """:func:`_select_roots` judged on the roots with ``|mu| >= cut`` only."""
+    big = np.abs(mu) >= cut
+    sector = _TWO_PI / k_sub
+    theta = np.angle(mu)
+    if big.any():
+        s = np.sort(np.mod(theta[big], sector))
+        gaps = np.diff(np.append(s, s[0] + sector))
+        start = s[np.argmax(gaps)] + 0.5 * gaps.max()
+    else:
+        start = 0.0
+    window = np.mod(theta - start, _TWO_PI) < sector
+    keep = window & big
+    split = keep.sum() * k_sub == big.sum() and keep.sum() <= n
+    # fill with the deep roots: the largest in the window first, then the others
+    deep = np.flatnonzero(~big & window)[np.argsort(-np.abs(mu[~big & window]))]
+    rest = np.flatnonzero(~big & ~window)[np.argsort(-np.abs(mu[~big & ~window]))]
+    fill = np.concatenate([deep, rest])[:max(n - keep.sum(), 0)]
+    keep[fill] = True
+    if keep.sum() > n:                      # not split: keep the n largest of them
+        idx = np.flatnonzero(keep)[np.argsort(-np.abs(mu[keep]))][:n]
+        keep = np.zeros_like(keep)
+        keep[idx] = True
+    return keep, bool(split)
 
 
 def _warn_unsplit(stacklevel=3):
@@ -792,14 +833,15 @@ def _normalise(v):
 
 
 def _sorted_result(eta, multipliers, vectors, period, psi=None, shapes=None, n_sub=None,
-                   n_steps=None):
+                   n_steps=None, participation=None):
     order = np.lexsort((eta.real, np.round(eta.imag, 9)))   # frequency ties: by damping
     scale = _normalise(vectors)[order]
     return FloquetResult(
         exponents=eta[order], multipliers=multipliers[order],
         eigenvectors=vectors[:, order] * scale, period=period, psi=psi,
         shapes=None if shapes is None else shapes[..., order] * scale, n_sub=n_sub,
-        n_steps=n_steps)
+        n_steps=n_steps, participation=None if participation is None
+        else participation[:, order])
 
 
 # --------------------------------------------------------------------------
@@ -819,6 +861,15 @@ def _clusters(mu, scale):
 def _harmonic_basis(per, omega):
     """Recombine periodic parts of one multiplier into harmonically pure modes.
 
+    Returns ``per @ C`` (:func:`_harmonic_combination`).
+    """
+    coef = _harmonic_combination(per, omega)
+    return per if coef is None else per @ coef
+
+
+def _harmonic_combination(per, omega):
+    """The combination ``C`` of :func:`_harmonic_basis` (None: left as they are).
+
     Solves ``F c = kappa G c`` with ``G`` the Gram matrix of the periodic parts
     ``per`` (n_steps, n, d) over the period and ``F`` the same weighted by the
     frequency ``omega`` of each harmonic: its eigenvectors are the
@@ -831,14 +882,15 @@ def _harmonic_basis(per, omega):
     g = np.einsum("hia,hib->ab", f.conj(), f)
     w = np.linalg.eigvalsh(g)
     if w[0] <= 1e-8 * w[-1]:
-        return per
+        return None
     fm = np.einsum("h,hia,hib->ab", omega, f.conj(), f)
-    return per @ scipy.linalg.eigh(fm, g)[1]
+    return scipy.linalg.eigh(fm, g)[1]
 
 
 def floquet_modes(A, n_steps=None, n_sub=DEFAULT_N_SUB, period=_TWO_PI, method="rk4",
                   shapes=False, shift_states=None, max_sub=MAX_SUB, atol=DEFAULT_ATOL,
-                  rtol=DEFAULT_RTOL, max_steps=None, on_inaccurate="warn"):
+                  rtol=DEFAULT_RTOL, max_steps=None, on_inaccurate="warn", min_rate=None,
+                  participation=False):
     """Characteristic exponents, multipliers and modes of ``x' = A(psi) x``.
 
     The step propagators are grouped into ``n_sub`` transition matrices
@@ -913,6 +965,23 @@ def floquet_modes(A, n_steps=None, n_sub=DEFAULT_N_SUB, period=_TWO_PI, method="
         Still above the tolerance at ``max_steps``:
         :class:`FloquetAccuracyWarning` and the result, or
         :class:`FloquetAccuracyError`.
+    min_rate : float, optional
+        Damping rate (negative, per unit of psi) below which roots need not be
+        resolved: ``K`` is raised only until ``exp(min_rate T / K)`` reaches the
+        floor, and whether the roots split is judged on the roots above that
+        modulus.  For systems with fast, heavily damped states that no
+        ``K <= max_sub`` can resolve (the shed wake of a rotor blade, down to
+        -30 /rev): without it they drive ``K`` to ``max_sub`` at a cost
+        ``O((K n)^3)``.  Such roots are reported somewhere below the cut and
+        are not held to the tolerance (they do not drive the step
+        refinement).  Default None: every root counts.
+    participation : bool, optional
+        Also the participation factors (:meth:`FloquetResult.with_participation`),
+        from the adjoint solutions: the left eigenvectors of the lift, carried
+        over each sub-interval by ``(P^-1)^H`` of the step propagators.  Unlike
+        the inverse of the matrix of all periodic shapes, this needs only the
+        root itself, so the factors of the resolved roots hold when roots below
+        ``min_rate`` are not resolved (theirs are then meaningless).
 
     Returns
     -------
@@ -972,6 +1041,8 @@ def floquet_modes(A, n_steps=None, n_sub=DEFAULT_N_SUB, period=_TWO_PI, method="
     check = atol is not None
     if check:
         atol, rtol = (_check_tolerance(name, v) for name, v in (("atol", atol), ("rtol", rtol)))
+    if min_rate is not None and not (np.isfinite(min_rate) and min_rate < 0):
+        raise ValueError(f"min_rate must be a negative damping rate or None, got {min_rate!r}")
     a, n_steps, constant = _sample(A, n_steps, period)
     k_sub = _check_sub(n_sub, n_steps)
     max_sub = _check_int("max_sub", max_sub, 1)
@@ -983,7 +1054,8 @@ def floquet_modes(A, n_steps=None, n_sub=DEFAULT_N_SUB, period=_TWO_PI, method="
         if method == "rk4":
             _rk4_step_warning(a[:3] if constant else a, period / n_steps, n_steps)
         p = _propagators(a, period / n_steps, constant, method)
-        res, _, split = _modes(p, period, k_sub, max_sub, shapes, shift_states)
+        res, _, split = _modes(p, period, k_sub, max_sub, shapes, shift_states, min_rate,
+                               participation)
         if not split:
             _warn_unsplit()
         return res
@@ -992,7 +1064,8 @@ def floquet_modes(A, n_steps=None, n_sub=DEFAULT_N_SUB, period=_TWO_PI, method="
     while True:
         try:
             p = _propagators(a, period / n_steps, constant, method)
-            res, znorm, split = _modes(p, period, k_sub, max_sub, shapes, shift_states)
+            res, znorm, split = _modes(p, period, k_sub, max_sub, shapes, shift_states,
+                                       min_rate, participation)
         except FloquetOverflowError as err:
             if refinable and 2 * n_steps <= max_steps:      # shorter steps may not overflow
                 n_steps, coarse = 2 * n_steps, None
@@ -1003,7 +1076,7 @@ def floquet_modes(A, n_steps=None, n_sub=DEFAULT_N_SUB, period=_TWO_PI, method="
                                        f"{_fastest_root(a):.3g} per unit of psi)") from None
         k_sub = res.n_sub
         if coarse is None and n_steps % 2 == 0:
-            coarse = _coarse_exponents(a[::2], period, k_sub, method, constant)
+            coarse = _coarse_exponents(a[::2], period, k_sub, method, constant, min_rate)
         if coarse is None:                                  # odd step count: compare 2N
             if not refinable or 2 * n_steps > max_steps:
                 if not split:
@@ -1013,6 +1086,8 @@ def floquet_modes(A, n_steps=None, n_sub=DEFAULT_N_SUB, period=_TWO_PI, method="
             a = _sample(A, n_steps, period)[0]
             continue
         est, trusted = _error_estimates(res, coarse, znorm, atol)
+        if min_rate is not None:            # roots below min_rate are not held to it
+            trusted &= res.exponents.real >= min_rate
         tol_re = atol + rtol * np.abs(res.exponents.real)
         tol_im = atol + rtol * np.abs(res.exponents)   # |eta|: see the docstring
         bad = trusted & ((est.real > tol_re) | (est.imag > tol_im))
@@ -1043,7 +1118,7 @@ def _fastest_root(a):
     return complex(ev[np.argmax(np.abs(ev))])
 
 
-def _coarse_exponents(a, period, k_sub, method, constant):
+def _coarse_exponents(a, period, k_sub, method, constant, min_rate=None):
     """Exponents (frequency modulo 2 pi / T) with the steps of the samples ``a``, or None.
 
     None when the coarse grid overflows: then there is no estimate, and the
@@ -1057,7 +1132,7 @@ def _coarse_exponents(a, period, k_sub, method, constant):
     except FloquetOverflowError:
         return None
     mu = scipy.linalg.eigvals(_lift(phis))
-    keep, _ = _select_roots(mu, k, phis.shape[-1])
+    keep, _ = _select_roots(mu, k, phis.shape[-1], _cut(min_rate, period, k))
     return k * _log_roots(mu[keep]) / period
 
 
@@ -1106,9 +1181,15 @@ def _inaccurate(res, bad, tol_re, tol_im, method, on_inaccurate):
     warnings.warn(msg, FloquetAccuracyWarning, stacklevel=3)
 
 
-def _modes(p, period, k_sub, max_sub, shapes, shift_states):
+def _cut(min_rate, period, k_sub):
+    """``|mu|`` of a root at ``min_rate`` with ``K`` sub-intervals (0: no cut)."""
+    return 0.0 if min_rate is None else float(np.exp(min_rate * period / k_sub))
+
+
+def _modes(p, period, k_sub, max_sub, shapes, shift_states, min_rate=None, duals=False):
     """Floquet modes from the step propagators ``p``; also ``max ||Phi_k||`` and whether
-    the lifted roots split one per multiplier."""
+    the lifted roots split one per multiplier.  ``duals``: with the participation
+    factors from the adjoint solutions (:func:`_adjoint_participation`)."""
     n_steps, n = p.shape[0], p.shape[-1]
     k_sub = _check_sub(k_sub, n_steps)
     max_sub = min(max(max_sub, k_sub), n_steps)
@@ -1116,8 +1197,10 @@ def _modes(p, period, k_sub, max_sub, shapes, shift_states):
     while True:
         stack, bounds, valid = _group(p, k_sub)
         phis = _tree_product(stack)
-        mu, blocks, split = _lifted(phis)
-        smallest = np.abs(mu).min()
+        cut = _cut(min_rate, period, k_sub)
+        mu, blocks, split, *lblocks = _lifted(phis, cut, left=duals)
+        # with min_rate, the roots below the cut need not be resolved
+        smallest = max(np.abs(mu).min(), cut)
         # a root is trusted when it is above MIN_ROOT and its round-off,
         # eps ||Z|| / |mu| relative (||Z|| = the largest ||Phi_k||), is <= 1e-6
         with np.errstate(over="ignore"):     # an inf norm: no K resolves it (below)
@@ -1145,6 +1228,15 @@ def _modes(p, period, k_sub, max_sub, shapes, shift_states):
         x[:, step] = cur
         cur = stack[:, step] @ cur
     x = x[valid]                                   # (n_steps, n, m), in time order
+    if duals:
+        # adjoint solutions y = Phi(psi, psi_k)^-H u_k on the same grid
+        y = np.empty((*valid.shape, n, n), dtype=complex)
+        inv_h = np.swapaxes(np.linalg.inv(stack), -1, -2).conj()
+        cur = lblocks[0].astype(complex)
+        for step in range(valid.shape[1]):
+            y[:, step] = cur
+            cur = inv_h[:, step] @ cur
+        y = y[valid]
     h = period / n_steps
     psi = np.arange(n_steps) * h
     k_of = np.repeat(np.arange(k_sub), np.diff(bounds))
@@ -1164,7 +1256,14 @@ def _modes(p, period, k_sub, max_sub, shapes, shift_states):
     # the basis of harmonically pure modes instead
     for idx in _clusters(mu, np.abs(phis).max()):
         eta[idx] = eta[idx].mean()
-        per[..., idx] = _harmonic_basis(per[..., idx], eta[idx[0]].imag + harm * unit)
+        if not duals:
+            per[..., idx] = _harmonic_basis(per[..., idx], eta[idx[0]].imag + harm * unit)
+            continue
+        coef = _harmonic_combination(per[..., idx], eta[idx[0]].imag + harm * unit)
+        if coef is not None:
+            per[..., idx] = per[..., idx] @ coef
+            y[..., idx] = y[..., idx] @ np.linalg.inv(coef).conj().T
+    part = _adjoint_participation(y, per) if duals else None
 
     # dominant harmonic of the periodic part fixes the integer shift
     sel = slice(None) if shift_states is None else shift_states
@@ -1179,8 +1278,21 @@ def _modes(p, period, k_sub, max_sub, shapes, shift_states):
     with np.errstate(over="ignore"):   # a garbage root beyond resolution: inf, judged below
         multipliers = np.exp(k_sub * log_mu)
     return (_sorted_result(eta, multipliers, per[0], period, psi if shapes else None,
-                           per if shapes else None, n_sub=k_sub, n_steps=n_steps),
+                           per if shapes else None, n_sub=k_sub, n_steps=n_steps,
+                           participation=part),
             float(np.linalg.norm(phis, axis=(1, 2)).max()), split)
+
+
+def _adjoint_participation(y, x):
+    """Participation factors ``<conj(y_k) x_k / y^H x>_psi`` of solutions ``x`` and
+    their adjoints ``y`` (n_steps, n, m).  ``y^H x`` is constant along a solution;
+    normalising at every step makes the result independent of any scalar factor
+    of either.  A root beyond resolution (a zero or overflowed shape) gets zeros."""
+    prod = y.conj() * x
+    with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+        pf = (prod / prod.sum(axis=1, keepdims=True)).mean(axis=0)
+    pf[:, ~np.isfinite(pf).all(axis=0)] = 0.0
+    return pf
 
 
 
