@@ -146,7 +146,7 @@ class SecondOrderSystem:
         return state_matrix(m, c, k)
 
     def modes(self, n_steps: int = 72, n_sub: int = 4, shapes: bool = False,
-              on_inaccurate: str = "warn"):
+              on_inaccurate: str = "warn", participation: bool | None = None):
         """Floquet modes of the system (direct eigenanalysis if constant).
 
         Forward flight: fourth-order Magnus steps (doubled until the
@@ -154,8 +154,9 @@ class SecondOrderSystem:
         and the integer frequency shift decided by the displacements
         (:func:`tefcore.floquet.floquet_modes`; ``on_inaccurate`` as there).
         With first-order states, roots below :data:`STATE_MIN_RATE` need not
-        be resolved and the participation factors come with the result (from
-        the adjoint solutions).
+        be resolved and (``participation``, default: with first-order states)
+        the participation factors come with the result, from the adjoint
+        solutions.
         Returns a :class:`tefcore.floquet.FloquetResult` with both members
         of each conjugate pair.
         """
@@ -166,7 +167,8 @@ class SecondOrderSystem:
                                      shift_states=slice(0, self.n_dof),
                                      on_inaccurate=on_inaccurate,
                                      min_rate=STATE_MIN_RATE if self.n_first else None,
-                                     participation=bool(self.n_first))
+                                     participation=(bool(self.n_first) if participation is None
+                                                    else participation))
 
 
 def combine(parts, scales=None) -> SecondOrderSystem:
