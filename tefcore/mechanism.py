@@ -43,7 +43,7 @@ from .coupled import FLAP_PIECES
 from .linear_system import SecondOrderSystem, augmented_state_matrix, combine
 from .tracking import FollowResult, follow_root
 
-__all__ = ["FLUTTER_PARTICIPATION", "NOT_REMOVABLE", "TERMS", "MechanismResult",
+__all__ = ["FLUTTER_PARTICIPATION", "NOT_REMOVABLE", "STATE_TERMS", "TERMS", "MechanismResult",
            "coupling_homotopy", "energy_decomposition", "flutter_root", "linearized_terms",
            "mechanism", "tef_root"]
 
@@ -94,6 +94,11 @@ TERMS = {
     "inflow dynamics": [("inflow dynamics", "all")],
     "inflow forcing (rotor loads)": [("inflow forcing", "all")],
 }
+#: Terms of the aerodynamic states (present only with ``model.aero = "unsteady"``
+#: or ``model.inflow = "dynamic"``).
+STATE_TERMS = ("shed wake on blade airloads (1 - C)", "shed wake on hinge moment (1 - C)",
+               "dynamic inflow on airloads", "shed wake dynamics", "inflow dynamics",
+               "inflow forcing (rotor loads)")
 #: Terms that are a coordinate's own inertia or the blade's structure:
 #: knocking them out leaves no mode to follow (a singular mass matrix, or a
 #: blade without stiffness), so no knockout is reported for them.
