@@ -14,7 +14,9 @@ the blade and flap coordinates when the configuration asks for them:
   (``U`` the section speed in ``Omega R``, ``R/b`` radius over semichord):
   an exact change of variables that removes ``Q'`` (no accelerations drive
   the wake) and holds for a time-varying ``U`` (reduced time).  The section
-  loads are the quasi-steady ones at ``alpha - lambda_0 / U``.  For the fitted
+  loads are the quasi-steady ones at ``alpha - arctan(lambda_0 / U)`` (the lag
+  angle ``lambda_0 / U`` of the linear theory, kept within 90 deg where ``U``
+  vanishes at the reverse-flow boundary).  For the fitted
   wake ``kappa = 1`` and ``g.kappa = 1/2`` (``C(inf) = 1/2``).
 * **Dynamic-inflow states** (``model.inflow = "dynamic"``), the Pitt-Peters
   perturbations of :mod:`tefcore.dynamic_inflow` written in the reference

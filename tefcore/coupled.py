@@ -335,7 +335,8 @@ class CoupledModel:
                 delta=dl, delta_rate=section["delta_rate"], velocity=section["velocity"],
                 chord=cfg.rotor.chord, axis=cfg.rotor.elastic_axis) / sc["speed"]
             lam0 = self.wake.induced(upwash, wake[0])
-            lagged = self.aero.loads(**{**section, "alpha": section["alpha"] - lam0 / speed})
+            lagged = self.aero.loads(**{**section, "alpha": section["alpha"]
+                                        - np.arctan(lam0 / speed)})
             shed, fz_shed = self._airload_pieces({k: lagged[k] - out[k] for k in out}, kin,
                                                  sign, blade_rows, "shed wake")
             pieces.update(shed)

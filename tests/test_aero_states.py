@@ -546,3 +546,29 @@ def test_sweep_and_map_run_with_the_states(tmp_path):
     # the imbalanced flap flutters with the wake too (+1.9 /rev measured), the
     # balanced one does not
     assert growth[0, 1] > 1.0 > growth[0, 0]
+
+
+def test_table_model_with_the_wake_stays_in_range_near_reverse_flow():
+    # with the XFOIL deck, the wake's lag angle near the reverse-flow boundary
+    # (U -> 0) would throw the table far outside its range if taken as
+    # lambda_0/U (-295 deg seen): the trimmed collective moved by 1.0 deg.  With
+    # arctan(lambda_0/U) the wake moves it by 0.12 deg, like the thin airfoil's
+    # 0.07 deg (measured)
+    import os
+    import warnings
+
+    import tefcore
+    from tefcore.c81 import C81RangeWarning
+
+    deck = os.path.join(os.path.dirname(tefcore.__file__), "data", "naca0012_flap35_xfoil.c81")
+    cfg = MDART.with_overrides({"flight.advance_ratio": 0.3, "flap.cg_offset": 0.33,
+                                "model.aero_model": "c81", "model.c81_deck": deck})
+    out = {}
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", C81RangeWarning)     # reverse flow: clipped
+        for aero in ("quasi_steady", "unsteady"):
+            c = cfg.with_overrides({"model.aero": aero})
+            out[aero] = trim(coupled_model(c, collective=initial_collective(c)))
+    moved = math.degrees(abs(out["unsteady"].controls.collective
+                             - out["quasi_steady"].controls.collective))
+    assert 0.01 < moved < 0.3
