@@ -48,7 +48,8 @@ def main(repeat=7):
             med, lo, hi = timed(lambda c=cfg: stability(c), repeat)
             res = stability(cfg)
             n = res.system.n_states
-            line = f"  {name:<20s} {1e3 * med:8.1f} ms ({1e3 * lo:.1f} - {1e3 * hi:.1f}), {n} states"
+            line = (f"  {name:<20s} {1e3 * med:8.1f} ms ({1e3 * lo:.1f} - {1e3 * hi:.1f}), "
+                    f"{n} states")
             if mu:
                 model = coupled_model(cfg, collective=initial_collective(cfg))
                 t_trim = timed(lambda m=model: trim(m), max(3, repeat // 2))[0]

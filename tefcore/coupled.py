@@ -268,7 +268,7 @@ class CoupledModel:
         With dynamic inflow ``thrust`` has two rows: the blade's ``C_T/sigma``
         and its first moment (stations weighted by ``x``).
         """
-        cfg, sh, nm = self.cfg, self.shapes, self.n_modes
+        cfg, nm = self.cfg, self.n_modes
         psi = np.asarray(psi, float)
         nd, n_rows = self.n_dof, q.shape[0]
         states = wake = nu = None

@@ -28,8 +28,8 @@ import numpy as np
 
 from . import floquet
 
-__all__ = ["STATE_MIN_RATE", "SecondOrderSystem", "augmented_state_matrix", "combine", "state_matrix",
-           "trig_interpolate"]
+__all__ = ["STATE_MIN_RATE", "SecondOrderSystem", "augmented_state_matrix", "combine",
+           "state_matrix", "trig_interpolate"]
 
 
 def trig_interpolate(samples, psi, derivative: int = 0) -> np.ndarray:

@@ -401,7 +401,8 @@ def _energy_with_states(parts, exponent, shape, psi):
                     + _quad(pq, c[:, q, q], pq))
     out = {}
     for t, (mt, ct, kt) in mats.items():
-        force = (np.einsum("pij,pj->pi", mt[:, q, q], ddp) + np.einsum("pij,pj->pi", ct[:, q, q], dp)
+        force = (np.einsum("pij,pj->pi", mt[:, q, q], ddp)
+                 + np.einsum("pij,pj->pi", ct[:, q, q], dp)
                  + np.einsum("pij,pj->pi", kt[:, q, q], pq) + state_force(ct, kt))
         out[t] = complex(np.real(-np.mean(np.einsum("pi,pi->p", pq.conj(), force)) / denom), 0.0)
     return out

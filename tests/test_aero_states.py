@@ -32,13 +32,12 @@ from tefcore.dynamic_inflow import l_matrix, mass_flow, perturbation_matrices, w
 from tefcore.floquet import floquet_modes
 from tefcore.linear_system import SecondOrderSystem, augmented_state_matrix, combine
 from tefcore.mechanism import (
-    STATE_TERMS,
     TERMS,
     energy_decomposition,
     linearized_terms,
     mechanism,
 )
-from tefcore.stability import linear_system, stability
+from tefcore.stability import stability
 from tefcore.theodorsen import t_functions
 from tefcore.trim import initial_collective, trim
 from tefcore.unsteady_aero import UnsteadyFlapAirfoil, WakeModel, fitted_wake
