@@ -98,7 +98,7 @@ def compare_models(cfg=None, options=None, *, onset: bool = True,
     -------
     ComparisonResult
     """
-    from .mechanism import mechanism
+    from .mechanism import TERMS, mechanism
     from .sensitivity import HEADLINES, flutter_root, headline_results
     from .stability import stability
 
@@ -127,7 +127,8 @@ def compare_models(cfg=None, options=None, *, onset: bool = True,
                 t = me.table.set_index("term")["contribution_real"]
                 columns[name] = pd.concat([t, pd.Series({"closure": me.closure})])
     mech = pd.DataFrame(columns)
-    terms = [t for t in mech.index if not str(t).startswith(("total", "knockout", "closure"))]
+    # rows in the order of the named terms, knockouts after them
+    terms = [t for t in TERMS if t in mech.index]
     rest = [t for t in mech.index if t not in terms and t not in ("total", "closure")]
     mech = mech.loc[terms + rest + ["total", "closure"]]
     mech.index.name = "term"
