@@ -571,3 +571,28 @@ def test_table_model_with_the_wake_stays_in_range_near_reverse_flow():
     moved = math.degrees(abs(out["unsteady"].controls.collective
                              - out["quasi_steady"].controls.collective))
     assert 0.01 < moved < 0.3
+
+
+def test_compare_models_tables():
+    from tefcore.model_comparison import compare_models
+
+    options = {"quasi-steady": {"model.aero": "quasi_steady"},
+               "unsteady": {"model.aero": "unsteady"}}
+    out = compare_models(options=options, onset=False)
+    heads = out.headlines.set_index("option")
+    assert list(heads.index) == list(options)
+    assert (heads["status"] == "ok").all()
+    # the headline numbers are the flutter roots of the roots table
+    roots = out.roots.set_index(["option", "advance_ratio"])
+    for name in options:
+        assert heads.loc[name, "growth_hover"] == roots.loc[(name, 0.0), "real_part"]
+        assert heads.loc[name, "growth_mu03"] == roots.loc[(name, 0.3), "real_part"]
+    mech = out.mechanism
+    # a term the quasi-steady model does not have is NaN there; each column closes
+    assert np.isnan(mech.loc["shed wake on blade airloads (1 - C)", "quasi-steady"])
+    assert np.isfinite(mech.loc["shed wake on blade airloads (1 - C)", "unsteady"])
+    for name in options:
+        col = mech[name]
+        terms = col.drop(["total", "closure"]).dropna()
+        assert terms.sum() == pytest.approx(col["total"], abs=abs(col["closure"]) + 1e-12)
+        assert abs(col["closure"]) < 2e-3
