@@ -162,6 +162,10 @@ class SecondOrderSystem:
         """
         if not self.periodic:
             return floquet.constant_coefficient_modes(self.state_matrix([0.0])[0])
+        if self.n_first:
+            # the lift that STATE_MIN_RATE needs (exp(-8 * 2 pi / 8) > MIN_ROOT):
+            # start there rather than find it by a first, wasted, lift
+            n_sub = max(n_sub, 8)
         return floquet.floquet_modes(self.state_matrix, n_steps=n_steps, n_sub=n_sub,
                                      method="magnus", shapes=shapes,
                                      shift_states=slice(0, self.n_dof),
