@@ -22,7 +22,7 @@ import pandas as pd
 import scipy.optimize
 
 from .coupled import coupled_model, jacobian_blocks
-from .linear_system import SecondOrderSystem
+from .linear_system import STATE_MIN_RATE, SecondOrderSystem
 from .linear_system import state_matrix as state_matrix
 from .trim import TrimResult, initial_collective, trim
 
@@ -276,7 +276,7 @@ def _stability_of(model, tr: TrimResult, n_steps: int | None) -> StabilityResult
     keep = res.positive_frequency()
     aero_modes = None
     if system.n_first:
-        keep, aero_modes = _split_aero_roots(keep, model)
+        keep, aero_modes = _split_aero_roots(keep, model, system.periodic)
     # by frequency; the two roots of a locked pair share it exactly, so ties
     # (to 1e-9 /rev, round-off) go less damped first, not by round-off
     order = np.lexsort((-keep.damping_rates, np.round(keep.frequencies, 9)))
@@ -315,7 +315,7 @@ def _stability_of(model, tr: TrimResult, n_steps: int | None) -> StabilityResult
 STRUCTURAL_SHARE = 0.5
 
 
-def _split_aero_roots(res, model):
+def _split_aero_roots(res, model, periodic):
     """Roots of the blade and flap, and a table of the aerodynamic-state roots.
 
     A root whose participation (magnitudes, over all states) lies less than
@@ -337,7 +337,10 @@ def _split_aero_roots(res, model):
     _, cols = scipy.optimize.linear_sum_assignment(-np.log(frac + 1e-300))
     named = res.frequencies[cand[cols]]
     for j in np.setdiff1d(np.arange(cand.size), cols):
-        if np.abs(named - res.frequencies[cand[j]]).min() > 1e-6:
+        # below STATE_MIN_RATE a periodic root is not resolved (its participation
+        # is not to be trusted): never a locked partner
+        unresolved = periodic and res.damping_rates[cand[j]] < STATE_MIN_RATE
+        if unresolved or np.abs(named - res.frequencies[cand[j]]).min() > 1e-6:
             aero[cand[j]] = True
     wake, inflow = mag[2 * n:2 * n + nw].sum(axis=0), mag[2 * n + nw:].sum(axis=0)
     flap = (mag[n - 1] + mag[2 * n - 1]) / total if model.has_flap else np.zeros(total.size)
