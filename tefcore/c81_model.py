@@ -84,6 +84,12 @@ EXAMPLE_HEADER = (
 # interpolation and the table model
 
 
+def _numeric(value):
+    """A float array, or a complex one for complex input (complex-step derivatives)."""
+    v = np.asarray(value)
+    return v if v.dtype.kind == "c" else np.asarray(v, dtype=float)
+
+
 class _Grid:
     """Linear interpolation of one coefficient on (alpha deg, Mach[, delta deg]);
     axes with a single point are dropped (the table is constant along them)."""
@@ -109,8 +115,30 @@ class _Grid:
         shape = coords[0].shape
         if self.interp is None:
             return np.full(shape, self.constant)
+        if any(np.iscomplexobj(c) for c in coords):
+            return self._complex(coords)
         pts = np.stack([coords[k].ravel() for k in self.keep], axis=-1)
         return self.interp(pts).reshape(shape)
+
+    def _complex(self, coords):
+        """The same multilinear interpolant at complex coordinates (inside the table):
+        the cell from the real parts, the weights analytic in the coordinates, so a
+        complex step gives the derivative within the cell exactly."""
+        values = self.interp.values
+        out = 0.0
+        weights, index = [], []
+        for k in self.keep:
+            grid, c = self.axes[k][1], coords[k]
+            i = np.clip(np.searchsorted(grid, c.real, side="right") - 1, 0, grid.size - 2)
+            t = (c - grid[i]) / (grid[i + 1] - grid[i])
+            weights.append((1.0 - t, t))
+            index.append(i)
+        for corner in np.ndindex(*(2,) * len(index)):
+            w = 1.0
+            for bit, (wk, _) in zip(corner, zip(weights, index, strict=True), strict=True):
+                w = w * wk[bit]
+            out = out + w * values[tuple(i + bit for i, bit in zip(index, corner, strict=True))]
+        return out
 
 
 class C81Airfoil:
@@ -154,13 +182,14 @@ class C81Airfoil:
         blade deck ``ch`` and ``clf`` are zero and ``delta`` is ignored (but
         still broadcast).
         """
-        a, m, d = np.broadcast_arrays(np.asarray(alpha, dtype=float),
-                                      np.asarray(mach, dtype=float),
-                                      np.asarray(delta, dtype=float))
-        named = {"alpha": np.degrees(a), "mach": m, "delta": np.degrees(d)}
+        a, m, d = np.broadcast_arrays(*(_numeric(v) for v in (alpha, mach, delta)))
+        deg = 180.0 / np.pi            # np.degrees refuses complex input
+        named = {"alpha": np.degrees(a) if a.dtype.kind != "c" else a * deg, "mach": m,
+                 "delta": np.degrees(d) if d.dtype.kind != "c" else d * deg}
         for var in ("alpha", "mach") + (("delta",) if self.deck.is_flap else ()):
             if not np.all(np.isfinite(named[var])):
                 raise ValueError(f"{var} contains NaN or infinite values")
+        complex_step = np.iscomplexobj(a) or np.iscomplexobj(m) or np.iscomplexobj(d)
         problems = {}  # (variable, lo, hi) -> [coefficient names, extreme value]
         out = {}
         for c, grid in self._grids.items():
@@ -168,17 +197,23 @@ class C81Airfoil:
             for var, x in grid.axes:
                 v = named[var]
                 lo, hi = float(x[0]), float(x[-1])
+                re = v.real
                 # a rad -> deg round trip may land an ulp outside an edge: not "out"
                 tol = 1e-9 * max(1.0, abs(lo), abs(hi))
-                if v.size and (v.min() < lo - tol or v.max() > hi + tol):
-                    worst = v.min() if lo - v.min() >= v.max() - hi else v.max()
+                if v.size and (re.min() < lo - tol or re.max() > hi + tol):
+                    worst = re.min() if lo - re.min() >= re.max() - hi else re.max()
                     problems.setdefault((var, lo, hi), [[], float(worst)])[0].append(c)
-                coords.append(np.clip(v, lo, hi))
+                if complex_step:
+                    # clipped: constant beyond the edge (zero derivative)
+                    coords.append(np.where((re < lo) | (re > hi), np.clip(re, lo, hi),
+                                           v.astype(complex)))
+                else:
+                    coords.append(np.clip(v, lo, hi))
             out[c] = grid(coords)[()]
         if problems:
             self._out_of_range(problems)
         if not self.deck.is_flap:
-            zero = np.zeros(a.shape)[()]
+            zero = np.zeros(a.shape, dtype=a.dtype)[()]
             out["ch"] = zero
             out["clf"] = zero.copy() if isinstance(zero, np.ndarray) else zero
         return out

@@ -26,8 +26,9 @@ import numpy as np
 from .aero_states import ShedWake, rotating_inflow_damping
 from .beam_element import gauss_legendre
 from .blade import blade_modes, pitch_function, rotor_units
-from .flap_dynamics import flap_properties, propeller_moment
+from .flap_dynamics import flap_properties
 from .section_inertia import check_coupled_mass
+from .station_terms import StationTerm, airload_terms, local_variables, station_terms
 
 __all__ = ["FLAP_PIECES", "RESIDUAL_PIECES", "TRACKING_STATIONS", "Controls",
            "CoupledModel", "coupled_model", "section_model"]
@@ -350,105 +351,68 @@ class CoupledModel:
                              f"the {nd} coordinates")
         kin = self.kinematics(psi, q, qd, qdd, controls, inflow, inflow_perturbation=(
             None if nu is None else nu[0][0][:, None] + self.x[None, :] * nu[0][1][:, None]))
-        w, wdd = kin["w"], kin["wdd"]
-        big_theta, big_theta_d, big_theta_dd = kin["theta"], kin["theta_d"], kin["theta_dd"]
-        qb, qbd, qbdd = q[:nm], qd[:nm], qdd[:nm]
-        # flap deflection and rates: on the flap stations, zero elsewhere
-        dl, dld, dldd = (np.zeros_like(w) for _ in range(3))
-        fs = self.flap_stations
-        if self.has_flap:
-            for arr, val in ((dl, q), (dld, qd), (dldd, qdd)):
-                arr[:, fs] = val[nm][:, None]
-        speed = kin["speed"]
-        sign = np.sign(kin["ut"])                  # reverse flow flips the loads
-        sc = self.scale
-        section = dict(alpha=big_theta - kin["inflow_angle"],
-                       alpha_rate=big_theta_d * sc["omega"],
-                       alpha_accel=big_theta_dd * sc["omega"] ** 2,
-                       plunge_rate=0.0, plunge_accel=wdd * sc["accel"],
-                       delta=dl, delta_rate=dld * sc["omega"],
-                       delta_accel=dldd * sc["omega"] ** 2,
-                       velocity=speed * sc["speed"], density=cfg.rotor.air_density,
-                       chord=cfg.rotor.chord, axis=cfg.rotor.elastic_axis,
-                       mach=speed * (sc["speed"] / cfg.rotor.speed_of_sound),
-                       # a NaN here surfaces in the residual, which the
-                       # trim checks; the configuration is validated
-                       check_finite=False)
-        out = self.aero.loads(**section)
         n_psi = psi.size
-
-        def blade_rows(values):
-            arr = np.zeros((n_rows, n_psi))
-            arr[:nm] = values
-            return arr
-
-        pieces, fz = self._airload_pieces(out, kin, sign, blade_rows, "airload")
-        pieces = {
-            "blade inertia": blade_rows(self.m_s @ qbdd),
-            "blade stiffness": blade_rows(self.k_s @ qb),
-            "blade structural damping": blade_rows(self.d_s @ qbd),
-            "blade Coriolis": blade_rows(self.g_s @ qbd),
-            **pieces}
+        loc = local_variables(self, kin, q, qd, qdd)
+        terms, fz, det = station_terms(self, loc, details=True)
+        qb, qbd, qbdd = q[:nm], qd[:nm], qdd[:nm]
+        # every piece in the order of RESIDUAL_PIECES
+        names = [p for p in RESIDUAL_PIECES if (self.has_flap or p not in FLAP_PIECES)
+                 and (wake is not None or p not in WAKE_PIECES)
+                 and (nu is not None or p not in INFLOW_PIECES)
+                 and (self.has_flap or p != "shed wake hinge moment")]
+        pieces = {p: np.zeros((n_rows, n_psi)) for p in names}
+        pieces["blade inertia"][:nm] = self.m_s @ qbdd
+        pieces["blade stiffness"][:nm] = self.k_s @ qb
+        pieces["blade structural damping"][:nm] = self.d_s @ qbd
+        pieces["blade Coriolis"][:nm] = self.g_s @ qbd
+        if self.has_flap:
+            da, da_d = self.actuator_input(psi)
+            pieces["actuator spring"][nm] = self.flap["k_a"] * (q[nm] - da)
+            pieces["actuator damper"][nm] = self.flap["c_a"] * (qd[nm] - da_d)
+        self._project(pieces, terms, n_rows, n_psi)
         if wake is not None:
             # the wake's downwash lowers the angle of attack of the static loads
+            section, out, sign, speed = (det[k] for k in ("section", "loads", "sign", "speed"))
             upwash = self.wake.airfoil.upwash(
                 alpha=section["alpha"], alpha_rate=section["alpha_rate"], plunge_rate=0.0,
-                delta=dl, delta_rate=section["delta_rate"], velocity=section["velocity"],
-                chord=cfg.rotor.chord, axis=cfg.rotor.elastic_axis) / sc["speed"]
+                delta=section["delta"], delta_rate=section["delta_rate"],
+                velocity=section["velocity"], chord=cfg.rotor.chord,
+                axis=cfg.rotor.elastic_axis) / self.scale["speed"]
             lam0 = self.wake.induced(upwash, wake[0])
             lagged = self.aero.loads(**{**section, "alpha": section["alpha"]
                                         - np.arctan(lam0 / speed)})
-            shed, fz_shed = self._airload_pieces({k: lagged[k] - out[k] for k in out}, kin,
-                                                 sign, blade_rows, "shed wake")
-            pieces.update(shed)
+            change = {k: lagged[k] - out[k] for k in out}
+            shed, fz_shed = airload_terms(self, change, sign, kin["cos_inflow"],
+                                          kin["sin_inflow"], self.w, "shed wake")
             fz = fz + fz_shed
-            rows = np.zeros((n_rows, n_psi))
-            rows[nd:nd + self.n_wake] = self.wake.join(
+            if self.has_flap:
+                fs = self.flap_stations
+                shed.append(StationTerm("shed wake hinge moment", "flap", True, -(
+                    sign[:, fs] * change["hinge_moment"][:, fs] / self.scale["moment"]
+                    * self.w[fs])))
+            self._project(pieces, shed, n_rows, n_psi)
+            pieces["shed wake dynamics"][nd:nd + self.n_wake] = self.wake.join(
                 self.wake.residual(wake[0], wake[1], upwash, speed))
-            pieces["shed wake dynamics"] = rows
-        thrust = fz.sum(axis=1) * sc["ct_sigma"]
-        if self.has_flap:
-            # the flap's inertial terms exist only on the flap span
-            hinge = sign[:, fs] * out["hinge_moment"][:, fs] / sc["moment"]
-            on = {k: kin[k][:, fs] for k in ("theta", "theta_dd", "wdd", "vdd", "v", "slope",
-                                             "dv", "dvd", "dwd")}
-            wf = self.w[None, fs]
-            react = self._flap_reactions(on["theta"], dl[:, fs], dld[:, fs], dldd[:, fs], wf)
-            flap = self._flap_equation(psi, on, dl[:, fs], dldd[:, fs], q[nm], qd[nm],
-                                       hinge, wf)
-            for name in FLAP_PIECES:
-                arr = np.zeros((n_rows, n_psi))
-                if name in react:
-                    arr[:nm] = react[name].T
-                if name in flap:
-                    arr[nm] = flap[name]
-                pieces[name] = arr
-            if wake is not None:
-                pieces["shed wake hinge moment"] = np.zeros((n_rows, n_psi))
-                pieces["shed wake hinge moment"][nm] = -(
-                    sign[:, fs] * (lagged["hinge_moment"] - out["hinge_moment"])[:, fs]
-                    / sc["moment"] * wf).sum(axis=1)
+        thrust = fz.sum(axis=1) * self.scale["ct_sigma"]
         if self.dynamic_inflow:
-            moment = (fz * self.x[None, :]).sum(axis=1) * sc["ct_sigma"]
+            moment = (fz * self.x[None, :]).sum(axis=1) * self.scale["ct_sigma"]
             if nu is not None:
                 pieces.update(self._inflow_rows(psi, nu, thrust, moment, inflow, n_rows))
             thrust = np.stack([thrust, moment])
         return pieces, thrust
 
-    def _airload_pieces(self, out, kin, sign, blade_rows, prefix):
-        """Airload pieces on the blade rows from section loads ``out`` (N/m, N); also
-        the normal force per station (rotor units, quadrature weights included)."""
-        sc, sh = self.scale, self.shapes
-        lift = sign * out["lift"] / sc["force"]
-        drag = sign * out["drag"] / sc["force"]
-        moment = sign * out["moment"] / sc["moment"]
-        cphi, sphi = kin["cos_inflow"], kin["sin_inflow"]
-        wq = self.w[None, :]
-        fz = (lift * cphi - drag * sphi) * wq
-        fy = -(lift * sphi + drag * cphi) * wq
-        return {f"{prefix} normal force": blade_rows(-(fz @ sh["w"]).T),
-                f"{prefix} in-plane force": blade_rows(-(fy @ sh["v"]).T),
-                f"{prefix} pitching moment": blade_rows(-((moment * wq) @ sh["phi"]).T)}, fz
+    def _project(self, pieces, terms, n_rows, n_psi):
+        """Add station forces (:func:`tefcore.station_terms.station_terms`) to the
+        pieces: on the blade rows through the mode shapes, summed on the flap row."""
+        fs, nm = self.flap_stations, self.n_modes
+        for t in terms:
+            if t.piece not in pieces:
+                pieces[t.piece] = np.zeros((n_rows, n_psi))
+            if t.field == "flap":
+                pieces[t.piece][nm] += t.force.sum(axis=-1)
+            else:
+                shape = self.shapes[t.field][fs] if t.flap_only else self.shapes[t.field]
+                pieces[t.piece][:nm] += (t.force @ shape).T
 
     def _inflow_rows(self, psi, nu, thrust, moment, inflow, n_rows):
         """Pieces of the dynamic-inflow perturbation equations (docs/theory.md 6.2)."""
@@ -464,62 +428,6 @@ class CoupledModel:
         force[first + 1] = -inflow.solidity * moment
         return {"inflow dynamics": dyn, "inflow forcing": force}
 
-    def _flap_reactions(self, th, dl, dld, dldd, wf):
-        """delta-dependent inertial loads of the flap on the blade modes, by piece.
-
-        Arrays are (azimuths, flap stations); ``wf`` the flap stations' weights.
-        Returns a dict of piece name -> (azimuths, n_modes).
-        """
-        f, fs = self.flap, self.flap_stations
-        sh = {k: v[fs] for k, v in self.shapes.items()}
-        ih, sf, eta = f["inertia_hinge"], f["first_moment"], f["hinge_from_ea"]
-        c, s = np.cos(th), np.sin(th)
-        phi_f = th + dl
-        m_cf = ih * (np.sin(phi_f) * np.cos(phi_f) - s * c) - eta * sf * (
-            np.sin(th + phi_f) - np.sin(2 * th))
-        x = self.x[None, fs]
-        ipe = ih - sf * eta
-        return {
-            "flap inertial coupling to bending": ((-sf * c * dldd * wf) @ sh["w"]
-                                                  + ((sf * s * dldd) * wf) @ sh["v"]),
-            "flap inertial coupling to torsion": ((ipe * dldd) * wf) @ sh["phi"],
-            "flap centrifugal": (((-sf * s * dl) * wf) @ sh["v"] + (m_cf * wf) @ sh["phi"]
-                                 + ((-sf * x * c * dl) * wf) @ sh["dw"]
-                                 + ((sf * x * s * dl) * wf) @ sh["dv"]),
-            "flap Coriolis": (((-2 * ipe * s * s * dld) * wf) @ sh["dw"]
-                              + ((-2 * ipe * s * c * dld) * wf) @ sh["dv"]),
-        }
-
-    def _flap_equation(self, psi, on, dl, dldd, delta, delta_d, hinge, wf):
-        """Flap equation residual (docs/theory.md section 4.1) over the span, by piece.
-
-        ``on`` holds the blade kinematics on the flap stations. Returns a
-        dict of piece name -> (azimuths,).
-        """
-        f = self.flap
-        ih, sf, eta = f["inertia_hinge"], f["first_moment"], f["hinge_from_ea"]
-        th, th_dd = on["theta"], on["theta_dd"]
-        c, s = np.cos(th), np.sin(th)
-        x = self.x[None, self.flap_stations]
-        ipe = ih - sf * eta
-        da, da_d = self.actuator_input(psi)
-
-        def span(per_span):
-            return (per_span * wf).sum(axis=1)
-
-        return {
-            "flap inertia": span(ih * dldd),
-            "flap inertial coupling to torsion": span(ipe * th_dd),
-            "flap inertial coupling to bending": span(-sf * (on["wdd"] * c - on["vdd"] * s)),
-            "flap centrifugal": span(propeller_moment(ih, sf, eta, th, dl)
-                                     - sf * x * (on["slope"] * c - on["dv"] * s)
-                                     - sf * on["v"] * s),
-            "flap Coriolis": span(ipe * (on["dvd"] * np.sin(2 * th)
-                                         + on["dwd"] * (1 - np.cos(2 * th)))),
-            "airload hinge moment": span(-hinge),
-            "actuator spring": f["k_a"] * (delta - da),
-            "actuator damper": f["c_a"] * (delta_d - da_d),
-        }
 
 
 #: Pieces of the flap's own equation and of its reactions on the blade.

@@ -85,7 +85,13 @@ def prandtl_glauert(mach) -> np.ndarray:
     -------
     numpy.ndarray
     """
-    m = np.asarray(mach, dtype=float)
+    m = _numeric(mach)
+    if np.iscomplexobj(m):
+        # a complex-step derivative (tefcore.residual_jacobian): the range is
+        # that of the real part, and the clipped factor is constant
+        _ = prandtl_glauert(m.real)
+        m = np.where(m.real > MACH_CLIP, MACH_CLIP, m)
+        return (1.0 / np.sqrt(1.0 - m * m))[()]
     # min/max propagate NaN, and every comparison with NaN is False
     if m.size and not (m.min() >= 0.0 and m.max() <= MACH_MAX):
         bad = ~((m >= 0.0) & (m <= MACH_MAX))
@@ -95,6 +101,13 @@ def prandtl_glauert(mach) -> np.ndarray:
                             else ""))
     m = np.minimum(m, MACH_CLIP)
     return (1.0 / np.sqrt(1.0 - m * m))[()]
+
+
+def _numeric(value):
+    """A float array, or a complex one for complex input (complex-step derivatives:
+    every load is analytic in its inputs)."""
+    v = np.asarray(value)
+    return v if v.dtype.kind == "c" else np.asarray(v, dtype=float)
 
 
 def _geometry(chord_ratio, overhang):
@@ -141,7 +154,7 @@ def _influence(c: float):
 
 
 def _finite(name, value, positive=False):
-    v = np.asarray(value, dtype=float)
+    v = _numeric(value)
     if not np.all(np.isfinite(v)):
         raise ValueError(f"{name} contains NaN or infinite values")
     if positive and np.any(v <= 0.0):
@@ -220,7 +233,7 @@ class ThinAirfoilFlap:
         ``cd`` or ``cm0``.  ``mach`` is validated (0..0.99) even without
         compressibility.
         """
-        a, m, dl = np.broadcast_arrays(_finite("alpha", alpha), np.asarray(mach, dtype=float),
+        a, m, dl = np.broadcast_arrays(_finite("alpha", alpha), _numeric(mach),
                                        _finite("delta", delta))
         pg = prandtl_glauert(m)
         if not self.compressibility:
@@ -234,7 +247,7 @@ class ThinAirfoilFlap:
             "ch": pg * (dv["ch_alpha"] * a + dv["ch_delta"] * dl),
             "clf": pg * (dv["clf_alpha"] * a + dv["clf_delta"] * dl),
         }
-        return {k: np.asarray(v, dtype=float)[()] for k, v in out.items()}
+        return {k: _numeric(v)[()] for k, v in out.items()}
 
     def loads(self, *, alpha, alpha_rate, alpha_accel, plunge_rate, plunge_accel, delta,
               delta_rate, delta_accel, velocity, density, chord, axis=0.25,
@@ -336,13 +349,13 @@ def section_loads(static_model, *, alpha, alpha_rate, alpha_accel, plunge_rate, 
     vals = dict(zip(names, (alpha, alpha_rate, alpha_accel, plunge_rate, plunge_accel, delta,
                             delta_rate, delta_accel, axis), strict=True))
     vals.update(velocity=velocity, density=density, chord=chord, mach=mach)
-    vals = {k: np.asarray(v, dtype=float) for k, v in vals.items()}
+    vals = {k: _numeric(v) for k, v in vals.items()}
     shape = np.broadcast_shapes(*(v.shape for v in vals.values()))
     # one finiteness test for all inputs (this sits in the trim's inner loop):
     # NaN or inf anywhere makes the sum non-finite; the per-name checks run
     # only to word the error. Scalars stay scalars (no broadcast copies).
     if check_finite:
-        if not np.isfinite(sum(float(v.sum()) for v in vals.values())):
+        if not np.isfinite(sum(v.sum() for v in vals.values())):
             for k, v in vals.items():
                 _finite(k, v)
         for k in ("velocity", "density", "chord"):
@@ -390,4 +403,4 @@ def section_loads(static_model, *, alpha, alpha_rate, alpha_accel, plunge_rate, 
     out = {"lift": lift, "drag": drag, "moment": moment, "flap_lift": flap_lift,
            "hinge_moment": hinge}
     out.update(cl=lift / qc, cd=drag / qc, cm=moment / qcc, clf=flap_lift / qc, ch=hinge / qcc)
-    return {k: np.asarray(v, dtype=float)[()] for k, v in out.items()}
+    return {k: _numeric(v)[()] for k, v in out.items()}

@@ -154,7 +154,7 @@ def linearized_terms(tr, psi=None) -> dict[str, SecondOrderSystem]:
                np.linspace(0, 2 * np.pi, model.cfg.model.n_azimuth, endpoint=False))
     y, yd, ydd, inflow = tr.linear_point(psi)
     jac, _, _ = jacobian_blocks(model, psi, y, yd, ydd, tr.controls, inflow, step=1e-6,
-                                scheme="forward", pieces=True, n_second=model.n_dof)
+                                scheme="exact", pieces=True, n_second=model.n_dof)
     groups = _groups(model)
     n_first = model.n_wake + model.n_inflow
     out = {}

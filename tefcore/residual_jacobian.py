@@ -8,16 +8,36 @@ azimuth: the trim's Newton steps, the linearisation about the trim and the
 mechanism's term-by-term systems all use it.  The residual at one azimuth
 depends only on the motion there, so all perturbed motions are stacked along
 the azimuth axis and evaluated in one call.
+
+Two ways (``scheme``):
+
+* ``"exact"`` (the default where it is implemented): the residual is linear
+  in the coordinates except through the local variables of each aerodynamic
+  station (:mod:`tefcore.station_terms`), so its Jacobian is the projection on
+  the mode shapes of the station forces' derivatives with respect to those
+  variables, ``J_ij = sum_s S_i(x_s) dF_s/dv_s T_j(x_s)``; the derivatives are
+  taken by complex step (``F(v + i h)``, ``h = 1e-30``: no cancellation, exact
+  to round-off), one perturbation per local variable for all stations and
+  azimuths at once (docs/theory.md 6.3).  Quasi-steady airloads (thin airfoil
+  or C81 table), any inflow, the dynamic-inflow perturbation states.  Not
+  implemented for the shed-wake states (``model.aero = "unsteady"``), which
+  fall back to forward differences.
+* ``"forward"``, ``"central"``: finite differences of the whole residual.
 """
 
 from __future__ import annotations
 
 import numpy as np
 
-from .aero_states import inflow_fields
+from .aero_states import inflow_fields, rotating_inflow_damping
 from .coupled import Controls, CoupledModel
+from .station_terms import FLAP_VARIABLES, STATION_VARIABLES, local_variables, station_terms
 
-__all__ = ["jacobian_blocks"]
+__all__ = ["EXACT_STEP", "exact_jacobian", "has_exact_jacobian", "jacobian_blocks"]
+
+#: Complex step of :func:`exact_jacobian`: ``Im F(v + i h) / h`` is ``F'(v)`` to
+#: ``O(h^2)`` relative, with no subtraction, so any tiny ``h`` is exact.
+EXACT_STEP = 1e-30
 
 
 def _stack_fields(objs, cls, names, n_psi):
@@ -56,8 +76,9 @@ def jacobian_blocks(model: CoupledModel, psi, q, qd, qdd, controls, inflow, *,
         Inflow.
     step : float, optional
         Finite-difference step (rotor units).
-    scheme : {"forward", "central"}, optional
-        Finite-difference scheme.
+    scheme : {"forward", "central", "exact"}, optional
+        Finite-difference scheme, or ``"exact"``: :func:`exact_jacobian` where
+        :func:`has_exact_jacobian` (else forward differences).
     n_second : int, optional
         Rows of ``q`` from ``n_second`` on are first-order states (the
         aerodynamic states, docs/theory.md 6.2): their second derivatives are
@@ -76,8 +97,14 @@ def jacobian_blocks(model: CoupledModel, psi, q, qd, qdd, controls, inflow, *,
         with ``extra``, a third item: the list of ``(R, thrust)`` for each
         (residuals summed over the pieces).
     """
-    if scheme not in ("central", "forward"):
-        raise ValueError(f"scheme must be 'central' or 'forward', got {scheme!r}")
+    if scheme not in ("central", "forward", "exact"):
+        raise ValueError(f"scheme must be 'exact', 'central' or 'forward', got {scheme!r}")
+    if scheme == "exact":
+        if has_exact_jacobian(model) and not extra:
+            jac, dthr, base, _ = exact_jacobian(model, psi, q, qd, qdd, controls, inflow,
+                                                pieces=pieces)
+            return jac, dthr, base
+        scheme = "forward"                 # shed-wake states: finite differences
     psi = np.atleast_1d(np.asarray(psi, float))
     n, m = q.shape
     n_second = n if n_second is None else int(n_second)
@@ -151,3 +178,270 @@ def _difference(res, n, step, scheme, kk=None):
     if k < 3 * n:
         dres = np.concatenate([dres, np.zeros((n, 3 * n - k, m))], axis=1)
     return dres.reshape(n, 3, n, m).transpose(1, 3, 0, 2), r0
+
+
+def has_exact_jacobian(model: CoupledModel) -> bool:
+    """Whether :func:`exact_jacobian` covers the model (all but the shed-wake states).
+
+    Parameters
+    ----------
+    model : CoupledModel
+        The coupled model.
+
+    Returns
+    -------
+    bool
+    """
+    return model.n_wake == 0
+
+
+def _input_maps(model, n_cols):
+    """For each local variable (station variables, then flap variables): the
+    derivative order of the coordinates it reads and its map ``(n_x, n_cols)``
+    from those coordinates to its value at each station."""
+    sh, nm, fs = model.shapes, model.n_modes, model.flap_stations
+    n_x = model.x.size
+
+    def field(name):
+        t = np.zeros((n_x, n_cols))
+        t[:, :nm] = sh[name]
+        return t
+
+    flap = np.zeros((n_x, n_cols))
+    if model.has_flap:
+        flap[fs, nm] = 1.0
+    maps = {"theta": (0, field("phi")), "theta_d": (1, field("phi")),
+            "theta_dd": (2, field("phi")), "ut": (1, field("v")), "up": (1, field("w")),
+            "wdd": (2, field("w")), "slope": (0, field("dw")), "v": (0, field("v")),
+            "dv": (0, field("dv")), "vdd": (2, field("v")), "dvd": (1, field("dv")),
+            "dwd": (1, field("dw")), "dl": (0, flap), "dld": (1, flap), "dldd": (2, flap)}
+    names = STATION_VARIABLES + (FLAP_VARIABLES if model.has_flap else ())
+    return names, [maps[k] for k in names]
+
+
+def _seeded(loc, names, seeds, sel, h):
+    """Local variables on the stations ``sel``, one complex-step copy per seed."""
+    out = {}
+    for k in names:
+        base = np.asarray(loc[k])[..., sel] if k in STATION_VARIABLES else np.asarray(loc[k])
+        arr = np.repeat(base[None].astype(complex), len(seeds), axis=0)
+        if k in seeds:
+            arr[seeds.index(k)] += 1j * h
+        out[k] = arr
+    return out
+
+
+def exact_jacobian(model: CoupledModel, psi, q, qd, qdd, controls, inflow, *,
+                   pieces: bool = False, inflow_tangents=()):
+    """Exact per-azimuth Jacobian blocks of the residual and thrust (complex step).
+
+    The derivatives of the station forces (:func:`tefcore.station_terms.station_terms`)
+    with respect to the local variables are taken by complex step, all stations
+    and azimuths at once (the station variables on all stations, the flap
+    variables on the flap stations), and projected on the mode shapes; the
+    terms linear in the coordinates (structure, actuator, dynamic-inflow
+    dynamics) add their constant matrices.
+
+    Parameters
+    ----------
+    model : CoupledModel
+        The coupled model, without shed-wake states (:func:`has_exact_jacobian`).
+    psi : numpy.ndarray
+        Azimuths [rad].
+    q, qd, qdd : numpy.ndarray
+        Coordinates (and, in a linearisation with dynamic inflow, the three
+        inflow perturbation states after them) and their psi-derivatives,
+        ``(n, n_psi)``.
+    controls : Controls
+        Pitch controls.
+    inflow : tefcore.inflow.Inflow
+        Inflow (with the states: a :class:`tefcore.aero_states.InflowLinearization`).
+    pieces : bool, optional
+        The blocks of each named piece (a dict), whose sum is the Jacobian.
+    inflow_tangents : sequence of numpy.ndarray, optional
+        Derivatives ``d lambda / d p_k`` of the inflow ratio with respect to
+        parameters ``p_k`` at the stations, each ``(n_psi, n_x)``: their
+        residual and thrust derivatives come with those of the controls.
+
+    Returns
+    -------
+    jac : numpy.ndarray or dict
+        ``(3, n_psi, n, n)``: ``dR_i/dq_j``, ``dR_i/dq*_j``, ``dR_i/dq**_j``.
+    dthrust : numpy.ndarray
+        ``(3, n_psi, n)`` (with dynamic inflow ``(2, 3, n_psi, n)``: the blade's
+        ``C_T/sigma`` and its first moment).
+    base : tuple
+        ``(R, thrust)`` at the motion.
+    params : tuple
+        ``(dR, dthrust)`` with respect to the collective, the two cyclics and
+        the ``inflow_tangents`` parameters: ``(n_p, n, n_psi)`` and
+        ``(..., n_p, n_psi)``.
+
+    Raises
+    ------
+    ValueError
+        For a model with shed-wake states.
+    """
+    if not has_exact_jacobian(model):
+        raise ValueError("the exact Jacobian does not cover the shed-wake states "
+                         "(model.aero = 'unsteady'); use finite differences")
+    psi = np.atleast_1d(np.asarray(psi, float))
+    n_rows, n_psi = q.shape
+    nd, nm, fs = model.n_dof, model.n_modes, model.flap_stations
+    n_x = model.x.size
+    nu = n_rows > nd
+    if nu and n_rows != nd + model.n_inflow:
+        raise ValueError(f"{n_rows} rows of coordinates and states; this model has {nd} "
+                         f"coordinates and {model.n_inflow} inflow states")
+    parts, thrust = model.residual_pieces(psi, q, qd, qdd, controls, inflow)
+    kin = model.kinematics(psi, q[:nd], qd[:nd], qdd[:nd], controls, inflow,
+                           inflow_perturbation=None if not nu else
+                           q[nd][:, None] + model.x[None, :] * q[nd + 1][:, None])
+    loc = local_variables(model, kin, q[:nd], qd[:nd], qdd[:nd])
+    names, maps = _input_maps(model, n_rows)
+    h = EXACT_STEP
+    n_var = len(names)
+    # derivatives of every (piece, field) station force and of the normal force
+    deriv: dict = {}
+    fz = np.zeros((n_var, n_psi, n_x))
+    # one complex-step copy per local variable, all stations at once (the copies
+    # of a flap variable change only the flap stations' forces)
+    runs = [(list(names), slice(None), False)]
+    for seeds, sel, flap_only in runs:
+        first = names.index(seeds[0])
+        terms, fz_c = station_terms(model, _seeded(loc, names, seeds, sel, h),
+                                    flap_only=flap_only)
+        rows = slice(first, first + len(seeds))
+        fz[rows, :, sel] = fz_c.imag / h
+        for t in terms:
+            key = (t.piece, t.field)
+            if key not in deriv:
+                deriv[key] = np.zeros((n_var, n_psi, n_x))
+            where = fs if (t.flap_only and not flap_only) else sel
+            deriv[key][rows, :, where] += t.force.imag / h
+    out_names = ("w", "dw", "v", "dv", "phi", "flap")
+    out_maps = np.zeros((len(out_names), n_x, n_rows))
+    for k, f in enumerate(out_names[:-1]):
+        out_maps[k, :, :nm] = model.shapes[f]
+    if model.has_flap:
+        out_maps[-1, fs, nm] = 1.0
+    orders = np.array([o for o, _ in maps])
+    t_in = np.stack([m for _, m in maps])                     # (n_var, n_x, n_cols)
+    up = names.index("up")
+    mu = model.cfg.flight.advance_ratio
+    # U_P = lambda + w* + mu (w' + beta_p) cos psi (+ nu_0 + x nu_R): order 0 too
+    up0 = np.zeros((n_psi, n_x, n_rows))
+    up0[:, :, :nm] = mu * np.cos(psi)[:, None, None] * model.shapes["dw"][None]
+    if nu:
+        up0[:, :, nd] = 1.0
+        up0[:, :, nd + 1] = model.x[None, :]
+    by_order = [np.flatnonzero(orders == o) for o in range(3)]
+
+    def stack(d):
+        """{field: (n_var, n_psi, n_x)} -> (n_fields, n_var, n_psi, n_x)."""
+        out = np.zeros((len(out_names), n_var, n_psi, n_x))
+        for f, dv in d.items():
+            out[out_names.index(f)] += dv
+        return out
+
+    def project(e):
+        """Output-projected derivatives ``e`` (n_var, n_psi, n_x, n_rows) -> blocks
+        (3, n_psi, n_rows, n_cols): one matrix product per order."""
+        jac = np.empty((3, n_psi, n_rows, n_rows))
+        for o, idx in enumerate(by_order):
+            lhs = e[idx].transpose(1, 3, 0, 2).reshape(n_psi, n_rows, -1)
+            jac[o] = lhs @ t_in[idx].reshape(-1, n_rows)
+        jac[0] += e[up].transpose(0, 2, 1) @ up0
+        return jac
+
+    def outputs(d):
+        """(n_fields, n_var, n_psi, n_x) -> projected on the output rows."""
+        return np.einsum("fvms,fsi->vmsi", d, out_maps, optimize=True)
+
+    def project_thrust(dfz):
+        d = np.empty((3, n_psi, n_rows))
+        for o, idx in enumerate(by_order):
+            d[o] = dfz[idx].transpose(1, 0, 2).reshape(n_psi, -1) @ t_in[idx].reshape(
+                -1, n_rows)
+        d[0] += np.einsum("ms,msj->mj", dfz[up], up0)
+        return d
+
+    ct = model.scale["ct_sigma"]
+    dthrust = project_thrust(ct * fz)
+    if model.dynamic_inflow:
+        dthrust = np.stack([dthrust, project_thrust(ct * fz * model.x)])
+    total = {}
+    for (_, f), dv in deriv.items():
+        total[f] = total[f] + dv if f in total else dv
+    e_total = outputs(stack(total))
+    if pieces:
+        by_piece: dict = {}
+        for (piece, f), dv in deriv.items():
+            by_piece.setdefault(piece, {})[f] = dv
+        jac = {p: np.zeros((3, n_psi, n_rows, n_rows)) for p in parts}
+        for p, d in by_piece.items():
+            jac[p] += project(outputs(stack(d)))
+    else:
+        jac = {"all": project(e_total)}
+    _linear_pieces(model, jac, psi, inflow, dthrust, nu)
+    if not pieces:
+        jac = jac["all"]
+    # controls: Theta = theta_0 + theta_1c cos psi + theta_1s sin psi + ...
+    c, s = np.cos(psi), np.sin(psi)
+    th, th_d, th_dd = (names.index(k) for k in ("theta", "theta_d", "theta_dd"))
+    e_sum = e_total.sum(axis=2)                               # (n_var, n_psi, n_rows)
+    fz_sum = fz.sum(axis=-1)                                  # (n_var, n_psi)
+    fzx_sum = (fz * model.x).sum(axis=-1)
+    dirs = [{th: 1.0}, {th: c, th_d: -s, th_dd: -c}, {th: s, th_d: c, th_dd: -s}]
+    n_p = len(dirs) + len(inflow_tangents)
+    d_res = np.zeros((n_p, n_rows, n_psi))
+    d_fz = np.zeros((2, n_p, n_psi))
+    for k, direction in enumerate(dirs):
+        for v, coef in direction.items():
+            coef = np.asarray(coef)[..., None] if np.ndim(coef) else coef
+            d_res[k] += (e_sum[v] * coef).T
+            d_fz[0, k] += fz_sum[v] * np.squeeze(coef)
+            d_fz[1, k] += fzx_sum[v] * np.squeeze(coef)
+    for k, tangent in enumerate(inflow_tangents, start=len(dirs)):
+        tangent = np.asarray(tangent)
+        d_res[k] = np.einsum("msi,ms->im", e_total[up], tangent)
+        d_fz[0, k] = (fz[up] * tangent).sum(axis=-1)
+        d_fz[1, k] = (fz[up] * tangent * model.x).sum(axis=-1)
+    d_thr = ct * d_fz[0]
+    if model.dynamic_inflow:
+        d_thr = ct * d_fz
+        if nu:
+            sigma, first = inflow.solidity, nd
+            d_res[:, first] -= sigma * d_thr[0]
+            d_res[:, first + 1] -= sigma * d_thr[1]
+    return jac, dthrust, (sum(parts.values()), thrust), (d_res, d_thr)
+
+
+def _linear_pieces(model, jac, psi, inflow, dthrust, nu):
+    """Add the terms linear in the coordinates to the blocks (``jac`` by piece, or
+    ``{"all": ...}``)."""
+    nm, nd = model.n_modes, model.n_dof
+    one = "all" in jac
+
+    def add(piece, order, rows, cols, mat):
+        key = "all" if one else piece
+        jac[key][order][:, rows, cols] += mat
+
+    blade = slice(0, nm)
+    add("blade inertia", 2, blade, blade, model.m_s)
+    add("blade stiffness", 0, blade, blade, model.k_s)
+    add("blade structural damping", 1, blade, blade, model.d_s)
+    add("blade Coriolis", 1, blade, blade, model.g_s)
+    if model.has_flap:
+        add("actuator spring", 0, nm, nm, model.flap["k_a"])
+        add("actuator damper", 1, nm, nm, model.flap["c_a"])
+    if nu:
+        lin = inflow.perturbation
+        states = slice(nd, nd + 3)
+        add("inflow dynamics", 1, states, states, lin.mass)
+        key = "all" if one else "inflow dynamics"
+        jac[key][0][:, states, states] += rotating_inflow_damping(lin, psi)
+        key = "all" if one else "inflow forcing"
+        for order in range(3):
+            jac[key][order][:, nd] -= inflow.solidity * dthrust[0][order]
+            jac[key][order][:, nd + 1] -= inflow.solidity * dthrust[1][order]

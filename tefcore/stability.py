@@ -38,14 +38,16 @@ SHARE_KINDS = ("flap", "lag", "torsion", "axial", "TEF")
 REMODE_DEG = 2.0
 
 
-def linearize(tr: TrimResult, psi, step: float = 1e-6, scheme: str = "central"):
+def linearize(tr: TrimResult, psi, step: float = 1e-6, scheme: str = "exact"):
     """``M, C, K`` (each ``(len(psi), n, n)``) about the trimmed motion.
 
-    Finite differences of the residual with respect to ``q**, q*, q``,
-    vectorised over the azimuths (the residual at one azimuth depends only on
-    the motion there). ``scheme='central'``: truncation error ~``step^2``,
-    2n evaluations per matrix; ``'forward'``: error ~``step`` (1e-6 relative,
-    far below what moves a damping value), half the evaluations.
+    Derivatives of the residual with respect to ``q**, q*, q``, vectorised
+    over the azimuths (the residual at one azimuth depends only on the motion
+    there).  ``scheme='exact'``: exact to round-off
+    (:func:`tefcore.residual_jacobian.exact_jacobian`; forward differences for
+    the shed-wake states, which it does not cover).  Finite differences:
+    ``'central'``, truncation error ~``step^2``, 2n evaluations per matrix;
+    ``'forward'``: error ~``step`` (1e-6 relative), half the evaluations.
 
     Parameters
     ----------
@@ -55,8 +57,8 @@ def linearize(tr: TrimResult, psi, step: float = 1e-6, scheme: str = "central"):
         Azimuths [rad].
     step : float, optional
         Finite-difference step, relative.
-    scheme : {"central", "forward"}, optional
-        Finite-difference scheme.
+    scheme : {"exact", "central", "forward"}, optional
+        Exact, or the finite-difference scheme.
 
     Returns
     -------
@@ -242,8 +244,11 @@ def linear_system(tr: TrimResult) -> SecondOrderSystem:
     ``cfg.model.n_azimuth`` equally spaced azimuths, interpolated by
     trigonometric series (the trim resolves harmonics below
     ``n_azimuth / 2``; twice the samples change the exponents by less than
-    1e-3 /rev, measured on MDART at mu = 0.3).  Forward differences (step
-    1e-6 relative, far below what moves a damping value).
+    1e-3 /rev, measured on MDART at mu = 0.3).  Exact derivatives: the trim's
+    Newton Jacobian at the solution (:meth:`tefcore.trim.TrimResult.final_blocks`,
+    the same grid), or with the dynamic-inflow states
+    :func:`tefcore.residual_jacobian.exact_jacobian` about the trim; with the
+    shed-wake states forward differences (step 1e-6 relative).
 
     Parameters
     ----------
@@ -254,12 +259,19 @@ def linear_system(tr: TrimResult) -> SecondOrderSystem:
     -------
     tefcore.linear_system.SecondOrderSystem
     """
-    if tr.model.cfg.flight.advance_ratio == 0.0:
+    model = tr.model
+    n_first = model.n_wake + model.n_inflow
+    blocks = tr.final_blocks() if n_first == 0 else None
+    if blocks is not None:
+        # the trim's Newton Jacobian at the solution, on the same grid
+        k, c, m = blocks
+        return SecondOrderSystem(m, c, k)
+    if model.cfg.flight.advance_ratio == 0.0:
         psi = np.zeros(1)
     else:
-        psi = np.linspace(0, 2 * np.pi, tr.model.cfg.model.n_azimuth, endpoint=False)
-    m, c, k = linearize(tr, psi, scheme="forward")
-    return SecondOrderSystem(m, c, k, n_first=tr.model.n_wake + tr.model.n_inflow)
+        psi = np.linspace(0, 2 * np.pi, model.cfg.model.n_azimuth, endpoint=False)
+    m, c, k = linearize(tr, psi, scheme="exact")
+    return SecondOrderSystem(m, c, k, n_first=n_first)
 
 
 def periodic_state_matrix(tr: TrimResult):

@@ -38,7 +38,7 @@ from .dynamic_inflow import SteadyInflow, mass_flow, perturbation_matrices, wake
 from .errors import TefcoreError
 from .flap_dynamics import spectral_derivative
 from .inflow import Inflow, drees_gradients, momentum_inflow
-from .residual_jacobian import jacobian_blocks
+from .residual_jacobian import exact_jacobian, has_exact_jacobian, jacobian_blocks
 from .runtime import blas_limit
 
 __all__ = ["MAX_FLAP_DEFLECTION_DEG", "TrimError", "TrimResult", "fourier_coefficients",
@@ -166,6 +166,33 @@ class TrimResult:
     history: list = field(default_factory=list)
     jacobian: np.ndarray | None = field(default=None, repr=False)
     states: np.ndarray | None = None     # shed-wake states (n_wake, N)
+    _problem: object = field(default=None, repr=False, compare=False)
+    _solution: np.ndarray | None = field(default=None, repr=False, compare=False)
+    _blocks: tuple | None = field(default=None, repr=False, compare=False)
+
+    def final_blocks(self):
+        """Exact ``dR/dq, dR/dq*, dR/dq**`` at the trimmed motion on the trim grid.
+
+        One evaluation of the trim's Newton Jacobian at the solution
+        (:func:`tefcore.residual_jacobian.exact_jacobian`), cached: its
+        per-azimuth blocks are the linearisation about the trim
+        (:func:`tefcore.stability.linear_system` reuses them where the grids
+        agree), and the Newton matrix replaces :attr:`jacobian`, so a trim
+        warm-started from this one starts from the Jacobian at this solution.
+        None where it does not apply: shed-wake states (finite differences) or
+        no record of the trim equations.
+
+        Returns
+        -------
+        tuple of numpy.ndarray or None
+            ``(K, C, M)`` blocks, each ``(n_psi, n_dof, n_dof)``.
+        """
+        if self._blocks is None and self._problem is not None \
+                and has_exact_jacobian(self.model):
+            jac, _, blocks = self._problem.jacobian(self._solution)
+            self.jacobian = jac
+            self._blocks = tuple(blocks)
+        return self._blocks
 
     def motion(self, psi):
         """``q, q*, q**`` at any azimuths, by Fourier interpolation."""
@@ -285,23 +312,8 @@ def trim(model: CoupledModel, *, tol: float = 1e-10, max_iter: int = 40,
         If Newton's method does not converge in ``max_iter`` iterations or
         the residual becomes non-finite.
     """
-    cfg = model.cfg
-    f = cfg.flight
-    hover = f.advance_ratio == 0.0
-    n_psi = 1 if hover else cfg.model.n_azimuth
-    psi = np.linspace(0, 2 * np.pi, n_psi, endpoint=False)
-    d1 = spectral_derivative(n_psi)
-    d2 = d1 @ d1
-    n = model.n_dof + model.n_wake                         # coordinates and wake states
-    n_lam = 3 if model.dynamic_inflow else 1               # inflow unknowns
-    # sin and cos psi of the collocation points, for the rotor's first moments;
-    # in hover the loads are axisymmetric (one point) and the moments vanish
-    harmonics = (np.zeros((2, 1)) if hover else np.array([np.sin(psi), np.cos(psi)]))
-    free_collective = f.collective is None
-    sigma = cfg.rotor.solidity
-    mu, fs = f.advance_ratio, f.advance_ratio * np.tan(f.shaft_angle)
-    tip = model.tip_flap                                   # tip flap of each mode
-
+    prob = _Problem(model)
+    cfg, n, n_psi, n_lam = model.cfg, prob.n, prob.n_psi, prob.n_lam
     # unknowns: Q (n x N; wake states after the coordinates), [theta_0],
     # [theta_1c, theta_1s], lambda_i (dynamic inflow: lambda_0, lambda_s, lambda_c)
     if _warm(initial, model, n_psi):
@@ -313,67 +325,27 @@ def trim(model: CoupledModel, *, tol: float = 1e-10, max_iter: int = 40,
     else:
         q0 = np.zeros((n, n_psi))
         ctl = Controls(collective=initial_collective(cfg))
-        lam = [np.sqrt(max(f.ct_sigma * sigma, 1e-6) / 2)] + [0.0] * (n_lam - 1)
-    ctl_names = (["collective"] if free_collective else []) + ([] if hover else
-                                                               ["cyclic_cos", "cyclic_sin"])
-    x = np.concatenate([q0.ravel(), [getattr(ctl, k) for k in ctl_names], lam])
-    nq = n * n_psi
-
-    def unpack(vec):
-        c = Controls(ctl.collective, ctl.cyclic_cos, ctl.cyclic_sin)
-        for k, val in zip(ctl_names, vec[nq:x.size - n_lam], strict=True):
-            setattr(c, k, float(val))
-        li = tuple(float(v) for v in vec[-3:]) if n_lam == 3 else float(vec[-1])
-        return vec[:nq].reshape(n, n_psi), c, li
-
-    def residuals(vec):
-        q, c, li = unpack(vec)
-        res, thrust = model.evaluate(psi, q, q @ d1.T, q @ d2.T, c, _inflow(model, li))
-        return res, thrust, c, li
-
-    def scalars(q, thrust, li):
-        ct_s = thrust.mean() if n_lam == 1 else thrust[0].mean()
-        out = [ct_s - f.ct_sigma] if free_collective else []
-        if not hover:
-            w_tip = tip @ q[:model.n_modes]
-            out += [2 * np.mean(w_tip * np.cos(psi)), 2 * np.mean(w_tip * np.sin(psi))]
-        ct = ct_s * sigma
-        if n_lam == 3:
-            # steady Pitt-Peters, divided by 2 v_T: in hover the mean row is
-            # the momentum row below, lambda_0 - C_T / (2 lambda_0)
-            loads = sigma * (harmonics @ thrust[1]) / n_psi
-            res = steady_inflow_residual(li, ct, *loads, advance_ratio=mu, freestream=fs)
-            return np.concatenate([out, res / (2 * np.hypot(mu, fs + li[0]))])
-        out.append(li - ct / (2 * np.hypot(mu, fs + li)))
-        return np.array(out)
-
+        lam = ([np.sqrt(max(cfg.flight.ct_sigma * prob.sigma, 1e-6) / 2)]
+               + [0.0] * (n_lam - 1))
+    prob.base = ctl
+    x = np.concatenate([q0.ravel(), [getattr(ctl, k) for k in prob.ctl_names], lam])
     history = []
     lu = None
     if initial is not None and initial.jacobian is not None and \
             initial.jacobian.shape == (x.size, x.size):
         lu = _factor(initial.jacobian, model, n_psi)
         jac = initial.jacobian
-    def full(vec):
-        res, thrust, c, li = residuals(vec)
-        q = vec[:nq].reshape(n, n_psi)
-        r = np.concatenate([res.ravel(), scalars(q, thrust, li)])
-        return r, float(np.max(np.abs(r))), thrust, c, li
-
     prev = np.inf
     if lu is None:
         # cold start: the residual comes with the first Jacobian (its
         # unperturbed block), not from a separate evaluation
-        _, c, li = unpack(x)
-        jac, (res0, thrust) = _jacobian(model, x, c, li, unpack, scalars, psi, d1, d2, n, n_psi,
-                                        nq, tip, hover, free_collective, sigma, mu, fs, n_lam)
-        r = np.concatenate([res0.ravel(), scalars(x[:nq].reshape(n, n_psi), thrust, li)])
-        norm = float(np.max(np.abs(r)))
+        jac, (r, norm, thrust, c, li), _ = prob.jacobian(x)
         # no finiteness checks in the LU calls: a NaN reaches the residual,
         # and the loop below stops on it with a TrimError and its history
         lu = _factor(jac, model, n_psi)
         fresh = True
     else:
-        r, norm, thrust, c, li = full(x)
+        r, norm, thrust, c, li = prob.full(x)
         fresh = False
     for it in range(max_iter):
         history.append({"iteration": it, "max_residual": norm, "collective_deg":
@@ -383,19 +355,19 @@ def trim(model: CoupledModel, *, tol: float = 1e-10, max_iter: int = 40,
         if not np.isfinite(norm):
             raise TrimError("trim residual became non-finite", history)
         if norm < tol:
-            q_tr = x[:nq].reshape(n, n_psi)
+            q_tr = x[:prob.nq].reshape(n, n_psi)
             nd = model.n_dof
             _check_flap_deflection(model, q_tr[:nd], history)
-            return TrimResult(model=model, psi=psi, q=q_tr[:nd], controls=c,
+            return TrimResult(model=model, psi=prob.psi, q=q_tr[:nd], controls=c,
                               inflow=_inflow(model, li),
                               ct_sigma=float(thrust.mean() if n_lam == 1 else thrust[0].mean()),
                               history=history, jacobian=jac,
-                              states=q_tr[nd:] if model.n_wake else None)
+                              states=q_tr[nd:] if model.n_wake else None,
+                              _problem=prob, _solution=x)
         # chord method: keep the factorised Jacobian while it converges fast,
         # refresh it when the residual falls by less than 10x per iteration
         if not fresh and norm > 0.1 * prev:
-            jac, _ = _jacobian(model, x, c, li, unpack, scalars, psi, d1, d2, n, n_psi, nq,
-                               tip, hover, free_collective, sigma, mu, fs, n_lam)
+            jac = prob.jacobian(x)[0]
             lu = _factor(jac, model, n_psi)
         fresh = False
         prev = norm
@@ -405,7 +377,7 @@ def trim(model: CoupledModel, *, tol: float = 1e-10, max_iter: int = 40,
         # trial's residual is the next iteration's (no re-evaluation)
         alpha = 1.0
         for _ in range(8):
-            trial = full(x + alpha * step)
+            trial = prob.full(x + alpha * step)
             if trial[1] <= norm or norm < 1e-6:
                 break
             alpha *= 0.5
@@ -413,6 +385,78 @@ def trim(model: CoupledModel, *, tol: float = 1e-10, max_iter: int = 40,
         r, norm, thrust, c, li = trial
     raise TrimError(f"trim did not converge in {max_iter} iterations "
                     f"(last max residual {history[-1]['max_residual']:.3e})", history)
+
+
+class _Problem:
+    """The trim equations of a model: unknowns, residual and Newton Jacobian."""
+
+    def __init__(self, model):
+        cfg = model.cfg
+        f = cfg.flight
+        self.model = model
+        self.hover = f.advance_ratio == 0.0
+        self.n_psi = 1 if self.hover else cfg.model.n_azimuth
+        self.psi = np.linspace(0, 2 * np.pi, self.n_psi, endpoint=False)
+        self.d1 = spectral_derivative(self.n_psi)
+        self.d2 = self.d1 @ self.d1
+        self.n = model.n_dof + model.n_wake                # coordinates and wake states
+        self.n_lam = 3 if model.dynamic_inflow else 1      # inflow unknowns
+        # sin and cos psi of the collocation points, for the rotor's first moments;
+        # in hover the loads are axisymmetric (one point) and the moments vanish
+        self.harmonics = (np.zeros((2, 1)) if self.hover
+                          else np.array([np.sin(self.psi), np.cos(self.psi)]))
+        self.free_collective = f.collective is None
+        self.sigma = cfg.rotor.solidity
+        self.mu, self.fs = f.advance_ratio, f.advance_ratio * np.tan(f.shaft_angle)
+        self.tip = model.tip_flap                          # tip flap of each mode
+        self.ctl_names = ((["collective"] if self.free_collective else [])
+                          + ([] if self.hover else ["cyclic_cos", "cyclic_sin"]))
+        self.nq = self.n * self.n_psi
+        self.base = Controls()                             # the controls not solved for
+
+    def unpack(self, vec):
+        """``(Q, controls, inflow unknowns)`` of an unknown vector."""
+        b, n_lam = self.base, self.n_lam
+        c = Controls(b.collective, b.cyclic_cos, b.cyclic_sin)
+        for k, val in zip(self.ctl_names, vec[self.nq:vec.size - n_lam], strict=True):
+            setattr(c, k, float(val))
+        li = tuple(float(v) for v in vec[-3:]) if n_lam == 3 else float(vec[-1])
+        return vec[:self.nq].reshape(self.n, self.n_psi), c, li
+
+    def scalars(self, q, thrust, li):
+        """The trim targets and the inflow equations."""
+        n_lam, mu, fs, sigma = self.n_lam, self.mu, self.fs, self.sigma
+        f = self.model.cfg.flight
+        ct_s = thrust.mean() if n_lam == 1 else thrust[0].mean()
+        out = [ct_s - f.ct_sigma] if self.free_collective else []
+        if not self.hover:
+            w_tip = self.tip @ q[:self.model.n_modes]
+            out += [2 * np.mean(w_tip * np.cos(self.psi)),
+                    2 * np.mean(w_tip * np.sin(self.psi))]
+        ct = ct_s * sigma
+        if n_lam == 3:
+            # steady Pitt-Peters, divided by 2 v_T: in hover the mean row is
+            # the momentum row below, lambda_0 - C_T / (2 lambda_0)
+            loads = sigma * (self.harmonics @ thrust[1]) / self.n_psi
+            res = steady_inflow_residual(li, ct, *loads, advance_ratio=mu, freestream=fs)
+            return np.concatenate([out, res / (2 * np.hypot(mu, fs + li[0]))])
+        out.append(li - ct / (2 * np.hypot(mu, fs + li)))
+        return np.array(out)
+
+    def full(self, vec):
+        """Residual, its largest entry, thrust, controls and inflow at ``vec``."""
+        q, c, li = self.unpack(vec)
+        res, thrust = self.model.evaluate(self.psi, q, q @ self.d1.T, q @ self.d2.T, c,
+                                          _inflow(self.model, li))
+        r = np.concatenate([res.ravel(), self.scalars(q, thrust, li)])
+        return r, float(np.max(np.abs(r))), thrust, c, li
+
+    def jacobian(self, vec):
+        """Newton matrix at ``vec``, ``full(vec)`` and the per-azimuth blocks."""
+        q, c, li = self.unpack(vec)
+        jac, (res0, thrust), blocks = _jacobian(self, vec, c, li)
+        r = np.concatenate([res0.ravel(), self.scalars(q, thrust, li)])
+        return jac, (r, float(np.max(np.abs(r))), thrust, c, li), blocks
 
 
 #: Largest mean trimmed flap deflection [deg] accepted as a result.  A
@@ -498,25 +542,70 @@ def _check_flap_deflection(model, q, history) -> None:
             f"{model.cfg.flap.overhang:g})", history)
 
 
-def _jacobian(model, x, c, li, unpack, scalars, psi, d1, d2, n, n_psi, nq, tip, hover,
-              free_collective, sigma, mu, fs, n_lam=1):
+def _inflow_tangents(model, li, psi):
+    """``d lambda / d p`` at the stations for the inflow unknowns ``p`` of the trim,
+    each ``(n_psi, n_x)`` (docs/theory.md 6.3).
+
+    Momentum inflow with Drees' gradients,
+    ``lambda = fs + l (1 + kx x cos psi + ky x sin psi)`` with ``kx`` a function of
+    ``chi = atan2(mu, fs + l)``: ``d kx / d chi = 4/3 [sin^2 chi - (1 - cos chi -
+    1.8 mu^2) cos chi] / sin^2 chi``, ``d chi / d l = -mu / (mu^2 + lambda^2)``.
+    Pitt-Peters field ``fs + l_0 + x (l_s sin psi + l_c cos psi)``: ``1, x sin psi,
+    x cos psi``.
+    """
+    x = model.x[None, :]
+    c, s = np.cos(psi)[:, None], np.sin(psi)[:, None]
+    if model.dynamic_inflow:
+        return [np.ones((psi.size, x.size)), x * s, x * c]
+    f = model.cfg.flight
+    mu, fs = f.advance_ratio, f.advance_ratio * np.tan(f.shaft_angle)
+    if model.cfg.model.inflow != "linear" or mu == 0.0:
+        return [np.ones((psi.size, x.size))]
+    kx, ky = drees_gradients(mu, fs + li)
+    lam = fs + li
+    chi = np.arctan2(mu, lam)
+    dkx = 4.0 / 3.0 * (np.sin(chi) ** 2 - (1 - np.cos(chi) - 1.8 * mu**2) * np.cos(chi)) \
+        / np.sin(chi) ** 2 * (-mu / (mu**2 + lam**2))
+    return [1.0 + kx * x * c + ky * x * s + li * dkx * x * c]
+
+
+def _jacobian(prob, x, c, li):
     """Newton Jacobian using the per-azimuth block structure.
 
-    Returns the Jacobian and ``(R, thrust)`` at ``x`` (its unperturbed block).
+    Returns the Jacobian, ``(R, thrust)`` at ``x`` and the per-azimuth blocks
+    ``dR/dq, dR/dq*, dR/dq**``: exact
+    (:func:`tefcore.residual_jacobian.exact_jacobian`, with the control and
+    inflow columns by the chain rule) where implemented, else forward
+    differences with the control and inflow columns evaluated in the same
+    stacked call.
     """
+    model, psi, d1, d2, n, n_psi, nq = (prob.model, prob.psi, prob.d1, prob.d2, prob.n,
+                                        prob.n_psi, prob.nq)
+    tip, hover, free_collective, n_lam = prob.tip, prob.hover, prob.free_collective, prob.n_lam
+    sigma, mu, fs, scalars = prob.sigma, prob.mu, prob.fs, prob.scalars
     q = x[:nq].reshape(n, n_psi)
     qd, qdd = q @ d1.T, q @ d2.T
     infl = _inflow(model, li)
-    # control and inflow columns by forward differences, evaluated at the
-    # same motion in the same stacked call as the per-azimuth blocks
-    h = 1e-7
     cols = np.arange(nq, x.size)
-    xs = np.repeat(x[None], cols.size, axis=0)
-    xs[np.arange(cols.size), cols] += h
-    parts = [unpack(v) for v in xs]
-    (jq, jqd, jqdd), tblocks, (res0, thr0, perturbed) = jacobian_blocks(
-        model, psi, q, qd, qdd, c, infl, step=1e-7, scheme="forward",
-        extra=[(p[1], _inflow(model, p[2])) for p in parts], n_second=model.n_dof)
+    if has_exact_jacobian(model):
+        (jq, jqd, jqdd), tblocks, (res0, thr0), (d_res, d_thr) = exact_jacobian(
+            model, psi, q, qd, qdd, c, infl, inflow_tangents=_inflow_tangents(model, li, psi))
+        # the parameters of exact_jacobian: collective, cyclics, then the inflow
+        names = (["collective"] if free_collective else []) + ([] if hover else
+                                                              ["cyclic_cos", "cyclic_sin"])
+        which = [("collective", "cyclic_cos", "cyclic_sin").index(k) for k in names]
+        which += list(range(3, 3 + n_lam))
+        d_res, d_thr = d_res[which], d_thr[..., which, :]
+    else:
+        # control and inflow columns by forward differences, evaluated at the
+        # same motion in the same stacked call as the per-azimuth blocks
+        h = 1e-7
+        xs = np.repeat(x[None], cols.size, axis=0)
+        xs[np.arange(cols.size), cols] += h
+        parts = [prob.unpack(v) for v in xs]
+        (jq, jqd, jqdd), tblocks, (res0, thr0, perturbed) = jacobian_blocks(
+            model, psi, q, qd, qdd, c, infl, step=1e-7, scheme="forward",
+            extra=[(p[1], _inflow(model, p[2])) for p in parts], n_second=model.n_dof)
     r0 = np.concatenate([res0.ravel(), scalars(q, thr0, li)])
     blocks = [jq, jqd, jqdd]
     eye = np.eye(n_psi)
@@ -553,8 +642,29 @@ def _jacobian(model, x, c, li, unpack, scalars, psi, d1, d2, n, n_psi, nq, tip, 
     else:
         denom = 2 * np.hypot(mu, fs + li)
         jac[nq + row, :nq] = -sigma * dct.ravel() / denom
-    for k, (p, (res_k, thr_k)) in zip(cols, zip(parts, perturbed, strict=True), strict=True):
-        rk = np.concatenate([res_k.ravel(), scalars(q, thr_k, p[2])])
-        jac[:, k] = (rk - r0) / h
     assert n_s == row + 1
-    return jac, (res0, thr0)
+    if not has_exact_jacobian(model):
+        for k, (p, (res_k, thr_k)) in zip(cols, zip(parts, perturbed, strict=True),
+                                          strict=True):
+            rk = np.concatenate([res_k.ravel(), scalars(q, thr_k, p[2])])
+            jac[:, k] = (rk - r0) / h
+        return jac, (res0, thr0), blocks
+    # the trim equations are linear in the thrust: their control and inflow
+    # columns are the thrust's derivatives through them (central differences
+    # along the exact thrust derivative, exact for a linear function), plus the
+    # inflow equations' own dependence on the inflow unknowns (central
+    # differences of a scalar function: 1e-10)
+    eps = 1e-6
+    li_vec = np.atleast_1d(np.asarray(li, float))
+    for k, col in enumerate(cols):
+        dl = np.zeros(n_lam)
+        if k >= cols.size - n_lam:
+            dl[k - (cols.size - n_lam)] = eps
+        sides = []
+        for sgn in (1.0, -1.0):
+            lam_k = li_vec + sgn * dl
+            sides.append(scalars(q, thr0 + sgn * eps * d_thr[..., k, :],
+                                 tuple(lam_k) if n_lam == 3 else float(lam_k[0])))
+        jac[:nq, col] = d_res[k].ravel()
+        jac[nq:, col] = (sides[0] - sides[1]) / (2 * eps)
+    return jac, (res0, thr0), blocks

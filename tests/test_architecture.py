@@ -80,6 +80,8 @@ LARGE_MODULES = {
     "tefcore.theodorsen": DOCUMENTED,
     "tefcore.tracking": DOCUMENTED,
     "tefcore.trim": DOCUMENTED,
+    "tefcore.flap_aero": DOCUMENTED,
+    "tefcore.residual_jacobian": DOCUMENTED,
     "tefcore.units": DOCUMENTED,
     "tefcore.unsteady_aero": DOCUMENTED,
 }
