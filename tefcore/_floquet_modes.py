@@ -41,12 +41,18 @@ from ._floquet_propagators import (
 from ._floquet_result import sorted_result
 from .runtime import blas_limit
 
-__all__ = ["MIN_ROOT", "MAX_SUB", "floquet_modes"]
+__all__ = ["MIN_ROOT", "MAX_SUB", "choose_sub", "floquet_modes"]
 
 
 #: Smallest modulus ``|mu| = |lambda|^(1/K)`` of a lifted root that
 #: :func:`floquet_modes` accepts: below it ``n_sub`` is raised (see there).
-MIN_ROOT = 1e-3
+#: The floor ``1e6 eps max ||Phi_k||`` carries the non-normality of the lift;
+#: this one only keeps roots off the round-off level of a normal lift.  It was
+#: 1e-3: against K = 16 on the 30 forward-flight end and middle points of the
+#: paper's figures, 1e-6 changes the chosen K at 9 of them (K = 2 or 4 instead
+#: of 4 or 8) and the largest exponent error from 4e-7 to 1.2e-6 /rev
+#: (docs/theory.md 5.3), a thousandth of the default tolerance.
+MIN_ROOT = 1e-6
 
 
 #: Largest number of sub-intervals :func:`floquet_modes` raises ``n_sub`` to.
@@ -261,7 +267,7 @@ def floquet_modes(A, n_steps=None, n_sub=DEFAULT_N_SUB, period=TWO_PI, method="r
             rk4_step_warning(a[:3] if constant else a, period / n_steps, n_steps)
         p = propagators(a, period / n_steps, constant, method)
         res, _, split = _modes(p, period, k_sub, max_sub, shapes, shift_states, min_rate,
-                               participation)
+                               participation, _frozen(a))
         if not split:
             warn_unsplit()
         return res
@@ -271,7 +277,7 @@ def floquet_modes(A, n_steps=None, n_sub=DEFAULT_N_SUB, period=TWO_PI, method="r
         try:
             p = propagators(a, period / n_steps, constant, method)
             res, znorm, split = _modes(p, period, k_sub, max_sub, shapes, shift_states,
-                                       min_rate, participation)
+                                       min_rate, participation, _frozen(a))
         except FloquetOverflowError as err:
             if refinable and 2 * n_steps <= max_steps:      # shorter steps may not overflow
                 n_steps, coarse = 2 * n_steps, None
@@ -308,7 +314,17 @@ def floquet_modes(A, n_steps=None, n_sub=DEFAULT_N_SUB, period=TWO_PI, method="r
         a = sample(A, n_steps, period)[0]
 
 
-def _modes(p, period, k_sub, max_sub, shapes, shift_states, min_rate=None, duals=False):
+def _frozen(a):
+    """The least real part of the eigenvalues of the mean of the samples ``a``, lazily."""
+    def rate():
+        with np.errstate(all="ignore"):
+            ev = np.linalg.eigvals(np.mean(a, axis=0))
+        return float(ev.real.min()) if np.isfinite(ev).all() else float("nan")
+    return rate
+
+
+def _modes(p, period, k_sub, max_sub, shapes, shift_states, min_rate=None, duals=False,
+           frozen_rate=None):
     """Floquet modes from the step propagators ``p``; also ``max ||Phi_k||`` and whether
     the lifted roots split one per multiplier.  ``duals``: with the participation
     factors from the adjoint solutions (:func:`_adjoint_participation`)."""
@@ -316,6 +332,8 @@ def _modes(p, period, k_sub, max_sub, shapes, shift_states, min_rate=None, duals
     k_sub = check_sub(k_sub, n_steps)
     max_sub = min(max(max_sub, k_sub), n_steps)
     eps = np.finfo(float).eps
+    # K before solving, from a cheap bound of the smallest multiplier
+    k_sub = choose_sub(p, period, k_sub, max_sub, min_rate, frozen_rate, duals)
     while True:
         stack, bounds, valid = group(p, k_sub)
         phis = tree_product(stack)
@@ -403,6 +421,79 @@ def _modes(p, period, k_sub, max_sub, shapes, shift_states, min_rate=None, duals
                           per if shapes else None, n_sub=k_sub, n_steps=n_steps,
                           participation=part),
             float(np.linalg.norm(phis, axis=(1, 2)).max()), split)
+
+
+def choose_sub(p, period, k_min, max_sub, min_rate=None, frozen_rate=None, duals=False):
+    """Sub-intervals ``K`` for the lift, chosen before solving it.
+
+    The explicit product ``Phi`` (cheap: ``n x n`` eigenvalues) gives the
+    moduli of the multipliers down to its round-off ``1e3 eps ||Phi_2|| ||Phi_1||``
+    (``Phi_1, Phi_2`` its halves).  When every multiplier is above that, the
+    smallest one is known; otherwise it is estimated from the most damped
+    root of the mean ``A``, ``frozen_rate``, less 1/2 per rev (the lift then
+    checks it, :func:`floquet_modes`).  ``K`` is the least power of two, at
+    least ``k_min`` and at most ``max_sub``, that lifts it (or
+    ``exp(min_rate T)``, if larger) to the floor ``max(MIN_ROOT, 1e6 eps
+    max ||Phi_k||)``.
+
+    Parameters
+    ----------
+    p : numpy.ndarray
+        Step propagators ``(n_steps, n, n)``.
+    period : float
+        The period ``T``.
+    k_min, max_sub : int
+        Least and largest ``K``.
+    min_rate : float, optional
+        Roots below this damping rate need not be resolved.
+    frozen_rate : float or callable, optional
+        Least real part of the eigenvalues of the mean ``A`` (per unit of psi),
+        or a function returning it (called only when needed).
+    duals : bool, optional
+        The adjoint solutions will be propagated (participation factors): the
+        fastest decaying state grows along them by ``exp(|sigma| T / K)`` over a
+        sub-interval, so ``K`` is at least ``|frozen_rate| T / ln(1/eps)``.
+
+    Returns
+    -------
+    int
+    """
+    eps = np.finfo(float).eps
+    n_steps = p.shape[0]
+    if duals and frozen_rate is not None:
+        rate = frozen_rate() if callable(frozen_rate) else frozen_rate
+        need = -rate * period / np.log(1.0 / eps) if np.isfinite(rate) else max_sub
+        if need > 1:
+            k_min = max(k_min, int(2 ** np.ceil(np.log2(need))))
+    if n_steps < 2 or max_sub <= k_min:
+        return int(min(max(k_min, 1), max_sub))
+    halves = tree_product(group(p, 2)[0])
+    phi = halves[1] @ halves[0]
+    with np.errstate(over="ignore", invalid="ignore"):
+        noise = 1e3 * eps * float(np.prod(np.linalg.norm(halves, axis=(1, 2))))
+        if not (np.isfinite(phi).all() and np.isfinite(noise)):
+            return int(max_sub)
+        lam = np.abs(scipy.linalg.eigvals(phi, check_finite=False))
+    if lam.min() >= 1e3 * noise:
+        log_min = float(np.log(lam.min()))
+    elif frozen_rate is not None:
+        rate = frozen_rate() if callable(frozen_rate) else frozen_rate
+        if not np.isfinite(rate):
+            return int(max_sub)
+        log_min = (rate - 0.5 * TWO_PI / period) * period
+    else:
+        return int(max_sub)
+    if min_rate is not None:
+        log_min = max(log_min, min_rate * period)
+    k = max(1, int(k_min))
+    while k < max_sub:
+        phis = halves if k == 2 else tree_product(group(p, k)[0])
+        with np.errstate(over="ignore"):
+            floor = max(MIN_ROOT, 1e6 * eps * np.linalg.norm(phis, axis=(1, 2)).max())
+        if floor < 1.0 and log_min / k >= np.log(floor):
+            break
+        k *= 2
+    return int(min(k, max_sub))
 
 
 def _adjoint_participation(y, x):

@@ -12,7 +12,6 @@ import numbers
 import warnings
 
 import numpy as np
-import scipy.linalg
 
 from .errors import TefcoreError
 from .runtime import blas_limit
@@ -21,7 +20,7 @@ __all__ = ["DEFAULT_N_STEPS", "DEFAULT_N_SUB", "TWO_PI", "FloquetAccuracyError",
            "FloquetOverflowError", "FloquetAccuracyWarning", "check_int", "check_period",
            "check_method", "as_numeric", "sample", "rk4_step_warning",
            "step_propagators", "propagators", "group", "tree_product",
-           "transition_matrices", "check_sub", "monodromy"]
+           "transition_matrices", "check_sub", "monodromy", "expm_batch"]
 
 
 #: RK4 steps per period. 2.5 deg steps: the RK4 damping error of a frozen mode
@@ -258,13 +257,63 @@ def propagators(a, h, constant, method):
             p += eye
         else:
             omega = (h / 6) * (a0 + 4 * am + a1) + (h * h / 12) * (a1 @ a0 - a0 @ a1)
-            p = scipy.linalg.expm(omega)
+            p = expm_batch(omega)
     if not np.isfinite(p).all():
         raise FloquetOverflowError(f"step propagator overflowed (h = {h:.4g}); A is too "
                                    "large for this step: increase n_steps")
     if constant:
         p = np.broadcast_to(p, (n_steps, *p.shape[1:]))
     return p
+
+
+#: Scaled 1-norm of :func:`expm_batch`'s Taylor polynomial: the truncation after
+#: degree 16 is ``sum_{k > 16} 0.5^k / k! < 3e-20`` relative, below round-off.
+_TAYLOR_NORM = 0.5
+
+#: 1/k!, k = 0..16.
+_INV_FACT = 1.0 / np.cumprod(np.concatenate([[1.0], np.arange(1.0, 17.0)]))
+
+
+def expm_batch(a):
+    """``exp(a)`` of a stack of matrices ``(..., n, n)`` by scaling and squaring.
+
+    ``a / 2^s`` with the largest 1-norm of the stack at most 1/2, its Taylor
+    polynomial of degree 16 by Paterson-Stockmeyer (six batched products),
+    then ``s`` squarings: batched matrix products only, no solve (about a
+    third of the cost of :func:`scipy.linalg.expm` on the Magnus steps of a
+    20-state rotor, 72 steps); agrees with it to round-off (tested).
+
+    Parameters
+    ----------
+    a : numpy.ndarray
+        Real or complex, ``(..., n, n)``.
+
+    Returns
+    -------
+    numpy.ndarray
+        ``exp(a)``, same shape; non-finite input gives non-finite output.
+    """
+    a = np.asarray(a)
+    n = a.shape[-1]
+    with np.errstate(over="ignore", invalid="ignore"):
+        norm = float(np.abs(a).sum(axis=-2).max()) if a.size else 0.0
+        if not np.isfinite(norm):
+            return np.full(a.shape, np.nan, dtype=a.dtype)
+        s = max(0, int(np.ceil(np.log2(norm / _TAYLOR_NORM)))) if norm > 0 else 0
+        x = a / 2.0**s
+        eye = np.eye(n, dtype=x.dtype)
+        x2 = x @ x
+        x3 = x2 @ x
+        x4 = x2 @ x2
+        powers = np.stack(np.broadcast_arrays(eye, x, x2, x3))
+        # sum_k x^k / k!, k = 0..16, as Horner in x4 over blocks of four terms
+        blocks = np.tensordot(_INV_FACT[:16].reshape(4, 4), powers, axes=1)
+        out = _INV_FACT[16] * x4 + blocks[3]
+        for j in (2, 1, 0):
+            out = out @ x4 + blocks[j]
+        for _ in range(s):
+            out = out @ out
+    return out
 
 
 def group(p, n_sub):

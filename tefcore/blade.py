@@ -10,10 +10,14 @@ pitch link / snubber model (section 2.5a, :func:`multiple_load_path_model`).
 
 from __future__ import annotations
 
+from collections import OrderedDict
+from collections.abc import Mapping
+
 import numpy as np
 import pandas as pd
 
 from .branched import BranchedBeam, Component, Coupling, Joint, assemble_branched
+from .config import SECTIONS
 from .runtime import blas_limit
 from .scaling import RotorUnits
 from .section_inertia import check_positive_definite, lumped_section
@@ -26,9 +30,10 @@ from .structure import (
     tension_piecewise_linear,
 )
 
-__all__ = ["blade_model", "blade_modes", "element_nodes", "fan_data", "fan_plot",
-           "hub_beam_section", "multiple_load_path_model", "pitch_function", "root_springs",
-           "rotor_units", "section_function"]
+__all__ = ["MODES_CACHE_SIZE", "NON_STRUCTURAL", "blade_model", "blade_modes", "element_nodes",
+           "fan_data", "fan_plot", "hub_beam_section", "multiple_load_path_model",
+           "pitch_function", "root_springs", "rotor_units", "section_function",
+           "structural_key"]
 
 #: Section arrays and how each is made nondimensional.
 _SECTION_SCALES = {
@@ -382,6 +387,65 @@ def element_nodes(cfg, n: int, start: float | None = None) -> np.ndarray:
     return nodes
 
 
+#: Configuration sections and fields that do not reach the blade's structure:
+#: the flight condition, the actuator (its spring acts between flap and blade,
+#: not in the blade's matrices) and the aerodynamic and solver choices of the
+#: model section.  :func:`structural_key` leaves them out.
+NON_STRUCTURAL = ("flight", "actuator", "model.aero_model", "model.c81_deck", "model.inflow",
+                  "model.aero", "model.wake", "model.wake_states", "model.n_azimuth",
+                  "model.n_floquet_steps", "model.n_gauss")
+
+#: Blade modes kept by :func:`blade_modes` (least recently used dropped first):
+#: a sweep or map over a non-structural field reuses one set.
+MODES_CACHE_SIZE = 16
+
+_MODES_CACHE: OrderedDict = OrderedDict()
+
+
+def _hashable(value):
+    if isinstance(value, np.ndarray):
+        return (value.dtype.str, value.shape, value.tobytes())
+    if isinstance(value, (list, tuple)):
+        return tuple(_hashable(v) for v in value)
+    if isinstance(value, Mapping):
+        return tuple(sorted((k, _hashable(v)) for k, v in value.items()))
+    return value
+
+
+def structural_key(cfg) -> tuple:
+    """The part of a configuration that the blade's modes depend on, as a hashable key.
+
+    Every field of every section except :data:`NON_STRUCTURAL`.
+
+    Parameters
+    ----------
+    cfg : tefcore.config.Config
+        The configuration.
+
+    Returns
+    -------
+    tuple
+        Equal for two configurations whose blade structures are the same.
+
+    Examples
+    --------
+    >>> from tefcore.config_io import load_config
+    >>> cfg = load_config("mdart")
+    >>> structural_key(cfg) == structural_key(cfg.with_overrides({"flight.advance_ratio": 0.3}))
+    True
+    >>> structural_key(cfg) == structural_key(cfg.with_overrides({"flap.cg_offset": 0.3}))
+    False
+    """
+    out = []
+    for name, cls in SECTIONS.items():
+        if name in NON_STRUCTURAL:
+            continue
+        section = getattr(cfg, name)
+        out.append((name, tuple((p.name, _hashable(getattr(section, p.name)))
+                                for p in cls.PARAMS if f"{name}.{p.name}" not in NON_STRUCTURAL)))
+    return tuple(out)
+
+
 @blas_limit()
 def blade_modes(cfg, n_modes: int | None = None, collective: float = 0.0,
                 speed_ratio: float = 1.0, n_elements: int | None = None) -> BladeModes:
@@ -415,8 +479,18 @@ def blade_modes(cfg, n_modes: int | None = None, collective: float = 0.0,
     >>> bool(f["lag 1"] < 1.0 < f["flap 1"] < 1.2)
     True
     """
-    beam = blade_model(cfg, collective, n_elements)
-    return beam_modes(beam, n_modes or cfg.model.n_modes, speed_ratio)
+    key = (structural_key(cfg), n_modes or cfg.model.n_modes, float(collective),
+           float(speed_ratio), n_elements or cfg.model.n_elements)
+    modes = _MODES_CACHE.get(key)
+    if modes is None:
+        beam = blade_model(cfg, collective, n_elements)
+        modes = beam_modes(beam, n_modes or cfg.model.n_modes, speed_ratio)
+        _MODES_CACHE[key] = modes
+        while len(_MODES_CACHE) > MODES_CACHE_SIZE:
+            _MODES_CACHE.popitem(last=False)
+    else:
+        _MODES_CACHE.move_to_end(key)
+    return modes
 
 
 def fan_data(cfg, speed_ratios, n_modes: int | None = None,

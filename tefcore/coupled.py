@@ -330,7 +330,7 @@ class CoupledModel:
         With dynamic inflow ``thrust`` has two rows: the blade's ``C_T/sigma``
         and its first moment (stations weighted by ``x``).
         """
-        cfg, nm = self.cfg, self.n_modes
+        cfg = self.cfg
         psi = np.asarray(psi, float)
         nd, n_rows = self.n_dof, q.shape[0]
         states = wake = nu = None
@@ -354,22 +354,8 @@ class CoupledModel:
         n_psi = psi.size
         loc = local_variables(self, kin, q, qd, qdd)
         terms, fz, det = station_terms(self, loc, details=True)
-        qb, qbd, qbdd = q[:nm], qd[:nm], qdd[:nm]
-        # every piece in the order of RESIDUAL_PIECES
-        names = [p for p in RESIDUAL_PIECES if (self.has_flap or p not in FLAP_PIECES)
-                 and (wake is not None or p not in WAKE_PIECES)
-                 and (nu is not None or p not in INFLOW_PIECES)
-                 and (self.has_flap or p != "shed wake hinge moment")]
-        pieces = {p: np.zeros((n_rows, n_psi)) for p in names}
-        pieces["blade inertia"][:nm] = self.m_s @ qbdd
-        pieces["blade stiffness"][:nm] = self.k_s @ qb
-        pieces["blade structural damping"][:nm] = self.d_s @ qbd
-        pieces["blade Coriolis"][:nm] = self.g_s @ qbd
-        if self.has_flap:
-            da, da_d = self.actuator_input(psi)
-            pieces["actuator spring"][nm] = self.flap["k_a"] * (q[nm] - da)
-            pieces["actuator damper"][nm] = self.flap["c_a"] * (qd[nm] - da_d)
-        self._project(pieces, terms, n_rows, n_psi)
+        pieces = self.assemble(psi, q, qd, qdd, terms, n_rows, wake=wake is not None,
+                               inflow_states=nu is not None)
         if wake is not None:
             # the wake's downwash lowers the angle of attack of the static loads
             section, out, sign, speed = (det[k] for k in ("section", "loads", "sign", "speed"))
@@ -400,6 +386,52 @@ class CoupledModel:
                 pieces.update(self._inflow_rows(psi, nu, thrust, moment, inflow, n_rows))
             thrust = np.stack([thrust, moment])
         return pieces, thrust
+
+    def assemble(self, psi, q, qd, qdd, terms, n_rows=None, *, wake=False,
+                 inflow_states=False):
+        """The pieces of the residual from the station forces of its nonlinear part.
+
+        The terms linear in the coordinates (blade structure, actuator) and the
+        station forces (:func:`tefcore.station_terms.station_terms`) projected on
+        the mode shapes, as the named pieces of :meth:`residual_pieces` (the
+        shed-wake and inflow pieces zero: :meth:`residual_pieces` fills them).
+
+        Parameters
+        ----------
+        psi : numpy.ndarray
+            Azimuths [rad].
+        q, qd, qdd : numpy.ndarray
+            The coordinates (``n_dof`` rows) and their psi-derivatives.
+        terms : list of tefcore.station_terms.StationTerm
+            Real station forces at the same motion.
+        n_rows : int, optional
+            Rows of the residual (coordinates and states; default ``n_dof``).
+        wake, inflow_states : bool, optional
+            Include the (zero) shed-wake and inflow pieces.
+
+        Returns
+        -------
+        dict
+            Piece name -> ``(n_rows, n_psi)``, in the order of :data:`RESIDUAL_PIECES`.
+        """
+        nm, n_psi = self.n_modes, np.size(psi)
+        n_rows = self.n_dof if n_rows is None else n_rows
+        qb, qbd, qbdd = q[:nm], qd[:nm], qdd[:nm]
+        names = [p for p in RESIDUAL_PIECES if (self.has_flap or p not in FLAP_PIECES)
+                 and (wake or p not in WAKE_PIECES)
+                 and (inflow_states or p not in INFLOW_PIECES)
+                 and (self.has_flap or p != "shed wake hinge moment")]
+        pieces = {p: np.zeros((n_rows, n_psi)) for p in names}
+        pieces["blade inertia"][:nm] = self.m_s @ qbdd
+        pieces["blade stiffness"][:nm] = self.k_s @ qb
+        pieces["blade structural damping"][:nm] = self.d_s @ qbd
+        pieces["blade Coriolis"][:nm] = self.g_s @ qbd
+        if self.has_flap:
+            da, da_d = self.actuator_input(psi)
+            pieces["actuator spring"][nm] = self.flap["k_a"] * (q[nm] - da)
+            pieces["actuator damper"][nm] = self.flap["c_a"] * (qd[nm] - da_d)
+        self._project(pieces, terms, n_rows, n_psi)
+        return pieces
 
     def _project(self, pieces, terms, n_rows, n_psi):
         """Add station forces (:func:`tefcore.station_terms.station_terms`) to the

@@ -89,9 +89,10 @@ def prandtl_glauert(mach) -> np.ndarray:
     if np.iscomplexobj(m):
         # a complex-step derivative (tefcore.residual_jacobian): the range is
         # that of the real part, and the clipped factor is constant
-        _ = prandtl_glauert(m.real)
-        m = np.where(m.real > MACH_CLIP, MACH_CLIP, m)
-        return (1.0 / np.sqrt(1.0 - m * m))[()]
+        x = m.real
+        pg = prandtl_glauert(x)
+        # first order in the imaginary part, real arithmetic: d pg / dM = M pg^3
+        return (pg + 1j * np.where(x > MACH_CLIP, 0.0, m.imag * x * pg**3))[()]
     # min/max propagate NaN, and every comparison with NaN is False
     if m.size and not (m.min() >= 0.0 and m.max() <= MACH_MAX):
         bad = ~((m >= 0.0) & (m <= MACH_MAX))

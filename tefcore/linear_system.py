@@ -138,7 +138,9 @@ class SecondOrderSystem:
                 return tuple(np.zeros((psi.size,) + a.shape[1:]) for a in (self.m, self.c, self.k))
             return tuple(np.broadcast_to(a, (psi.size,) + a.shape[1:]) for a in
                          (self.m, self.c, self.k))
-        return tuple(trig_interpolate(a, psi, derivative) for a in (self.m, self.c, self.k))
+        # one interpolation of the three stacked (one FFT, one product)
+        out = trig_interpolate(np.stack([self.m, self.c, self.k], axis=1), psi, derivative)
+        return out[:, 0], out[:, 1], out[:, 2]
 
     def state_matrix(self, psi) -> np.ndarray:
         """``A(psi) = [[0, I], [-M^-1 K, -M^-1 C]]``, shape (len(psi), 2n, 2n);
@@ -259,8 +261,8 @@ def state_matrix(m, c, k):
         ``(..., 2 n, 2 n)``.
     """
     n = m.shape[-1]
-    minv_k = np.linalg.solve(m, k)
-    minv_c = np.linalg.solve(m, c)
+    both = np.linalg.solve(m, np.concatenate([k, c], axis=-1))     # one factorisation
+    minv_k, minv_c = both[..., :n], both[..., n:]
     top = np.concatenate([np.zeros_like(minv_k), np.broadcast_to(np.eye(n), minv_k.shape)],
                          axis=-1)
     return np.concatenate([top, np.concatenate([-minv_k, -minv_c], axis=-1)], axis=-2)

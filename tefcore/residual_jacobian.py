@@ -31,7 +31,13 @@ import numpy as np
 
 from .aero_states import inflow_fields, rotating_inflow_damping
 from .coupled import Controls, CoupledModel
-from .station_terms import FLAP_VARIABLES, STATION_VARIABLES, local_variables, station_terms
+from .station_terms import (
+    FLAP_VARIABLES,
+    STATION_VARIABLES,
+    StationTerm,
+    local_variables,
+    station_terms,
+)
 
 __all__ = ["EXACT_STEP", "exact_jacobian", "has_exact_jacobian", "jacobian_blocks"]
 
@@ -215,7 +221,8 @@ def _input_maps(model, n_cols):
             "wdd": (2, field("w")), "slope": (0, field("dw")), "v": (0, field("v")),
             "dv": (0, field("dv")), "vdd": (2, field("v")), "dvd": (1, field("dv")),
             "dwd": (1, field("dw")), "dl": (0, flap), "dld": (1, flap), "dldd": (2, flap)}
-    names = STATION_VARIABLES + (FLAP_VARIABLES if model.has_flap else ())
+    names = STATION_VARIABLES + (("dl", "dld", "dldd") if model.has_flap else ())
+    names += tuple(v for v in FLAP_VARIABLES if v not in names) if model.has_flap else ()
     return names, [maps[k] for k in names]
 
 
@@ -293,7 +300,6 @@ def exact_jacobian(model: CoupledModel, psi, q, qd, qdd, controls, inflow, *,
     if nu and n_rows != nd + model.n_inflow:
         raise ValueError(f"{n_rows} rows of coordinates and states; this model has {nd} "
                          f"coordinates and {model.n_inflow} inflow states")
-    parts, thrust = model.residual_pieces(psi, q, qd, qdd, controls, inflow)
     kin = model.kinematics(psi, q[:nd], qd[:nd], qdd[:nd], controls, inflow,
                            inflow_perturbation=None if not nu else
                            q[nd][:, None] + model.x[None, :] * q[nd + 1][:, None])
@@ -304,15 +310,33 @@ def exact_jacobian(model: CoupledModel, psi, q, qd, qdd, controls, inflow, *,
     # derivatives of every (piece, field) station force and of the normal force
     deriv: dict = {}
     fz = np.zeros((n_var, n_psi, n_x))
-    # one complex-step copy per local variable, all stations at once (the copies
-    # of a flap variable change only the flap stations' forces)
-    runs = [(list(names), slice(None), False)]
+    # one complex-step copy per local variable: the station variables and the
+    # flap deflection with its rates on all stations at once (the copies of the
+    # flap's change only the flap stations' forces); the other flap variables
+    # enter only the flap's inertial terms, on the flap stations
+    first_run = list(STATION_VARIABLES) + ([v for v in ("dl", "dld", "dldd") if v in names])
+    runs = [(first_run, slice(None), False)]
+    if model.has_flap:
+        runs.append(([v for v in FLAP_VARIABLES if v not in first_run], fs, True))
     for seeds, sel, flap_only in runs:
         first = names.index(seeds[0])
         terms, fz_c = station_terms(model, _seeded(loc, names, seeds, sel, h),
-                                    flap_only=flap_only)
-        rows = slice(first, first + len(seeds))
-        fz[rows, :, sel] = fz_c.imag / h
+                                    flap_only=flap_only, aero=not flap_only)
+        if first == 0:
+            # the residual: the real part of any copy is the unperturbed one
+            real = [StationTerm(t.piece, t.field, t.flap_only, t.force[0].real)
+                    for t in terms]
+            if nu or pieces:
+                parts, thrust = model.residual_pieces(psi, q, qd, qdd, controls, inflow)
+            else:
+                parts = model.assemble(psi, q, qd, qdd, real)
+                thrust = fz_c[0].real.sum(axis=-1) * model.scale["ct_sigma"]
+                if model.dynamic_inflow:
+                    thrust = np.stack([thrust, (fz_c[0].real * model.x).sum(axis=-1)
+                                       * model.scale["ct_sigma"]])
+        rows = [names.index(v) for v in seeds]
+        if fz_c is not None:
+            fz[rows, :, sel] = fz_c.imag / h
         for t in terms:
             key = (t.piece, t.field)
             if key not in deriv:

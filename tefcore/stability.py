@@ -329,11 +329,11 @@ def _stability_of(model, tr: TrimResult, n_steps: int | None) -> StabilityResult
     cfg = model.cfg
     n = model.n_dof
     system = linear_system(tr)
-    # K = 4 sub-intervals to start with; floquet_modes raises K for heavily
-    # damped roots (seen: -7.2 /rev torsion at Fig. 14's 0.22 R span), and the
-    # steps until its error estimates meet the tolerance; a result it cannot
-    # trust is an error, never a spurious (in)stability
-    res = system.modes(n_steps=n_steps or cfg.model.n_floquet_steps, n_sub=4,
+    # floquet_modes chooses the sub-intervals K from a bound of the most damped
+    # root (raised for heavily damped roots, seen: -7.2 /rev torsion at Fig. 14's
+    # 0.22 R span), and the steps until its error estimates meet the tolerance;
+    # a result it cannot trust is an error, never a spurious (in)stability
+    res = system.modes(n_steps=n_steps or cfg.model.n_floquet_steps, n_sub=1,
                        shapes=system.periodic, on_inaccurate="raise")
     if res.participation is None:
         res = res.with_participation()

@@ -47,8 +47,6 @@ from typing import NamedTuple
 
 import numpy as np
 
-from .flap_dynamics import propeller_moment
-
 __all__ = ["FLAP_VARIABLES", "STATION_VARIABLES", "StationTerm", "airload_terms",
            "local_variables", "station_terms"]
 
@@ -57,6 +55,25 @@ STATION_VARIABLES = ("theta", "theta_d", "theta_dd", "ut", "up", "wdd")
 
 #: Further local variables on the flap stations (used only with the flap dof).
 FLAP_VARIABLES = ("slope", "v", "dv", "vdd", "dvd", "dwd", "dl", "dld", "dldd")
+
+
+def _first_order(f, df):
+    """``f`` for real input; for a complex step ``z = x + i y`` (``y`` tiny) the
+    first-order expansion ``f(x) + i y f'(x)`` in real arithmetic: what the
+    complex function gives (its ``O(y^2)`` rest is below round-off) at a
+    fraction of the cost of complex transcendental functions."""
+    def apply(z):
+        if not np.iscomplexobj(z):
+            return f(z)
+        x = z.real
+        return f(x) + 1j * (z.imag * df(x))
+    return apply
+
+
+_sin = _first_order(np.sin, np.cos)
+_cos = _first_order(np.cos, lambda x: -np.sin(x))
+_arctan = _first_order(np.arctan, lambda x: 1.0 / (1.0 + x * x))
+_sqrt = _first_order(np.sqrt, lambda x: 0.5 / np.sqrt(x))
 
 
 class StationTerm(NamedTuple):
@@ -111,7 +128,8 @@ def local_variables(model, kin, q, qd, qdd) -> dict:
     return loc
 
 
-def station_terms(model, loc, *, flap_only: bool = False, details: bool = False):
+def station_terms(model, loc, *, flap_only: bool = False, details: bool = False,
+                  aero: bool = True):
     """Station forces of the nonlinear pieces of the residual.
 
     Parameters
@@ -128,6 +146,10 @@ def station_terms(model, loc, *, flap_only: bool = False, details: bool = False)
     details : bool, optional
         Also return what the shed-wake pieces need: the section-model inputs,
         its loads and the reverse-flow sign, as a dict.
+    aero : bool, optional
+        False: the flap's inertial terms only (no section loads, no hinge
+        moment; only with ``flap_only``): what depends on the flap variables
+        but ``delta`` and its rates.
 
     Returns
     -------
@@ -143,6 +165,10 @@ def station_terms(model, loc, *, flap_only: bool = False, details: bool = False)
     """
     cfg, sc = model.cfg, model.scale
     fs = model.flap_stations
+    if not aero:
+        theta = loc["theta"]
+        return _flap_terms(model, {k: loc[k] for k in FLAP_VARIABLES}, theta,
+                           loc["theta_dd"], loc["wdd"], 0.0, model.x[fs], model.w[fs]), None
     stations = fs if flap_only else slice(None)
     x, wq = model.x[stations], model.w[stations]
     theta, theta_d, theta_dd, ut, up, wdd = (loc[k] for k in STATION_VARIABLES)
@@ -155,9 +181,9 @@ def station_terms(model, loc, *, flap_only: bool = False, details: bool = False)
         for arr, name in ((dl, "dl"), (dld, "dld"), (dldd, "dldd")):
             arr[..., on] = loc[name]
     sign = np.sign(np.real(ut))                     # reverse flow flips the loads
-    speed = np.sqrt(ut * ut + up * up)
+    speed = _sqrt(ut * ut + up * up)
     r = cfg.rotor
-    section = dict(alpha=theta - np.arctan(up / ut), alpha_rate=theta_d * sc["omega"],
+    section = dict(alpha=theta - _arctan(up / ut), alpha_rate=theta_d * sc["omega"],
                    alpha_accel=theta_dd * sc["omega"] ** 2, plunge_rate=0.0,
                    plunge_accel=wdd * sc["accel"], delta=dl, delta_rate=dld * sc["omega"],
                    delta_accel=dldd * sc["omega"] ** 2, velocity=speed * sc["speed"],
@@ -225,19 +251,22 @@ def _flap_terms(model, loc, th, th_dd, wdd, hinge, x, wf):
     f = model.flap
     ih, sf, eta = f["inertia_hinge"], f["first_moment"], f["hinge_from_ea"]
     dl, dld, dldd = loc["dl"], loc["dld"], loc["dldd"]
-    c, s = np.cos(th), np.sin(th)
+    c, s = _cos(th), _sin(th)
+    cd, sd = _cos(dl), _sin(dl)
     ipe = ih - sf * eta
-    phi_f = th + dl
-    m_cf = ih * (np.sin(phi_f) * np.cos(phi_f) - s * c) - eta * sf * (
-        np.sin(th + phi_f) - np.sin(2 * th))
+    # the flap's pitch Phi = Theta + delta by the angle-addition formulas
+    s_f, c_f = s * cd + c * sd, c * cd - s * sd
+    s2, c2 = 2 * s * c, c * c - s * s                         # sin, cos 2 Theta
+    m_cf = ih * (s_f * c_f - s * c) - eta * sf * ((s2 * cd + c2 * sd) - s2)
+    # propeller moment (tefcore.flap_dynamics.propeller_moment)
+    prop = ih * s_f * c_f - sf * eta * c * s_f
     flap_row = {
         "flap inertia": ih * dldd,
         "flap inertial coupling to torsion": ipe * th_dd,
         "flap inertial coupling to bending": -sf * (wdd * c - loc["vdd"] * s),
-        "flap centrifugal": (propeller_moment(ih, sf, eta, th, dl)
-                             - sf * x * (loc["slope"] * c - loc["dv"] * s) - sf * loc["v"] * s),
-        "flap Coriolis": ipe * (loc["dvd"] * np.sin(2 * th)
-                                + loc["dwd"] * (1 - np.cos(2 * th))),
+        "flap centrifugal": (prop - sf * x * (loc["slope"] * c - loc["dv"] * s)
+                             - sf * loc["v"] * s),
+        "flap Coriolis": ipe * (loc["dvd"] * s2 + loc["dwd"] * (1 - c2)),
         "airload hinge moment": -hinge,
     }
     blade = [("flap inertial coupling to bending", "w", -sf * c * dldd),

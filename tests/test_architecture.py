@@ -82,6 +82,7 @@ LARGE_MODULES = {
     "tefcore.trim": DOCUMENTED,
     "tefcore.flap_aero": DOCUMENTED,
     "tefcore.residual_jacobian": DOCUMENTED,
+    "tefcore._floquet_propagators": DOCUMENTED,
     "tefcore.units": DOCUMENTED,
     "tefcore.unsteady_aero": DOCUMENTED,
 }

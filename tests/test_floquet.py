@@ -541,15 +541,16 @@ def test_positive_frequency_keeps_self_conjugate_roots():
 def test_sub_intervals_are_raised_for_heavily_damped_roots():
     # exponents -0.05 +- 1i and -12 +- 3.5i (constant, non-normal): with
     # K = 4 the -12 root of the lift is |mu| = exp(-12 pi / 2) ~ 7e-9, below
-    # MIN_ROOT, so K goes to the power of two that lifts it above the floor
-    # (K ln|mu| / ln 1e-3 ~ 11 -> 16); the light system keeps K = 4
-    from tefcore.floquet import MAX_SUB, MIN_ROOT
+    # MIN_ROOT (1e-6), so K goes to the power of two that lifts it above the
+    # floor, chosen before the lift from the explicit product's eigenvalues
+    # (K ln|mu| / ln 1e-6 ~ 5.5 -> 8); the light system keeps K = 4
+    from tefcore.floquet import MIN_ROOT
 
     lam = np.array([-0.05 + 1j, -0.05 - 1j, -12 + 3.5j, -12 - 3.5j])
     A = coupled(lam, seed=1)
     res = floquet_modes(A, method="magnus", n_sub=4)
-    assert res.n_sub == MAX_SUB == 16
-    assert np.exp(-12 * TWO_PI / res.n_sub) >= MIN_ROOT
+    assert res.n_sub == 8
+    assert np.exp(-12 * TWO_PI / res.n_sub) >= MIN_ROOT > np.exp(-12 * TWO_PI / 4)
     # constant A: the exponents are exactly eig(A) up to the resolved
     # frequency shift; damping rates to Magnus/round-off accuracy
     assert_allclose(np.sort(res.damping_rates), np.sort(lam.real), atol=1e-8)
