@@ -160,7 +160,8 @@ def _label_modes(frac, labels, freqs, rates, disp):
 
 @blas_limit()
 def stability(cfg, *, trim_result: TrimResult | None = None, n_steps: int | None = None,
-              remode: bool = True, model=None) -> StabilityResult:
+              remode: bool = True, model=None,
+              warm_start: TrimResult | None = None) -> StabilityResult:
     """Trim the configuration and compute its labelled stability modes.
 
     Parameters
@@ -180,6 +181,13 @@ def stability(cfg, *, trim_result: TrimResult | None = None, n_steps: int | None
         :func:`tefcore.coupled.coupled_model`, e.g. to keep one set of blade
         modes for several flight conditions; its modes are used as they are
         (no re-moding).
+    warm_start : TrimResult, optional
+        The trim of a neighbouring configuration as the first guess of the
+        trim only: the blade modes are those of a cold start (at
+        :func:`tefcore.trim.initial_collective`), so the result equals the cold
+        one to the trim's tolerance (what sweeps use, :mod:`tefcore.sweep`).
+        Its Newton matrix (:meth:`tefcore.trim.TrimResult.final_blocks`) starts
+        the iterations.
 
     Returns
     -------
@@ -223,7 +231,15 @@ def stability(cfg, *, trim_result: TrimResult | None = None, n_steps: int | None
     if model is not None:
         if model.cfg != cfg:
             raise ValueError("model was built for another configuration than cfg")
-        return _stability_of(model, trim(model, initial=trim_result), n_steps)
+        return _stability_of(model, trim(model, initial=trim_result or warm_start), n_steps)
+    if warm_start is not None and trim_result is None:
+        theta = initial_collective(cfg)
+        model = coupled_model(cfg, collective=theta)
+        tr = trim(model, initial=warm_start)
+        if remode and abs(tr.controls.collective - theta) > np.deg2rad(REMODE_DEG):
+            model = coupled_model(cfg, collective=tr.controls.collective)
+            tr = trim(model, initial=tr)
+        return _stability_of(model, tr, n_steps)
     # modes at the collective of the warm start (or the first estimate);
     # re-mode and re-trim only when the trim lands far from it: the MDART
     # frequencies move < 0.3 % per degree of collective (measured)

@@ -39,6 +39,7 @@ ValueError: flap.cg_offset = 1.5 is outside the allowed range [-1, 1]
 
 from __future__ import annotations
 
+import inspect
 import numbers
 import os
 import sys
@@ -59,7 +60,7 @@ from .safe_io import atomic_output
 from .sweep_store import SweepFile, config_hash, jsonable, sweep_header, value_key
 from .tracking import ambiguous_steps, label_changes, track_modes
 
-__all__ = ["FLUTTER_SHARE", "MAX_REFINE", "REQUIRED_MODE_COLUMNS", "SweepResult",
+__all__ = ["FLUTTER_SHARE", "MAX_REFINE", "WARM_CHAIN", "REQUIRED_MODE_COLUMNS", "SweepResult",
            "check_parameter", "check_result", "config_hash", "decode_complex", "default_point",
            "encode_complex", "shape_vectors", "sweep"]
 
@@ -239,23 +240,33 @@ def _failed_record(key, value, err) -> dict:
             "error": error_text(err), "trim": {}, "modes": None}
 
 
-def _evaluate(index, point, cfg, parameter, value, key, anchor=False, depth=0):
+def _evaluate(index, point, cfg, parameter, value, key, anchor=False, depth=0, warm=None):
     """Evaluate one sweep point; never raises an ``Exception`` (it is recorded).
 
     ``anchor``: also identify the flap mode by continuation from zero
     coupling (the start of the TEF branch). ``depth``: 0 for a point the
-    caller asked for, k for a point added by the k-th refinement.
+    caller asked for, k for a point added by the k-th refinement.  ``warm``:
+    the previous point's trim, passed as ``warm_start`` (a point function that
+    takes it); should that fail, the point is computed cold.  Returns
+    ``(index, record, vectors, trim_result or None)``.
     """
     start = time.perf_counter()
     rec: dict[str, Any] = {"key": key, "value": jsonable(value), "value_si": None,
                            "status": "failed", "error": None, "trim": {}, "modes": None}
     if depth:
         rec["refinement"] = depth
-    vecs = None
+    vecs = result = None
     try:
         cfg_v = cfg.with_overrides({parameter: value})
         rec["value_si"] = jsonable(cfg_v.get(parameter))
-        result = point(cfg_v)
+        result = None
+        if warm is not None:
+            try:
+                result = point(cfg_v, warm_start=warm)
+            except Exception:  # a warm start can send Newton astray: start cold
+                result = None
+        if result is None:
+            result = point(cfg_v)
         modes, vecs, trim = check_result(result)
         shapes = shape_vectors(result, vecs)
         rec.update(status="ok", trim=trim,
@@ -267,30 +278,59 @@ def _evaluate(index, point, cfg, parameter, value, key, anchor=False, depth=0):
             rec["anchor"] = _anchor_root(result)
     except Exception as err:  # recorded, the sweep goes on
         rec["error"] = error_text(err)
-        vecs = None
+        vecs = result = None
     rec["elapsed_s"] = round(time.perf_counter() - start, 6)
-    return index, rec, vecs
+    return index, rec, vecs, getattr(result, "trim_result", None)
+
+
+def _evaluate_chain(chain):
+    """Evaluate a warm-start chain: each point starts from the previous point's trim.
+
+    ``chain`` is a list of ``(index, args, keep)`` (``args`` of :func:`_evaluate`);
+    a point with ``keep`` False is computed only as the warm start of the next
+    (a resumed sweep: it is in the file already).  A failed point makes the next
+    one start cold.  Yields the ``(index, record, vectors)`` of the kept points
+    as they finish.
+    """
+    warm = None
+    for index, args, keep in chain:
+        point = args[0]
+        i, rec, vecs, tr = _evaluate(index, *args,
+                                     warm=warm if _takes_warm_start(point) else None)
+        warm = tr if rec["status"] == "ok" else None
+        if keep:
+            yield i, rec, vecs
+
+
+def _takes_warm_start(point) -> bool:
+    """Whether the point function takes a ``warm_start`` keyword (as
+    :func:`tefcore.stability.stability` does)."""
+    try:
+        return "warm_start" in inspect.signature(point).parameters
+    except (TypeError, ValueError):
+        return False
 
 
 # ------------------------------------------------------------------ backends
 
 
-def _evaluate_in_worker(index, *args):
+def _evaluate_in_worker(chain):
     """The task of a worker process: the process settings first (tefcore.runtime)."""
     worker_init()
-    return _evaluate(index, *args)
+    return list(_evaluate_chain(chain))
 
 
 def _run_serial(jobs):
-    for i, args in jobs:
-        yield _evaluate(i, *args)
+    for chain in jobs:
+        yield from _evaluate_chain(chain)
 
 
 def _run_joblib(jobs, n_jobs):
     from joblib import Parallel, delayed
 
     par = Parallel(n_jobs=n_jobs, backend="loky", return_as="generator_unordered")
-    yield from par(delayed(_evaluate_in_worker)(i, *args) for i, args in jobs)
+    for done in par(delayed(_evaluate_in_worker)(chain) for chain in jobs):
+        yield from done
 
 
 def _dask_client(n_jobs, client):
@@ -312,16 +352,16 @@ def _run_dask(jobs, client):
     from distributed import as_completed
 
     futures = {}
-    args_of = dict(jobs)
     try:
-        for i, args in jobs:
-            futures[client.submit(_evaluate_in_worker, i, *args, pure=False)] = i
+        for chain in jobs:
+            futures[client.submit(_evaluate_in_worker, chain, pure=False)] = chain
         for fut in as_completed(list(futures)):
             try:
-                yield fut.result()
+                yield from fut.result()
             except Exception as err:  # e.g. a worker died: record it, go on
-                i = futures[fut]
-                yield i, _failed_record(args_of[i][4], args_of[i][3], err), None
+                for i, args, keep in futures[fut]:
+                    if keep:
+                        yield i, _failed_record(args[4], args[3], err), None
     finally:
         client.cancel(list(futures))
 
@@ -743,8 +783,9 @@ def sweep(cfg: Config, parameter: str, values, *, point: Callable | None = None,
             "anchor" not in records[anchor_key]:
         del records[anchor_key]     # computed before as an ordinary point: again, as the start
         n_loaded -= 1
-    jobs = [(i, (point, cfg, parameter, values[i], keys[i], keys[i] == anchor_key, 0))
-            for i, k in enumerate(keys) if k not in records]
+    jobs = _chains(cfg, parameter, values, keys, records,
+                   lambda i: (point, cfg, parameter, values[i], keys[i], keys[i] == anchor_key, 0),
+                   WARM_CHAIN if _takes_warm_start(point) else 1)
 
     if progress is None:
         progress = bool(getattr(sys.stderr, "isatty", lambda: False)())
@@ -776,7 +817,7 @@ def sweep(cfg: Config, parameter: str, values, *, point: Callable | None = None,
                     runner = _run_serial(jobs)
                 else:
                     runner = _run_joblib(jobs, n_jobs)
-                key_of = {i: args[4] for i, args in jobs}
+                key_of = {i: args[4] for chain in jobs for i, args, _ in chain}
                 try:
                     for i, rec, vecs in runner:
                         records[key_of[i]] = rec
@@ -807,8 +848,11 @@ def sweep(cfg: Config, parameter: str, values, *, point: Callable | None = None,
                 wanted[key] = depth
                 budgets[which] -= 1
                 if key not in records or (retry_failed and records[key]["status"] != "ok"):
-                    jobs.append((len(keys) + len(wanted),
-                                 (point, cfg, parameter, float(x), key, False, depth)))
+                    # refinement points start cold: their neighbours' trims may
+                    # not be at hand (a resumed sweep), and cold is the same in
+                    # every run
+                    jobs.append([(len(keys) + len(wanted),
+                                  (point, cfg, parameter, float(x), key, False, depth), True)])
             bar.total += len(jobs)
     finally:
         bar.close()
@@ -825,6 +869,49 @@ def sweep(cfg: Config, parameter: str, values, *, point: Callable | None = None,
                        n_computed=n_computed, n_loaded=n_loaded, n_refined=n_refined,
                        out=None if out is None else Path(out), anchor=start, vectors=shapes,
                        _modes=modes)
+
+
+#: Points of a warm-start chain: the values, in the order of their SI values, are
+#: cut into consecutive chains of this many points, each one job in which every
+#: point starts its trim from the previous point's (:func:`tefcore.stability.stability`,
+#: ``warm_start``; point functions without that keyword are evaluated one by
+#: one).  The chains depend on the values alone, so fresh, resumed and parallel
+#: sweeps compute every point from the same start: identical tables.  A resumed
+#: sweep recomputes the points of a chain before its first missing one (as warm
+#: starts, not stored again); an interrupted parallel sweep loses the finished
+#: points of the chains still running in the workers (a serial one loses none).
+WARM_CHAIN = 8
+
+
+def _chains(cfg, parameter, values, keys, records, args_of, length=WARM_CHAIN):
+    """The jobs of a sweep: warm-start chains of the points not in ``records``.
+
+    Chains cut the values sorted by their SI value into runs of ``length``
+    (:data:`WARM_CHAIN`; 1 for a point function without ``warm_start``); a
+    chain runs from its start to its last missing point, recomputing the points
+    before it that are in the file (as warm starts only).  Values the
+    configuration rejects are single jobs (failed points).
+    """
+    if length == 1:
+        return [[(i, args_of(i), True)] for i, k in enumerate(keys) if k not in records]
+    si = {}
+    for i, v in enumerate(values):
+        try:
+            x = cfg.with_overrides({parameter: v}).get(parameter)
+        except Exception:  # a rejected value: a failed point of its own
+            continue
+        if isinstance(x, numbers.Real):
+            si[i] = float(x)
+    order = sorted(si, key=lambda i: (si[i], keys[i]))
+    jobs = [[(i, args_of(i), True)] for i in range(len(values))
+            if i not in si and keys[i] not in records]
+    for start in range(0, len(order), length):
+        chain = order[start:start + length]
+        missing = [j for j, i in enumerate(chain) if keys[i] not in records]
+        if missing:
+            jobs.append([(i, args_of(i), keys[i] not in records)
+                         for i in chain[:missing[-1] + 1]])
+    return jobs
 
 
 def _anchor_key(cfg, parameter, values, keys):

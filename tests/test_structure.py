@@ -281,3 +281,27 @@ def test_mdart_axial_block_is_skipped_by_inertia(monkeypatch):
     axial_size = next(int(s.sum()) for s in sizes if s[0] > 0)
     assert len(solved) == 2 and axial_size not in solved
     assert not any(lab.startswith("axial") for lab in modes.labels)
+
+
+def test_blade_modes_are_cached_by_the_structure():
+    # one set of modes for every configuration with the same structure (a sweep
+    # of the flight condition or the actuator); any structural field, the
+    # collective or the mode count gives its own, equal to a fresh computation
+    from tefcore import blade
+    from tefcore.config_io import load_config
+
+    cfg = load_config("mdart")
+    first = blade.blade_modes(cfg, collective=0.1)
+    for over in ({"flight.advance_ratio": 0.3}, {"actuator.stiffness": 200.0},
+                 {"model.inflow": "dynamic"}, {"model.n_azimuth": 36}):
+        assert blade.blade_modes(cfg.with_overrides(over), collective=0.1) is first
+    for over in ({"flap.cg_offset": 0.3}, {"hub.pitch_link_stiffness": "400 lb/in"},
+                 {"blade.gj_scale": 1.5}, {"model.n_modes": 8}):
+        other = blade.blade_modes(cfg.with_overrides(over), collective=0.1)
+        assert other is not first
+    assert blade.blade_modes(cfg, collective=0.12) is not first
+    blade._MODES_CACHE.clear()
+    again = blade.blade_modes(cfg, collective=0.1)
+    assert again is not first
+    np.testing.assert_array_equal(again.frequencies, first.frequencies)
+    np.testing.assert_array_equal(again.modal_stiffness, first.modal_stiffness)
