@@ -64,6 +64,8 @@ def _clusters(mu, scale):
     # semisimple repeated roots agree to roundoff, eps ||Z|| absolutely
     tol = 1e-8 * np.abs(mu) + 1e3 * np.finfo(float).eps * scale
     close = np.abs(mu[:, None] - mu[None, :]) <= np.maximum.outer(tol, tol)
+    if np.count_nonzero(close) == mu.size:         # only the diagonal: no group (usual)
+        return []
     n_groups, label = scipy.sparse.csgraph.connected_components(close, directed=False)
     groups = [np.flatnonzero(label == g) for g in range(n_groups)]
     return [g for g in groups if g.size > 1]

@@ -140,6 +140,9 @@ class CoupledModel:
     dynamic_inflow : bool
         Pitt-Peters perturbation states in the linearisation
         (``model.inflow = "dynamic"``).
+    cache : dict
+        Arrays derived from the model on first use (e.g. the projection maps
+        of the exact Jacobian, :mod:`tefcore.residual_jacobian`).
     """
 
     cfg: object
@@ -163,6 +166,7 @@ class CoupledModel:
     scale: dict = field(default_factory=dict)
     wake: ShedWake | None = None  # shed-wake states (model.aero = "unsteady")
     dynamic_inflow: bool = False  # Pitt-Peters perturbation states (model.inflow = "dynamic")
+    cache: dict = field(default_factory=dict, repr=False, compare=False)
 
     @property
     def n_dof(self) -> int:
@@ -210,6 +214,12 @@ class CoupledModel:
         -------
         ndarray, shape (3 n_stations + has_flap, n_dof)
         """
+        key = ("tracking_basis", n_stations)
+        if key not in self.cache:
+            self.cache[key] = self._tracking_basis(n_stations)
+        return self.cache[key].copy()
+
+    def _tracking_basis(self, n_stations):
         r0 = self.cfg.rotor.root_offset
         edges = np.linspace(r0, 1.0, n_stations + 1)
         x = 0.5 * (edges[1:] + edges[:-1])
@@ -306,8 +316,27 @@ class CoupledModel:
             Blade vertical force per azimuth, as C_T/sigma contribution
             (its azimuthal mean is the rotor C_T/sigma).
         """
-        pieces, thrust = self.residual_pieces(psi, q, qd, qdd, controls, inflow)
-        return sum(pieces.values()), thrust
+        if q.shape[0] != self.n_dof:
+            pieces, thrust = self.residual_pieces(psi, q, qd, qdd, controls, inflow)
+            return sum(pieces.values()), thrust
+        # no aerodynamic states: the station forces summed per field, projected once
+        psi = np.asarray(psi, float)
+        kin = self.kinematics(psi, q, qd, qdd, controls, inflow)
+        terms, fz = station_terms(self, local_variables(self, kin, q, qd, qdd), combine=True)
+        nm = self.n_modes
+        res = np.zeros((self.n_dof, psi.size))
+        res[:nm] = self.m_s @ qdd[:nm] + self.k_s @ q[:nm] + self.c_s @ qd[:nm]
+        if self.has_flap:
+            da, da_d = self.actuator_input(psi)
+            res[nm] = self.flap["k_a"] * (q[nm] - da) + self.flap["c_a"] * (qd[nm] - da_d)
+        pieces = {"all": res}
+        for t in terms:
+            self._project(pieces, [t._replace(piece="all")], self.n_dof, psi.size)
+        thrust = fz.sum(axis=1) * self.scale["ct_sigma"]
+        if self.dynamic_inflow:
+            thrust = np.stack([thrust, (fz * self.x[None, :]).sum(axis=1)
+                               * self.scale["ct_sigma"]])
+        return res, thrust
 
     def residual_pieces(self, psi, q, qd, qdd, controls: Controls, inflow):
         """The residual as named physical pieces that add up to it (docs/theory.md 6.1).

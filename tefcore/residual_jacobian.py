@@ -229,13 +229,53 @@ def _input_maps(model, n_cols):
 def _seeded(loc, names, seeds, sel, h):
     """Local variables on the stations ``sel``, one complex-step copy per seed."""
     out = {}
+    k_seeds = len(seeds)
     for k in names:
         base = np.asarray(loc[k])[..., sel] if k in STATION_VARIABLES else np.asarray(loc[k])
-        arr = np.repeat(base[None].astype(complex), len(seeds), axis=0)
         if k in seeds:
+            arr = np.empty((k_seeds,) + base.shape, complex)
+            arr[...] = base
             arr[seeds.index(k)] += 1j * h
+        else:
+            arr = base            # the same in every copy: broadcast
         out[k] = arr
     return out
+
+
+#: Output fields of the station forces, in the order of the cached maps.
+_OUT_FIELDS = ("w", "dw", "v", "dv", "phi", "flap")
+
+
+def _statics(model, n_rows):
+    """The per-model constants of :func:`exact_jacobian` (cached in ``model.cache``):
+    the local variables, their input maps by derivative order, the output maps and
+    the complex-step runs."""
+    key = ("exact_jacobian", n_rows)
+    if key in model.cache:
+        return model.cache[key]
+    nm, fs = model.n_modes, model.flap_stations
+    names, maps = _input_maps(model, n_rows)
+    orders = np.array([o for o, _ in maps])
+    t_in = np.stack([m for _, m in maps])                     # (n_var, n_x, n_cols)
+    by_order = [np.flatnonzero(orders == o) for o in range(3)]
+    out_maps = np.zeros((len(_OUT_FIELDS), model.x.size, n_rows))
+    for k, f in enumerate(_OUT_FIELDS[:-1]):
+        out_maps[k, :, :nm] = model.shapes[f]
+    if model.has_flap:
+        out_maps[-1, fs, nm] = 1.0
+    first_run = list(STATION_VARIABLES) + [v for v in ("dl", "dld", "dldd") if v in names]
+    runs = [(first_run, slice(None), False)]
+    rows = {False: slice(0, len(first_run))}          # names: first_run, then the rest
+    if model.has_flap:
+        rest = [v for v in FLAP_VARIABLES if v not in first_run]
+        runs.append((rest, fs, True))
+        rows[True] = slice(len(first_run), len(first_run) + len(rest))
+    assert list(names) == first_run + (rest if model.has_flap else [])
+    st = {"names": names, "n_var": len(names), "by_order": by_order, "out_maps": out_maps,
+          "t_flat": [t_in[idx].reshape(-1, n_rows) for idx in by_order], "runs": runs,
+          "rows": rows, "up": names.index("up")}
+    model.cache[key] = st
+    return st
 
 
 def exact_jacobian(model: CoupledModel, psi, q, qd, qdd, controls, inflow, *,
@@ -304,54 +344,46 @@ def exact_jacobian(model: CoupledModel, psi, q, qd, qdd, controls, inflow, *,
                            inflow_perturbation=None if not nu else
                            q[nd][:, None] + model.x[None, :] * q[nd + 1][:, None])
     loc = local_variables(model, kin, q[:nd], qd[:nd], qdd[:nd])
-    names, maps = _input_maps(model, n_rows)
+    st = _statics(model, n_rows)
+    names, n_var, out_names = st["names"], st["n_var"], _OUT_FIELDS
     h = EXACT_STEP
-    n_var = len(names)
-    # derivatives of every (piece, field) station force and of the normal force
-    deriv: dict = {}
+    # derivatives of the station forces per output field (summed over the pieces;
+    # by piece only when asked) and of the normal force
+    total = np.zeros((len(out_names), n_var, n_psi, n_x))
+    by_piece: dict = {}
     fz = np.zeros((n_var, n_psi, n_x))
     # one complex-step copy per local variable: the station variables and the
     # flap deflection with its rates on all stations at once (the copies of the
     # flap's change only the flap stations' forces); the other flap variables
     # enter only the flap's inertial terms, on the flap stations
-    first_run = list(STATION_VARIABLES) + ([v for v in ("dl", "dld", "dldd") if v in names])
-    runs = [(first_run, slice(None), False)]
-    if model.has_flap:
-        runs.append(([v for v in FLAP_VARIABLES if v not in first_run], fs, True))
-    for seeds, sel, flap_only in runs:
-        first = names.index(seeds[0])
+    for seeds, sel, flap_only in st["runs"]:
+        rows = st["rows"][flap_only]
         terms, fz_c = station_terms(model, _seeded(loc, names, seeds, sel, h),
-                                    flap_only=flap_only, aero=not flap_only)
-        if first == 0:
+                                    flap_only=flap_only, aero=not flap_only,
+                                    combine=not pieces)
+        if not flap_only:
             # the residual: the real part of any copy is the unperturbed one
-            real = [StationTerm(t.piece, t.field, t.flap_only, t.force[0].real)
-                    for t in terms]
             if nu or pieces:
                 parts, thrust = model.residual_pieces(psi, q, qd, qdd, controls, inflow)
             else:
+                real = [StationTerm(t.piece, t.field, t.flap_only, t.force[0].real)
+                        for t in terms]
                 parts = model.assemble(psi, q, qd, qdd, real)
-                thrust = fz_c[0].real.sum(axis=-1) * model.scale["ct_sigma"]
+                fz0 = fz_c[0].real
+                thrust = fz0.sum(axis=-1) * model.scale["ct_sigma"]
                 if model.dynamic_inflow:
-                    thrust = np.stack([thrust, (fz_c[0].real * model.x).sum(axis=-1)
+                    thrust = np.stack([thrust, (fz0 * model.x).sum(axis=-1)
                                        * model.scale["ct_sigma"]])
-        rows = [names.index(v) for v in seeds]
-        if fz_c is not None:
-            fz[rows, :, sel] = fz_c.imag / h
+            fz[rows] = fz_c.imag / h
         for t in terms:
-            key = (t.piece, t.field)
-            if key not in deriv:
-                deriv[key] = np.zeros((n_var, n_psi, n_x))
             where = fs if (t.flap_only and not flap_only) else sel
-            deriv[key][rows, :, where] += t.force.imag / h
-    out_names = ("w", "dw", "v", "dv", "phi", "flap")
-    out_maps = np.zeros((len(out_names), n_x, n_rows))
-    for k, f in enumerate(out_names[:-1]):
-        out_maps[k, :, :nm] = model.shapes[f]
-    if model.has_flap:
-        out_maps[-1, fs, nm] = 1.0
-    orders = np.array([o for o, _ in maps])
-    t_in = np.stack([m for _, m in maps])                     # (n_var, n_x, n_cols)
-    up = names.index("up")
+            d = t.force.imag / h
+            total[out_names.index(t.field), rows, :, where] += d
+            if pieces:
+                arr = by_piece.setdefault(t.piece, np.zeros_like(total))
+                arr[out_names.index(t.field), rows, :, where] += d
+    out_maps, t_flat, by_order = st["out_maps"], st["t_flat"], st["by_order"]
+    up = st["up"]
     mu = model.cfg.flight.advance_ratio
     # U_P = lambda + w* + mu (w' + beta_p) cos psi (+ nu_0 + x nu_R): order 0 too
     up0 = np.zeros((n_psi, n_x, n_rows))
@@ -359,14 +391,6 @@ def exact_jacobian(model: CoupledModel, psi, q, qd, qdd, controls, inflow, *,
     if nu:
         up0[:, :, nd] = 1.0
         up0[:, :, nd + 1] = model.x[None, :]
-    by_order = [np.flatnonzero(orders == o) for o in range(3)]
-
-    def stack(d):
-        """{field: (n_var, n_psi, n_x)} -> (n_fields, n_var, n_psi, n_x)."""
-        out = np.zeros((len(out_names), n_var, n_psi, n_x))
-        for f, dv in d.items():
-            out[out_names.index(f)] += dv
-        return out
 
     def project(e):
         """Output-projected derivatives ``e`` (n_var, n_psi, n_x, n_rows) -> blocks
@@ -374,7 +398,7 @@ def exact_jacobian(model: CoupledModel, psi, q, qd, qdd, controls, inflow, *,
         jac = np.empty((3, n_psi, n_rows, n_rows))
         for o, idx in enumerate(by_order):
             lhs = e[idx].transpose(1, 3, 0, 2).reshape(n_psi, n_rows, -1)
-            jac[o] = lhs @ t_in[idx].reshape(-1, n_rows)
+            jac[o] = lhs @ t_flat[o]
         jac[0] += e[up].transpose(0, 2, 1) @ up0
         return jac
 
@@ -385,8 +409,7 @@ def exact_jacobian(model: CoupledModel, psi, q, qd, qdd, controls, inflow, *,
     def project_thrust(dfz):
         d = np.empty((3, n_psi, n_rows))
         for o, idx in enumerate(by_order):
-            d[o] = dfz[idx].transpose(1, 0, 2).reshape(n_psi, -1) @ t_in[idx].reshape(
-                -1, n_rows)
+            d[o] = dfz[idx].transpose(1, 0, 2).reshape(n_psi, -1) @ t_flat[o]
         d[0] += np.einsum("ms,msj->mj", dfz[up], up0)
         return d
 
@@ -394,17 +417,11 @@ def exact_jacobian(model: CoupledModel, psi, q, qd, qdd, controls, inflow, *,
     dthrust = project_thrust(ct * fz)
     if model.dynamic_inflow:
         dthrust = np.stack([dthrust, project_thrust(ct * fz * model.x)])
-    total = {}
-    for (_, f), dv in deriv.items():
-        total[f] = total[f] + dv if f in total else dv
-    e_total = outputs(stack(total))
+    e_total = outputs(total)
     if pieces:
-        by_piece: dict = {}
-        for (piece, f), dv in deriv.items():
-            by_piece.setdefault(piece, {})[f] = dv
         jac = {p: np.zeros((3, n_psi, n_rows, n_rows)) for p in parts}
         for p, d in by_piece.items():
-            jac[p] += project(outputs(stack(d)))
+            jac[p] += project(outputs(d))
     else:
         jac = {"all": project(e_total)}
     _linear_pieces(model, jac, psi, inflow, dthrust, nu)

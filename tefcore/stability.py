@@ -366,7 +366,7 @@ def _stability_of(model, tr: TrimResult, n_steps: int | None) -> StabilityResult
     shapes = _tracking_shapes(model.tracking_basis(), keep, n)
     labels = _label_modes(frac, model.labels, keep.frequencies, keep.damping_rates, shapes)
     kinds = [lab.split()[1] if lab.startswith("blade") else "TEF" for lab in model.labels]
-    table = pd.DataFrame({
+    columns = {
         "mode_id": np.arange(len(labels)),
         "label": labels,
         "kind": [lab.split()[1] if lab.startswith("blade") else "TEF" for lab in labels],
@@ -376,10 +376,11 @@ def _stability_of(model, tr: TrimResult, n_steps: int | None) -> StabilityResult
         "real_part": keep.damping_rates,
         "damping_ratio": keep.damping_ratios,
         "participation": frac.max(axis=0),
-    })
+    }
     for kind in SHARE_KINDS:
         rows = [i for i, k in enumerate(kinds) if k == kind]
-        table[f"share_{kind}"] = frac[rows].sum(axis=0) if rows else 0.0
+        columns[f"share_{kind}"] = frac[rows].sum(axis=0) if rows else np.zeros(len(labels))
+    table = pd.DataFrame(columns)          # one construction, not column by column
     summary = tr.summary()
     summary["reverse_flow_fraction"] = _reverse_flow_fraction(tr)
     if aero_modes is not None:

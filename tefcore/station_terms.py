@@ -129,7 +129,7 @@ def local_variables(model, kin, q, qd, qdd) -> dict:
 
 
 def station_terms(model, loc, *, flap_only: bool = False, details: bool = False,
-                  aero: bool = True):
+                  aero: bool = True, combine: bool = False):
     """Station forces of the nonlinear pieces of the residual.
 
     Parameters
@@ -150,6 +150,10 @@ def station_terms(model, loc, *, flap_only: bool = False, details: bool = False,
         False: the flap's inertial terms only (no section loads, no hinge
         moment; only with ``flap_only``): what depends on the flap variables
         but ``delta`` and its rates.
+    combine : bool, optional
+        Sum the pieces acting through one field on the same stations (one
+        term per field, named after its first piece): for the residual as a
+        whole rather than by piece.
 
     Returns
     -------
@@ -163,6 +167,9 @@ def station_terms(model, loc, *, flap_only: bool = False, details: bool = False,
     extra : dict
         Only with ``details``: ``section``, ``loads``, ``sign``, ``speed``.
     """
+    if combine:
+        out = station_terms(model, loc, flap_only=flap_only, details=details, aero=aero)
+        return (_combined(out[0]),) + tuple(out[1:])
     cfg, sc = model.cfg, model.scale
     fs = model.flap_stations
     if not aero:
@@ -205,6 +212,15 @@ def station_terms(model, loc, *, flap_only: bool = False, details: bool = False,
     if details:
         return terms, fz, {"section": section, "loads": out, "sign": sign, "speed": speed}
     return terms, fz
+
+
+def _combined(terms):
+    """One term per (field, stations): the sum of the pieces acting there."""
+    out: dict = {}
+    for t in terms:
+        key = (t.field, t.flap_only)
+        out[key] = t if key not in out else out[key]._replace(force=out[key].force + t.force)
+    return list(out.values())
 
 
 def airload_terms(model, out, sign, cphi, sphi, wq, prefix, flap_only=False):

@@ -594,14 +594,15 @@ def _jacobian(prob, x, c, li):
             extra=[(p[1], _inflow(model, p[2])) for p in parts], n_second=model.n_dof)
     r0 = np.concatenate([res0.ravel(), scalars(q, thr0, li)])
     blocks = [jq, jqd, jqdd]
-    eye = np.eye(n_psi)
-    # J[(i,m),(j,l)] = J0[m,i,j] I_ml + J1[m,i,j] D_ml + J2[m,i,j] D2_ml
-    j4 = (blocks[0][:, None] * eye[:, :, None, None] + blocks[1][:, None] * d1[:, :, None, None]
-          + blocks[2][:, None] * d2[:, :, None, None])          # (m, l, i, j)
-    jqq = j4.transpose(2, 0, 3, 1).reshape(nq, nq)
+    # J[(i,m),(j,l)] = J0[m,i,j] I_ml + J1[m,i,j] D_ml + J2[m,i,j] D2_ml, written
+    # straight into the (i, m, j, l) view of the Newton matrix
     n_s = r0.size - nq
     jac = np.zeros((r0.size, r0.size))
-    jac[:nq, :nq] = jqq
+    j4 = jac[:nq, :nq].reshape(n, n_psi, n, n_psi)
+    j4[...] = np.einsum("mij,ml->imjl", blocks[1], d1) + np.einsum("mij,ml->imjl",
+                                                                   blocks[2], d2)
+    diag = np.arange(n_psi)
+    j4[:, diag, :, diag] += blocks[0]
     # thrust derivative wrt Q (mean over azimuth)
     if n_lam == 3:
         # with dynamic inflow: the blade's C_T/sigma and its first moment
