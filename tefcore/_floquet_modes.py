@@ -41,7 +41,7 @@ from ._floquet_propagators import (
 from ._floquet_result import sorted_result
 from .runtime import blas_limit
 
-__all__ = ["MIN_ROOT", "MAX_SUB", "choose_sub", "floquet_modes"]
+__all__ = ["MIN_ROOT", "MAX_SUB", "choose_sub", "floquet_modes", "sub_products"]
 
 
 #: Smallest modulus ``|mu| = |lambda|^(1/K)`` of a lifted root that
@@ -335,10 +335,11 @@ def _modes(p, period, k_sub, max_sub, shapes, shift_states, min_rate=None, duals
     max_sub = min(max(max_sub, k_sub), n_steps)
     eps = np.finfo(float).eps
     # K before solving, from a cheap bound of the smallest multiplier
-    k_sub = choose_sub(p, period, k_sub, max_sub, min_rate, frozen_rate, duals)
+    levels: dict = {}
+    k_sub = choose_sub(p, period, k_sub, max_sub, min_rate, frozen_rate, duals, levels)
     while True:
         stack, bounds, valid = group(p, k_sub)
-        phis = tree_product(stack)
+        phis = sub_products(p, k_sub, levels)
         cut = root_cut(min_rate, period, k_sub)
         mu, blocks, split, *lblocks = lifted(phis, cut, left=duals)
         # with min_rate, the roots below the cut need not be resolved
@@ -371,13 +372,18 @@ def _modes(p, period, k_sub, max_sub, shapes, shift_states, min_rate=None, duals
         cur = stack[:, step] @ cur
     x = x[valid]                                   # (n_steps, n, m), in time order
     if duals:
-        # adjoint solutions y = Phi(psi, psi_k)^-H u_k on the same grid
+        # adjoint solutions on the same grid, carried backwards from the start of
+        # the next sub-interval, y(psi_m) = P_m^H y(psi_m+1) (u_k = Phi_k^H u_k+1
+        # / conj(mu)): no inverse, and backwards is the adjoint's stable direction
+        # (it decays where the solution grows); scalar factors cancel below
         y = np.empty((*valid.shape, n, n), dtype=complex)
-        inv_h = np.swapaxes(np.linalg.inv(stack), -1, -2).conj()
-        cur = lblocks[0].astype(complex)
-        for step in range(valid.shape[1]):
+        stack_h = np.swapaxes(stack, -1, -2).conj()
+        cur = np.roll(lblocks[0], -1, axis=0).astype(complex)     # u_k+1 for block k
+        for step in range(valid.shape[1] - 1, -1, -1):
+            cur = stack_h[:, step] @ cur
+            # keep the columns of order one (a decaying adjoint, backwards)
+            cur /= np.maximum(np.abs(cur).max(axis=1, keepdims=True), np.finfo(float).tiny)
             y[:, step] = cur
-            cur = inv_h[:, step] @ cur
         y = y[valid]
     h = period / n_steps
     psi = np.arange(n_steps) * h
@@ -425,7 +431,51 @@ def _modes(p, period, k_sub, max_sub, shapes, shift_states, min_rate=None, duals
             float(np.linalg.norm(phis, axis=(1, 2)).max()), split)
 
 
-def choose_sub(p, period, k_min, max_sub, min_rate=None, frozen_rate=None, duals=False):
+def sub_products(p, k, levels):
+    """The ``k`` sub-interval transition matrices of the step propagators ``p``.
+
+    ``levels`` (a dict, ``K -> (K, n, n)``) keeps what was computed: ``K = 8`` by
+    tree products over its groups, the coarser levels whose bounds nest in a finer
+    one by pairwise products of that one (three small products for 4, 2, 1).
+
+    Parameters
+    ----------
+    p : numpy.ndarray
+        Step propagators ``(n_steps, n, n)``.
+    k : int
+        Sub-intervals.
+    levels : dict
+        Cache of the levels.
+
+    Returns
+    -------
+    numpy.ndarray
+        ``(k, n, n)``.
+    """
+    if k in levels:
+        return levels[k]
+    n_steps = p.shape[0]
+
+    def bounds(kk):
+        return (np.arange(kk + 1) * n_steps) // kk
+
+    finer = 2 * k
+    if finer <= min(8, n_steps) and np.array_equal(bounds(finer)[::2], bounds(k)):
+        fine = sub_products(p, finer, levels)
+        with np.errstate(over="ignore", invalid="ignore"):
+            out = fine[1::2] @ fine[0::2]
+        if not np.isfinite(out).all():
+            raise FloquetOverflowError("the transition matrices overflow: the system is too "
+                                       "stiff for this step (increase n_steps, or use "
+                                       "method='magnus')")
+    else:
+        out = tree_product(group(p, k)[0])
+    levels[k] = out
+    return out
+
+
+def choose_sub(p, period, k_min, max_sub, min_rate=None, frozen_rate=None, duals=False,
+               levels=None):
     """Sub-intervals ``K`` for the lift, chosen before solving it.
 
     The explicit product ``Phi`` (cheap: ``n x n`` eigenvalues) gives the
@@ -455,6 +505,9 @@ def choose_sub(p, period, k_min, max_sub, min_rate=None, frozen_rate=None, duals
         The adjoint solutions will be propagated (participation factors): the
         fastest decaying state grows along them by ``exp(|sigma| T / K)`` over a
         sub-interval, so ``K`` is at least ``|frozen_rate| T / ln(1/eps)``.
+    levels : dict, optional
+        Sub-interval products computed on the way (:func:`sub_products`), for
+        the lift to reuse.
 
     Returns
     -------
@@ -467,10 +520,11 @@ def choose_sub(p, period, k_min, max_sub, min_rate=None, frozen_rate=None, duals
         need = -rate * period / np.log(1.0 / eps) if np.isfinite(rate) else max_sub
         if need > 1:
             k_min = max(k_min, int(2 ** np.ceil(np.log2(need))))
+    levels = {} if levels is None else levels
     if n_steps < 2 or max_sub <= k_min:
         return int(min(max(k_min, 1), max_sub))
-    halves = tree_product(group(p, 2)[0])
-    phi = halves[1] @ halves[0]
+    halves = sub_products(p, 2, levels)
+    phi = sub_products(p, 1, levels)[0]
     with np.errstate(over="ignore", invalid="ignore"):
         noise = 1e3 * eps * float(np.prod(np.linalg.norm(halves, axis=(1, 2))))
         if not (np.isfinite(phi).all() and np.isfinite(noise)):
@@ -489,7 +543,7 @@ def choose_sub(p, period, k_min, max_sub, min_rate=None, frozen_rate=None, duals
         log_min = max(log_min, min_rate * period)
     k = max(1, int(k_min))
     while k < max_sub:
-        phis = halves if k == 2 else tree_product(group(p, k)[0])
+        phis = sub_products(p, k, levels)
         with np.errstate(over="ignore"):
             floor = max(MIN_ROOT, 1e6 * eps * np.linalg.norm(phis, axis=(1, 2)).max())
         if floor < 1.0 and log_min / k >= np.log(floor):

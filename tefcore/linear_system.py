@@ -22,6 +22,7 @@ array([-0.1-1.997498j, -0.1+1.997498j])
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass
 
 import numpy as np
@@ -138,9 +139,30 @@ class SecondOrderSystem:
                 return tuple(np.zeros((psi.size,) + a.shape[1:]) for a in (self.m, self.c, self.k))
             return tuple(np.broadcast_to(a, (psi.size,) + a.shape[1:]) for a in
                          (self.m, self.c, self.k))
-        # one interpolation of the three stacked (one FFT, one product)
-        out = trig_interpolate(np.stack([self.m, self.c, self.k], axis=1), psi, derivative)
+        # the three stacked: one product with the cached real Fourier coefficients
+        psi = np.atleast_1d(np.asarray(psi, float))
+        cos_c, sin_c, k = self._fourier
+        kp = np.outer(psi, k)
+        # d^d/dpsi^d of a cos(k psi) + b sin(k psi), as cos and sin terms again
+        c_part, s_part = ((cos_c, sin_c), (sin_c * k[:, None], -cos_c * k[:, None]),
+                          (-cos_c * k[:, None]**2, -sin_c * k[:, None]**2))[derivative % 3] \
+            if derivative < 3 else _derivative_coefficients(cos_c, sin_c, k, derivative)
+        out = (np.cos(kp) @ c_part + np.sin(kp) @ s_part).reshape(
+            (psi.size, 3) + self.m.shape[1:])
         return out[:, 0], out[:, 1], out[:, 2]
+
+    @functools.cached_property
+    def _fourier(self):
+        """Real Fourier coefficients of the stacked ``M, C, K``: ``(a_k, b_k, k)`` with
+        ``f(psi) = sum_k a_k cos(k psi) + b_k sin(k psi)`` (the Nyquist term a cosine,
+        as :func:`trig_interpolate`)."""
+        s = np.stack([self.m, self.c, self.k], axis=1)
+        n = s.shape[0]
+        c = np.fft.rfft(s, axis=0) / n
+        k = np.arange(c.shape[0])
+        weight = np.where((k == 0) | ((n % 2 == 0) & (k == n // 2)), 1.0, 2.0)
+        c = (c * weight.reshape((-1,) + (1,) * (s.ndim - 1))).reshape(c.shape[0], -1)
+        return np.ascontiguousarray(c.real), np.ascontiguousarray(-c.imag), k.astype(float)
 
     def state_matrix(self, psi) -> np.ndarray:
         """``A(psi) = [[0, I], [-M^-1 K, -M^-1 C]]``, shape (len(psi), 2n, 2n);
@@ -159,18 +181,17 @@ class SecondOrderSystem:
         and the integer frequency shift decided by the displacements
         (:func:`tefcore.floquet.floquet_modes`; ``on_inaccurate`` as there).
         With first-order states, roots below :data:`STATE_MIN_RATE` need not
-        be resolved and (``participation``, default: with first-order states)
+        be resolved.  ``participation`` (default: with first-order states):
         the participation factors come with the result, from the adjoint
-        solutions.
+        solutions (:func:`tefcore.floquet.floquet_modes`).
         Returns a :class:`tefcore.floquet.FloquetResult` with both members
         of each conjugate pair.
         """
         if not self.periodic:
             return floquet.constant_coefficient_modes(self.state_matrix([0.0])[0])
-        if self.n_first:
-            # the lift that STATE_MIN_RATE needs (exp(-8 * 2 pi / 8) > MIN_ROOT):
-            # start there rather than find it by a first, wasted, lift
-            n_sub = max(n_sub, 8)
+        # floquet_modes chooses K before the lift: for first-order states down to
+        # STATE_MIN_RATE, and for the adjoints of the participation factors with
+        # the fastest state in view (8 with the shed wake's -31 /rev states)
         return floquet.floquet_modes(self.state_matrix, n_steps=n_steps, n_sub=n_sub,
                                      method="magnus", shapes=shapes,
                                      shift_states=slice(0, self.n_dof),
@@ -178,6 +199,15 @@ class SecondOrderSystem:
                                      min_rate=STATE_MIN_RATE if self.n_first else None,
                                      participation=(bool(self.n_first) if participation is None
                                                     else participation))
+
+
+def _derivative_coefficients(cos_c, sin_c, k, derivative):
+    """Cosine and sine coefficients of the ``derivative``-th derivative of
+    ``sum_k a_k cos(k psi) + b_k sin(k psi)``."""
+    a, b = cos_c, sin_c
+    for _ in range(derivative):
+        a, b = b * k[:, None], -a * k[:, None]
+    return a, b
 
 
 def combine(parts, scales=None) -> SecondOrderSystem:

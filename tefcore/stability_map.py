@@ -37,6 +37,7 @@ from __future__ import annotations
 
 import json
 import numbers
+import os
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -47,7 +48,14 @@ from scipy.optimize import brentq
 
 from .config import Config
 from .runtime import worker_init
-from .sweep import FLUTTER_SHARE, SweepResult, check_result, default_point, sweep
+from .sweep import (
+    FLUTTER_SHARE,
+    SweepResult,
+    check_result,
+    default_point,
+    sweep,
+    takes_warm_start,
+)
 
 __all__ = ["MapResult", "stability_map"]
 
@@ -200,12 +208,33 @@ def _row_frame(res: SweepResult, y_index: int, y_si: float, y_value) -> pd.DataF
     return pd.DataFrame(rows)
 
 
-def _flutter_growth(point, cfg, x_field, x) -> float:
-    """Flutter-root growth at one x (NaN when no root has the flap's participation)."""
-    modes, _, _ = check_result(point(cfg.with_overrides({x_field: float(x)})))
+def _flutter_growth(point, cfg, x_field, x, warm=None) -> float:
+    """Flutter-root growth at one x (NaN when no root has the flap's participation).
+
+    ``warm``: a dict holding the previous evaluation's trim, for a point function
+    that takes ``warm_start`` (the brentq iterations of one bracket, in order)."""
+    cfg_x = cfg.with_overrides({x_field: float(x)})
+    result = None
+    if warm is not None and warm.get("trim") is not None:
+        try:
+            result = point(cfg_x, warm_start=warm["trim"])
+        except Exception:  # astray from the warm start: cold below
+            result = None
+    if result is None:
+        result = point(cfg_x)
+    if warm is not None:
+        warm["trim"] = getattr(result, "trim_result", None)
+    modes, _, _ = check_result(result)
     share = modes["share_TEF"] if "share_TEF" in modes else pd.Series(1.0, index=modes.index)
     cand = modes[share >= FLUTTER_SHARE]
     return float(cand["real_part"].max()) if not cand.empty else np.nan
+
+
+def _row_in_worker(cfg, x_field, x_values, point, out, resume):
+    """One row of the map as a serial sweep in a worker process."""
+    worker_init()
+    return sweep(cfg, x_field, x_values, point=point, n_jobs=1, out=out, resume=resume,
+                 refine=False, anchor=False, progress=False)
 
 
 def _refine_in_worker(*args):
@@ -216,8 +245,9 @@ def _refine_in_worker(*args):
 
 def _refine(point, cfg, x_field, y_si, a, b, direction, xtol):
     """Zero of the flutter growth between two grid x (brentq); never raises."""
+    warm = {} if takes_warm_start(point) else None
     try:
-        x0, info = brentq(lambda x: _flutter_growth(point, cfg, x_field, x), a, b,
+        x0, info = brentq(lambda x: _flutter_growth(point, cfg, x_field, x, warm), a, b,
                           xtol=xtol, maxiter=40, full_output=True, disp=False)
         return {"y": y_si, "x": float(x0), "direction": direction, "x_lo": a, "x_hi": b,
                 "converged": bool(info.converged), "error": ""}
@@ -275,12 +305,23 @@ def stability_map(cfg: Config, x_field: str, x_values, y_field: str, y_values, *
     if outdir is not None:
         outdir.mkdir(parents=True, exist_ok=True)
     rows, frames = [], []
-    for k, yv in enumerate(y_values):
-        y_si = _si(cfg, y_field, yv)
-        cfg_y = cfg.with_overrides({y_field: yv})
-        res = sweep(cfg_y, x_field, x_values, point=point, n_jobs=n_jobs, backend=backend,
-                    client=client, out=None if outdir is None else outdir / f"row_{k}.jsonl",
-                    resume=resume, refine=False, anchor=False, progress=progress)
+    row_cfgs = [(k, yv, _si(cfg, y_field, yv), cfg.with_overrides({y_field: yv}))
+                for k, yv in enumerate(y_values)]
+    outs = [None if outdir is None else outdir / f"row_{k}.jsonl" for k in range(len(y_values))]
+    if backend == "joblib" and n_jobs != 1 and len(y_values) > 1:
+        # rows side by side, each a serial sweep in one worker: every worker busy
+        # (a row's warm-start chains would leave one idle), the same points and
+        # chains as row by row (tefcore.sweep.WARM_CHAIN): the same table
+        from joblib import Parallel, delayed
+
+        par = Parallel(n_jobs=n_jobs, backend="loky")
+        results = par(delayed(_row_in_worker)(cfg_y, x_field, x_values, point, outs[k],
+                                              resume) for k, _, _, cfg_y in row_cfgs)
+    else:
+        results = [sweep(cfg_y, x_field, x_values, point=point, n_jobs=n_jobs, backend=backend,
+                         client=client, out=outs[k], resume=resume, refine=False,
+                         anchor=False, progress=progress) for k, _, _, cfg_y in row_cfgs]
+    for (k, yv, y_si, _), res in zip(row_cfgs, results, strict=True):
         rows.append(res)
         frames.append(_row_frame(res, k, y_si, yv))
     table = pd.concat(frames, ignore_index=True)
@@ -295,8 +336,6 @@ def stability_map(cfg: Config, x_field: str, x_values, y_field: str, y_values, *
 
 def _append_line(path: Path, line: str) -> None:
     """Append one line, never through a link (:mod:`tefcore.safe_io`)."""
-    import os
-
     from .safe_io import check_output_file, open_append
 
     if not path.exists():

@@ -398,6 +398,10 @@ class BladeModes:
             Generalised matrices ``Phi^T M Phi`` etc. (rotor units).
     beam : BeamModel
         The beam the modes are of (for :meth:`shapes`).
+    cache : dict
+        Shapes at stations asked for before (:meth:`shapes`), kept with the
+        modes (which :func:`tefcore.blade.blade_modes` keeps for configurations
+        of one structure).
     """
 
     frequencies: np.ndarray
@@ -409,10 +413,17 @@ class BladeModes:
     modal_damping: np.ndarray
     modal_gyroscopic: np.ndarray
     beam: BeamModel = field(repr=False)
+    cache: dict = field(default_factory=dict, repr=False, compare=False)
 
     def shapes(self, x) -> dict[str, np.ndarray]:
         """Mode shapes (displacements, slopes, curvatures, twist) at ``x``."""
-        return self.beam.evaluate(self.vectors, x)
+        x = np.asarray(x, float)
+        key = ("shapes", x.shape, x.tobytes())
+        if key not in self.cache:
+            if len(self.cache) > 64:
+                self.cache.clear()
+            self.cache[key] = self.beam.evaluate(self.vectors, x)
+        return {k: v.copy() for k, v in self.cache[key].items()}
 
     def table(self) -> pd.DataFrame:
         """Tidy mode table: one row per mode."""

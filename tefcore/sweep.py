@@ -62,7 +62,7 @@ from .tracking import ambiguous_steps, label_changes, track_modes
 
 __all__ = ["FLUTTER_SHARE", "MAX_REFINE", "WARM_CHAIN", "REQUIRED_MODE_COLUMNS", "SweepResult",
            "check_parameter", "check_result", "config_hash", "decode_complex", "default_point",
-           "encode_complex", "shape_vectors", "sweep"]
+           "encode_complex", "shape_vectors", "sweep", "takes_warm_start"]
 
 #: Columns a point function's ``modes`` table must have.
 REQUIRED_MODE_COLUMNS = ("mode_id", "label", "frequency_per_rev", "real_part", "damping_ratio")
@@ -296,15 +296,25 @@ def _evaluate_chain(chain):
     for index, args, keep in chain:
         point = args[0]
         i, rec, vecs, tr = _evaluate(index, *args,
-                                     warm=warm if _takes_warm_start(point) else None)
+                                     warm=warm if takes_warm_start(point) else None)
         warm = tr if rec["status"] == "ok" else None
         if keep:
             yield i, rec, vecs
 
 
-def _takes_warm_start(point) -> bool:
+def takes_warm_start(point) -> bool:
     """Whether the point function takes a ``warm_start`` keyword (as
-    :func:`tefcore.stability.stability` does)."""
+    :func:`tefcore.stability.stability` does).
+
+    Parameters
+    ----------
+    point : callable
+        A point function.
+
+    Returns
+    -------
+    bool
+    """
     try:
         return "warm_start" in inspect.signature(point).parameters
     except (TypeError, ValueError):
@@ -785,7 +795,7 @@ def sweep(cfg: Config, parameter: str, values, *, point: Callable | None = None,
         n_loaded -= 1
     jobs = _chains(cfg, parameter, values, keys, records,
                    lambda i: (point, cfg, parameter, values[i], keys[i], keys[i] == anchor_key, 0),
-                   WARM_CHAIN if _takes_warm_start(point) else 1)
+                   WARM_CHAIN if takes_warm_start(point) else 1)
 
     if progress is None:
         progress = bool(getattr(sys.stderr, "isatty", lambda: False)())

@@ -173,7 +173,7 @@ def test_warm_started_sweep_is_the_same_in_every_run(tmp_path):
     param, xs = "actuator.stiffness", ["70 ft-lb/rad", "90 ft-lb/rad", "110 ft-lb/rad",
                                        "130 ft-lb/rad", "150 ft-lb/rad"]
     kw = dict(progress=False, refine=False, anchor=False)
-    assert sweep_module._takes_warm_start(stability)
+    assert sweep_module.takes_warm_start(stability)
     fresh = sweep(cfg, param, xs, **kw)
     out = tmp_path / "s.jsonl"
     sweep(cfg, param, xs[:2], out=out, **kw)                           # interrupted
