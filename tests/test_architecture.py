@@ -59,6 +59,8 @@ LARGE_MODULES = {
                                "with an error naming it; the checks are the specification",
     "tefcore.blade": DOCUMENTED,
     "tefcore.c81_reader": DOCUMENTED,
+    "tefcore.paper.batch_report": DOCUMENTED,
+    "tefcore.paper.batch_spec": DOCUMENTED,
     "tefcore.paper.claim_checks": DOCUMENTED,
     "tefcore.paper.plotting": DOCUMENTED,
     "tefcore.paper.report": DOCUMENTED,
