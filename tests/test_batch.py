@@ -13,6 +13,7 @@ import time
 from pathlib import Path
 
 import nbformat
+import numpy as np
 import pandas as pd
 import pytest
 from test_report_html import check_page
@@ -258,3 +259,54 @@ def test_record_keeps_what_decides_the_results(tmp_path, fake):
                            "reference_data"}
     assert inputs["parameters"]["04_cg_offset"] == {"n_points": 3, "interactive": False}
     assert inputs["notebook_sources"]["04_cg_offset"].startswith("sha256:")
+
+
+# ------------------------------------------------------------------ headlines and curves
+
+
+def _sweep(x, real, tef=True, certain=None):
+    return pd.DataFrame({"status": "ok", "value": x, "real_part": real, "flutter_root": True,
+                         "tef_branch": tef,
+                         "tef_branch_certain": True if certain is None else certain})
+
+
+def test_headlines_onset_state_and_growth():
+    x = [0.0, 0.1, 0.2, 0.3]
+    h = headlines("fig9", _sweep(x, [-2.0, -1.0, 1.0, 0.5]))["flutter root"]
+    # linear between the points around the sign change: -1 at 0.1, +1 at 0.2
+    assert h["onset"] == pytest.approx(0.15) and h["state"] == "crosses"
+    assert (h["max_growth"], h["max_growth_at"]) == (1.0, 0.2)
+    stable = headlines("fig9", _sweep(x, [-2.0, -1.0, -0.5, -0.1]))["flutter root"]
+    assert stable["state"] == "stable" and np.isnan(stable["onset"])
+    unstable = headlines("fig9", _sweep(x, [0.5, 1.0, -0.5, 0.2]))["flutter root"]
+    # unstable at the start, stable from 0.167, unstable again from 0.271: the onset is the
+    # first stable-to-unstable crossing, and the state says it started unstable
+    assert unstable["state"] == "unstable at start"
+    assert unstable["onset"] == pytest.approx(0.2 + 0.1 * 5 / 7)
+    # the TEF branch counts only where its identity is decided
+    tef = headlines("fig9", _sweep(x, [-2.0, -1.0, 1.0, 2.0],
+                                   certain=[True, True, False, False]))["TEF branch"]
+    assert tef["state"] == "stable" and tef["points"] == 2 and np.isnan(tef["onset"])
+    # x is the paper's axis: Fig. 12's actuator stiffness as a factor on 81.52 ft-lb/rad
+    t = _sweep(["40.76 ft-lb/rad", "81.52 ft-lb/rad"], [-1.0, 1.0])
+    assert headlines("fig12", t)["flutter root"]["onset"] == pytest.approx(0.75)
+
+
+def test_identical_curves_are_drawn_once_and_labelled_by_what_they_share(tmp_path, fake):
+    fake()      # the fake's curves depend on the CG offset only
+    f = _file(tmp_path, "notebooks: [04]\ngrid: {overrides.flap.cg_offset: [0.1, 0.2],\n"
+                        "       overrides.flap.overhang: [0.2, 0.3]}\n")
+    bt.batch(f, tmp_path / "out", progress=False)
+    md = (tmp_path / "out" / "index.md").read_text()
+    assert md.count("| cg_offset=0.1 (2 runs) |") == 2 and "runs with identical curves" in md
+    check_page((tmp_path / "out" / "index.html").read_text())
+
+
+def test_run_parameters_give_each_notebook_its_folder_and_the_configuration(tmp_path):
+    from tefcore.paper.batch_spec import RunSpec
+
+    spec = RunSpec("r", ("04_cg_offset",), {"04_cg_offset": {"n_points": 3}},
+                   config=str(tmp_path / "rotor.toml"))
+    p = bt.run_parameters(spec, tmp_path)["04_cg_offset"]
+    assert p == {"n_points": 3, "interactive": False, "config": str(tmp_path / "rotor.toml"),
+                 "output_dir": str(tmp_path / "r" / "04_cg_offset")}

@@ -18,8 +18,9 @@ Headline results (:func:`headlines`), for two roots of each figure's sweep:
 
 each gives ``onset``, the x of its first stable-to-unstable crossing
 (:func:`tefcore.paper.curve_metrics.zero_crossings`, linear between the
-computed points, refinement points included), ``state`` (``"stable"``,
-``"unstable"`` throughout, or ``"crosses"``) and ``max_growth``, its largest
+computed points, refinement points included), ``state`` (``"stable"`` or
+``"unstable"`` throughout, ``"crosses"`` from stable, ``"unstable at
+start"``: it crosses, starting unstable) and ``max_growth``, its largest
 growth rate Re(s)/Omega [1/rev] (positive: unstable) with the x where it
 occurs.  x is the paper's axis of the figure
 (:data:`tefcore.paper.plotting.AXES`).
@@ -116,7 +117,8 @@ def headlines(name: str, table: pd.DataFrame) -> dict:
             continue
         x, y = r["x"].to_numpy(float), r["real_part"].to_numpy(float)
         onset = next((x0 for x0, d in zero_crossings(x, y) if d == "destabilising"), np.nan)
-        state = "stable" if (y < 0).all() else "unstable" if (y >= 0).all() else "crosses"
+        state = "stable" if (y < 0).all() else "unstable" if (y >= 0).all() else \
+            "unstable at start" if y[0] >= 0 else "crosses"
         k = int(np.argmax(y))
         out[root] = {"onset": float(onset), "state": state, "max_growth": float(y[k]),
                      "max_growth_at": float(x[k]), "points": len(x)}
@@ -232,10 +234,12 @@ def _text(value) -> str:
 def _onset_text(h: dict) -> str:
     if h["state"] == "no data":
         return "–"
+    if h["state"] == "unstable at start":
+        return "unstable at the start" + (f", again from {h['onset']:.3g}"
+                                          if np.isfinite(h["onset"]) else ", then stable")
     if np.isfinite(h["onset"]):
         return f"{h['onset']:.3g}"
-    return "stable throughout" if h["state"] == "stable" else \
-        "unstable from the start" if h["state"] == "unstable" else "no onset (stabilises)"
+    return "stable throughout" if h["state"] == "stable" else "unstable throughout"
 
 
 def _growth_text(h: dict) -> str:
