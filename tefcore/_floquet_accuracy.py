@@ -12,7 +12,7 @@ import numpy as np
 import scipy.linalg
 import scipy.optimize
 
-from ._floquet_multipliers import lift, log_roots, select_roots
+from ._floquet_multipliers import lift, log_roots, root_cut, select_roots
 from ._floquet_propagators import (
     TWO_PI,
     FloquetAccuracyError,
@@ -67,7 +67,7 @@ def fastest_root(a):
     return complex(ev[np.argmax(np.abs(ev))])
 
 
-def coarse_exponents(a, period, k_sub, method, constant):
+def coarse_exponents(a, period, k_sub, method, constant, min_rate=None):
     """Exponents (frequency modulo 2 pi / T) with the steps of the samples ``a``, or None.
 
     None when the coarse grid overflows: then there is no estimate, and the
@@ -81,7 +81,7 @@ def coarse_exponents(a, period, k_sub, method, constant):
     except FloquetOverflowError:
         return None
     mu = scipy.linalg.eigvals(lift(phis))
-    keep, _ = select_roots(mu, k, phis.shape[-1])
+    keep, _ = select_roots(mu, k, phis.shape[-1], root_cut(min_rate, period, k))
     return k * log_roots(mu[keep]) / period
 
 

@@ -23,7 +23,7 @@ from ._floquet_accuracy import (
     fastest_root,
     inaccurate,
 )
-from ._floquet_multipliers import lifted, log_roots, warn_unsplit
+from ._floquet_multipliers import lifted, log_roots, root_cut, warn_unsplit
 from ._floquet_propagators import (
     DEFAULT_N_SUB,
     TWO_PI,
@@ -66,6 +66,15 @@ def _clusters(mu, scale):
 def _harmonic_basis(per, omega):
     """Recombine periodic parts of one multiplier into harmonically pure modes.
 
+    Returns ``per @ C`` (:func:`_harmonic_combination`).
+    """
+    coef = _harmonic_combination(per, omega)
+    return per if coef is None else per @ coef
+
+
+def _harmonic_combination(per, omega):
+    """The combination ``C`` of :func:`_harmonic_basis` (None: left as they are).
+
     Solves ``F c = kappa G c`` with ``G`` the Gram matrix of the periodic parts
     ``per`` (n_steps, n, d) over the period and ``F`` the same weighted by the
     frequency ``omega`` of each harmonic: its eigenvectors are the
@@ -78,15 +87,16 @@ def _harmonic_basis(per, omega):
     g = np.einsum("hia,hib->ab", f.conj(), f)
     w = np.linalg.eigvalsh(g)
     if w[0] <= 1e-8 * w[-1]:
-        return per
+        return None
     fm = np.einsum("h,hia,hib->ab", omega, f.conj(), f)
-    return per @ scipy.linalg.eigh(fm, g)[1]
+    return scipy.linalg.eigh(fm, g)[1]
 
 
 @blas_limit()
 def floquet_modes(A, n_steps=None, n_sub=DEFAULT_N_SUB, period=TWO_PI, method="rk4",
                   shapes=False, shift_states=None, max_sub=MAX_SUB, atol=DEFAULT_ATOL,
-                  rtol=DEFAULT_RTOL, max_steps=None, on_inaccurate="warn"):
+                  rtol=DEFAULT_RTOL, max_steps=None, on_inaccurate="warn", min_rate=None,
+                  participation=False):
     """Characteristic exponents, multipliers and modes of ``x' = A(psi) x``.
 
     The step propagators are grouped into ``n_sub`` transition matrices
@@ -161,6 +171,23 @@ def floquet_modes(A, n_steps=None, n_sub=DEFAULT_N_SUB, period=TWO_PI, method="r
         Still above the tolerance at ``max_steps``:
         :class:`FloquetAccuracyWarning` and the result, or
         :class:`FloquetAccuracyError`.
+    min_rate : float, optional
+        Damping rate (negative, per unit of psi) below which roots need not be
+        resolved: ``K`` is raised only until ``exp(min_rate T / K)`` reaches the
+        floor, and whether the roots split is judged on the roots above that
+        modulus.  For systems with fast, heavily damped states that no
+        ``K <= max_sub`` can resolve (the shed wake of a rotor blade, down to
+        -30 /rev): without it they drive ``K`` to ``max_sub`` at a cost
+        ``O((K n)^3)``.  Such roots are reported somewhere below the cut and
+        are not held to the tolerance (they do not drive the step
+        refinement).  Default None: every root counts.
+    participation : bool, optional
+        Also the participation factors (:meth:`FloquetResult.with_participation`),
+        from the adjoint solutions: the left eigenvectors of the lift, carried
+        over each sub-interval by ``(P^-1)^H`` of the step propagators.  Unlike
+        the inverse of the matrix of all periodic shapes, this needs only the
+        root itself, so the factors of the resolved roots hold when roots below
+        ``min_rate`` are not resolved (theirs are then meaningless).
 
     Returns
     -------
@@ -220,6 +247,8 @@ def floquet_modes(A, n_steps=None, n_sub=DEFAULT_N_SUB, period=TWO_PI, method="r
     check = atol is not None
     if check:
         atol, rtol = (check_tolerance(name, v) for name, v in (("atol", atol), ("rtol", rtol)))
+    if min_rate is not None and not (np.isfinite(min_rate) and min_rate < 0):
+        raise ValueError(f"min_rate must be a negative damping rate or None, got {min_rate!r}")
     a, n_steps, constant = sample(A, n_steps, period)
     k_sub = check_sub(n_sub, n_steps)
     max_sub = check_int("max_sub", max_sub, 1)
@@ -231,7 +260,8 @@ def floquet_modes(A, n_steps=None, n_sub=DEFAULT_N_SUB, period=TWO_PI, method="r
         if method == "rk4":
             rk4_step_warning(a[:3] if constant else a, period / n_steps, n_steps)
         p = propagators(a, period / n_steps, constant, method)
-        res, _, split = _modes(p, period, k_sub, max_sub, shapes, shift_states)
+        res, _, split = _modes(p, period, k_sub, max_sub, shapes, shift_states, min_rate,
+                               participation)
         if not split:
             warn_unsplit()
         return res
@@ -240,7 +270,8 @@ def floquet_modes(A, n_steps=None, n_sub=DEFAULT_N_SUB, period=TWO_PI, method="r
     while True:
         try:
             p = propagators(a, period / n_steps, constant, method)
-            res, znorm, split = _modes(p, period, k_sub, max_sub, shapes, shift_states)
+            res, znorm, split = _modes(p, period, k_sub, max_sub, shapes, shift_states,
+                                       min_rate, participation)
         except FloquetOverflowError as err:
             if refinable and 2 * n_steps <= max_steps:      # shorter steps may not overflow
                 n_steps, coarse = 2 * n_steps, None
@@ -251,7 +282,7 @@ def floquet_modes(A, n_steps=None, n_sub=DEFAULT_N_SUB, period=TWO_PI, method="r
                                        f"{fastest_root(a):.3g} per unit of psi)") from None
         k_sub = res.n_sub
         if coarse is None and n_steps % 2 == 0:
-            coarse = coarse_exponents(a[::2], period, k_sub, method, constant)
+            coarse = coarse_exponents(a[::2], period, k_sub, method, constant, min_rate)
         if coarse is None:                                  # odd step count: compare 2N
             if not refinable or 2 * n_steps > max_steps:
                 if not split:
@@ -261,6 +292,8 @@ def floquet_modes(A, n_steps=None, n_sub=DEFAULT_N_SUB, period=TWO_PI, method="r
             a = sample(A, n_steps, period)[0]
             continue
         est, trusted = error_estimates(res, coarse, znorm, atol)
+        if min_rate is not None:            # roots below min_rate are not held to it
+            trusted &= res.exponents.real >= min_rate
         tol_re = atol + rtol * np.abs(res.exponents.real)
         tol_im = atol + rtol * np.abs(res.exponents)   # |eta|: see the docstring
         bad = trusted & ((est.real > tol_re) | (est.imag > tol_im))
@@ -275,9 +308,10 @@ def floquet_modes(A, n_steps=None, n_sub=DEFAULT_N_SUB, period=TWO_PI, method="r
         a = sample(A, n_steps, period)[0]
 
 
-def _modes(p, period, k_sub, max_sub, shapes, shift_states):
+def _modes(p, period, k_sub, max_sub, shapes, shift_states, min_rate=None, duals=False):
     """Floquet modes from the step propagators ``p``; also ``max ||Phi_k||`` and whether
-    the lifted roots split one per multiplier."""
+    the lifted roots split one per multiplier.  ``duals``: with the participation
+    factors from the adjoint solutions (:func:`_adjoint_participation`)."""
     n_steps, n = p.shape[0], p.shape[-1]
     k_sub = check_sub(k_sub, n_steps)
     max_sub = min(max(max_sub, k_sub), n_steps)
@@ -285,8 +319,10 @@ def _modes(p, period, k_sub, max_sub, shapes, shift_states):
     while True:
         stack, bounds, valid = group(p, k_sub)
         phis = tree_product(stack)
-        mu, blocks, split = lifted(phis)
-        smallest = np.abs(mu).min()
+        cut = root_cut(min_rate, period, k_sub)
+        mu, blocks, split, *lblocks = lifted(phis, cut, left=duals)
+        # with min_rate, the roots below the cut need not be resolved
+        smallest = max(np.abs(mu).min(), cut)
         # a root is trusted when it is above MIN_ROOT and its round-off,
         # eps ||Z|| / |mu| relative (||Z|| = the largest ||Phi_k||), is <= 1e-6
         with np.errstate(over="ignore"):     # an inf norm: no K resolves it (below)
@@ -314,6 +350,15 @@ def _modes(p, period, k_sub, max_sub, shapes, shift_states):
         x[:, step] = cur
         cur = stack[:, step] @ cur
     x = x[valid]                                   # (n_steps, n, m), in time order
+    if duals:
+        # adjoint solutions y = Phi(psi, psi_k)^-H u_k on the same grid
+        y = np.empty((*valid.shape, n, n), dtype=complex)
+        inv_h = np.swapaxes(np.linalg.inv(stack), -1, -2).conj()
+        cur = lblocks[0].astype(complex)
+        for step in range(valid.shape[1]):
+            y[:, step] = cur
+            cur = inv_h[:, step] @ cur
+        y = y[valid]
     h = period / n_steps
     psi = np.arange(n_steps) * h
     k_of = np.repeat(np.arange(k_sub), np.diff(bounds))
@@ -333,7 +378,14 @@ def _modes(p, period, k_sub, max_sub, shapes, shift_states):
     # the basis of harmonically pure modes instead
     for idx in _clusters(mu, np.abs(phis).max()):
         eta[idx] = eta[idx].mean()
-        per[..., idx] = _harmonic_basis(per[..., idx], eta[idx[0]].imag + harm * unit)
+        if not duals:
+            per[..., idx] = _harmonic_basis(per[..., idx], eta[idx[0]].imag + harm * unit)
+            continue
+        coef = _harmonic_combination(per[..., idx], eta[idx[0]].imag + harm * unit)
+        if coef is not None:
+            per[..., idx] = per[..., idx] @ coef
+            y[..., idx] = y[..., idx] @ np.linalg.inv(coef).conj().T
+    part = _adjoint_participation(y, per) if duals else None
 
     # dominant harmonic of the periodic part fixes the integer shift
     sel = slice(None) if shift_states is None else shift_states
@@ -348,5 +400,18 @@ def _modes(p, period, k_sub, max_sub, shapes, shift_states):
     with np.errstate(over="ignore"):   # a garbage root beyond resolution: inf, judged below
         multipliers = np.exp(k_sub * log_mu)
     return (sorted_result(eta, multipliers, per[0], period, psi if shapes else None,
-                           per if shapes else None, n_sub=k_sub, n_steps=n_steps),
+                          per if shapes else None, n_sub=k_sub, n_steps=n_steps,
+                          participation=part),
             float(np.linalg.norm(phis, axis=(1, 2)).max()), split)
+
+
+def _adjoint_participation(y, x):
+    """Participation factors ``<conj(y_k) x_k / y^H x>_psi`` of solutions ``x`` and
+    their adjoints ``y`` (n_steps, n, m).  ``y^H x`` is constant along a solution;
+    normalising at every step makes the result independent of any scalar factor
+    of either.  A root beyond resolution (a zero or overflowed shape) gets zeros."""
+    prod = y.conj() * x
+    with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+        pf = (prod / prod.sum(axis=1, keepdims=True)).mean(axis=0)
+    pf[:, ~np.isfinite(pf).all(axis=0)] = 0.0
+    return pf

@@ -15,23 +15,31 @@ import scipy.linalg
 from ._floquet_propagators import TWO_PI, as_numeric
 from .runtime import blas_limit
 
-__all__ = ["lifted", "lift", "select_roots", "warn_unsplit", "log_roots",
+__all__ = ["lifted", "lift", "select_roots", "root_cut", "warn_unsplit", "log_roots",
            "characteristic_multipliers"]
 
 
-def lifted(phis):
+def lifted(phis, cut=0.0, left=False):
     """Eigen-decomposition of the block-cyclic lift, one root per multiplier.
 
     Returns the selected roots ``mu`` (``mu**K`` are the multipliers), the
     eigenvector blocks ``v_k`` of shape (K, n, n) (``v_0`` is the monodromy
     eigenvector at psi = 0 and ``v_k = Phi_k ... Phi_1 v_0 / mu**k``) and
     whether the roots split into one per multiplier (False: some are at
-    round-off level and unreliable).
+    round-off level and unreliable); with ``cut > 0`` only the roots with
+    ``|mu| >= cut`` are judged (:func:`select_roots`).  ``left``: also the
+    blocks ``u_k`` of the left eigenvectors (``u_k = Phi_k^H u_{k+1} / conj(mu)``,
+    the adjoint solution at the start of sub-interval ``k``), as a fourth item.
     """
     k_sub, n = phis.shape[0], phis.shape[1]
-    mu, vec = scipy.linalg.eig(lift(phis))
-    keep, split = select_roots(mu, k_sub, n)
+    if left:
+        mu, lvec, vec = scipy.linalg.eig(lift(phis), left=True)
+    else:
+        mu, vec = scipy.linalg.eig(lift(phis))
+    keep, split = select_roots(mu, k_sub, n, cut)
     blocks = vec[:, keep].reshape(k_sub, n, n)
+    if left:
+        return mu[keep], blocks, split, lvec[:, keep].reshape(k_sub, n, n)
     return mu[keep], blocks, split
 
 
@@ -44,8 +52,15 @@ def lift(phis):
     return z
 
 
-def select_roots(mu, k_sub, n):
-    """Mask of one root ``mu`` per multiplier among the ``K n`` roots of the lift."""
+def select_roots(mu, k_sub, n, cut=0.0):
+    """Mask of one root ``mu`` per multiplier among the ``K n`` roots of the lift.
+
+    ``cut > 0``: roots with ``|mu| < cut`` need not be resolved (``min_rate`` of
+    :func:`tefcore.floquet.floquet_modes`); the window and the splitting are
+    decided by the others, and the deep ones fill the selection up to ``n``.
+    """
+    if cut > 0.0:
+        return _select_resolved(mu, k_sub, n, cut)
     # The K n eigenvalues are the K K-th roots mu w^j (w = exp(2 pi i / K)) of
     # every multiplier, so modulo 2 pi / K their angles collapse to n points.
     # Any half-open window of width 2 pi / K holds one root per multiplier;
@@ -67,6 +82,37 @@ def select_roots(mu, k_sub, n):
         keep = np.zeros_like(keep)
         keep[np.concatenate([inside, outside])] = True
     return keep, split
+
+
+def _select_resolved(mu, k_sub, n, cut):
+    """:func:`select_roots` judged on the roots with ``|mu| >= cut`` only."""
+    big = np.abs(mu) >= cut
+    sector = TWO_PI / k_sub
+    theta = np.angle(mu)
+    if big.any():
+        s = np.sort(np.mod(theta[big], sector))
+        gaps = np.diff(np.append(s, s[0] + sector))
+        start = s[np.argmax(gaps)] + 0.5 * gaps.max()
+    else:
+        start = 0.0
+    window = np.mod(theta - start, TWO_PI) < sector
+    keep = window & big
+    split = keep.sum() * k_sub == big.sum() and keep.sum() <= n
+    # fill with the deep roots: the largest in the window first, then the others
+    deep = np.flatnonzero(~big & window)[np.argsort(-np.abs(mu[~big & window]))]
+    rest = np.flatnonzero(~big & ~window)[np.argsort(-np.abs(mu[~big & ~window]))]
+    fill = np.concatenate([deep, rest])[:max(n - keep.sum(), 0)]
+    keep[fill] = True
+    if keep.sum() > n:                      # not split: keep the n largest of them
+        idx = np.flatnonzero(keep)[np.argsort(-np.abs(mu[keep]))][:n]
+        keep = np.zeros_like(keep)
+        keep[idx] = True
+    return keep, bool(split)
+
+
+def root_cut(min_rate, period, k_sub):
+    """``|mu|`` of a root at ``min_rate`` with ``K`` sub-intervals (0: no cut)."""
+    return 0.0 if min_rate is None else float(np.exp(min_rate * period / k_sub))
 
 
 def warn_unsplit(stacklevel=3):

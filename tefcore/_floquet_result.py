@@ -218,14 +218,15 @@ def _normalise(v):
 
 
 def sorted_result(eta, multipliers, vectors, period, psi=None, shapes=None, n_sub=None,
-                   n_steps=None):
+                  n_steps=None, participation=None):
     order = np.lexsort((eta.real, np.round(eta.imag, 9)))   # frequency ties: by damping
     scale = _normalise(vectors)[order]
     return FloquetResult(
         exponents=eta[order], multipliers=multipliers[order],
         eigenvectors=vectors[:, order] * scale, period=period, psi=psi,
         shapes=None if shapes is None else shapes[..., order] * scale, n_sub=n_sub,
-        n_steps=n_steps)
+        n_steps=n_steps, participation=None if participation is None
+        else participation[:, order])
 
 
 @blas_limit()

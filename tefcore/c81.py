@@ -70,6 +70,7 @@ from .c81_model import (
     C81Airfoil,
     C81FlapTable,
     example_deck_path,
+    xfoil_deck_path,
     generate_flap_deck,
     make_example_deck,
 )
@@ -89,6 +90,7 @@ __all__ = [
     "C81RangeError",
     "C81RangeWarning",
     "example_deck_path",
+    "xfoil_deck_path",
     "format_c81",
     "generate_flap_deck",
     "make_example_deck",

@@ -129,6 +129,13 @@ def cmd_stability(args) -> int:
         _write_csv(table, args.csv)
     print(table.to_string(index=False, float_format=lambda v: f"{v:.4f}"))
     print("trim: " + ", ".join(f"{k}={v:.4g}" for k, v in res.trim.items()))
+    if res.aero_modes is not None:
+        am = res.aero_modes
+        kinds = ", ".join(f"{(am['kind'] == k).sum()} {k}" for k in ("wake", "inflow")
+                          if (am["kind"] == k).any())
+        print(f"aerodynamic-state roots (no mode label): {kinds}; least stable "
+              f"{am['real_part'].max():+.4f} /rev" if len(am) else
+              "aerodynamic-state roots: none")
     return 0
 
 

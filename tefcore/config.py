@@ -481,8 +481,21 @@ class ModelConfig(Section):
               "Trailing-edge flap: 'dynamic' (flap dof with actuator) or 'none' (no flap, "
               "plain airfoil: the paper's baseline rotor).", "str", choices=("dynamic", "none")),
         Param("inflow", "dimensionless", "linear", "",
-              "Inflow: 'linear' (uniform momentum in hover, Drees in forward flight) or "
-              "'uniform'.", "str", choices=("linear", "uniform")),
+              "Inflow: 'linear' (uniform momentum in hover, Drees in forward flight), "
+              "'uniform', or 'dynamic' (Pitt-Peters: steady part in the trim, three "
+              "perturbation states in the stability analysis).", "str",
+              choices=("linear", "uniform", "dynamic")),
+        Param("aero", "dimensionless", "quasi_steady", "",
+              "Unsteadiness of the section airloads (with either aero_model): "
+              "'quasi_steady' (Theodorsen with C(k) = 1) or 'unsteady' (finite-state shed "
+              "wake, model.wake_states states per aerodynamic station).", "str",
+              choices=("quasi_steady", "unsteady")),
+        Param("wake", "dimensionless", "fitted", "",
+              "Shed-wake model of model.aero = 'unsteady': 'fitted' (real poles fitted to "
+              "Theodorsen's C(k)) or 'peters' (Peters' published constants).", "str",
+              choices=("fitted", "peters")),
+        Param("wake_states", "dimensionless", 4, "[1, 10]",
+              "Shed-wake states per aerodynamic station (model.aero = 'unsteady').", "int"),
         Param("n_azimuth", "dimensionless", 24, "[8, 240]",
               "Azimuth collocation points of the harmonic-balance trim.", "int"),
         Param("n_floquet_steps", "dimensionless", 72, "[8, 5000]",

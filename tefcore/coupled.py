@@ -23,13 +23,14 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from .aero_states import ShedWake, rotating_inflow_damping
 from .beam_element import gauss_legendre
 from .blade import blade_modes, pitch_function, rotor_units
 from .flap_dynamics import flap_properties, propeller_moment
 from .section_inertia import check_coupled_mass
 
 __all__ = ["FLAP_PIECES", "RESIDUAL_PIECES", "TRACKING_STATIONS", "Controls",
-           "CoupledModel", "coupled_model", "jacobian_blocks", "section_model"]
+           "CoupledModel", "coupled_model", "section_model"]
 
 
 def section_model(cfg):
@@ -101,7 +102,7 @@ class CoupledModel:
 
     Build it with :func:`coupled_model`.
 
-    Attributes
+    Parameters
     ----------
     cfg : tefcore.config.Config
         The configuration.
@@ -133,6 +134,11 @@ class CoupledModel:
         The section aerodynamics (:func:`section_model`).
     scale : dict
         The reference scales of the nondimensionalisation.
+    wake : tefcore.aero_states.ShedWake or None
+        Shed-wake states of the aerodynamic stations (``model.aero = "unsteady"``).
+    dynamic_inflow : bool
+        Pitt-Peters perturbation states in the linearisation
+        (``model.inflow = "dynamic"``).
     """
 
     cfg: object
@@ -154,10 +160,30 @@ class CoupledModel:
     flap: dict = field(default_factory=dict)   # nondimensional flap properties
     aero: object = None
     scale: dict = field(default_factory=dict)
+    wake: ShedWake | None = None  # shed-wake states (model.aero = "unsteady")
+    dynamic_inflow: bool = False  # Pitt-Peters perturbation states (model.inflow = "dynamic")
 
     @property
     def n_dof(self) -> int:
+        """Blade modes and flap: the second-order coordinates."""
         return self.n_modes + int(self.has_flap)
+
+    @property
+    def n_wake(self) -> int:
+        """Shed-wake states (first-order, after the coordinates; station-major)."""
+        return 0 if self.wake is None else self.wake.n_states
+
+    @property
+    def n_inflow(self) -> int:
+        """Dynamic-inflow perturbation states ``nu_0, nu_R, nu_I`` (linearisation only)."""
+        return 3 if self.dynamic_inflow else 0
+
+    @property
+    def state_labels(self) -> list[str]:
+        """Labels of the first-order aerodynamic states, in their order."""
+        n = 0 if self.wake is None else self.wake.n_per_station
+        wake = [f"wake {i // n} {i % n}" for i in range(self.n_wake)]
+        return wake + (["inflow 0", "inflow R", "inflow I"] if self.dynamic_inflow else [])
 
     @property
     def labels(self) -> list[str]:
@@ -213,7 +239,8 @@ class CoupledModel:
         # the rates do not depend on x: (len(psi), 1) columns that broadcast
         return controls.collective + twist[None, :] + cyc, cyc_d, -cyc
 
-    def kinematics(self, psi, q, qd, qdd, controls: Controls, inflow, x=None) -> dict:
+    def kinematics(self, psi, q, qd, qdd, controls: Controls, inflow, x=None,
+                   inflow_perturbation=None) -> dict:
         """Section motion and velocities at azimuths ``psi`` and stations ``x``.
 
         Blade fields and their psi-derivatives, the section pitch
@@ -221,7 +248,8 @@ class CoupledModel:
         ``U_T = x + mu sin psi + v*``, ``U_P = lambda + w* + mu (w' + beta_p) cos psi``,
         the inflow angle ``arctan(U_P/U_T)`` (kept in (-pi/2, pi/2) for
         reverse flow) and the speed. Arrays are (len(psi), len(x)); ``x``
-        defaults to the model's aerodynamic stations.
+        defaults to the model's aerodynamic stations.  ``inflow_perturbation``
+        (len(psi), len(x)) is added to ``lambda`` (the dynamic-inflow states).
         """
         if x is None:
             x, stack, twist = self.x, self.shape_stack, None
@@ -248,6 +276,8 @@ class CoupledModel:
         k["ut"] = x[None, :] + mu * np.sin(psi)[:, None] + k["vd"]
         k["up"] = (inflow(x[None, :], psi[:, None]) + k["wd"]
                    + mu * k["slope"] * np.cos(psi)[:, None])
+        if inflow_perturbation is not None:
+            k["up"] = k["up"] + inflow_perturbation
         k["inflow_angle"] = np.arctan(k["up"] / k["ut"])
         k["speed"] = np.hypot(k["ut"], k["up"])
         # cos and sin of the inflow angle without trigonometry (it lies in
@@ -286,10 +316,40 @@ class CoupledModel:
         (rows: blade modes, then the flap equation); their sum is the
         residual of :meth:`evaluate`.  The mechanism diagnostics
         (:mod:`tefcore.mechanism`) differentiate each piece separately.
+
+        Aerodynamic states (docs/theory.md 6.2): with shed-wake states the
+        rows of ``q`` after the ``n_dof`` coordinates are the wake states
+        (``qd`` their rates; ``qdd`` is not read there), then, in a
+        linearisation with an :class:`~tefcore.aero_states.InflowLinearization`,
+        the three dynamic-inflow perturbations.  The pieces then have a row per
+        coordinate and state: the quasi-steady airloads at the instantaneous
+        angle of attack, the ``shed wake ...`` pieces (the change of the loads
+        by the wake's downwash ``lambda_0``), and the state equations
+        (``shed wake dynamics``, ``inflow dynamics``, ``inflow forcing``).
+        With dynamic inflow ``thrust`` has two rows: the blade's ``C_T/sigma``
+        and its first moment (stations weighted by ``x``).
         """
-        cfg, sh, nm = self.cfg, self.shapes, self.n_modes
+        cfg, nm = self.cfg, self.n_modes
         psi = np.asarray(psi, float)
-        kin = self.kinematics(psi, q, qd, qdd, controls, inflow)
+        nd, n_rows = self.n_dof, q.shape[0]
+        states = wake = nu = None
+        if n_rows != nd:
+            if n_rows not in (nd + self.n_wake, nd + self.n_wake + self.n_inflow):
+                raise ValueError(f"{n_rows} rows of coordinates and states; this model has "
+                                 f"{nd} coordinates, {self.n_wake} wake and {self.n_inflow} "
+                                 "inflow states")
+            states, rates = q[nd:], qd[nd:]
+            q, qd, qdd = q[:nd], qd[:nd], qdd[:nd]
+            if self.n_wake:
+                wake = (self.wake.split(states[:self.n_wake]),
+                        self.wake.split(rates[:self.n_wake]))
+            if states.shape[0] > self.n_wake:
+                nu = (states[self.n_wake:], rates[self.n_wake:])
+        elif self.n_wake:
+            raise ValueError(f"this model has {self.n_wake} shed-wake states: pass them after "
+                             f"the {nd} coordinates")
+        kin = self.kinematics(psi, q, qd, qdd, controls, inflow, inflow_perturbation=(
+            None if nu is None else nu[0][0][:, None] + self.x[None, :] * nu[0][1][:, None]))
         w, wdd = kin["w"], kin["wdd"]
         big_theta, big_theta_d, big_theta_dd = kin["theta"], kin["theta_d"], kin["theta_dd"]
         qb, qbd, qbdd = q[:nm], qd[:nm], qdd[:nm]
@@ -302,18 +362,83 @@ class CoupledModel:
         speed = kin["speed"]
         sign = np.sign(kin["ut"])                  # reverse flow flips the loads
         sc = self.scale
-        out = self.aero.loads(alpha=big_theta - kin["inflow_angle"],
-                              alpha_rate=big_theta_d * sc["omega"],
-                              alpha_accel=big_theta_dd * sc["omega"] ** 2,
-                              plunge_rate=0.0, plunge_accel=wdd * sc["accel"],
-                              delta=dl, delta_rate=dld * sc["omega"],
-                              delta_accel=dldd * sc["omega"] ** 2,
-                              velocity=speed * sc["speed"], density=cfg.rotor.air_density,
-                              chord=cfg.rotor.chord, axis=cfg.rotor.elastic_axis,
-                              mach=speed * (sc["speed"] / cfg.rotor.speed_of_sound),
-                              # a NaN here surfaces in the residual, which the
-                              # trim checks; the configuration is validated
-                              check_finite=False)
+        section = dict(alpha=big_theta - kin["inflow_angle"],
+                       alpha_rate=big_theta_d * sc["omega"],
+                       alpha_accel=big_theta_dd * sc["omega"] ** 2,
+                       plunge_rate=0.0, plunge_accel=wdd * sc["accel"],
+                       delta=dl, delta_rate=dld * sc["omega"],
+                       delta_accel=dldd * sc["omega"] ** 2,
+                       velocity=speed * sc["speed"], density=cfg.rotor.air_density,
+                       chord=cfg.rotor.chord, axis=cfg.rotor.elastic_axis,
+                       mach=speed * (sc["speed"] / cfg.rotor.speed_of_sound),
+                       # a NaN here surfaces in the residual, which the
+                       # trim checks; the configuration is validated
+                       check_finite=False)
+        out = self.aero.loads(**section)
+        n_psi = psi.size
+
+        def blade_rows(values):
+            arr = np.zeros((n_rows, n_psi))
+            arr[:nm] = values
+            return arr
+
+        pieces, fz = self._airload_pieces(out, kin, sign, blade_rows, "airload")
+        pieces = {
+            "blade inertia": blade_rows(self.m_s @ qbdd),
+            "blade stiffness": blade_rows(self.k_s @ qb),
+            "blade structural damping": blade_rows(self.d_s @ qbd),
+            "blade Coriolis": blade_rows(self.g_s @ qbd),
+            **pieces}
+        if wake is not None:
+            # the wake's downwash lowers the angle of attack of the static loads
+            upwash = self.wake.airfoil.upwash(
+                alpha=section["alpha"], alpha_rate=section["alpha_rate"], plunge_rate=0.0,
+                delta=dl, delta_rate=section["delta_rate"], velocity=section["velocity"],
+                chord=cfg.rotor.chord, axis=cfg.rotor.elastic_axis) / sc["speed"]
+            lam0 = self.wake.induced(upwash, wake[0])
+            lagged = self.aero.loads(**{**section, "alpha": section["alpha"]
+                                        - np.arctan(lam0 / speed)})
+            shed, fz_shed = self._airload_pieces({k: lagged[k] - out[k] for k in out}, kin,
+                                                 sign, blade_rows, "shed wake")
+            pieces.update(shed)
+            fz = fz + fz_shed
+            rows = np.zeros((n_rows, n_psi))
+            rows[nd:nd + self.n_wake] = self.wake.join(
+                self.wake.residual(wake[0], wake[1], upwash, speed))
+            pieces["shed wake dynamics"] = rows
+        thrust = fz.sum(axis=1) * sc["ct_sigma"]
+        if self.has_flap:
+            # the flap's inertial terms exist only on the flap span
+            hinge = sign[:, fs] * out["hinge_moment"][:, fs] / sc["moment"]
+            on = {k: kin[k][:, fs] for k in ("theta", "theta_dd", "wdd", "vdd", "v", "slope",
+                                             "dv", "dvd", "dwd")}
+            wf = self.w[None, fs]
+            react = self._flap_reactions(on["theta"], dl[:, fs], dld[:, fs], dldd[:, fs], wf)
+            flap = self._flap_equation(psi, on, dl[:, fs], dldd[:, fs], q[nm], qd[nm],
+                                       hinge, wf)
+            for name in FLAP_PIECES:
+                arr = np.zeros((n_rows, n_psi))
+                if name in react:
+                    arr[:nm] = react[name].T
+                if name in flap:
+                    arr[nm] = flap[name]
+                pieces[name] = arr
+            if wake is not None:
+                pieces["shed wake hinge moment"] = np.zeros((n_rows, n_psi))
+                pieces["shed wake hinge moment"][nm] = -(
+                    sign[:, fs] * (lagged["hinge_moment"] - out["hinge_moment"])[:, fs]
+                    / sc["moment"] * wf).sum(axis=1)
+        if self.dynamic_inflow:
+            moment = (fz * self.x[None, :]).sum(axis=1) * sc["ct_sigma"]
+            if nu is not None:
+                pieces.update(self._inflow_rows(psi, nu, thrust, moment, inflow, n_rows))
+            thrust = np.stack([thrust, moment])
+        return pieces, thrust
+
+    def _airload_pieces(self, out, kin, sign, blade_rows, prefix):
+        """Airload pieces on the blade rows from section loads ``out`` (N/m, N); also
+        the normal force per station (rotor units, quadrature weights included)."""
+        sc, sh = self.scale, self.shapes
         lift = sign * out["lift"] / sc["force"]
         drag = sign * out["drag"] / sc["force"]
         moment = sign * out["moment"] / sc["moment"]
@@ -321,40 +446,23 @@ class CoupledModel:
         wq = self.w[None, :]
         fz = (lift * cphi - drag * sphi) * wq
         fy = -(lift * sphi + drag * cphi) * wq
-        n_psi = psi.size
+        return {f"{prefix} normal force": blade_rows(-(fz @ sh["w"]).T),
+                f"{prefix} in-plane force": blade_rows(-(fy @ sh["v"]).T),
+                f"{prefix} pitching moment": blade_rows(-((moment * wq) @ sh["phi"]).T)}, fz
 
-        def blade_rows(values):
-            arr = np.zeros((self.n_dof, n_psi))
-            arr[:nm] = values
-            return arr
-
-        pieces = {
-            "blade inertia": blade_rows(self.m_s @ qbdd),
-            "blade stiffness": blade_rows(self.k_s @ qb),
-            "blade structural damping": blade_rows(self.d_s @ qbd),
-            "blade Coriolis": blade_rows(self.g_s @ qbd),
-            "airload normal force": blade_rows(-(fz @ sh["w"]).T),
-            "airload in-plane force": blade_rows(-(fy @ sh["v"]).T),
-            "airload pitching moment": blade_rows(-((moment * wq) @ sh["phi"]).T),
-        }
-        thrust = fz.sum(axis=1) * sc["ct_sigma"]
-        if self.has_flap:
-            # the flap's inertial terms exist only on the flap span
-            hinge = sign[:, fs] * out["hinge_moment"][:, fs] / sc["moment"]
-            on = {k: kin[k][:, fs] for k in ("theta", "theta_dd", "wdd", "vdd", "v", "slope",
-                                             "dv", "dvd", "dwd")}
-            wf = wq[:, fs]
-            react = self._flap_reactions(on["theta"], dl[:, fs], dld[:, fs], dldd[:, fs], wf)
-            flap = self._flap_equation(psi, on, dl[:, fs], dldd[:, fs], q[nm], qd[nm],
-                                       hinge, wf)
-            for name in FLAP_PIECES:
-                arr = np.zeros((self.n_dof, n_psi))
-                if name in react:
-                    arr[:nm] = react[name].T
-                if name in flap:
-                    arr[nm] = flap[name]
-                pieces[name] = arr
-        return pieces, thrust
+    def _inflow_rows(self, psi, nu, thrust, moment, inflow, n_rows):
+        """Pieces of the dynamic-inflow perturbation equations (docs/theory.md 6.2)."""
+        lin = getattr(inflow, "perturbation", None)
+        if lin is None:
+            raise ValueError("dynamic-inflow states need the inflow's perturbation equations "
+                             "(tefcore.aero_states.InflowLinearization)")
+        (state, rate), first = nu, n_rows - 3
+        damping = rotating_inflow_damping(lin, psi)
+        dyn, force = np.zeros((2, n_rows, psi.size))
+        dyn[first:] = lin.mass @ rate + np.einsum("pij,jp->ip", damping, state)
+        force[first] = -inflow.solidity * thrust
+        force[first + 1] = -inflow.solidity * moment
+        return {"inflow dynamics": dyn, "inflow forcing": force}
 
     def _flap_reactions(self, th, dl, dld, dldd, wf):
         """delta-dependent inertial loads of the flap on the blade modes, by piece.
@@ -419,9 +527,15 @@ FLAP_PIECES = ("flap inertia", "flap inertial coupling to bending",
                "flap inertial coupling to torsion", "flap centrifugal", "flap Coriolis",
                "airload hinge moment", "actuator spring", "actuator damper")
 #: Every piece of :meth:`CoupledModel.residual_pieces`, in its order.
+#: Pieces of the shed wake (model.aero = "unsteady"): the change of the loads by
+#: the wake's downwash, and the wake states' own equations.
+WAKE_PIECES = ("shed wake normal force", "shed wake in-plane force",
+               "shed wake pitching moment", "shed wake hinge moment", "shed wake dynamics")
+#: Pieces of the dynamic-inflow perturbation equations (linearisation only).
+INFLOW_PIECES = ("inflow dynamics", "inflow forcing")
 RESIDUAL_PIECES = ("blade inertia", "blade stiffness", "blade structural damping",
                    "blade Coriolis", "airload normal force", "airload in-plane force",
-                   "airload pitching moment") + FLAP_PIECES
+                   "airload pitching moment") + FLAP_PIECES + WAKE_PIECES + INFLOW_PIECES
 
 
 def coupled_model(cfg, collective: float = 0.0, modes=None) -> CoupledModel:
@@ -464,6 +578,15 @@ def coupled_model(cfg, collective: float = 0.0, modes=None) -> CoupledModel:
                 "first_moment": fp.first_moment / (m0 * rad),
                 "hinge_from_ea": fp.hinge_from_ea / rad, "span": fl.span,
                 "k_a": units.spring(fp.k_a), "c_a": units.damper(fp.c_a)}
+    aero = section_model(cfg)
+    wake = None
+    if cfg.model.aero == "unsteady":
+        from .unsteady_aero import UnsteadyFlapAirfoil
+
+        wake = ShedWake(UnsteadyFlapAirfoil(aero.chord_ratio, aero.overhang,
+                                            n_states=cfg.model.wake_states,
+                                            wake=cfg.model.wake, static_model=aero),
+                        radius_over_semichord=2 * rad / r.chord, n_stations=x.size)
     model = CoupledModel(cfg=cfg, modes=modes, n_modes=n_m, has_flap=has_flap, x=x, w=w,
                          flap_stations=slice(n, 2 * n),
                          shape_stack=np.concatenate([shapes[f] for f in _FIELDS], axis=0).T,
@@ -471,123 +594,7 @@ def coupled_model(cfg, collective: float = 0.0, modes=None) -> CoupledModel:
                          m_s=modes.modal_mass,
                          c_s=modes.modal_damping + modes.modal_gyroscopic,
                          k_s=modes.modal_stiffness, d_s=modes.modal_damping,
-                         g_s=modes.modal_gyroscopic, flap=flap, aero=section_model(cfg),
-                         scale=scale)
+                         g_s=modes.modal_gyroscopic, flap=flap, aero=aero, scale=scale,
+                         wake=wake, dynamic_inflow=cfg.model.inflow == "dynamic")
     check_coupled_mass(model)       # blade modes + flap: positive definite (docs/theory.md 2.7)
     return model
-
-
-def _stack_fields(objs, cls, names, n_psi):
-    """One ``cls`` whose fields are per-azimuth columns, block after block."""
-    return cls(*(np.repeat(np.array([getattr(o, f) for o in objs], float), n_psi)[:, None]
-                 for f in names))
-
-
-def jacobian_blocks(model: CoupledModel, psi, q, qd, qdd, controls, inflow, *,
-                    step: float = 1e-7, scheme: str = "forward", extra=(), pieces=False):
-    """Per-azimuth derivatives of the residual and thrust w.r.t. ``q, q*, q**``.
-
-    The residual at one azimuth depends only on the motion there, so every
-    perturbed motion is stacked along the azimuth axis and the model is
-    evaluated once for all of them (numpy overhead paid once, not 3n times).
-
-    Parameters
-    ----------
-    extra : sequence of (Controls, Inflow), optional
-        Further controls and inflows to evaluate at the unperturbed motion in
-        the same stacked call (the trim's control columns).
-    pieces : bool
-        Differentiate each named piece of the residual
-        (:meth:`CoupledModel.residual_pieces`) separately: ``jac`` is then a
-        dict piece -> array, whose sum is the Jacobian of the residual.
-    model : CoupledModel
-        The coupled model.
-    psi : numpy.ndarray
-        Azimuths [rad].
-    q, qd, qdd : numpy.ndarray
-        Coordinates and their psi-derivatives at ``psi``, ``(n_dof, n_psi)``.
-    controls : Controls
-        Pitch controls.
-    inflow : tefcore.inflow.Inflow
-        Inflow.
-    step : float, optional
-        Finite-difference step (rotor units).
-    scheme : {"forward", "central"}, optional
-        Finite-difference scheme.
-
-    Returns
-    -------
-    jac : ndarray, shape (3, n_psi, n, n), or dict of them
-        ``d R_i / d q_j`` for ``q`` (0), ``q*`` (1), ``q**`` (2) at each azimuth.
-    dthrust : ndarray, shape (3, n_psi, n)
-        The same for the thrust contribution.
-    base : tuple
-        ``(R, thrust)`` at the unperturbed motion (forward scheme) or None;
-        with ``extra``, a third item: the list of ``(R, thrust)`` for each
-        (residuals summed over the pieces).
-    """
-    if scheme not in ("central", "forward"):
-        raise ValueError(f"scheme must be 'central' or 'forward', got {scheme!r}")
-    psi = np.atleast_1d(np.asarray(psi, float))
-    n, m = q.shape
-    signs = (1.0,) if scheme == "forward" else (1.0, -1.0)
-    n_pert = 3 * n * len(signs)
-    n_base = int(scheme == "forward") + len(extra)
-    n_blk = n_pert + n_base
-    motion = [np.tile(a, (1, n_blk)) for a in (q, qd, qdd)]
-    # block (s, which, j) = (s * 3 + which) * n + j perturbs coordinate j of
-    # q, q* or q** by sign s: its m columns in row j
-    rows = np.arange(n)[:, None]
-    for s_i, sgn in enumerate(signs):
-        for which in range(3):
-            cols = ((s_i * 3 + which) * n + rows) * m + np.arange(m)
-            motion[which][rows, cols] += sgn * step
-    if extra:
-        # controls and inflow become per-azimuth columns (they broadcast in
-        # evaluate): the base values for the perturbed motions, then extras
-        base_pairs = [(controls, inflow)] * (n_pert + int(scheme == "forward"))
-        pairs = base_pairs + list(extra)
-        controls = _stack_fields([p[0] for p in pairs], Controls,
-                                 ("collective", "cyclic_cos", "cyclic_sin"), m)
-        inflow = _stack_fields([p[1] for p in pairs], type(inflow),
-                               ("mean_induced", "freestream", "kx", "ky"), m)
-    args = (np.tile(psi, n_blk), *motion, controls, inflow)
-    if pieces:
-        parts, thr = model.residual_pieces(*args)
-        jac = {name: _difference(r.reshape(n, n_blk, m), n, step, scheme)[0]
-               for name, r in parts.items()}
-        res = sum(parts.values())
-    else:
-        res, thr = model.evaluate(*args)
-    res = res.reshape(n, n_blk, m)
-    thr = thr.reshape(n_blk, m)
-    k = 3 * n
-    if not pieces:
-        jac, r0 = _difference(res, n, step, scheme)
-    else:
-        r0 = res[:, k] if scheme == "forward" else None
-    if scheme == "forward":
-        t0 = thr[k]
-        dthr = (thr[:k] - t0) / step
-        base = (r0, t0)
-    else:
-        dthr = (thr[:k] - thr[k:n_pert]) / (2 * step)
-        base = None
-    if extra:
-        first = n_blk - len(extra)
-        base = (base or (None, None)) + ([(res[:, b], thr[b]) for b in range(first, n_blk)],)
-    return jac, dthr.reshape(3, n, m).transpose(0, 2, 1), base
-
-
-def _difference(res, n, step, scheme):
-    """Finite-difference Jacobian blocks (3, n_psi, n, n) from stacked residuals
-    ``res`` (n, n_blocks, n_psi); also the unperturbed residual (forward)."""
-    m = res.shape[-1]
-    k = 3 * n
-    if scheme == "forward":
-        r0 = res[:, k]
-        dres = (res[:, :k] - r0[:, None]) / step
-    else:
-        r0 = None
-        dres = (res[:, :k] - res[:, k:2 * k]) / (2 * step)
-    return dres.reshape(n, 3, n, m).transpose(1, 3, 0, 2), r0

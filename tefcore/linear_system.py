@@ -28,7 +28,8 @@ import numpy as np
 
 from . import floquet
 
-__all__ = ["SecondOrderSystem", "combine", "state_matrix", "trig_interpolate"]
+__all__ = ["STATE_MIN_RATE", "SecondOrderSystem", "augmented_state_matrix", "combine",
+           "state_matrix", "trig_interpolate"]
 
 
 def trig_interpolate(samples, psi, derivative: int = 0) -> np.ndarray:
@@ -75,23 +76,54 @@ def trig_interpolate(samples, psi, derivative: int = 0) -> np.ndarray:
     return np.real(basis @ flat).reshape((psi.size,) + s.shape[1:])
 
 
+#: With first-order (aerodynamic) states, roots damped faster than this
+#: (per radian of azimuth) need not be resolved by the Floquet lifting
+#: (``min_rate`` of :func:`tefcore.floquet.floquet_modes`): the fastest shed-wake
+#: states of a blade decay at -30 /rev and would drive the lifting to 16
+#: sub-intervals; -8 /rev keeps 8 (measured at MDART mu = 0.3 with the wake:
+#: every root above -12 /rev within 1.4e-6 of the 16-interval result, 0.3 s
+#: instead of 1.6 s per lift), below every blade or flap root of the figures.
+STATE_MIN_RATE = -8.0
+
+
 @dataclass(frozen=True)
 class SecondOrderSystem:
     """``M(psi) q** + C(psi) q* + K(psi) q = 0`` from equally spaced samples.
 
+    With ``n_first > 0`` the last ``n_first`` of the coordinates ``y = [q, z]``
+    are first-order states ``z`` (the aerodynamic states, docs/theory.md 6.2):
+    the matrices are ``(n + r) x (n + r)`` with zero ``z`` columns in ``M``,
+    and the state is ``x = [q, q*, z]`` with the descriptor form
+    ``E x* + F x = 0``,
+
+    ``E = [[I, 0, 0], [0, M_qq, C_qz], [0, M_zq, C_zz]]``,
+    ``F = [[0, -I, 0], [K_qq, C_qq, K_qz], [K_zq, C_zq, K_zz]]``,
+
+    ``A = -E^-1 F``.  The second-order users (shapes ``[q; q*]`` first,
+    :attr:`n_dof` coordinates) are unchanged.
+
     Attributes
     ----------
-    m, c, k : ndarray, shape (N, n, n)
+    m, c, k : ndarray, shape (N, n + r, n + r)
         Samples at ``psi_j = 2 pi j / N`` (``N = 1``: constant coefficients).
+    n_first : int
+        ``r``, the first-order states among the coordinates (last rows and columns).
     """
 
     m: np.ndarray
     c: np.ndarray
     k: np.ndarray
+    n_first: int = 0
 
     @property
     def n_dof(self) -> int:
-        return self.m.shape[-1]
+        """Second-order coordinates ``n``."""
+        return self.m.shape[-1] - self.n_first
+
+    @property
+    def n_states(self) -> int:
+        """Length of the state ``[q, q*, z]``: ``2 n + r``."""
+        return 2 * self.n_dof + self.n_first
 
     @property
     def periodic(self) -> bool:
@@ -109,27 +141,41 @@ class SecondOrderSystem:
         return tuple(trig_interpolate(a, psi, derivative) for a in (self.m, self.c, self.k))
 
     def state_matrix(self, psi) -> np.ndarray:
-        """``A(psi) = [[0, I], [-M^-1 K, -M^-1 C]]``, shape (len(psi), 2n, 2n)."""
+        """``A(psi) = [[0, I], [-M^-1 K, -M^-1 C]]``, shape (len(psi), 2n, 2n);
+        with first-order states ``-E^-1 F`` (2n + r square)."""
         m, c, k = self.matrices(psi)
+        if self.n_first:
+            return augmented_state_matrix(m, c, k, self.n_dof)
         return state_matrix(m, c, k)
 
     def modes(self, n_steps: int = 72, n_sub: int = 4, shapes: bool = False,
-              on_inaccurate: str = "warn"):
+              on_inaccurate: str = "warn", participation: bool | None = None):
         """Floquet modes of the system (direct eigenanalysis if constant).
 
         Forward flight: fourth-order Magnus steps (doubled until the
         exponents' error estimates meet the tolerance), lifted sub-intervals
         and the integer frequency shift decided by the displacements
         (:func:`tefcore.floquet.floquet_modes`; ``on_inaccurate`` as there).
+        With first-order states, roots below :data:`STATE_MIN_RATE` need not
+        be resolved and (``participation``, default: with first-order states)
+        the participation factors come with the result, from the adjoint
+        solutions.
         Returns a :class:`tefcore.floquet.FloquetResult` with both members
         of each conjugate pair.
         """
         if not self.periodic:
             return floquet.constant_coefficient_modes(self.state_matrix([0.0])[0])
+        if self.n_first:
+            # the lift that STATE_MIN_RATE needs (exp(-8 * 2 pi / 8) > MIN_ROOT):
+            # start there rather than find it by a first, wasted, lift
+            n_sub = max(n_sub, 8)
         return floquet.floquet_modes(self.state_matrix, n_steps=n_steps, n_sub=n_sub,
                                      method="magnus", shapes=shapes,
                                      shift_states=slice(0, self.n_dof),
-                                     on_inaccurate=on_inaccurate)
+                                     on_inaccurate=on_inaccurate,
+                                     min_rate=STATE_MIN_RATE if self.n_first else None,
+                                     participation=(bool(self.n_first) if participation is None
+                                                    else participation))
 
 
 def combine(parts, scales=None) -> SecondOrderSystem:
@@ -152,7 +198,51 @@ def combine(parts, scales=None) -> SecondOrderSystem:
     m = sum(scales.get(t, 1.0) * p.m for t, p in parts.items())
     c = sum(scales.get(t, 1.0) * p.c for t, p in parts.items())
     k = sum(scales.get(t, 1.0) * p.k for t, p in parts.items())
-    return SecondOrderSystem(np.asarray(m), np.asarray(c), np.asarray(k))
+    first = {p.n_first for p in parts.values()}
+    if len(first) != 1:
+        raise ValueError(f"parts with different first-order states: {sorted(first)}")
+    return SecondOrderSystem(np.asarray(m), np.asarray(c), np.asarray(k), first.pop())
+
+
+def augmented_state_matrix(m, c, k, n):
+    """``A = -E^-1 F`` of a system with first-order states after ``n`` coordinates
+    (:class:`SecondOrderSystem`), stacked over the first axis.
+
+    Parameters
+    ----------
+    m, c, k : numpy.ndarray
+        Mass, damping and stiffness, ``(..., n + r, n + r)``: the first ``n``
+        rows and columns second-order coordinates, the last ``r`` first-order
+        states (their mass columns zero, their ``c`` block invertible).
+    n : int
+        Number of second-order coordinates.
+
+    Returns
+    -------
+    numpy.ndarray
+        ``(..., 2 n + r, 2 n + r)`` state matrix of ``[q, q*, z]``.
+
+    Examples
+    --------
+    ``q** + 4 q = z``, ``z* + 2 z = 0``: the oscillator and the state's own root.
+
+    >>> m = np.array([[[1.0, 0.0], [0.0, 0.0]]])
+    >>> c = np.array([[[0.0, 0.0], [0.0, 1.0]]])
+    >>> k = np.array([[[4.0, -1.0], [0.0, 2.0]]])
+    >>> ev = np.sort_complex(np.linalg.eigvals(augmented_state_matrix(m, c, k, 1)[0]))
+    >>> [(round(float(e.real), 12) + 0.0, round(float(e.imag), 12)) for e in ev]
+    [(-2.0, 0.0), (0.0, -2.0), (0.0, 2.0)]
+    """
+    size = m.shape[-1]
+    r = size - n
+    # rows of [q**; z*]: G [q**; z*] = -(K_y y + C_q q*), G = [[M_qq, C_qz], [M_zq, C_zz]]
+    g = np.concatenate([m[..., :, :n], c[..., :, n:]], axis=-1)
+    rhs = np.concatenate([k[..., :, :n], c[..., :, :n], k[..., :, n:]], axis=-1)
+    lower = -np.linalg.solve(g, rhs)                       # (..., n + r, 2n + r)
+    top = np.zeros(m.shape[:-2] + (n, 2 * n + r))
+    top[..., :, n:2 * n] = np.eye(n)
+    a = np.concatenate([top, lower], axis=-2)
+    return a
 
 
 def state_matrix(m, c, k):

@@ -40,18 +40,20 @@ import numpy as np
 import pandas as pd
 
 from .coupled import FLAP_PIECES
-from .linear_system import SecondOrderSystem, combine
+from .linear_system import SecondOrderSystem, augmented_state_matrix, combine
 from .runtime import blas_limit
 from .tracking import FollowResult, follow_root
 
-__all__ = ["FLUTTER_PARTICIPATION", "NOT_REMOVABLE", "TERMS", "MechanismResult",
+__all__ = ["FLUTTER_PARTICIPATION", "NOT_REMOVABLE", "STATE_TERMS", "TERMS", "MechanismResult",
            "coupling_homotopy", "energy_decomposition", "flutter_root", "linearized_terms",
            "mechanism", "tef_root"]
 
 #: Named terms of the linearised equations: name -> list of (residual piece,
-#: block).  Blocks: ``R`` blade rows/columns, ``F`` the flap's; ``"all"`` the
+#: block).  Blocks: ``R`` blade rows/columns, ``F`` the flap's, ``W`` the
+#: shed-wake states', ``V`` the dynamic-inflow states', ``*`` all; ``"all"`` the
 #: whole matrix.  Every (piece, block) of the residual belongs to exactly one
-#: term, so the terms add up to the linearised system (tested).
+#: term, so the terms add up to the linearised system (tested).  The
+#: aerodynamic states' terms exist only with those states (docs/theory.md 10.1).
 TERMS = {
     "blade inertia": [("blade inertia", "all")],
     "blade stiffness": [("blade stiffness", "all")],
@@ -77,11 +79,32 @@ TERMS = {
     "flap Coriolis": [("flap Coriolis", "all")],
     "actuator spring (k_a)": [("actuator spring", "all")],
     "actuator damper (c_a)": [("actuator damper", "all")],
+    "shed wake on blade airloads (1 - C)": [("shed wake normal force", "R*"),
+                                            ("shed wake in-plane force", "R*"),
+                                            ("shed wake pitching moment", "R*"),
+                                            ("shed wake normal force", "F*"),
+                                            ("shed wake in-plane force", "F*"),
+                                            ("shed wake pitching moment", "F*")],
+    "shed wake on hinge moment (1 - C)": [("shed wake hinge moment", "F*"),
+                                          ("shed wake hinge moment", "R*")],
+    "dynamic inflow on airloads": [("airload normal force", "RV"),
+                                   ("airload in-plane force", "RV"),
+                                   ("airload pitching moment", "RV"),
+                                   ("airload hinge moment", "FV")],
+    "shed wake dynamics": [("shed wake dynamics", "all")],
+    "inflow dynamics": [("inflow dynamics", "all")],
+    "inflow forcing (rotor loads)": [("inflow forcing", "all")],
 }
+#: Terms of the aerodynamic states (present only with ``model.aero = "unsteady"``
+#: or ``model.inflow = "dynamic"``).
+STATE_TERMS = ("shed wake on blade airloads (1 - C)", "shed wake on hinge moment (1 - C)",
+               "dynamic inflow on airloads", "shed wake dynamics", "inflow dynamics",
+               "inflow forcing (rotor loads)")
 #: Terms that are a coordinate's own inertia or the blade's structure:
 #: knocking them out leaves no mode to follow (a singular mass matrix, or a
 #: blade without stiffness), so no knockout is reported for them.
-NOT_REMOVABLE = ("blade inertia", "flap inertia (I_h)", "blade stiffness")
+NOT_REMOVABLE = ("blade inertia", "flap inertia (I_h)", "blade stiffness",
+                 "shed wake dynamics", "inflow dynamics")
 #: Least share of the flap's participation for a root to count as a flutter
 #: root of the flap: a tenth, so that a blade mode barely touched by the flap
 #: (shares of 1e-3 ... 1e-2 on MDART) is not named, while both partners of a
@@ -89,13 +112,19 @@ NOT_REMOVABLE = ("blade inertia", "flap inertia (I_h)", "blade stiffness")
 FLUTTER_PARTICIPATION = 0.1
 
 
-def _block(mat, block, nm):
+def _groups(model) -> dict:
+    """Row and column groups of the linearised system: R, F, W, V, *."""
+    nm, nd, nw = model.n_modes, model.n_dof, model.n_wake
+    return {"R": slice(0, nm), "F": slice(nm, nd), "W": slice(nd, nd + nw),
+            "V": slice(nd + nw, nd + nw + model.n_inflow), "*": slice(None)}
+
+
+def _block(mat, block, groups):
     """The part of ``mat`` (..., n, n) in a block, zero elsewhere."""
     out = np.zeros_like(mat)
-    rows = {"R": slice(0, nm), "F": slice(nm, None), "*": slice(None)}
     if block == "all":
         return mat.copy()
-    r, c = rows[block[0]], rows[block[1]]
+    r, c = groups[block[0]], groups[block[1]]
     out[..., r, c] = mat[..., r, c]
     return out
 
@@ -117,22 +146,27 @@ def linearized_terms(tr, psi=None) -> dict[str, SecondOrderSystem]:
         Terms present in the model (without a flap, the flap terms are
         absent); their sum is the linearised system.
     """
-    from .coupled import jacobian_blocks
+    from .residual_jacobian import jacobian_blocks
 
     model = tr.model
     if psi is None:
         psi = (np.zeros(1) if model.cfg.flight.advance_ratio == 0.0 else
                np.linspace(0, 2 * np.pi, model.cfg.model.n_azimuth, endpoint=False))
-    q, qd, qdd = tr.motion(psi)
-    jac, _, _ = jacobian_blocks(model, psi, q, qd, qdd, tr.controls, tr.inflow, step=1e-6,
-                                scheme="forward", pieces=True)
-    nm = model.n_modes
+    y, yd, ydd, inflow = tr.linear_point(psi)
+    jac, _, _ = jacobian_blocks(model, psi, y, yd, ydd, tr.controls, inflow, step=1e-6,
+                                scheme="forward", pieces=True, n_second=model.n_dof)
+    groups = _groups(model)
+    n_first = model.n_wake + model.n_inflow
     out = {}
     for name, parts in TERMS.items():
         if not model.has_flap and any(p in FLAP_PIECES for p, _ in parts):
             continue
-        mats = [sum(_block(jac[p][which], b, nm) for p, b in parts) for which in (2, 1, 0)]
-        out[name] = SecondOrderSystem(*mats)
+        # the aerodynamic states' terms: only with those states
+        if any(p not in jac for p, _ in parts) or any(
+                g in b and groups[g].start == groups[g].stop for _, b in parts for g in "WV"):
+            continue
+        mats = [sum(_block(jac[p][which], b, groups) for p, b in parts) for which in (2, 1, 0)]
+        out[name] = SecondOrderSystem(*mats, n_first=n_first)
     return out
 
 
@@ -146,12 +180,25 @@ def _positive(res):
     return keep.select(order)
 
 
+def _visible(res, n, basis):
+    """Roots and displacement shapes to follow; with first-order states only the
+    roots that move the blade or flap (an aerodynamic state decoupled from them,
+    e.g. by a knockout, has no shape to compare)."""
+    vec = res.eigenvectors[:n]
+    shapes = vec if basis is None else basis @ vec
+    if res.eigenvectors.shape[0] > 2 * n:
+        size = np.linalg.norm(shapes, axis=0)
+        keep = size > 1e-12 * size.max()
+        res, shapes = res.select(keep), shapes[:, keep]
+    return res, shapes
+
+
 def _solver(system_of_s, n, basis, n_steps):
     """``solve(s)`` for :func:`follow_root`: positive roots and displacement shapes."""
     def solve(s):
-        res = _positive(system_of_s(s).modes(n_steps=n_steps, n_sub=4))
-        vec = res.eigenvectors[:n]
-        return res.exponents, (vec if basis is None else basis @ vec)
+        res = _positive(system_of_s(s).modes(n_steps=n_steps, n_sub=4, participation=False))
+        res, shapes = _visible(res, n, basis)
+        return res.exponents, shapes
     return solve
 
 
@@ -160,6 +207,10 @@ def coupling_homotopy(system: SecondOrderSystem, n_blade: int, s: float) -> Seco
 
     ``s = 0`` is the uncoupled blade and the flap on its actuator (with its
     own aerodynamic and centrifugal springs); ``s = 1`` the coupled system.
+
+    Aerodynamic states (first-order, after the flap) go with the blade: their
+    couplings with the flap are scaled too, so at ``s = 0`` the flap has its
+    instantaneous airloads only (docs/theory.md 10.1).
 
     Parameters
     ----------
@@ -174,13 +225,17 @@ def coupling_homotopy(system: SecondOrderSystem, n_blade: int, s: float) -> Seco
     -------
     tefcore.linear_system.SecondOrderSystem
     """
+    nd = system.n_dof
     mats = []
     for a in (system.m, system.c, system.k):
         b = a.copy()
-        b[..., :n_blade, n_blade:] *= s
-        b[..., n_blade:, :n_blade] *= s
+        b[..., :n_blade, n_blade:nd] *= s
+        b[..., n_blade:nd, :n_blade] *= s
+        if system.n_first:
+            b[..., nd:, n_blade:nd] *= s
+            b[..., n_blade:nd, nd:] *= s
         mats.append(b)
-    return SecondOrderSystem(*mats)
+    return SecondOrderSystem(*mats, n_first=system.n_first)
 
 
 def tef_root(system: SecondOrderSystem, *, basis=None, n_steps: int = 72):
@@ -211,8 +266,9 @@ def tef_root(system: SecondOrderSystem, *, basis=None, n_steps: int = 72):
     """
     n = system.n_dof
     solve = _solver(lambda s: coupling_homotopy(system, n - 1, s), n, basis, n_steps)
-    eig0, vec0 = solve(0.0)
-    raw = _positive(coupling_homotopy(system, n - 1, 0.0).modes(n_steps=n_steps, n_sub=4))
+    raw, vec0 = _visible(_positive(coupling_homotopy(system, n - 1, 0.0).modes(
+        n_steps=n_steps, n_sub=4, participation=False)), n, basis)
+    eig0 = raw.exponents
     share = np.abs(raw.eigenvectors[n - 1]) ** 2 + np.abs(raw.eigenvectors[2 * n - 1]) ** 2
     share = share / np.sum(np.abs(raw.eigenvectors) ** 2, axis=0)
     flap = np.flatnonzero(share >= 0.5 * share.max())
@@ -263,9 +319,9 @@ def energy_decomposition(parts: dict, exponent: complex, shape, psi):
         The terms; their sum is the system of the root.
     exponent : complex
         The root's exponent ``eta = sigma + i omega``.
-    shape : ndarray, shape (n_psi, 2 n)
-        Its periodic state shape ``[p_q; p_v]`` at the azimuths ``psi``
-        (one row: constant coefficients).
+    shape : ndarray, shape (n_psi, 2 n + r)
+        Its periodic state shape ``[p_q; p_v; p_z]`` at the azimuths ``psi``
+        (one row: constant coefficients; ``p_z`` the ``r`` first-order states).
     psi : ndarray, shape (n_psi,)
         Equally spaced azimuths over the period (``[0]`` if constant).
 
@@ -276,11 +332,17 @@ def energy_decomposition(parts: dict, exponent: complex, shape, psi):
         oscillatory root, the net work per cycle of the term over twice the
         mode's energy (real) and the frequency times the share of the energy
         the term stores (imaginary); for a real root, the static balance
-        (imaginary parts 0).  The real parts add up to ``sigma``.
+        (imaginary parts 0).  The real parts add up to ``sigma``.  The energy
+        is that of the blade and flap; first-order (aerodynamic) states are
+        forces on them (docs/theory.md 10.1): a term's work includes the work
+        of its state columns, and the state equations themselves do none.
     """
-    n = next(iter(parts.values())).n_dof
+    first = next(iter(parts.values()))
+    if first.n_first:
+        return _energy_with_states(parts, exponent, shape, psi)
+    n = first.n_dof
     psi = np.atleast_1d(np.asarray(psi, float))
-    periodic = next(iter(parts.values())).periodic
+    periodic = first.periodic
     mats = {t: p.matrices(psi) for t, p in parts.items()}
     dmats = {t: (p.matrices(psi, 1) if periodic else None) for t, p in parts.items()}
     m = sum(v[0] for v in mats.values())
@@ -312,6 +374,69 @@ def energy_decomposition(parts: dict, exponent: complex, shape, psi):
     return {t: complex(np.real(-np.mean(_quad(pq, mt, ddp) + _quad(pq, ct, dp)
                                         + _quad(pq, kt, pq)) / denom), 0.0)
             for t, (mt, ct, kt) in mats.items()}
+
+
+def _energy_with_states(parts, exponent, shape, psi):
+    """:func:`energy_decomposition` with first-order states ``z`` (docs/theory.md 10.1).
+
+    The structural rows read ``M q** + C q* + K q + C_qz z* + K_qz z = 0``; with
+    ``x = e^{eta psi} p`` the shape of the state rate is ``A p`` (``= eta p + p'``),
+    which gives ``p_a`` (of ``q**``) and ``p_zd`` (of ``z*``).  The energy is the
+    blade and flap's, ``E = 1/2 (q*^H M^h q* + q^H K^h q)`` over the ``q`` blocks;
+    the state columns are forces whose work is each term's ``-Re q*^H (C_qz z* +
+    K_qz z)``.  The balance closes exactly as in the second-order case.
+    """
+    sys0 = next(iter(parts.values()))
+    n = sys0.n_dof
+    psi = np.atleast_1d(np.asarray(psi, float))
+    periodic = sys0.periodic
+    mats = {t: p.matrices(psi) for t, p in parts.items()}
+    dmats = {t: (p.matrices(psi, 1) if periodic else None) for t, p in parts.items()}
+    m = sum(v[0] for v in mats.values())
+    c = sum(v[1] for v in mats.values())
+    k = sum(v[2] for v in mats.values())
+    rate = np.einsum("pij,pj->pi", augmented_state_matrix(m, c, k, n), shape)
+    pq, pv, pz = shape[:, :n], shape[:, n:2 * n], shape[:, 2 * n:]
+    pa, pzd = rate[:, n:2 * n], rate[:, 2 * n:]
+    q = slice(0, n)
+    sigma, omega = exponent.real, exponent.imag
+
+    def state_force(ct, kt):
+        return (np.einsum("pij,pj->pi", ct[:, q, n:], pzd)
+                + np.einsum("pij,pj->pi", kt[:, q, n:], pz))
+
+    if abs(omega) > 1e-9:
+        mq, kq = m[:, q, q], k[:, q, q]
+        denom = np.mean(_quad(pv, _herm(mq), pv) + _quad(pq, _herm(kq), pq)).real
+        out = {}
+        for t, (mt, ct, kt) in mats.items():
+            mtq, ctq, ktq = mt[:, q, q], ct[:, q, q], kt[:, q, q]
+            mn, kn = mtq - _herm(mtq), ktq - _herm(ktq)
+            force = (np.einsum("pij,pj->pi", mn, pa) + np.einsum("pij,pj->pi", ctq, pv)
+                     + np.einsum("pij,pj->pi", kn, pq) + state_force(ct, kt))
+            work = -np.real(np.einsum("pi,pi->p", pv.conj(), force))
+            if periodic:
+                dm, _, dk = dmats[t]
+                work = work + 0.5 * np.real(_quad(pv, _herm(dm[:, q, q]), pv)
+                                            + _quad(pq, _herm(dk[:, q, q]), pq))
+            stored = np.real(_quad(pv, _herm(mtq), pv) + _quad(pq, _herm(ktq), pq))
+            out[t] = complex(np.mean(work) / denom, omega * np.mean(stored) / denom)
+        return out
+    # real root: the static balance with the state forces on the right
+    if periodic:
+        dp = pv - sigma * pq
+        ddp = pa - sigma**2 * pq - 2 * sigma * dp
+    else:
+        dp = ddp = np.zeros_like(pq)
+    denom = np.mean(sigma * _quad(pq, m[:, q, q], pq) + 2 * _quad(pq, m[:, q, q], dp)
+                    + _quad(pq, c[:, q, q], pq))
+    out = {}
+    for t, (mt, ct, kt) in mats.items():
+        force = (np.einsum("pij,pj->pi", mt[:, q, q], ddp)
+                 + np.einsum("pij,pj->pi", ct[:, q, q], dp)
+                 + np.einsum("pij,pj->pi", kt[:, q, q], pq) + state_force(ct, kt))
+        out[t] = complex(np.real(-np.mean(np.einsum("pi,pi->p", pq.conj(), force)) / denom), 0.0)
+    return out
 
 
 # ------------------------------------------------------------------ the diagnosis
@@ -451,7 +576,8 @@ def mechanism(cfg, mode: str = "TEF", *, knockouts: bool = True, stability_resul
         how = "its label (participation)"
     parts = linearized_terms(tr)
     system = combine(parts)
-    full = _positive(system.modes(n_steps=n_steps, n_sub=4, shapes=True))
+    full = _positive(system.modes(n_steps=n_steps, n_sub=4, shapes=True,
+                                  participation=False))
     j = int(np.argmin(np.abs(full.exponents - eig_table[row])))
     eta = complex(full.exponents[j])
     if full.shapes is None:

@@ -326,7 +326,8 @@ def coerce_value(p: Param, raw, dotted: str):
         if not isinstance(raw, str):
             raise ValueError(f"{dotted} must be a string, got {raw!r}")
         if p.choices and raw not in p.choices:
-            raise ValueError(f"{dotted} = {raw!r} is not one of {', '.join(map(repr, p.choices))}")
+            raise ValueError(f"{dotted} = {raw!r} is not one of {', '.join(map(repr, p.choices))}"
+                             f"{did_you_mean(raw, p.choices)}")
         return raw
     if p.kind == "array":
         return _coerce_array(p, raw, factor, dotted)

@@ -21,9 +21,10 @@ import numpy as np
 import pandas as pd
 import scipy.optimize
 
-from .coupled import coupled_model, jacobian_blocks
-from .linear_system import SecondOrderSystem
+from .coupled import coupled_model
+from .linear_system import STATE_MIN_RATE, SecondOrderSystem
 from .linear_system import state_matrix as state_matrix
+from .residual_jacobian import jacobian_blocks
 from .runtime import blas_limit
 from .trim import TrimResult, initial_collective, trim
 
@@ -63,9 +64,9 @@ def linearize(tr: TrimResult, psi, step: float = 1e-6, scheme: str = "central"):
         Each ``(len(psi), n, n)``.
     """
     psi = np.atleast_1d(np.asarray(psi, float))
-    q, qd, qdd = tr.motion(psi)
-    jac, _, _ = jacobian_blocks(tr.model, psi, q, qd, qdd, tr.controls, tr.inflow,
-                                step=step, scheme=scheme)
+    y, yd, ydd, inflow = tr.linear_point(psi)
+    jac, _, _ = jacobian_blocks(tr.model, psi, y, yd, ydd, tr.controls, inflow,
+                                step=step, scheme=scheme, n_second=tr.model.n_dof)
     return jac[2], jac[1], jac[0]
 
 
@@ -92,7 +93,15 @@ class StabilityResult:
         True for forward flight (Floquet), False for hover (constant
         coefficients).
     system : SecondOrderSystem
-        The linearised ``M, C, K`` the modes belong to.
+        The linearised ``M, C, K`` the modes belong to (with the aerodynamic
+        states as first-order coordinates, if any).
+    aero_modes : DataFrame or None
+        With aerodynamic states (docs/theory.md 6.2): the roots that belong to
+        them rather than to the blade and flap (blade and flap states carry
+        less than half of the root's participation), one row per root
+        (positive frequency): ``kind`` (``wake`` or ``inflow``, the states with
+        the larger share), ``frequency_per_rev, real_part, share_structure,
+        share_TEF``.  They take no mode label and are not in ``modes``.
     """
 
     modes: pd.DataFrame
@@ -102,6 +111,7 @@ class StabilityResult:
     vectors: np.ndarray | None = None
     periodic: bool = False
     system: SecondOrderSystem | None = None
+    aero_modes: pd.DataFrame | None = None
 
 
 def _label_modes(frac, labels, freqs, rates, disp):
@@ -249,7 +259,7 @@ def linear_system(tr: TrimResult) -> SecondOrderSystem:
     else:
         psi = np.linspace(0, 2 * np.pi, tr.model.cfg.model.n_azimuth, endpoint=False)
     m, c, k = linearize(tr, psi, scheme="forward")
-    return SecondOrderSystem(m, c, k)
+    return SecondOrderSystem(m, c, k, n_first=tr.model.n_wake + tr.model.n_inflow)
 
 
 def periodic_state_matrix(tr: TrimResult):
@@ -298,7 +308,7 @@ def _coordinate_shares(participation, n):
     The participation factors of a coordinate's displacement and velocity
     states, in magnitude, added and normalised per mode.
     """
-    mag = np.abs(participation[:n]) + np.abs(participation[n:])
+    mag = np.abs(participation[:n]) + np.abs(participation[n:2 * n])
     return mag / mag.sum(axis=0, keepdims=True)
 
 
@@ -312,8 +322,13 @@ def _stability_of(model, tr: TrimResult, n_steps: int | None) -> StabilityResult
     # steps until its error estimates meet the tolerance; a result it cannot
     # trust is an error, never a spurious (in)stability
     res = system.modes(n_steps=n_steps or cfg.model.n_floquet_steps, n_sub=4,
-                       shapes=system.periodic, on_inaccurate="raise").with_participation()
+                       shapes=system.periodic, on_inaccurate="raise")
+    if res.participation is None:
+        res = res.with_participation()
     keep = res.positive_frequency()
+    aero_modes = None
+    if system.n_first:
+        keep, aero_modes = _split_aero_roots(keep, model, system.periodic)
     # by frequency; the two roots of a locked pair share it exactly, so ties
     # (to 1e-9 /rev, round-off) go less damped first, not by round-off
     order = np.lexsort((-keep.damping_rates, np.round(keep.frequencies, 9)))
@@ -339,8 +354,55 @@ def _stability_of(model, tr: TrimResult, n_steps: int | None) -> StabilityResult
         table[f"share_{kind}"] = frac[rows].sum(axis=0) if rows else 0.0
     summary = tr.summary()
     summary["reverse_flow_fraction"] = _reverse_flow_fraction(tr)
+    if aero_modes is not None:
+        summary["aero_state_growth"] = (float(aero_modes["real_part"].max())
+                                        if len(aero_modes) else float("nan"))
     return StabilityResult(modes=table, eigenvectors=vec, trim=summary, trim_result=tr,
-                           vectors=shapes, periodic=system.periodic, system=system)
+                           vectors=shapes, periodic=system.periodic, system=system,
+                           aero_modes=aero_modes)
+
+
+#: Least share of a root's participation in the blade and flap states for the
+#: root to be a mode of the blade and flap rather than of the aerodynamic states.
+STRUCTURAL_SHARE = 0.5
+
+
+def _split_aero_roots(res, model, periodic):
+    """Roots of the blade and flap, and a table of the aerodynamic-state roots.
+
+    A root whose participation (magnitudes, over all states) lies less than
+    :data:`STRUCTURAL_SHARE` in the blade and flap states ``[q, q*]`` is a root
+    of the shed wake or the inflow: it gets no mode label; so does a root that
+    the assignment of the coordinates' labels leaves over and that is not the
+    partner of a locked pair.
+    """
+    n, nw = model.n_dof, model.n_wake
+    mag = np.abs(res.participation)
+    total = mag.sum(axis=0)
+    structural = mag[:2 * n].sum(axis=0) / total
+    aero = structural < STRUCTURAL_SHARE
+    # a root that the coordinates' labels leave over is a state's, unless it is
+    # the partner of a locked pair (the same frequency as a labelled root): e.g.
+    # the mean inflow root in hover, 58 % in the collective flap motion (measured)
+    cand = np.flatnonzero(~aero)
+    frac = _coordinate_shares(res.participation[:, cand], n)
+    _, cols = scipy.optimize.linear_sum_assignment(-np.log(frac + 1e-300))
+    named = res.frequencies[cand[cols]]
+    for j in np.setdiff1d(np.arange(cand.size), cols):
+        # below STATE_MIN_RATE a periodic root is not resolved (its participation
+        # is not to be trusted): never a locked partner
+        unresolved = periodic and res.damping_rates[cand[j]] < STATE_MIN_RATE
+        if unresolved or np.abs(named - res.frequencies[cand[j]]).min() > 1e-6:
+            aero[cand[j]] = True
+    wake, inflow = mag[2 * n:2 * n + nw].sum(axis=0), mag[2 * n + nw:].sum(axis=0)
+    flap = (mag[n - 1] + mag[2 * n - 1]) / total if model.has_flap else np.zeros(total.size)
+    table = pd.DataFrame({
+        "kind": np.where(wake >= inflow, "wake", "inflow")[aero],
+        "frequency_per_rev": res.frequencies[aero], "real_part": res.damping_rates[aero],
+        "share_structure": structural[aero], "share_TEF": flap[aero]})
+    table = table.sort_values(["kind", "real_part"], ascending=[True, False],
+                              ignore_index=True)
+    return res.select(~aero), table
 
 
 def _reverse_flow_fraction(tr: TrimResult) -> float:

@@ -101,28 +101,68 @@ class MapResult:
                                     f"participation >= {FLUTTER_SHARE}; growth in 1/rev")
         return ds
 
-    def plot(self, ax=None, levels=None):
-        """Colour map of the flutter growth with the flutter boundary (zero contour
-        and the refined boundary points). Returns the Axes."""
+    def plot(self, ax=None, levels=None, x_unit: str | None = None,
+             y_unit: str | None = None, x_label: str | None = None,
+             y_label: str | None = None):
+        """Colour map of the flutter growth with the flutter boundary.
+
+        The zero contour of the grid and the refined boundary points.
+
+        Parameters
+        ----------
+        ax : matplotlib.axes.Axes, optional
+            Axes to draw in (default: a new figure).
+        levels : sequence, optional
+            Unused; kept for the signature of earlier versions.
+        x_unit, y_unit : str, optional
+            Show a dimensional axis in this unit (e.g. ``"ft-lbf/rad"``)
+            instead of SI.
+        x_label, y_label : str, optional
+            Axis labels (default: the field names, with the unit).
+
+        Returns
+        -------
+        matplotlib.axes.Axes
+        """
         import matplotlib.pyplot as plt
 
         ds = self.dataset
         if ax is None:
             _, ax = plt.subplots(figsize=(6.4, 4.8))
+        x = _in_unit(ds["x"].values, self.x_field, x_unit)
+        y = _in_unit(ds["y"].values, self.y_field, y_unit)
         g = ds["flutter_growth"]
         lim = float(np.nanmax(np.abs(g.values))) if np.isfinite(g.values).any() else 1.0
-        mesh = ax.pcolormesh(ds["x"], ds["y"], g, cmap="RdBu_r", vmin=-lim, vmax=lim,
-                             shading="nearest")
+        mesh = ax.pcolormesh(x, y, g, cmap="RdBu_r", vmin=-lim, vmax=lim, shading="nearest")
         ax.figure.colorbar(mesh, ax=ax, label="flutter root growth Re(s)/Ω [1/rev]")
+        if np.isnan(g.values).any():          # points without a result: grey
+            from matplotlib.patches import Patch
+
+            ax.set_facecolor("0.75")
+            ax.add_artist(ax.legend(handles=[Patch(facecolor="0.75", edgecolor="0.4",
+                                                   label="no result")],
+                                    loc="upper left", fontsize="small"))
         if min(g.shape) >= 2 and np.nanmin(g.values) < 0 < np.nanmax(g.values):
-            ax.contour(ds["x"], ds["y"], g, levels=[0.0], colors="k", linewidths=1.2)
+            ax.contour(x, y, g, levels=[0.0], colors="k", linewidths=1.2)
         if not self.boundary.empty:
-            ax.plot(self.boundary["x"], self.boundary["y"], "k.", ms=5,
-                    label="boundary (refined)")
+            ax.plot(_in_unit(self.boundary["x"].to_numpy(float), self.x_field, x_unit),
+                    _in_unit(self.boundary["y"].to_numpy(float), self.y_field, y_unit),
+                    "k.", ms=5, label="boundary (refined)")
             ax.legend(loc="best", fontsize="small")
-        ax.set_xlabel(self.x_field)
-        ax.set_ylabel(self.y_field)
+        ax.set_xlabel(x_label or self.x_field + (f" [{x_unit}]" if x_unit else ""))
+        ax.set_ylabel(y_label or self.y_field + (f" [{y_unit}]" if y_unit else ""))
         return ax
+
+
+def _in_unit(values, field_name: str, unit: str | None):
+    """SI ``values`` of a field in ``unit`` (unchanged without one)."""
+    if not unit:
+        return np.asarray(values, float)
+    from .text_input import field_param
+    from .units import from_si
+
+    return np.asarray(from_si(np.asarray(values, float), unit,
+                              field_param(field_name).dimension), float)
 
 
 def _si(cfg: Config, name: str, v) -> float:

@@ -10,7 +10,7 @@ UTF-8 JSON lines, one object per line, each line written by a single
 
 * line 1, the header::
 
-    {"format": "tefcore.sweep", "version": 2, "parameter": "flap.cg_offset",
+    {"format": "tefcore.sweep", "version": 3, "parameter": "flap.cg_offset",
      "config_hash": "<16 hex>", "inputs": {"model.c81_deck": "sha256:<hex>"},
      "tefcore_version": "0.1.0", "model_stamp": "<16 hex>",
      "point": "tefcore.stability:stability", "created": "<ISO time>"}

@@ -10,7 +10,13 @@ with the trim targets
 * zero first-harmonic tip flap deflection ``beta_1c = beta_1s = 0``
   (unknowns: cyclic pitch; forward flight only — in hover the solution is
   axisymmetric and ``N = 1``),
-* momentum inflow consistent with the thrust (unknown: ``lambda_i``).
+* momentum inflow consistent with the thrust (unknown: ``lambda_i``), or with
+  ``model.inflow = "dynamic"`` the steady Pitt-Peters equations (unknowns: the
+  mean, sine and cosine inflow).
+
+With ``model.aero = "unsteady"`` the shed-wake states of every aerodynamic
+station are periodic unknowns too, collocated with the blade equations
+(docs/theory.md section 7).
 
 Newton's method with the exact block structure: the residual at one azimuth
 depends only on ``(q, q*, q**)`` there, so its Jacobian is found for all
@@ -26,10 +32,13 @@ from dataclasses import dataclass, field
 import numpy as np
 import scipy.linalg
 
-from .coupled import Controls, CoupledModel, jacobian_blocks
+from .aero_states import HarmonicInflow, InflowLinearization, steady_inflow_residual
+from .coupled import Controls, CoupledModel
+from .dynamic_inflow import SteadyInflow, mass_flow, perturbation_matrices, wake_skew
 from .errors import TefcoreError
 from .flap_dynamics import spectral_derivative
 from .inflow import Inflow, drees_gradients, momentum_inflow
+from .residual_jacobian import jacobian_blocks
 from .runtime import blas_limit
 
 __all__ = ["MAX_FLAP_DEFLECTION_DEG", "TrimError", "TrimResult", "fourier_coefficients",
@@ -134,14 +143,18 @@ class TrimResult:
         flap deflection [rad]).
     controls : tefcore.coupled.Controls
         Trimmed pitch controls.
-    inflow : tefcore.inflow.Inflow
-        Trimmed inflow.
+    inflow : tefcore.inflow.Inflow or tefcore.aero_states.HarmonicInflow
+        Trimmed inflow: with ``model.inflow = "dynamic"``, the steady
+        Pitt-Peters field.
     ct_sigma : float
         Thrust coefficient over solidity reached.
     history : list
         Residual per Newton iteration.
     jacobian : numpy.ndarray or None
         Jacobian of the trim equations at the solution.
+    states : numpy.ndarray or None
+        The shed-wake states (``model.aero = "unsteady"``; rows as
+        :attr:`CoupledModel.state_labels`), None otherwise.
     """
 
     model: CoupledModel
@@ -152,10 +165,33 @@ class TrimResult:
     ct_sigma: float
     history: list = field(default_factory=list)
     jacobian: np.ndarray | None = field(default=None, repr=False)
+    states: np.ndarray | None = None     # shed-wake states (n_wake, N)
 
     def motion(self, psi):
         """``q, q*, q**`` at any azimuths, by Fourier interpolation."""
         return tuple(_fourier_series(self.q, psi, (0, 1, 2)))
+
+    def linear_point(self, psi):
+        """What the linearisation differentiates about, at azimuths ``psi``.
+
+        Returns ``(y, y*, y**, inflow)``: the coordinates followed by the
+        aerodynamic states (shed wake from the trim, dynamic-inflow
+        perturbations zero), and the inflow to evaluate with (with dynamic
+        inflow an :class:`~tefcore.aero_states.InflowLinearization` that holds
+        the perturbation equations about this trim, docs/theory.md 6.2).
+        Without aerodynamic states this is :meth:`motion` and the trim's inflow.
+        """
+        model = self.model
+        y = list(self.motion(psi))
+        if model.n_wake:
+            w, wd = _fourier_series(self.states, psi, (0, 1))
+            y = [np.vstack([a, b]) for a, b in zip(y, (w, wd, np.zeros_like(w)), strict=True)]
+        inflow = self.inflow
+        if model.n_inflow:
+            y = [np.vstack([a, np.zeros((3, a.shape[1]))]) for a in y]
+            inflow = InflowLinearization(inflow, perturbation_matrices(_steady_inflow(
+                model, inflow)), model.cfg.rotor.solidity)
+        return (*y, inflow)
 
     def summary(self) -> dict:
         """Scalars for tables: controls [deg], inflow, thrust, flap harmonics."""
@@ -164,6 +200,8 @@ class TrimResult:
                "cyclic_sin_deg": np.rad2deg(self.controls.cyclic_sin),
                "inflow": self.inflow.total, "induced_inflow": self.inflow.mean_induced,
                "ct_sigma": self.ct_sigma, "iterations": len(self.history)}
+        if isinstance(self.inflow, HarmonicInflow):
+            out["inflow_sine"], out["inflow_cosine"] = self.inflow.sine, self.inflow.cosine
         if self.model.has_flap:
             c = fourier_coefficients(self.q[-1])
             out["delta_mean_deg"] = float(np.rad2deg(np.real(c[0])))
@@ -176,9 +214,22 @@ class TrimResult:
 def _inflow(model, lam_i):
     f = model.cfg.flight
     fs = f.advance_ratio * np.tan(f.shaft_angle)
+    if model.dynamic_inflow:
+        mean, sine, cosine = lam_i
+        return HarmonicInflow(mean=mean, freestream=fs, sine=sine, cosine=cosine)
     kx, ky = (drees_gradients(f.advance_ratio, fs + lam_i)
               if model.cfg.model.inflow == "linear" else (0.0, 0.0))
     return Inflow(mean_induced=lam_i, freestream=fs, kx=kx, ky=ky)
+
+
+def _steady_inflow(model, inflow: HarmonicInflow) -> SteadyInflow:
+    """The trimmed Pitt-Peters field as a :class:`~tefcore.dynamic_inflow.SteadyInflow`."""
+    mu = model.cfg.flight.advance_ratio
+    lam = inflow.freestream + inflow.mean
+    vt, v = mass_flow(mu, lam, inflow.mean)
+    return SteadyInflow(mean=inflow.mean, sine=inflow.sine, cosine=inflow.cosine,
+                        freestream=inflow.freestream, chi=wake_skew(mu, lam), v_total=vt,
+                        v_mass=v, advance_ratio=mu)
 
 
 def initial_collective(cfg) -> float:
@@ -241,29 +292,39 @@ def trim(model: CoupledModel, *, tol: float = 1e-10, max_iter: int = 40,
     psi = np.linspace(0, 2 * np.pi, n_psi, endpoint=False)
     d1 = spectral_derivative(n_psi)
     d2 = d1 @ d1
-    n = model.n_dof
+    n = model.n_dof + model.n_wake                         # coordinates and wake states
+    n_lam = 3 if model.dynamic_inflow else 1               # inflow unknowns
+    # sin and cos psi of the collocation points, for the rotor's first moments;
+    # in hover the loads are axisymmetric (one point) and the moments vanish
+    harmonics = (np.zeros((2, 1)) if hover else np.array([np.sin(psi), np.cos(psi)]))
     free_collective = f.collective is None
     sigma = cfg.rotor.solidity
     mu, fs = f.advance_ratio, f.advance_ratio * np.tan(f.shaft_angle)
     tip = model.tip_flap                                   # tip flap of each mode
 
-    # unknowns: Q (n x N), [theta_0], [theta_1c, theta_1s], lambda_i
-    if initial is not None and initial.q.shape == (n, n_psi):
-        q0, ctl, lam = initial.q.copy(), initial.controls, initial.inflow.mean_induced
+    # unknowns: Q (n x N; wake states after the coordinates), [theta_0],
+    # [theta_1c, theta_1s], lambda_i (dynamic inflow: lambda_0, lambda_s, lambda_c)
+    if _warm(initial, model, n_psi):
+        q0, ctl = initial.q.copy(), initial.controls
+        if model.n_wake:
+            q0 = np.vstack([q0, initial.states])
+        lam = ([initial.inflow.mean, initial.inflow.sine, initial.inflow.cosine]
+               if model.dynamic_inflow else [initial.inflow.mean_induced])
     else:
         q0 = np.zeros((n, n_psi))
         ctl = Controls(collective=initial_collective(cfg))
-        lam = np.sqrt(max(f.ct_sigma * sigma, 1e-6) / 2)
+        lam = [np.sqrt(max(f.ct_sigma * sigma, 1e-6) / 2)] + [0.0] * (n_lam - 1)
     ctl_names = (["collective"] if free_collective else []) + ([] if hover else
                                                                ["cyclic_cos", "cyclic_sin"])
-    x = np.concatenate([q0.ravel(), [getattr(ctl, k) for k in ctl_names], [lam]])
+    x = np.concatenate([q0.ravel(), [getattr(ctl, k) for k in ctl_names], lam])
     nq = n * n_psi
 
     def unpack(vec):
         c = Controls(ctl.collective, ctl.cyclic_cos, ctl.cyclic_sin)
-        for k, val in zip(ctl_names, vec[nq:-1], strict=True):
+        for k, val in zip(ctl_names, vec[nq:x.size - n_lam], strict=True):
             setattr(c, k, float(val))
-        return vec[:nq].reshape(n, n_psi), c, float(vec[-1])
+        li = tuple(float(v) for v in vec[-3:]) if n_lam == 3 else float(vec[-1])
+        return vec[:nq].reshape(n, n_psi), c, li
 
     def residuals(vec):
         q, c, li = unpack(vec)
@@ -271,12 +332,18 @@ def trim(model: CoupledModel, *, tol: float = 1e-10, max_iter: int = 40,
         return res, thrust, c, li
 
     def scalars(q, thrust, li):
-        ct_s = thrust.mean()
+        ct_s = thrust.mean() if n_lam == 1 else thrust[0].mean()
         out = [ct_s - f.ct_sigma] if free_collective else []
         if not hover:
             w_tip = tip @ q[:model.n_modes]
             out += [2 * np.mean(w_tip * np.cos(psi)), 2 * np.mean(w_tip * np.sin(psi))]
         ct = ct_s * sigma
+        if n_lam == 3:
+            # steady Pitt-Peters, divided by 2 v_T: in hover the mean row is
+            # the momentum row below, lambda_0 - C_T / (2 lambda_0)
+            loads = sigma * (harmonics @ thrust[1]) / n_psi
+            res = steady_inflow_residual(li, ct, *loads, advance_ratio=mu, freestream=fs)
+            return np.concatenate([out, res / (2 * np.hypot(mu, fs + li[0]))])
         out.append(li - ct / (2 * np.hypot(mu, fs + li)))
         return np.array(out)
 
@@ -284,7 +351,7 @@ def trim(model: CoupledModel, *, tol: float = 1e-10, max_iter: int = 40,
     lu = None
     if initial is not None and initial.jacobian is not None and \
             initial.jacobian.shape == (x.size, x.size):
-        lu = scipy.linalg.lu_factor(initial.jacobian, check_finite=False)
+        lu = _factor(initial.jacobian, model, n_psi)
         jac = initial.jacobian
     def full(vec):
         res, thrust, c, li = residuals(vec)
@@ -298,12 +365,12 @@ def trim(model: CoupledModel, *, tol: float = 1e-10, max_iter: int = 40,
         # unperturbed block), not from a separate evaluation
         _, c, li = unpack(x)
         jac, (res0, thrust) = _jacobian(model, x, c, li, unpack, scalars, psi, d1, d2, n, n_psi,
-                                        nq, tip, hover, free_collective, sigma, mu, fs)
+                                        nq, tip, hover, free_collective, sigma, mu, fs, n_lam)
         r = np.concatenate([res0.ravel(), scalars(x[:nq].reshape(n, n_psi), thrust, li)])
         norm = float(np.max(np.abs(r)))
         # no finiteness checks in the LU calls: a NaN reaches the residual,
         # and the loop below stops on it with a TrimError and its history
-        lu = scipy.linalg.lu_factor(jac, check_finite=False)
+        lu = _factor(jac, model, n_psi)
         fresh = True
     else:
         r, norm, thrust, c, li = full(x)
@@ -311,24 +378,29 @@ def trim(model: CoupledModel, *, tol: float = 1e-10, max_iter: int = 40,
     for it in range(max_iter):
         history.append({"iteration": it, "max_residual": norm, "collective_deg":
                         np.rad2deg(c.collective), "cyclic_cos_deg": np.rad2deg(c.cyclic_cos),
-                        "cyclic_sin_deg": np.rad2deg(c.cyclic_sin), "inflow": li})
+                        "cyclic_sin_deg": np.rad2deg(c.cyclic_sin),
+                        "inflow": li if n_lam == 1 else li[0]})
         if not np.isfinite(norm):
             raise TrimError("trim residual became non-finite", history)
         if norm < tol:
             q_tr = x[:nq].reshape(n, n_psi)
-            _check_flap_deflection(model, q_tr, history)
-            return TrimResult(model=model, psi=psi, q=q_tr, controls=c,
-                              inflow=_inflow(model, li), ct_sigma=float(thrust.mean()),
-                              history=history, jacobian=jac)
+            nd = model.n_dof
+            _check_flap_deflection(model, q_tr[:nd], history)
+            return TrimResult(model=model, psi=psi, q=q_tr[:nd], controls=c,
+                              inflow=_inflow(model, li),
+                              ct_sigma=float(thrust.mean() if n_lam == 1 else thrust[0].mean()),
+                              history=history, jacobian=jac,
+                              states=q_tr[nd:] if model.n_wake else None)
         # chord method: keep the factorised Jacobian while it converges fast,
         # refresh it when the residual falls by less than 10x per iteration
         if not fresh and norm > 0.1 * prev:
             jac, _ = _jacobian(model, x, c, li, unpack, scalars, psi, d1, d2, n, n_psi, nq,
-                               tip, hover, free_collective, sigma, mu, fs)
-            lu = scipy.linalg.lu_factor(jac, check_finite=False)
+                               tip, hover, free_collective, sigma, mu, fs, n_lam)
+            lu = _factor(jac, model, n_psi)
         fresh = False
         prev = norm
-        step = scipy.linalg.lu_solve(lu, -r, check_finite=False)
+        step = lu.solve(-r) if isinstance(lu, _WakeSchur) else scipy.linalg.lu_solve(
+            lu, -r, check_finite=False)
         # damped Newton: halve the step while the residual grows; the accepted
         # trial's residual is the next iteration's (no re-evaluation)
         alpha = 1.0
@@ -357,6 +429,61 @@ def trim(model: CoupledModel, *, tol: float = 1e-10, max_iter: int = 40,
 MAX_FLAP_DEFLECTION_DEG = 10.0
 
 
+def _factor(jac, model, n_psi):
+    """LU factors of the Newton matrix; with wake states, by the Schur complement."""
+    if not model.n_wake:
+        return scipy.linalg.lu_factor(jac, check_finite=False)
+    return _WakeSchur(jac, model.n_dof * n_psi, model.wake.n_per_station * n_psi,
+                      model.wake.n_stations)
+
+
+class _WakeSchur:
+    """Newton solves that eliminate the wake states first.
+
+    The wake rows of one station depend on its own states only, so their block
+    of the Newton matrix is block diagonal (one ``N_w N`` block per station,
+    ``D w + f E^-1 w``, invertible: a stable state has one periodic response).
+    Its blocks are inverted and the rest solved through the Schur complement
+    ``S = A - B D^-1 C`` (order ``n N + controls``: 244 instead of 1971 for MDART
+    at ``N = 24``; 0.02 s instead of 0.4 s a factorisation, measured).
+    """
+
+    def __init__(self, jac, start, block, n_blocks):
+        size = jac.shape[0]
+        self.w = np.arange(start, start + block * n_blocks)
+        self.o = np.concatenate([np.arange(start), np.arange(start + block * n_blocks, size)])
+        self.shape = (n_blocks, block)
+        d = jac[np.ix_(self.w, self.w)].reshape(n_blocks, block, n_blocks, block)
+        self.d_inv = np.linalg.inv(d[np.arange(n_blocks), :, np.arange(n_blocks), :])
+        self.b = jac[np.ix_(self.o, self.w)]
+        self.dinv_c = self._dinv(jac[np.ix_(self.w, self.o)])
+        self.lu = scipy.linalg.lu_factor(jac[np.ix_(self.o, self.o)] - self.b @ self.dinv_c,
+                                         check_finite=False)
+
+    def _dinv(self, rhs):
+        n_blocks, block = self.shape
+        out = self.d_inv @ rhs.reshape(n_blocks, block, -1)
+        return out.reshape(rhs.shape)
+
+    def solve(self, rhs):
+        y = self._dinv(rhs[self.w])
+        x_o = scipy.linalg.lu_solve(self.lu, rhs[self.o] - self.b @ y, check_finite=False)
+        out = np.empty_like(rhs)
+        out[self.o] = x_o
+        out[self.w] = y - self.dinv_c @ x_o
+        return out
+
+
+def _warm(initial, model, n_psi) -> bool:
+    """Whether a previous trim can start this one (same unknowns)."""
+    if initial is None or initial.q.shape != (model.n_dof, n_psi):
+        return False
+    if model.n_wake and (initial.states is None
+                         or initial.states.shape != (model.n_wake, n_psi)):
+        return False
+    return isinstance(initial.inflow, HarmonicInflow) == model.dynamic_inflow
+
+
 def _check_flap_deflection(model, q, history) -> None:
     """Refuse a trim whose mean flap deflection is beyond :data:`MAX_FLAP_DEFLECTION_DEG`."""
     if not model.has_flap:
@@ -372,7 +499,7 @@ def _check_flap_deflection(model, q, history) -> None:
 
 
 def _jacobian(model, x, c, li, unpack, scalars, psi, d1, d2, n, n_psi, nq, tip, hover,
-              free_collective, sigma, mu, fs):
+              free_collective, sigma, mu, fs, n_lam=1):
     """Newton Jacobian using the per-azimuth block structure.
 
     Returns the Jacobian and ``(R, thrust)`` at ``x`` (its unperturbed block).
@@ -389,7 +516,7 @@ def _jacobian(model, x, c, li, unpack, scalars, psi, d1, d2, n, n_psi, nq, tip, 
     parts = [unpack(v) for v in xs]
     (jq, jqd, jqdd), tblocks, (res0, thr0, perturbed) = jacobian_blocks(
         model, psi, q, qd, qdd, c, infl, step=1e-7, scheme="forward",
-        extra=[(p[1], _inflow(model, p[2])) for p in parts])
+        extra=[(p[1], _inflow(model, p[2])) for p in parts], n_second=model.n_dof)
     r0 = np.concatenate([res0.ravel(), scalars(q, thr0, li)])
     blocks = [jq, jqd, jqdd]
     eye = np.eye(n_psi)
@@ -401,6 +528,12 @@ def _jacobian(model, x, c, li, unpack, scalars, psi, d1, d2, n, n_psi, nq, tip, 
     jac = np.zeros((r0.size, r0.size))
     jac[:nq, :nq] = jqq
     # thrust derivative wrt Q (mean over azimuth)
+    if n_lam == 3:
+        # with dynamic inflow: the blade's C_T/sigma and its first moment
+        tblocks, t_moment = tblocks
+        harmonics = np.zeros((2, 1)) if hover else np.array([np.sin(psi), np.cos(psi)])
+        dmom = [((t_moment[0] * s).T + (t_moment[1] * s).T @ d1 + (t_moment[2] * s).T @ d2)
+                / n_psi for s in harmonics[:, :, None]]
     dct = (tblocks[0].T + tblocks[1].T @ d1 + tblocks[2].T @ d2) / n_psi     # (n, N)
     row = 0
     if free_collective:
@@ -412,8 +545,14 @@ def _jacobian(model, x, c, li, unpack, scalars, psi, d1, d2, n, n_psi, nq, tip, 
         jac[nq + row, :nq] = (2 / n_psi * w_tip * np.cos(psi)).ravel()
         jac[nq + row + 1, :nq] = (2 / n_psi * w_tip * np.sin(psi)).ravel()
         row += 2
-    denom = 2 * np.hypot(mu, fs + li)
-    jac[nq + row, :nq] = -sigma * dct.ravel() / denom
+    if n_lam == 3:
+        denom = 2 * np.hypot(mu, fs + li[0])
+        for i, d in enumerate((dct, *dmom)):
+            jac[nq + row + i, :nq] = -sigma * d.ravel() / denom
+        row += 2
+    else:
+        denom = 2 * np.hypot(mu, fs + li)
+        jac[nq + row, :nq] = -sigma * dct.ravel() / denom
     for k, (p, (res_k, thr_k)) in zip(cols, zip(parts, perturbed, strict=True), strict=True):
         rk = np.concatenate([res_k.ravel(), scalars(q, thr_k, p[2])])
         jac[:, k] = (rk - r0) / h

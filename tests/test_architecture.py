@@ -58,6 +58,8 @@ LARGE_MODULES = {
                                "sidecars, WebPlotDigitizer CSV) read and every field checked "
                                "with an error naming it; the checks are the specification",
     "tefcore.blade": DOCUMENTED,
+    "tefcore._floquet_modes": DOCUMENTED,
+    "tefcore.stability": DOCUMENTED,
     "tefcore.c81_reader": DOCUMENTED,
     "tefcore.paper.batch_report": DOCUMENTED,
     "tefcore.paper.batch_spec": DOCUMENTED,

@@ -69,6 +69,12 @@ examples:
 """
 
 
+#: What a notebook without a paper figure is about.
+_NO_FIGURE = {"08_assumptions": "what each assumption does to the results",
+              "09_design_maps": "stability maps over two parameters (beyond the paper)",
+              "10_unsteady": "unsteady airloads and dynamic inflow (beyond the paper)"}
+
+
 def cmd_reproduce(args) -> int:
     """Run ``tefcore reproduce`` with parsed arguments; return the exit status.
 
@@ -157,7 +163,7 @@ def cmd_notebooks(args) -> int:
         print(f"notebooks in {notebooks_dir()}:")
         for n in names:
             figs = ", ".join(f.replace("fig", "Fig. ") for f in NOTEBOOK_FIGURES[n])
-            print(f"  {n:38s} {figs or 'assumptions and their effects'}")
+            print(f"  {n:38s} {figs or _NO_FIGURE.get(n, '')}")
         return 0
     written = copy_notebooks(args.copy, names)
     print(f"copied {len(written) // 2} notebooks (.ipynb and .py) into {args.copy}")

@@ -25,7 +25,7 @@ from types import SimpleNamespace
 import numpy as np
 import pandas as pd
 
-from ..c81 import example_deck_path
+from ..c81 import example_deck_path, xfoil_deck_path
 from ..config_io import load_config
 from .claim_checks import variant_key
 from .figures import FIGURES, figure_config
@@ -38,7 +38,7 @@ __all__ = ["AERO_MODELS", "base_config", "figure_values", "natural_frequencies",
            "variant_key"]
 
 #: Section aerodynamics a notebook can choose (``aero_model`` parameter).
-AERO_MODELS = ("thin_airfoil", "table")
+AERO_MODELS = ("thin_airfoil", "table", "xfoil")
 
 
 def base_config(aero_model: str = "thin_airfoil", overrides: dict | None = None,
@@ -47,9 +47,13 @@ def base_config(aero_model: str = "thin_airfoil", overrides: dict | None = None,
 
     Parameters
     ----------
-    aero_model : {"thin_airfoil", "table"}
-        Quasi-steady thin-airfoil theory, or the C81 look-up with the shipped
-        *generated* example deck (``"c81"`` is accepted for ``"table"``).
+    aero_model : {"thin_airfoil", "table", "xfoil"}
+        Thin-airfoil theory; the C81 look-up with the shipped *generated*
+        example deck (thin-airfoil theory tabulated; ``"c81"`` is accepted for
+        ``"table"``); or the C81 look-up with the shipped XFOIL deck (NACA 0012
+        with the MDART balanced flap, viscous: a real flapped-airfoil table).
+        Unsteadiness is ``model.aero`` in ``overrides``
+        (``{"model.aero": "unsteady"}``), with any of the three.
     overrides : dict, optional
         Dotted configuration fields applied last.
     config : path or str, optional
@@ -68,6 +72,9 @@ def base_config(aero_model: str = "thin_airfoil", overrides: dict | None = None,
     if aero_model in ("table", "c81"):
         cfg = cfg.with_overrides({"model.aero_model": "c81",
                                   "model.c81_deck": str(example_deck_path())})
+    elif aero_model == "xfoil":
+        cfg = cfg.with_overrides({"model.aero_model": "c81",
+                                  "model.c81_deck": str(xfoil_deck_path())})
     elif aero_model != "thin_airfoil":
         raise ValueError(f"aero_model = {aero_model!r}: expected one of "
                           f"{', '.join(AERO_MODELS)}")

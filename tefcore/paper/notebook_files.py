@@ -36,6 +36,8 @@ NOTEBOOKS = (
     "06_size_and_location",
     "07_flight_condition",
     "08_assumptions",
+    "09_design_maps",
+    "10_unsteady",
 )
 #: Which paper figures each notebook reproduces.
 NOTEBOOK_FIGURES = {
@@ -47,6 +49,8 @@ NOTEBOOK_FIGURES = {
     "06_size_and_location": ("fig13", "fig14", "fig15"),
     "07_flight_condition": ("fig16a", "fig16b", "fig17"),
     "08_assumptions": (),               # no figure: the sensitivity of the headline results
+    "09_design_maps": (),               # beyond the paper: two-parameter stability maps
+    "10_unsteady": (),                  # beyond the paper: shed wake and dynamic inflow
 }
 
 
