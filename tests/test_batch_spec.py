@@ -127,7 +127,7 @@ def test_examples_parse_and_say_what_they_run():
 
 
 @pytest.mark.parametrize("text, expected", [
-    ("notebooks: [09]", "unknown notebook '09'"),
+    ("notebooks: [11]", "unknown notebook 11"),
     ("notebooks: [4, 04_cg_offset]", "listed twice"),
     ("runs: [{name: a, notebooks: [cg_ofset]}]", "did you mean"),
     ("params: {07_flite: {n_points: 3}}", "unknown notebook '07_flite'"),
@@ -148,7 +148,7 @@ def test_unknown_notebook(text, expected):
     ("notebooks: [4]\nname: a\nparams: {all: {output_dir: x}}", "sets each notebook's output"),
     ("notebooks: [4]\nname: a\nparams: {all: {config: x.toml}}", "'config' key"),
     ("notebooks: [4]\nname: a\nparams: {all: {n_points: 1}}", "n_points = 1; allowed"),
-    ("notebooks: [4]\nname: a\nparams: {all: {aero_model: xfoil}}", "aero_model = 'xfoil'"),
+    ("notebooks: [4]\nname: a\nparams: {all: {aero_model: xfoyl}}", "aero_model = 'xfoyl'"),
     ("notebooks: [4]\nname: a\nparams: {all: {values: {fig8: [0.1]}}}",
      "04_cg_offset computes no figure 'fig8' (did you mean 'fig9'?)"),
     ("notebooks: [4]\nname: a\nparams: {all: {overrides: {flap.cg_offset: 5.0}}}",
