@@ -283,6 +283,7 @@ def test_headlines_onset_state_and_growth():
     # first stable-to-unstable crossing, and the state says it started unstable
     assert unstable["state"] == "unstable at start"
     assert unstable["onset"] == pytest.approx(0.2 + 0.1 * 5 / 7)
+    assert unstable["stable_in"] == "0.167 to 0.271"
     # the TEF branch counts only where its identity is decided
     tef = headlines("fig9", _sweep(x, [-2.0, -1.0, 1.0, 2.0],
                                    certain=[True, True, False, False]))["TEF branch"]

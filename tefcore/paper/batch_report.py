@@ -55,7 +55,7 @@ import numpy as np
 import pandas as pd
 
 from ..safe_io import atomic_output, atomic_write_text, check_output_folder
-from .curve_metrics import zero_crossings
+from .curve_metrics import stability_intervals, zero_crossings
 from .plotting import (
     AXES,
     MEASURES,
@@ -72,6 +72,9 @@ __all__ = ["ROOTS", "Comparison", "FigurePanel", "comparison", "headlines", "ren
 ROOTS = {"flutter root": "flutter_root", "TEF branch": "tef_branch"}
 _TABLE = re.compile(r"fig(\d+[ab]?)_modes\.csv\Z")
 _PAPER_ORDER = list(FIGURE_TITLES)
+#: Columns of headlines.csv.
+_LONG = ("run", "figure", "x_axis", "root", "onset", "state", "max_growth", "max_growth_at",
+         "points", "stable_in")
 
 
 def _rows(name: str, table: pd.DataFrame, root: str) -> pd.DataFrame:
@@ -89,6 +92,11 @@ def _rows(name: str, table: pd.DataFrame, root: str) -> pd.DataFrame:
     return out.drop_duplicates("x").sort_values("x", kind="stable").reset_index(drop=True)
 
 
+def _interval(a: float, b: float) -> str:
+    fa, fb = f"{a:.3g}", f"{b:.3g}"
+    return f"near {fa}" if fa == fb else f"{fa} to {fb}"
+
+
 def headlines(name: str, table: pd.DataFrame) -> dict:
     """Onset and largest growth of the flutter root and the TEF branch along one sweep.
 
@@ -104,24 +112,26 @@ def headlines(name: str, table: pd.DataFrame) -> dict:
     Returns
     -------
     dict
-        ``{root: {"onset", "state", "max_growth", "max_growth_at", "points"}}``
-        for each of :data:`ROOTS` (module docstring); NaN where there is no
-        such value, ``state = "no data"`` without rows.
+        ``{root: {"onset", "state", "max_growth", "max_growth_at", "points",
+        "stable_in"}}`` for each of :data:`ROOTS` (module docstring; ``stable_in``
+        the x intervals where the root is stable, as text); NaN where there is
+        no such value, ``state = "no data"`` without rows.
     """
     out = {}
     for root in ROOTS:
         r = _rows(name, table, root)
         if r.empty:
             out[root] = {"onset": np.nan, "state": "no data", "max_growth": np.nan,
-                         "max_growth_at": np.nan, "points": 0}
+                         "max_growth_at": np.nan, "points": 0, "stable_in": ""}
             continue
         x, y = r["x"].to_numpy(float), r["real_part"].to_numpy(float)
         onset = next((x0 for x0, d in zero_crossings(x, y) if d == "destabilising"), np.nan)
         state = "stable" if (y < 0).all() else "unstable" if (y >= 0).all() else \
             "unstable at start" if y[0] >= 0 else "crosses"
         k = int(np.argmax(y))
+        stable = "; ".join(_interval(a, b) for a, b in stability_intervals(x, y, "stable"))
         out[root] = {"onset": float(onset), "state": state, "max_growth": float(y[k]),
-                     "max_growth_at": float(x[k]), "points": len(x)}
+                     "max_growth_at": float(x[k]), "points": len(x), "stable_in": stable}
     return out
 
 
@@ -235,8 +245,7 @@ def _onset_text(h: dict) -> str:
     if h["state"] == "no data":
         return "–"
     if h["state"] == "unstable at start":
-        return "unstable at the start" + (f", again from {h['onset']:.3g}"
-                                          if np.isfinite(h["onset"]) else ", then stable")
+        return f"unstable except {h['stable_in']}"
     if np.isfinite(h["onset"]):
         return f"{h['onset']:.3g}"
     return "stable throughout" if h["state"] == "stable" else "unstable throughout"
@@ -360,9 +369,9 @@ def comparison(out, outcomes, title: str = "tefcore batch comparison") -> tuple:
                 row.update({f"{fig}.{tag}_onset": h["onset"], f"{fig}.{tag}_state": h["state"],
                             f"{fig}.{tag}_max_growth": h["max_growth"],
                             f"{fig}.{tag}_max_growth_at": h["max_growth_at"]})
-                long.append({"run": o.spec.name, "figure": fig, "x_axis": AXES.get(fig, (fig,))[0],
-                             "root": root, **{k: h[k] for k in ("onset", "state", "max_growth",
-                                                                "max_growth_at", "points")}})
+                long.append({"run": o.spec.name, "figure": fig,
+                             "x_axis": AXES.get(fig, (fig,))[0], "root": root,
+                             **{k: h[k] for k in _LONG[4:]}})
         rows.append(row)
         view.append({"name": o.spec.name, "link": f"{o.spec.name}/report.html",
                      "status": o.status, "css": "pass" if o.status == "ok" else "fail",
@@ -414,8 +423,7 @@ def comparison(out, outcomes, title: str = "tefcore batch comparison") -> tuple:
         version=__version__, counts=counts, common=common, columns=varying, runs=view,
         panels=panels)
     runs_df = pd.DataFrame(rows)
-    long_df = pd.DataFrame(long, columns=["run", "figure", "x_axis", "root", "onset", "state",
-                                          "max_growth", "max_growth_at", "points"])
+    long_df = pd.DataFrame(long, columns=list(_LONG))
     return model, runs_df, long_df
 
 
