@@ -41,8 +41,9 @@ __all__ = ["AERO_MODELS", "base_config", "figure_values", "natural_frequencies",
 AERO_MODELS = ("thin_airfoil", "table", "xfoil")
 
 
-def base_config(aero_model: str = "thin_airfoil", overrides: dict | None = None):
-    """MDART configuration with the chosen section aerodynamics.
+def base_config(aero_model: str = "thin_airfoil", overrides: dict | None = None,
+                config=None):
+    """The base configuration (MDART, or a TOML file) with the chosen section aerodynamics.
 
     Parameters
     ----------
@@ -55,13 +56,19 @@ def base_config(aero_model: str = "thin_airfoil", overrides: dict | None = None)
         (``{"model.aero": "unsteady"}``), with any of the three.
     overrides : dict, optional
         Dotted configuration fields applied last.
+    config : path or str, optional
+        A configuration file (TOML, :mod:`tefcore.config_io`: a complete
+        rotor, e.g. a copy of ``tefcore/data/mdart.toml`` with other values)
+        or the name of a shipped one; None: the shipped MDART configuration.
+        The notebooks' ``config`` parameter (``tefcore batch`` sets it).
 
     Returns
     -------
     tefcore.config.Config
-        The MDART baseline with the section aerodynamics set, then ``overrides``.
+        The base configuration with the section aerodynamics set, then
+        ``overrides``.
     """
-    cfg = load_config("mdart")
+    cfg = load_config("mdart" if config is None else config)
     if aero_model in ("table", "c81"):
         cfg = cfg.with_overrides({"model.aero_model": "c81",
                                   "model.c81_deck": str(example_deck_path())})

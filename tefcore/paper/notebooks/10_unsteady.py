@@ -44,6 +44,8 @@
 output_dir = "output/10_unsteady"
 n_jobs = 1                 # processes for the sweeps (joblib); 2 on 2 cores
 aero_model = "thin_airfoil"  # "thin_airfoil", "table" (generated deck) or "xfoil" (XFOIL deck)
+config = None              # base configuration: a TOML file (a complete rotor, e.g. an edited
+                           # copy of tefcore/data/mdart.toml); None: the shipped MDART
 overrides = {}             # dotted configuration fields applied to every option
 n_points = 6               # CG offsets of the Fig. 9 comparison (the paper's range)
 onset = True               # also find the Fig. 9 onset under each option (a minute)
@@ -59,7 +61,7 @@ from tefcore.paper.model_comparison import OPTIONS, compare_models
 from tefcore.unsteady_aero import fitted_wake, theodorsen_function
 
 out = nt.setup_notebook(output_dir)
-base = nt.base_config(aero_model, overrides)
+base = nt.base_config(aero_model, overrides, config=config)
 
 # %% [markdown]
 # ## The section: Theodorsen's C(k) and the finite-state wake
