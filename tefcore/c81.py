@@ -70,9 +70,9 @@ from .c81_model import (
     C81Airfoil,
     C81FlapTable,
     example_deck_path,
-    xfoil_deck_path,
     generate_flap_deck,
     make_example_deck,
+    xfoil_deck_path,
 )
 from .c81_reader import parse_c81, read_c81
 
