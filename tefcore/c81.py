@@ -72,6 +72,7 @@ from .c81_model import (
     example_deck_path,
     generate_flap_deck,
     make_example_deck,
+    xfoil_deck_path,
 )
 from .c81_reader import parse_c81, read_c81
 
@@ -89,6 +90,7 @@ __all__ = [
     "C81RangeError",
     "C81RangeWarning",
     "example_deck_path",
+    "xfoil_deck_path",
     "format_c81",
     "generate_flap_deck",
     "make_example_deck",

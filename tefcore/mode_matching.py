@@ -33,7 +33,10 @@ A match is *clear* (:func:`is_clear`) when its shape part ``1 - MAC`` is at
 most :data:`CLEAR_COST` (the eigenvalue part alone when no shapes are known)
 and every alternative costs at least :data:`MARGIN` more.  Two roots of one
 point with the same shape and eigenvalue (:func:`is_coalesced`) are a
-coalescence that no step refinement can separate.
+coalescence that no step refinement can separate; so are the two real
+multipliers of a Floquet lock (:func:`is_locked`), whose plane of shapes
+(:func:`plane_mac`) holds the one complex shape the pair has outside the
+lock (:mod:`tefcore.tracking`).
 
 Examples
 --------
@@ -53,9 +56,10 @@ import numpy as np
 import pandas as pd
 from scipy.optimize import linear_sum_assignment
 
-__all__ = ["CLEAR_COST", "COALESCED_DISTANCE", "COALESCED_MAC", "MARGIN", "MODE_COLUMNS",
-           "as_point", "decide", "eigen_distance", "eigenvalues", "is_clear", "is_coalesced",
-           "mac", "match_cost", "match_modes", "relative_distance"]
+__all__ = ["CLEAR_COST", "COALESCED_DISTANCE", "COALESCED_MAC", "LOCK_TOL", "MARGIN",
+           "MODE_COLUMNS", "as_point", "decide", "eigen_distance", "eigenvalues", "is_clear",
+           "is_coalesced", "is_locked", "locked_pairs", "mac", "match_cost", "match_modes",
+           "plane_mac", "relative_distance"]
 
 #: Columns every modes table must have.
 MODE_COLUMNS = ("mode_id", "label", "frequency_per_rev", "real_part")
@@ -76,6 +80,14 @@ MARGIN = 0.25
 COALESCED_MAC = 0.9
 #: ... and a :func:`relative_distance` below this are one coalesced pair.
 COALESCED_DISTANCE = 0.05
+#: Two Floquet roots are one locked pair (two real multipliers of one sign)
+#: when their frequencies are equal and at a multiple of 1/2 per rev within
+#: this [/rev].  A real multiplier's frequency is k/2 up to the round-off of
+#: the lifted eigenvalues, worst for heavily damped roots: within 1.5e-6 of
+#: k/2, the two of a pair within 1.3e-6 of each other (480 locked roots of
+#: the paper's sweeps, measured); the complex roots nearest to a lock were
+#: 1.7e-4 from k/2.  1e-5 lies between, with a factor of 7 and 17 to spare.
+LOCK_TOL = 1e-5
 
 
 def mac(phi_a, phi_b) -> np.ndarray:
@@ -308,8 +320,8 @@ def is_coalesced(eig, vecs, j, k, periodic) -> bool:
 
     Either (nearly) one shape and eigenvalue -- an exceptional point -- or,
     for Floquet exponents, the two real multipliers of one locked pair
-    (equal frequency, a multiple of 1/2 per rev): their identities are two
-    halves of one mode, which no finer step separates.
+    (:func:`is_locked`): their identities are two halves of one mode, which
+    no finer step separates.
 
     Parameters
     ----------
@@ -328,13 +340,130 @@ def is_coalesced(eig, vecs, j, k, periodic) -> bool:
     """
     if k < 0:
         return False
-    if periodic and abs(eig[j].imag - eig[k].imag) <= 1e-6 and abs(
-            2 * eig[j].imag - round(2 * eig[j].imag)) <= 1e-6:
+    if is_locked(eig, j, k, periodic):
         return True
     if vecs is None:        # without shapes two near roots may as well be two modes
         return False
     d = relative_distance(eig[[j]], eig[[k]], periodic)[0, 0]
     return bool(mac(vecs[:, j], vecs[:, k])[0, 0] >= COALESCED_MAC and d <= COALESCED_DISTANCE)
+
+
+def is_locked(eig, j, k, periodic) -> bool:
+    """Floquet roots ``j`` and ``k`` of one point are the two real multipliers of
+    one locked pair: equal frequencies at a multiple of 1/2 per rev (within
+    :data:`LOCK_TOL`).
+
+    Parameters
+    ----------
+    eig : numpy.ndarray of complex
+        The point's eigenvalues [/rev].
+    j, k : int
+        The two roots (distinct).
+    periodic : bool
+        Floquet exponents (a system with constant coefficients has no lock).
+
+    Returns
+    -------
+    bool
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> eig = np.array([-4.062 + 7.0j, -4.065 + 7.0j, -4.059 + 7.0003j])
+    >>> is_locked(eig, 0, 1, True), is_locked(eig, 0, 2, True), is_locked(eig, 0, 1, False)
+    (True, False, False)
+    """
+    if not periodic or j == k or j < 0 or k < 0:
+        return False
+    f, g = eig[j].imag, eig[k].imag
+    return bool(abs(f - g) <= LOCK_TOL and abs(2 * f - round(2 * f)) <= 2 * LOCK_TOL)
+
+
+def locked_pairs(eig, periodic) -> list[tuple[int, int]]:
+    """The locked pairs of one point (:func:`is_locked`), each ``(j, k)`` with ``j < k``.
+
+    Only pairs: three or more roots at one frequency ``k/2`` (two locks at
+    once) are left out, since which two are one mode is then not known.
+
+    Parameters
+    ----------
+    eig : numpy.ndarray of complex
+        The point's eigenvalues [/rev].
+    periodic : bool
+        Floquet exponents.
+
+    Returns
+    -------
+    list of tuple of int
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> locked_pairs(np.array([-0.4 + 1j, -3 + 2.2j, -0.5 + 1j]), True)
+    [(0, 2)]
+    """
+    eig = np.asarray(eig, complex)
+    groups: dict[int, list[int]] = {}
+    for j in range(len(eig)):
+        for g in groups.values():
+            if is_locked(eig, g[0], j, periodic):
+                g.append(j)
+                break
+        else:
+            if periodic and abs(2 * eig[j].imag - round(2 * eig[j].imag)) <= 2 * LOCK_TOL:
+                groups[j] = [j]
+    return [(g[0], g[1]) for g in groups.values() if len(g) == 2]
+
+
+def plane_mac(pair, phi) -> float:
+    """MAC of a shape with a plane: the share of ``phi`` in the span of two shapes.
+
+    ``|Q^H phi|^2 / |phi|^2`` with ``Q`` an orthonormal basis of the span
+    of the columns of ``pair``: 1 when ``phi`` is a combination of them, 0
+    when it is orthogonal to both.  Where a complex pair of Floquet roots
+    locks into two real multipliers, its shape (a complex vector ``a + ib``)
+    is such a combination of the two real shapes, whatever their share of
+    each.
+
+    Parameters
+    ----------
+    pair : array_like, shape (n, 2)
+        The two shapes spanning the plane (linearly independent).
+    phi : array_like, shape (n,)
+        The shape compared.
+
+    Returns
+    -------
+    float
+
+    Raises
+    ------
+    ValueError
+        Lengths differ, or a zero or non-finite vector.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> pair = np.array([[1.0, 0.0], [0.0, 1.0], [0.0, 0.0]])
+    >>> round(plane_mac(pair, np.array([1.0, 1j, 0.0])), 12), plane_mac(pair, np.array([0, 1, 1.0]))
+    (1.0, 0.5)
+    """
+    pair = np.asarray(pair, complex)
+    phi = np.asarray(phi, complex)
+    if pair.ndim != 2 or pair.shape[1] != 2 or phi.shape != (pair.shape[0],):
+        raise ValueError(f"plane_mac needs shapes (n, 2) and (n,), got {pair.shape} and "
+                         f"{phi.shape}")
+    norm = float(np.vdot(phi, phi).real)
+    if not (np.isfinite(pair).all() and np.isfinite(norm) and norm > 0):
+        raise ValueError("plane_mac: zero or non-finite shape")
+    size = np.linalg.norm(pair, axis=0)
+    if not (size > 0).all():
+        raise ValueError("plane_mac: zero shape in the pair")
+    # orthonormal basis of the span; a pair parallel to round-off (the double
+    # root where a lock begins) spans only its line
+    u, sv, _ = np.linalg.svd(pair / size, full_matrices=False)
+    q = u[:, sv > 1e-8 * sv[0]]
+    return float(min(1.0, np.linalg.norm(q.conj().T @ phi) ** 2 / norm))
 
 
 def match_modes(prev, curr, *, predicted=None, periodic: bool | None = None) -> np.ndarray:

@@ -58,7 +58,7 @@ from .errors import error_text
 from .runtime import worker_init
 from .safe_io import atomic_output
 from .sweep_store import SweepFile, config_hash, jsonable, sweep_header, value_key
-from .tracking import ambiguous_steps, label_changes, track_modes
+from .tracking import ambiguous_steps, follow_branch, label_changes, track_modes
 
 __all__ = ["FLUTTER_SHARE", "MAX_REFINE", "WARM_CHAIN", "REQUIRED_MODE_COLUMNS", "SweepResult",
            "check_parameter", "check_result", "config_hash", "decode_complex", "default_point",
@@ -401,9 +401,11 @@ class SweepResult:
         label), ``identity`` (how the row continues its track:
         :mod:`tefcore.tracking`), the mode columns (``mode_id``,
         ``frequency_per_rev``, ``real_part``, ``damping_ratio``, ...), the
-        named roles ``tef_branch`` (the row is on the TEF branch: the track
-        of the flap mode at the sweep start), ``tef_branch_certain`` (no
-        undecided match on the branch between the start and this row) and
+        named roles ``tef_branch`` (the row is on the TEF branch: the flap
+        mode at the sweep start, followed along its track and past the
+        track's end by :func:`tefcore.tracking.follow_branch`),
+        ``tef_branch_certain`` (no undecided match or change of track on the
+        branch between the start and this row) and
         ``flutter_root`` (the least stable root of its point with a flap
         participation >= 0.1), and the trim scalars as ``trim_<name>``.  A
         failed point is one row with its reason; its result columns are
@@ -538,15 +540,27 @@ def _ok_in_order(records: dict) -> list:
     return sorted(ok, key=lambda k: (float(records[k]["value_si"]), str(k)))
 
 
-def _track(records: dict, order: list) -> pd.DataFrame:
-    """:func:`tefcore.tracking.track_modes` of the ok records in `order`."""
+def _points(records: dict, order: list) -> list:
+    """The ok records in `order` as points of :func:`tefcore.tracking.track_modes`."""
     pts = []
     for k in order:
         r = records[k]
         vec = decode_complex(r["vectors"]) if r.get("vectors") is not None else None
         pts.append({"modes": pd.DataFrame(r["modes"]), "vectors": vec,
                     "periodic": bool(r.get("periodic", False))})
-    return track_modes(pts, values=[float(records[k]["value_si"]) for k in order])
+    return pts
+
+
+def _track(records: dict, order: list) -> pd.DataFrame:
+    """:func:`tefcore.tracking.track_modes` of the ok records in `order`."""
+    return track_modes(_points(records, order),
+                       values=[float(records[k]["value_si"]) for k in order])
+
+
+def _branch(tracked: pd.DataFrame, records: dict, order: list, step: int, row: int):
+    """:func:`tefcore.tracking.follow_branch` from mode `row` of point `step` of `order`."""
+    return follow_branch(tracked, _points(records, order), (step, row),
+                         values=[float(records[k]["value_si"]) for k in order])
 
 
 def _anchor_row(rec: dict, modes: pd.DataFrame, use_anchor: bool):
@@ -579,10 +593,8 @@ def _refinements(records: dict, budgets: dict, main: set,
         row, _ = _anchor_row(records[order[first]], pd.DataFrame(records[order[first]]["modes"]),
                              use_anchor)
         if row is not None:
-            start = tracked[(tracked["step"] == first) & (tracked["mode_id"] == row)]
-            if not start.empty:
-                mine = tracked[tracked["track"] == start["track"].iloc[0]]
-                branch_steps = set(mine.loc[mine["identity"] == "ambiguous", "step"])
+            path = _branch(tracked, records, order, first, row)
+            branch_steps = set(path.loc[path["doubt"], "step"])
     def mids(steps, limit, which):
         out = []
         for step in sorted(steps):
@@ -619,17 +631,18 @@ def _roles(table: pd.DataFrame, records: dict, order: list, main_keys: set,
     if mode_row is None:
         return {}
     row = rows.index[rows["mode_id"] == mode_row][0]
-    track = table.at[row, "track"]
-    branch = ok & (table["track"] == track)
-    table.loc[branch, "tef_branch"] = True
+    # the branch goes on past an undecided match (tefcore.tracking.follow_branch);
     # a coalescence is a documented convention (the less stable root goes
     # on), not a doubt; an undecided match is
-    doubt = table[branch & (table["identity"] == "ambiguous")]
-    certain = branch.copy()
-    if not doubt.empty:
-        first_bad = table.loc[doubt.index, "value_si"].min()
-        certain &= table["value_si"] < first_bad
-    table.loc[certain, "tef_branch_certain"] = True
+    step_of = {k: i for i, k in enumerate(order)}
+    tracked = table[ok].assign(step=table.loc[ok, "key"].map(step_of))
+    path = _branch(tracked, records, order, step_of[first], mode_row)
+    where = {(order[s], m): c for s, m, c in
+             zip(path["step"], path["mode_id"], path["certain"], strict=True)}
+    hit = [where.get((k, int(m))) if good else None
+           for k, m, good in zip(table["key"], table["mode_id"], ok, strict=True)]
+    table["tef_branch"] = [h is not None for h in hit]
+    table["tef_branch_certain"] = [bool(h) for h in hit]          # None: not on it
     return {"point": int(table.at[row, "point"]), "mode_id": int(table.at[row, "mode_id"]),
             "method": method}
 

@@ -16,8 +16,7 @@ then refines the parameter step between the two points (bisection, bounded)
 and tracks again.  Where two roots have the same shape and eigenvalue
 (MAC >= :data:`~tefcore.mode_matching.COALESCED_MAC`,
 :func:`~tefcore.mode_matching.relative_distance` within
-:data:`~tefcore.mode_matching.COALESCED_DISTANCE`), or are the two real
-multipliers of one locked pair (equal frequency at a multiple of 1/2 per rev), no refinement can
+:data:`~tefcore.mode_matching.COALESCED_DISTANCE`), no refinement can
 separate them: a coalescence, and the identity is ``"coalescence"``; the
 track then goes on with the less stable root of the pair (the one that
 matters for stability), by convention -- the table says where.
@@ -25,6 +24,42 @@ Two tracks whose eigenvalues pass closer in a step than they move may have
 crossed or veered; where their shapes exchanged (each new shape carries at
 least :data:`EXCHANGE_MAC` of the other's old one), the match is
 ``"ambiguous"`` too and the step is refined.  A track's first row is ``"start"``.
+
+**Floquet locks.**  Where a complex pair of Floquet multipliers meets the
+real axis it becomes two real multipliers of one sign: two roots at one
+frequency ``k/2`` per rev (:func:`~tefcore.mode_matching.is_locked`) that
+differ in real part, until they meet again and leave the lock as one complex
+pair.  Across a lock's ends the ordinary match is not decided by a finer
+step: the frequency no longer tells the roots apart, and the complex root's
+shape ``a + ib`` is a combination of the two real shapes in proportions
+that say nothing about identity (MAC 0.73 and 0.77 with the two of them for
+the MDART flap mode leaving its 7/rev lock after GJ x 1.5, in a step of an
+eighth of the figure's).
+What does decide is the *plane* the two real shapes span: the complex
+root's shape lies in it (:func:`~tefcore.mode_matching.plane_mac`,
+1 - 4e-7 there) and in no other root's.  So a step that enters, stays in
+or leaves a lock (a locked pair, :func:`~tefcore.mode_matching.locked_pairs`,
+on both sides, or on one side and a complex root on the other -- a real root
+alone at ``k/2`` is a lock whose partner the solver put another whole /rev
+away, not a lock's end) is matched root to plane: the
+cost is ``1 - plane_mac`` plus the eigenvalue distance (entering and
+leaving the smaller of the two, staying the larger of the two matches in
+order), and the step is decided when that is clear against every other
+entry of the rows and columns involved (the ``CLEAR_COST`` and ``MARGIN``
+above).  Then, by the convention above, entering, the track goes on with
+the less stable real root and the other starts a track; staying, the two
+real roots keep their order -- on the real axis they cannot pass each other
+without meeting, which ends the lock -- so the less stable goes on with the
+less stable; leaving, the merged root continues the track of the less stable
+real root, which by the two rules before is the track that entered.  Rows so
+decided are ``"coalescence"`` unless their ordinary match was clear too.  A
+lock step the plane does not decide (another root as near, a shape out of
+the plane: the step did not resolve it) keeps the ordinary decision,
+``"ambiguous"``, and is refined.
+
+:func:`follow_branch` follows one mode through a tracked table past the end
+of its track (where an undecided match gave its root to another track, it
+goes on with the best match and says it is no longer certain).
 
 Each track keeps the ``label`` its mode had where the track starts; the
 point's own label at each point is ``label_here``, so a label that changes
@@ -63,17 +98,20 @@ import pandas as pd
 from scipy.optimize import linear_sum_assignment
 
 from .mode_matching import (
+    LOCK_TOL,
     as_point,
     decide,
     eigenvalues,
     is_clear,
     is_coalesced,
+    locked_pairs,
     mac,
     match_cost,
+    plane_mac,
 )
 
-__all__ = ["EXCHANGE_MAC", "FollowResult", "ambiguous_steps", "follow_root", "label_changes",
-           "track_modes"]
+__all__ = ["EXCHANGE_MAC", "FollowResult", "ambiguous_steps", "follow_branch", "follow_root",
+           "label_changes", "track_modes"]
 
 #: Two tracks passing close in one step are a possible veering when one's new
 #: shape carries at least this share of the other's old shape (MAC): a veering
@@ -152,7 +190,7 @@ def track_modes(points: Sequence, values=None, *, predict: bool = True) -> pd.Da
     tracks: list[_Track] = []
     alive: list[int] = []
     frames = []
-    prev_periodic = False
+    prev_periodic, prev_eig, prev_vecs = False, np.zeros(0, complex), None
     for step, (p, x) in enumerate(zip(points, values, strict=True)):
         if p is None:
             continue
@@ -165,22 +203,25 @@ def track_modes(points: Sequence, values=None, *, predict: bool = True) -> pd.Da
         col_vec = [None if vecs is None else vecs[:, j] for j in range(len(modes))]
         assigned = np.full(len(modes), -1)
         identity = np.full(len(modes), "start", dtype=object)
+        per = periodic or prev_periodic
         if alive and len(modes):
             pred = np.array([tracks[t].predict(x, predict) for t in alive])
             cost, shape = match_cost(pred, [tracks[t].vec for t in alive], eig, vecs,
-                                     periodic or prev_periodic, shape_part=True)
+                                     per, shape_part=True)
             rows, cols = linear_sum_assignment(cost)
             clear, rival = decide(cost, rows, cols, shape)
-            partner = {}
-            for r, c, ok, k in zip(rows, cols, clear, rival, strict=True):
+            for r, c, ok in zip(rows, cols, clear, strict=True):
                 assigned[c] = alive[r]
-                if ok:
-                    identity[c] = "clear"
-                elif is_coalesced(eig, vecs, c, k, periodic or prev_periodic):
+                identity[c] = "clear" if ok else "ambiguous"
+            # a step into, within or out of a Floquet lock: the plane rule
+            handled = _lock_steps(cost, shape, rows, cols, alive, (prev_eig, prev_vecs),
+                                  (eig, vecs), per, assigned, identity)
+            partner = {}
+            for c, ok, k in zip(cols, clear, rival, strict=True):
+                if not ok and c not in handled and k not in handled and is_coalesced(
+                        eig, vecs, c, k, per):
                     identity[c] = "coalescence"
                     partner[c] = k
-                else:
-                    identity[c] = "ambiguous"
             # a coalesced pair is one mode split into two roots: by convention
             # the track goes on with the less stable one (the one that matters
             # for stability), the other root takes the partner's track or a new one
@@ -195,15 +236,14 @@ def track_modes(points: Sequence, values=None, *, predict: bool = True) -> pd.Da
                 if t >= 0:
                     tracked_eig[j] = _unwrap(eig[j], tracks[t].predict(x, predict))
         if alive and len(modes):
-            _flag_close_passes(identity, assigned, tracked_eig, tracks, vecs,
-                               periodic or prev_periodic)
+            _flag_close_passes(identity, assigned, tracked_eig, tracks, vecs, per)
         for j in np.flatnonzero(assigned < 0):
             tracks.append(_Track(label=str(modes["label"].iloc[j])))
             assigned[j] = len(tracks) - 1
         for j, t in enumerate(assigned):
             tracks[t].update(x, tracked_eig[j], col_vec[j])
         alive = [int(t) for t in assigned]
-        prev_periodic = periodic
+        prev_periodic, prev_eig, prev_vecs = periodic, eig, vecs
         frame = modes.drop(columns="label")
         frame.insert(frame.columns.get_loc("frequency_per_rev") + 1, "frequency_tracked",
                      tracked_eig.imag)
@@ -218,6 +258,91 @@ def track_modes(points: Sequence, values=None, *, predict: bool = True) -> pd.Da
                                      "mode_id", "frequency_per_rev", "real_part"])
     out = pd.concat(frames, ignore_index=True)
     return out.sort_values(["step", "track"], kind="stable", ignore_index=True)
+
+
+def _lock_steps(cost, shape, rows, cols, alive, prev, new, periodic, assigned,
+                identity) -> set:
+    """Decide the matches of a step that enters, leaves or stays in a Floquet lock.
+
+    The rule is in the module docstring.  `rows`, `cols`: the optimal
+    assignment of `cost` (previous roots by new roots; `shape` its
+    ``1 - MAC`` part); `alive`: the previous roots' tracks; `prev`, `new`:
+    ``(eigenvalues, shapes)`` of the two points.  Sets `assigned` and
+    `identity` in place; returns the columns decided here (no other
+    coalescence convention applies to them).
+    """
+    if not periodic:
+        return set()
+    (peig, pvecs), (eig, vecs) = prev, new
+    col_of = dict(zip(rows.tolist(), cols.tolist(), strict=True))
+    row_of = {c: r for r, c in col_of.items()}
+    eig_part = cost - np.nan_to_num(shape)
+    new_pairs, old_pairs = locked_pairs(eig, True), locked_pairs(peig, True)
+    handled: set = set()
+
+    def off_plane(pair_vecs, singles):
+        """Largest ``1 - plane_mac`` of the single shapes against the pair's plane."""
+        if pair_vecs is None or any(v is None or v.shape[0] != pair_vecs.shape[0]
+                                    for v in singles):
+            return np.nan
+        return max(1.0 - plane_mac(pair_vecs, v) for v in singles)
+
+    def decided(r_idx, c_idx, own, ps):
+        """Clear against every other entry of the rows and columns involved."""
+        other = np.zeros(cost.shape, bool)
+        other[r_idx, :] = True
+        other[:, c_idx] = True
+        other[np.ix_(r_idx, c_idx)] = False
+        own = own + (0.0 if np.isnan(ps) else ps)
+        return is_clear(own, ps, cost[other].min(initial=np.inf))
+
+    def less_stable_first(e, i, j):
+        return (i, j) if (e[i].real, -i) >= (e[j].real, -j) else (j, i)
+
+    def old(*r):
+        return None if pvecs is None else pvecs[:, list(r)]
+
+    def now(*c):
+        return None if vecs is None else vecs[:, list(c)]
+
+    def real(e, i):
+        """A real multiplier (its frequency at k/2), paired or not: a lock's
+        partner may carry another whole /rev (another dominant harmonic)."""
+        return abs(2 * e[i].imag - round(2 * e[i].imag)) <= 2 * LOCK_TOL
+
+    for p, q in new_pairs:                  # entering: the root of one track -> p, q
+        us = [row_of[c] for c in (p, q) if c in row_of]
+        if len(us) != 1 or real(peig, us[0]):
+            continue
+        u = us[0]
+        handled |= {p, q}
+        ps = off_plane(now(p, q), [None if pvecs is None else pvecs[:, u]])
+        if decided([u], [p, q], min(eig_part[u, p], eig_part[u, q]), ps):
+            keep, other = less_stable_first(eig, p, q)
+            assigned[keep], identity[keep] = alive[u], "coalescence"
+            assigned[other], identity[other] = -1, "start"
+    for a, b in old_pairs:
+        cs = [col_of[r] for r in (a, b) if r in col_of]
+        hi, lo = less_stable_first(peig, a, b)
+        if len(cs) == 2 and tuple(sorted(cs)) in new_pairs:    # staying: a, b -> p, q
+            handled |= set(cs)
+            hi_n, lo_n = less_stable_first(eig, *cs)
+            ps = off_plane(old(a, b), [vecs[:, hi_n], vecs[:, lo_n]] if vecs is not None
+                           else [None])
+            if decided([a, b], cs, max(eig_part[hi, hi_n], eig_part[lo, lo_n]), ps):
+                for r, c in ((hi, hi_n), (lo, lo_n)):
+                    same = assigned[c] == alive[r] and identity[c] == "clear"
+                    assigned[c], identity[c] = alive[r], "clear" if same else "coalescence"
+        elif cs and not any(real(eig, c) for c in cs):          # leaving: a, b -> one root
+            handled |= set(cs)
+            offs = [off_plane(old(a, b), [None if vecs is None else vecs[:, c]]) for c in cs]
+            owns = [min(eig_part[a, c], eig_part[b, c]) for c in cs]
+            i = int(np.argmin(np.add(owns, np.nan_to_num(offs))))
+            if decided([a, b], [cs[i]], owns[i], offs[i]):
+                for c in cs:
+                    assigned[c], identity[c] = -1, "start"
+                assigned[cs[i]], identity[cs[i]] = alive[hi], "coalescence"
+    return handled
 
 
 def _flag_close_passes(identity, assigned, eig, tracks, vecs, periodic=False) -> None:
@@ -275,7 +400,121 @@ def _unwrap(eig: complex, predicted: complex) -> complex:
     its sign) whose frequency is closest to the predicted one."""
     f, p = eig.imag, predicted.imag
     up, down = f + round(p - f), -f + round(p + f)
+    if abs(2 * p - round(2 * p)) <= 2 * LOCK_TOL:
+        # predicted at a lock (k/2): the two are mirror images about it, one
+        # root up to its sign -- keep the solver's sign, not whichever the
+        # round-off of the locked frequency (1e-6) favours
+        return complex(eig.real, up)
     return complex(eig.real, up if abs(up - p) <= abs(down - p) else down)
+
+
+def follow_branch(tracked: pd.DataFrame, points: Sequence, start: tuple[int, int],
+                  values=None, *, predict: bool = True) -> pd.DataFrame:
+    """One mode's branch through a :func:`track_modes` table, past the end of its track.
+
+    The branch is the track of the ``start`` row as long as the track goes
+    on.  Where the track ends before the sweep does (an undecided match gave
+    its root to another track, or a lock it entered as the more stable root
+    ended), the branch continues with the root that matches its last row
+    best (:func:`~tefcore.mode_matching.match_cost` from its extrapolated
+    eigenvalue and last shape) among the next point's rows that are not a
+    clear continuation of another track, and then along that root's track.
+    Such a change of track is a doubt -- unless the root is the merged root
+    of a lock the branch was half of (identity ``"coalescence"``), which is
+    the documented convention -- and so is every ``"ambiguous"`` row; the
+    branch ends only where no candidate exists.
+
+    Parameters
+    ----------
+    tracked : pandas.DataFrame
+        The :func:`track_modes` table of `points` (columns ``step``,
+        ``track``, ``mode_id``, ``identity``, ``real_part`` and
+        ``frequency_tracked``).
+    points : sequence
+        The points given to :func:`track_modes`.
+    start : tuple of int
+        ``(step, mode_id)`` of the branch's first row.
+    values : sequence of float, optional
+        The parameter values given to :func:`track_modes`.
+    predict : bool
+        Extrapolate the eigenvalue linearly from the branch's last two rows.
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per step from `start` while the branch goes on: ``step``,
+        ``mode_id``, ``track``, ``doubt`` (this row's match into the branch
+        was not decided) and ``certain`` (no doubt from the start up to here).
+
+    Examples
+    --------
+    Track 0 loses its only root to track 1 in an undecided match; the
+    branch goes on with it, no longer certain:
+
+    >>> import pandas as pd
+    >>> def pt(*f):
+    ...     return pd.DataFrame({"mode_id": range(len(f)), "label": ["m"] * len(f),
+    ...                          "frequency_per_rev": f, "real_part": [-0.1] * len(f)})
+    >>> pts = [pt(1.0, 2.0), pt(1.0, 2.0), pt(1.6)]
+    >>> t = track_modes(pts)
+    >>> t[["step", "track", "identity"]].values.tolist()
+    [[0, 0, 'start'], [0, 1, 'start'], [1, 0, 'clear'], [1, 1, 'clear'], [2, 1, 'ambiguous']]
+    >>> follow_branch(t, pts, (0, 0)).values.tolist()
+    [[0, 0, 0, False, True], [1, 0, 0, False, True], [2, 0, 1, True, False]]
+    """
+    if values is None:
+        values = np.arange(len(points), dtype=float)
+    step0, mode0 = (int(v) for v in start)
+    first = tracked[(tracked["step"] == step0) & (tracked["mode_id"] == mode0)]
+    if first.empty:
+        raise ValueError(f"no row with step {step0} and mode_id {mode0} in the table")
+    track = first["track"].iloc[0]
+    locked = _at_lock(first.iloc[0])
+    path = [(step0, mode0, track, False)]
+    branch = _Track(label="")
+    branch.update(float(values[step0]), _row_eig(first.iloc[0]), _shape(points[step0], mode0))
+    for step, here in tracked[tracked["step"] > step0].groupby("step", sort=True):
+        mine = here[here["track"] == track]
+        if mine.empty:                   # the track ended: its best match goes on
+            cand = here[here["identity"] != "clear"]
+            if cand.empty:
+                break
+            modes, vecs, periodic = as_point(points[step])
+            rows = modes.index[modes["mode_id"].isin(cand["mode_id"])]
+            cost = match_cost([branch.predict(float(values[step]), predict)], [branch.vec],
+                              eigenvalues(modes)[rows], None if vecs is None else vecs[:, rows],
+                              periodic)[0]
+            best = int(modes["mode_id"].iloc[rows[int(np.argmin(cost))]])
+            mine = cand[cand["mode_id"] == best]
+            # no doubt only where the branch was half of a lock that ended
+            # into this root (the convention); any other change of track is one
+            doubt = not (mine["identity"].iloc[0] == "coalescence" and locked)
+        else:
+            doubt = mine["identity"].iloc[0] == "ambiguous"
+        row = mine.iloc[0]
+        track = row["track"]
+        locked = _at_lock(row)
+        path.append((int(step), int(row["mode_id"]), track, bool(doubt)))
+        branch.update(float(values[step]), _row_eig(row), _shape(points[step], row["mode_id"]))
+    out = pd.DataFrame(path, columns=["step", "mode_id", "track", "doubt"])
+    out["certain"] = ~out["doubt"].cummax()
+    return out
+
+
+def _at_lock(row) -> bool:
+    f = float(row["frequency_per_rev"])
+    return abs(2 * f - round(2 * f)) <= 2 * LOCK_TOL
+
+
+def _row_eig(row) -> complex:
+    return complex(float(row["real_part"]), float(row["frequency_tracked"]))
+
+
+def _shape(point, mode_id):
+    modes, vecs, _ = as_point(point)
+    if vecs is None:
+        return None
+    return vecs[:, int(np.flatnonzero(modes["mode_id"].to_numpy() == int(mode_id))[0])]
 
 
 def ambiguous_steps(tracked: pd.DataFrame, kinds=("ambiguous",)) -> list[int]:

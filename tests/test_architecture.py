@@ -61,6 +61,8 @@ LARGE_MODULES = {
     "tefcore._floquet_modes": DOCUMENTED,
     "tefcore.stability": DOCUMENTED,
     "tefcore.c81_reader": DOCUMENTED,
+    "tefcore.paper.batch_report": DOCUMENTED,
+    "tefcore.paper.batch_spec": DOCUMENTED,
     "tefcore.paper.claim_checks": DOCUMENTED,
     "tefcore.paper.plotting": DOCUMENTED,
     "tefcore.paper.report": DOCUMENTED,

@@ -50,7 +50,8 @@ def test_version_is_the_package_version():
     assert r.stdout.strip() == f"tefcore {tefcore.__version__}"
 
 
-SUBCOMMANDS = ("modes", "fanplot", "stability", "sweep", "map", "mechanism", "c81", "reproduce")
+SUBCOMMANDS = ("modes", "fanplot", "stability", "sweep", "map", "mechanism", "c81", "reproduce",
+               "batch")
 
 
 def test_help_lists_each_subcommand_on_one_line_without_markup():

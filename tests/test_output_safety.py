@@ -115,7 +115,7 @@ def fake_repo(tmp_path, monkeypatch):
         return []
 
     monkeypatch.setattr(rp, "run_notebooks", fake_run)
-    monkeypatch.setattr(rp, "_baseline_blade", lambda out: None)
+    monkeypatch.setattr(rp, "baseline_blade", lambda out, cfg=None: None)
     monkeypatch.setenv("TEFCORE_NOTEBOOKS", str(nb))
     monkeypatch.chdir(repo)
     return repo, src

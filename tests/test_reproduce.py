@@ -77,7 +77,8 @@ def test_every_notebook_has_parameters_kernelspec_and_outputs():
         tagged = [c for c in nb.cells if "parameters" in c.metadata.get("tags", [])]
         assert len(tagged) == 1
         params = nbf.notebook_parameters(path)
-        assert {"output_dir", "n_jobs", "aero_model", "overrides", "n_points"} <= set(params)
+        assert {"output_dir", "n_jobs", "aero_model", "config", "overrides",
+                "n_points"} <= set(params)
         code = [c for c in nb.cells if c.cell_type == "code"]
         assert all(c.get("execution_count") for c in code), f"{name} is not executed"
         assert [c.execution_count for c in code] == list(range(1, len(code) + 1))

@@ -26,7 +26,11 @@ package itself exports nothing)::
     run_params      notebook parameters from a YAML file and -p options, in layers
     reproduce       tefcore reproduce: run the notebooks, check claims, write report
     report          the reproduction report as one model, to markdown and HTML
-    commands        the reproduce and notebooks subcommands of the tefcore CLI
+    batch_spec      the batch file: named runs, parameters, grids, checked before running
+    batch_state     what decided a batch run's results: skip, recompute or refuse (stale)
+    batch           tefcore batch: every run's notebooks in one pool, resumable
+    batch_report    the batch's comparison: runs side by side, headlines, overlaid curves
+    commands        the reproduce, batch and notebooks subcommands of the tefcore CLI
 """
 
 __all__: list[str] = []

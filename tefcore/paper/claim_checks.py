@@ -142,9 +142,10 @@ def _doubtful(rows, mode, lo, hi) -> list[float]:
 def _check_branch_covers(frame, branch, lo, hi) -> None:
     """Raise :class:`_Ambiguous` when the TEF branch stops inside the checked range.
 
-    The branch ends where its root met another in a coalescence that could not
-    be resolved; beyond it, which root is the TEF is not decided -- a claim
-    about the TEF there is ambiguous, not failed for want of points.
+    The branch ends where no root of the next point continues it
+    (:func:`tefcore.tracking.follow_branch`); beyond it, which root is the TEF
+    is not decided -- a claim about the TEF there is ambiguous, not failed for
+    want of points.
     """
     own = frame[frame["refinement"] == 0] if "refinement" in frame else frame
     xs = own["x"].to_numpy(float)
@@ -156,8 +157,8 @@ def _check_branch_covers(frame, branch, lo, hi) -> None:
     bx = branch["x"].to_numpy(float)
     slack = X_SLACK * max(abs(a), abs(b), 1e-300)
     if bx.max() < min(b, xs.max()) - slack:
-        raise _Ambiguous(f"the TEF branch ends at x = {bx.max():.4g} (its root coalesced "
-                         f"with another), before {min(b, xs.max()):.4g}")
+        raise _Ambiguous(f"the TEF branch ends at x = {bx.max():.4g} (no root continues "
+                         f"it), before {min(b, xs.max()):.4g}")
     if bx.min() > max(a, xs.min()) + slack:
         raise _Ambiguous(f"the TEF branch starts at x = {bx.min():.4g}, after "
                          f"{max(a, xs.min()):.4g}")

@@ -1,8 +1,9 @@
-"""The paper layer's subcommands of ``tefcore``: ``reproduce`` and ``notebooks``.
+"""The paper layer's subcommands of ``tefcore``: ``reproduce``, ``batch`` and ``notebooks``.
 
 :func:`add_commands` adds them to the ``tefcore`` parser (:mod:`tefcore.cli`
-calls it); the work is done by :mod:`tefcore.paper.reproduce` and
-:mod:`tefcore.paper.notebook_files`, imported only when a command runs.
+calls it); the work is done by :mod:`tefcore.paper.reproduce`,
+:mod:`tefcore.paper.batch` and :mod:`tefcore.paper.notebook_files`, imported
+only when a command runs.
 """
 
 from __future__ import annotations
@@ -10,7 +11,7 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-__all__ = ["add_commands", "cmd_notebooks", "cmd_reproduce"]
+__all__ = ["add_commands", "cmd_batch", "cmd_notebooks", "cmd_reproduce"]
 
 _REPRODUCE = """\
 Execute the numbered notebooks with papermill into OUT (several at once, up to
@@ -28,6 +29,33 @@ examples:
   tefcore reproduce -p overrides "{flight.advance_ratio: 0.2}" -p 03:n_points 8
 """
 
+_BATCH = """\
+Run many parameter sets through the notebooks and compare them.  RUNS.yaml
+names runs; each has notebook parameters (as in 'reproduce --params'), and
+optionally a base configuration (config: FILE.toml), a subset of the
+notebooks and a grid (one run per combination of the listed values):
+
+  notebooks: [03, 04]
+  grid: {03:overrides.flap.cg_offset: [0.0, 0.15],
+         04:overrides.flap.overhang: [0.2, 0.29, 0.4]}
+
+The runs' notebooks execute in one pool (--jobs at once, default: the
+cores), each run into OUT/RUN/ with its own report.  OUT/index.html (+
+index.md, runs.csv, headlines.csv) compares the runs: their parameters,
+claims scores, the flutter onset and growth per figure, and the runs' curves
+overlaid.  Everything in RUNS.yaml is checked before anything runs.
+
+Run it again to resume: unchanged finished runs are skipped, failed ones
+recomputed; a run folder whose recorded inputs (parameters, configuration,
+tefcore version and code, notebook cells, reference data) differ is refused
+unless --force.  Exit status 1 when a run failed.
+
+examples:
+  tefcore batch examples/class_assignment.yaml --out class
+  tefcore batch examples/flap_inertia_doubled.yaml --out review --only 04 05
+  tefcore batch runs.yaml --out quick -p n_points 4 --dry-run
+"""
+
 _NOTEBOOKS = """\
 List the numbered notebooks, or copy them for editing: --copy DIR writes each
 notebook (.ipynb, with its outputs) and its jupytext source (.py) into DIR,
@@ -43,7 +71,8 @@ examples:
 
 #: What a notebook without a paper figure is about.
 _NO_FIGURE = {"08_assumptions": "what each assumption does to the results",
-              "09_design_maps": "stability maps over two parameters (beyond the paper)"}
+              "09_design_maps": "stability maps over two parameters (beyond the paper)",
+              "10_unsteady": "unsteady airloads and dynamic inflow (beyond the paper)"}
 
 
 def cmd_reproduce(args) -> int:
@@ -71,6 +100,35 @@ def cmd_reproduce(args) -> int:
     layers.append(parse_cli_params([tuple(p) for p in args.param or ()]))
     return reproduce(Path(args.out), params=layers, notebooks=args.only,
                      progress=not args.no_progress, jobs=args.jobs)
+
+
+def cmd_batch(args) -> int:
+    """Run ``tefcore batch`` with parsed arguments; return the exit status.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        The parsed ``batch`` options: ``runs`` (the batch file), ``out``,
+        ``jobs``, ``force``, ``only``, ``params`` (a YAML parameters file
+        over every run), ``param`` (``-p NAME VALUE`` pairs), ``dry_run`` and
+        ``no_progress``.
+
+    Returns
+    -------
+    int
+        0 when every run ran, 1 when one failed
+        (:func:`tefcore.paper.batch.batch`).
+    """
+    from .batch import batch
+    from .run_params import load_params_file, parse_cli_params
+
+    if args.jobs is not None and args.jobs < 1:
+        raise ValueError(f"--jobs {args.jobs}: must be at least 1")
+    layers = [load_params_file(args.params)] if args.params else []
+    layers.append(parse_cli_params([tuple(p) for p in args.param or ()]))
+    result = batch(args.runs, args.out, jobs=args.jobs, force=args.force, only=args.only,
+                   params=layers, progress=not args.no_progress, dry_run=args.dry_run)
+    return result.exit_code
 
 
 def cmd_notebooks(args) -> int:
@@ -113,7 +171,7 @@ def cmd_notebooks(args) -> int:
 
 
 def add_commands(sub, formatter_class=argparse.RawDescriptionHelpFormatter) -> None:
-    """Add ``reproduce`` and ``notebooks`` to the ``tefcore`` subparsers ``sub``.
+    """Add ``reproduce``, ``batch`` and ``notebooks`` to the ``tefcore`` subparsers ``sub``.
 
     Parameters
     ----------
@@ -137,6 +195,26 @@ def add_commands(sub, formatter_class=argparse.RawDescriptionHelpFormatter) -> N
                    help="notebooks executed at once (default: the number of cores)")
     p.add_argument("--no-progress", action="store_true", help="no progress bar")
     p.set_defaults(func=cmd_reproduce)
+    p = sub.add_parser("batch", formatter_class=fmt, description=_BATCH,
+                       help="run many parameter sets through the notebooks, compare them")
+    p.add_argument("runs", metavar="RUNS.yaml", help="the batch file: runs, parameters, grids")
+    p.add_argument("--out", default="batch", help="output folder (default: batch)")
+    p.add_argument("--jobs", type=int, default=None,
+                   help="notebooks executed at once over all runs (default: the cores)")
+    p.add_argument("--force", action="store_true",
+                   help="recompute runs whose recorded inputs differ (instead of refusing)")
+    p.add_argument("--only", nargs="+", metavar="NOTEBOOK", default=None,
+                   help="keep only these notebooks in every run (e.g. 04)")
+    p.add_argument("--params", default=None, metavar="FILE.yaml",
+                   help="YAML parameters over every run: {all: {...}, 03_overhang: {...}}")
+    p.add_argument("-p", "--param", nargs=2, action="append", metavar=("NAME", "VALUE"),
+                   help="notebook parameter over every run (NOTEBOOK:NAME for one "
+                        "notebook); VALUE is YAML")
+    p.add_argument("--dry-run", action="store_true",
+                   help="check the batch and show what would run (new, skip, retry); run "
+                        "nothing")
+    p.add_argument("--no-progress", action="store_true", help="no progress bar")
+    p.set_defaults(func=cmd_batch)
     p = sub.add_parser("notebooks", formatter_class=fmt, description=_NOTEBOOKS,
                        help="list the notebooks, or copy them for editing (--copy DIR)")
     p.add_argument("--copy", default=None, metavar="DIR",

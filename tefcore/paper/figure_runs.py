@@ -25,7 +25,7 @@ from types import SimpleNamespace
 import numpy as np
 import pandas as pd
 
-from ..c81 import example_deck_path
+from ..c81 import example_deck_path, xfoil_deck_path
 from ..config_io import load_config
 from .claim_checks import variant_key
 from .figures import FIGURES, figure_config
@@ -38,29 +38,43 @@ __all__ = ["AERO_MODELS", "base_config", "figure_values", "natural_frequencies",
            "variant_key"]
 
 #: Section aerodynamics a notebook can choose (``aero_model`` parameter).
-AERO_MODELS = ("thin_airfoil", "table")
+AERO_MODELS = ("thin_airfoil", "table", "xfoil")
 
 
-def base_config(aero_model: str = "thin_airfoil", overrides: dict | None = None):
-    """MDART configuration with the chosen section aerodynamics.
+def base_config(aero_model: str = "thin_airfoil", overrides: dict | None = None,
+                config=None):
+    """The base configuration (MDART, or a TOML file) with the chosen section aerodynamics.
 
     Parameters
     ----------
-    aero_model : {"thin_airfoil", "table"}
-        Quasi-steady thin-airfoil theory, or the C81 look-up with the shipped
-        *generated* example deck (``"c81"`` is accepted for ``"table"``).
+    aero_model : {"thin_airfoil", "table", "xfoil"}
+        Thin-airfoil theory; the C81 look-up with the shipped *generated*
+        example deck (thin-airfoil theory tabulated; ``"c81"`` is accepted for
+        ``"table"``); or the C81 look-up with the shipped XFOIL deck (NACA 0012
+        with the MDART balanced flap, viscous: a real flapped-airfoil table).
+        Unsteadiness is ``model.aero`` in ``overrides``
+        (``{"model.aero": "unsteady"}``), with any of the three.
     overrides : dict, optional
         Dotted configuration fields applied last.
+    config : path or str, optional
+        A configuration file (TOML, :mod:`tefcore.config_io`: a complete
+        rotor, e.g. a copy of ``tefcore/data/mdart.toml`` with other values)
+        or the name of a shipped one; None: the shipped MDART configuration.
+        The notebooks' ``config`` parameter (``tefcore batch`` sets it).
 
     Returns
     -------
     tefcore.config.Config
-        The MDART baseline with the section aerodynamics set, then ``overrides``.
+        The base configuration with the section aerodynamics set, then
+        ``overrides``.
     """
-    cfg = load_config("mdart")
+    cfg = load_config("mdart" if config is None else config)
     if aero_model in ("table", "c81"):
         cfg = cfg.with_overrides({"model.aero_model": "c81",
                                   "model.c81_deck": str(example_deck_path())})
+    elif aero_model == "xfoil":
+        cfg = cfg.with_overrides({"model.aero_model": "c81",
+                                  "model.c81_deck": str(xfoil_deck_path())})
     elif aero_model != "thin_airfoil":
         raise ValueError(f"aero_model = {aero_model!r}: expected one of "
                           f"{', '.join(AERO_MODELS)}")

@@ -37,6 +37,7 @@ NOTEBOOKS = (
     "07_flight_condition",
     "08_assumptions",
     "09_design_maps",
+    "10_unsteady",
 )
 #: Which paper figures each notebook reproduces.
 NOTEBOOK_FIGURES = {
@@ -49,6 +50,7 @@ NOTEBOOK_FIGURES = {
     "07_flight_condition": ("fig16a", "fig16b", "fig17"),
     "08_assumptions": (),               # no figure: the sensitivity of the headline results
     "09_design_maps": (),               # beyond the paper: two-parameter stability maps
+    "10_unsteady": (),                  # beyond the paper: shed wake and dynamic inflow
 }
 
 

@@ -182,6 +182,9 @@ class Report:
     departures : str
         Departures from the paper common to all figures (markdown); each
         section has its own part.
+    up : str
+        Link to the page this report belongs to (a batch's comparison,
+        ``../index.html``); ``""`` for a report of its own.
     """
 
     title: str
@@ -196,6 +199,7 @@ class Report:
     version: str
     fanplot: Image | None = None
     departures: str = ""
+    up: str = ""
 
 
 def _slug(text: str) -> str:
@@ -266,8 +270,15 @@ def _notebook_sections(out: Path, name: str, figures, claims: pd.DataFrame) -> l
     return sections
 
 
+def _parameters_text(params: dict) -> str:
+    """A notebook's parameters as ``name = value`` pairs (its output folder left out)."""
+    return ", ".join(f"{k} = {v!r}" for k, v in sorted((params or {}).items())
+                     if k != "output_dir")
+
+
 def build_report(out, runs, claims: pd.DataFrame, worse: pd.DataFrame, *, figures_of,
-                 checks: pd.DataFrame | None = None, version: str = "") -> Report:
+                 checks: pd.DataFrame | None = None, version: str = "",
+                 title: str = "tefcore reproduction report", up: str = "") -> Report:
     """Collect a reproduction's outputs in ``out`` into a :class:`Report`.
 
     Parameters
@@ -288,6 +299,10 @@ def build_report(out, runs, claims: pd.DataFrame, worse: pd.DataFrame, *, figure
         The version of tefcore, shown in the summary.  Run times are printed
         by :func:`tefcore.paper.reproduce.reproduce`, not kept in the report,
         so that two runs write identical reports.
+    title : str
+        The page title.
+    up : str
+        Link to the page the report belongs to (``""``: none).
 
     Returns
     -------
@@ -312,7 +327,7 @@ def build_report(out, runs, claims: pd.DataFrame, worse: pd.DataFrame, *, figure
             or "no claims checked"
     fan = out / "mdart_fanplot.png"
     return Report(
-        title="tefcore reproduction report",
+        title=title, up=up,
         intro=("Replication of *Aeroelastic Stability of Trailing-Edge Flap Helicopter "
                "Rotors* with the compact tefcore model. Each section shows one figure of the "
                "paper as tefcore computes it, the paper's statements about it checked against "
@@ -326,7 +341,8 @@ def build_report(out, runs, claims: pd.DataFrame, worse: pd.DataFrame, *, figure
         passed=passed, total=len(validation), counts=counts,
         worse=worse.fillna("").astype(str).to_dict("records") if not worse.empty else [],
         notebooks=[{"name": r.name, "status": r.status, "error": r.error,
-                    "html": f"notebooks/{r.name}.html"}
+                    "html": f"notebooks/{r.name}.html",
+                    "parameters": _parameters_text(getattr(r, "parameters", {}))}
                    for r in runs],
         sections=sections,
         checks=[] if checks is None else checks.drop(columns="source", errors="ignore")

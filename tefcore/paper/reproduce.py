@@ -47,8 +47,10 @@ from .report import build_report, write_report
 from .run_params import merge_params
 from .validation import claims_score, worse_than_recorded
 
-__all__ = ["KERNEL_NAME", "NotebookRun", "ReproductionError", "check_reproduce_folder",
-           "collect_claims", "regressions", "reproduce", "run_notebooks", "score"]
+__all__ = ["KERNEL_NAME", "NotebookRun", "ReproductionError", "baseline_blade",
+           "check_reference_data", "check_reproduce_folder", "check_tools", "collect_claims",
+           "ensure_kernel", "execute_notebook", "finish_report", "prepare_params",
+           "regressions", "reproduce", "run_notebooks", "score"]
 
 KERNEL_NAME = "python3"
 #: What to install when the notebook tools are missing.
@@ -87,17 +89,35 @@ class NotebookRun:
     parameters: dict = field(default_factory=dict)
 
 
-def _papermill():
+def check_tools(command: str = "tefcore reproduce"):
+    """papermill and nbconvert, or a :class:`ReproductionError` saying what to install.
+
+    Parameters
+    ----------
+    command : str
+        The command that needs them, for the message.
+
+    Returns
+    -------
+    module
+        :mod:`papermill`.
+    """
     try:
         import nbconvert  # noqa: F401  (the HTML export; checked before anything runs)
         import papermill
     except ImportError as exc:
-        raise ReproductionError(f"tefcore reproduce needs {exc.name}: {INSTALL_HINT}") from None
+        raise ReproductionError(f"{command} needs {exc.name}: {INSTALL_HINT}") from None
     return papermill
 
 
-def _ensure_kernel(name: str = KERNEL_NAME) -> None:
-    """Register the current interpreter's ipykernel as ``name`` if there is no such kernelspec."""
+def ensure_kernel(name: str = KERNEL_NAME) -> None:
+    """Register the current interpreter's ipykernel as ``name`` if there is no such kernelspec.
+
+    Parameters
+    ----------
+    name : str
+        The Jupyter kernel the notebooks are executed with.
+    """
     from jupyter_client.kernelspec import NoSuchKernel, get_kernel_spec
 
     try:
@@ -117,10 +137,40 @@ def _export_html(executed: Path) -> None:
     atomic_write_text(executed.with_suffix(".html"), body)
 
 
-def _run_one(papermill, name: str, src: Path, out: Path, params: dict,
-             kernel_name: str) -> NotebookRun:
+def execute_notebook(name: str, src: Path, out: Path, params: dict,
+                     kernel_name: str = KERNEL_NAME) -> NotebookRun:
+    """Execute one notebook with papermill into ``out/notebooks``; never raises for its failure.
+
+    The kernel runs in the caller's working folder (papermill's own ``cwd``
+    would change the folder of the whole process, which races between
+    threads); the notebook writes its results into ``params["output_dir"]``.
+    The executed notebook is exported to HTML beside it, also when it failed.
+
+    Parameters
+    ----------
+    name : str
+        The notebook (``"04_cg_offset"``).
+    src : pathlib.Path
+        The source ``.ipynb``.
+    out : pathlib.Path
+        Existing folder; the executed notebook goes to
+        ``out/notebooks/<name>.ipynb`` (and ``.html``).
+    params : dict
+        Papermill parameters, including ``output_dir``.
+    kernel_name : str
+        Jupyter kernel (:func:`ensure_kernel`).
+
+    Returns
+    -------
+    NotebookRun
+        Its status (``"ok"`` or ``"failed"`` with the error's last line) and
+        wall time.
+    """
+    import papermill
+
     run = NotebookRun(name, parameters=params)
     target = out / "notebooks" / f"{name}.ipynb"
+    target.parent.mkdir(parents=True, exist_ok=True)
     start = time.perf_counter()
     try:
         papermill.execute_notebook(
@@ -176,9 +226,9 @@ def run_notebooks(out: Path, params: dict, names=NOTEBOOKS, progress: bool = Tru
     """
     from tqdm.auto import tqdm
 
-    papermill = _papermill()
+    check_tools()
     nb_dir = nb_dir or notebooks_dir()
-    _ensure_kernel(kernel_name)
+    ensure_kernel(kernel_name)
     (out / "notebooks").mkdir(parents=True, exist_ok=True)
     jobs = max(1, min(len(names), jobs or os.cpu_count() or 1))
     runs = {}
@@ -189,7 +239,7 @@ def run_notebooks(out: Path, params: dict, names=NOTEBOOKS, progress: bool = Tru
         for name in names:
             p = dict(params.get(name, {}))
             p["output_dir"] = str((out / name).resolve())
-            futures[pool.submit(_run_one, papermill, name, nb_dir / f"{name}.ipynb", out, p,
+            futures[pool.submit(execute_notebook, name, nb_dir / f"{name}.ipynb", out, p,
                                 kernel_name)] = name
         for fut in as_completed(futures):
             runs[futures[fut]] = fut.result()
@@ -250,8 +300,26 @@ def score(claims: pd.DataFrame) -> tuple[int, int]:
                                                           errors="ignore")))
 
 
-def _baseline_blade(out: Path) -> pd.DataFrame:
-    """MDART mode table, stated-frequency checks and fan plot at the top of ``out``."""
+def baseline_blade(out: Path, cfg=None) -> pd.DataFrame:
+    """Blade mode table, stated-frequency checks and fan plot at the top of ``out``.
+
+    Writes ``mdart_modes.csv``, ``mdart_frequency_checks.csv`` and
+    ``mdart_fanplot.png``.  Call from the main thread (pyplot).
+
+    Parameters
+    ----------
+    out : pathlib.Path
+        Existing output folder.
+    cfg : tefcore.config.Config, optional
+        The blade (default: the shipped MDART configuration); a batch run
+        passes its own base configuration with its common overrides.
+
+    Returns
+    -------
+    DataFrame
+        The stated first-torsion frequencies against the model's
+        (:func:`tefcore.paper.calibration.frequency_checks`).
+    """
     import matplotlib
 
     matplotlib.use("Agg")
@@ -262,14 +330,16 @@ def _baseline_blade(out: Path) -> pd.DataFrame:
     from .calibration import frequency_checks
 
     deterministic_matplotlib()
-    cfg = load_config("mdart")
+    shipped = cfg is None
+    cfg = load_config("mdart") if shipped else cfg
     with atomic_output(out / "mdart_modes.csv", newline="") as f:
         blade_modes(cfg).table().to_csv(f, index=False, float_format="%.6g")
     checks = frequency_checks(cfg)
     with atomic_output(out / "mdart_frequency_checks.csv", newline="") as f:
         checks.to_csv(f, index=False, float_format="%.6g")
     ax = fan_plot(cfg)
-    ax.set_title("MDART blade (assumed properties), coupled modes")
+    ax.set_title("MDART blade (assumed properties), coupled modes" if shipped
+                 else "the run's blade, coupled modes")
     savefig(ax.figure, out, "mdart_fanplot")
     plt.close(ax.figure)
     return checks
@@ -340,8 +410,14 @@ def check_reproduce_folder(out, names=NOTEBOOKS, nb_dir: Path | None = None) -> 
     return out
 
 
-def _check_reference_data() -> int:
-    """Number of claims in the reference data; an error when there are none."""
+def check_reference_data() -> int:
+    """Number of claims in the reference data; a :class:`ReproductionError` when there are none.
+
+    Returns
+    -------
+    int
+        The claims in :func:`tefcore.paper.reference.reference_dir`.
+    """
     try:
         claims = load_claims()
     except (ReferenceDataError, FileNotFoundError, OSError) as exc:
@@ -353,14 +429,82 @@ def _check_reference_data() -> int:
     return len(claims)
 
 
-def _with_static_explorer(params: dict, names, nb_dir: Path) -> dict:
-    """``interactive = False`` for notebooks that have the parameter, unless the user set it."""
-    out = {n: dict(params.get(n, {})) for n in names}
+def prepare_params(params, names, nb_dir: Path | None = None) -> dict:
+    """Each notebook's papermill parameters from layers, checked against its parameters cell.
+
+    Parameters
+    ----------
+    params : dict or list of dict
+        ``{"all"|notebook: {name: value}}`` or a list of such layers (later
+        wins, :func:`tefcore.paper.run_params.merge_params`).
+    names : sequence of str
+        The notebooks (full names).
+    nb_dir : pathlib.Path, optional
+        Their folder (default :func:`~tefcore.paper.notebook_files.notebooks_dir`).
+
+    Returns
+    -------
+    dict
+        ``{notebook: {name: value}}``, with ``interactive = False`` (the
+        explorer's static figure) where a notebook has that parameter and it
+        was not set.
+
+    Raises
+    ------
+    ValueError
+        A parameter a notebook does not declare (with a close match), or a
+        missing notebook.
+    """
+    nb_dir = nb_dir or notebooks_dir()
+    layers = params if isinstance(params, list | tuple) else [params or {}]
+    merged = merge_params(*layers, notebooks=names)
+    check_parameters(merged, names, nb_dir)
+    out = {n: dict(merged.get(n, {})) for n in names}
     for n in names:
         if "interactive" not in out[n] and \
                 "interactive" in notebook_parameters(nb_dir / f"{n}.ipynb"):
             out[n]["interactive"] = False
     return out
+
+
+def finish_report(out: Path, runs, names, checks: pd.DataFrame | None, *,
+                  title: str = "tefcore reproduction report", up: str = "") -> dict:
+    """Collect the claims the notebooks wrote, write ``claims.csv`` and the report.
+
+    Parameters
+    ----------
+    out : pathlib.Path
+        The reproduction folder.
+    runs : list of NotebookRun
+        The notebooks' executions, in report order.
+    names : sequence of str
+        The notebooks run.
+    checks : DataFrame or None
+        The stated blade frequencies (:func:`baseline_blade`).
+    title : str
+        The report's title.
+    up : str
+        Link (relative to ``out``) to a page the report belongs to (a
+        batch's comparison); ``""`` for none.
+
+    Returns
+    -------
+    dict
+        ``claims`` (DataFrame), ``worse`` (claims worse than recorded),
+        ``passed`` and ``total`` (validation claims), ``paths`` (report.md,
+        report.html).
+    """
+    from .. import __version__
+
+    claims = collect_claims(out, names)
+    with atomic_output(out / "claims.csv", newline="") as f:
+        (claims if claims.empty else claims.drop(columns=["notebook"])).to_csv(f, index=False)
+    worse = regressions(claims)
+    passed, total = score(claims)
+    report = build_report(out, runs, claims, worse, figures_of=NOTEBOOK_FIGURES,
+                          checks=checks, version=__version__, title=title, up=up)
+    return {"claims": claims, "worse": worse, "passed": passed, "total": total,
+            "paths": write_report(report, out)}
 
 
 def reproduce(out, params=None, notebooks=None, progress: bool = True,
@@ -397,27 +541,17 @@ def reproduce(out, params=None, notebooks=None, progress: bool = True,
     names = [resolve_notebook(n) for n in notebooks] if notebooks else list(NOTEBOOKS)
     nb_dir = (nb_dir or notebooks_dir())
     out = check_reproduce_folder(out, names, nb_dir)
-    _papermill()
-    _check_reference_data()
-    layers = params if isinstance(params, list | tuple) else [params or {}]
-    merged = merge_params(*layers, notebooks=names)
-    check_parameters(merged, names, nb_dir)
-    merged = _with_static_explorer(merged, names, nb_dir)
+    check_tools()
+    check_reference_data()
+    merged = prepare_params(params, names, nb_dir)
     out.mkdir(parents=True, exist_ok=True)
     start = time.perf_counter()
-    checks = _baseline_blade(out)
+    checks = baseline_blade(out)
     runs = run_notebooks(out, merged, names, progress=progress, nb_dir=nb_dir, jobs=jobs)
-    claims = collect_claims(out, names)
-    with atomic_output(out / "claims.csv", newline="") as f:
-        (claims if claims.empty else claims.drop(columns=["notebook"])).to_csv(f, index=False)
-    worse = regressions(claims)
-    passed, total = score(claims)
+    done = finish_report(out, runs, names, checks)
+    claims, worse, passed, total = (done[k] for k in ("claims", "worse", "passed", "total"))
+    md, html_path = done["paths"]
     elapsed = time.perf_counter() - start
-    from .. import __version__
-
-    report = build_report(out, runs, claims, worse, figures_of=NOTEBOOK_FIGURES,
-                          checks=checks, version=__version__)
-    md, html_path = write_report(report, out)
     for r in runs:
         print(f"{r.name:38s} {r.status:7s} {r.seconds:6.1f} s  {r.error}")
     print(f"claims: {passed} validation claims passed of {total} ({len(claims)} checked in "

@@ -39,6 +39,8 @@
 output_dir = "output/03_overhang"
 n_jobs = 1                 # processes for the stability sweeps (joblib); 2 on 2 cores
 aero_model = "thin_airfoil"  # "thin_airfoil" (quasi-steady) or "table" (C81, shipped deck)
+config = None              # base configuration: a TOML file (a complete rotor, e.g. an edited
+                           # copy of tefcore/data/mdart.toml); None: the shipped MDART
 overrides = {}             # dotted configuration fields applied over each figure's caption,
                            # e.g. {"flight.ct_sigma": 0.08, "flight.advance_ratio": 0.2}
 n_points = None            # None: the paper's sweep values; int: that many, evenly, same range
@@ -54,7 +56,7 @@ import pandas as pd
 from tefcore.paper import notebook_tools as nt
 
 out = nt.setup_notebook(output_dir)
-base = nt.base_config(aero_model)
+base = nt.base_config(aero_model, config=config)
 claims_cfg = base.with_overrides(overrides) if overrides else base  # for runs validation adds
 results, variants = {}, {}
 

@@ -46,6 +46,8 @@
 output_dir = "output/09_design_maps"
 n_jobs = 1                 # processes for the map's points (joblib); 2 on 2 cores
 aero_model = "thin_airfoil"  # "thin_airfoil" (quasi-steady) or "table" (C81, shipped deck)
+config = None              # base configuration: a TOML file (a complete rotor, e.g. an edited
+                           # copy of tefcore/data/mdart.toml); None: the shipped MDART
 overrides = {}             # dotted configuration fields applied to both maps
 n_points = None            # None: the grids below; int: that many values on every axis
 n_cg, n_overhang = 9, 7    # grid of map 1 (flap CG offset x overhang)
@@ -65,7 +67,7 @@ from tefcore.paper import notebook_tools as nt
 from tefcore.stability_map import stability_map
 
 out = nt.setup_notebook(output_dir)
-base = nt.base_config(aero_model, overrides)
+base = nt.base_config(aero_model, overrides, config=config)
 if n_points is not None:
     n_cg = n_overhang = n_actuator = n_mu = int(n_points)
 client = None
