@@ -322,6 +322,13 @@ def trim(model: CoupledModel, *, tol: float = 1e-10, max_iter: int = 40,
             q0 = np.vstack([q0, initial.states])
         lam = ([initial.inflow.mean, initial.inflow.sine, initial.inflow.cosine]
                if model.dynamic_inflow else [initial.inflow.mean_induced])
+        # the controls not solved for are this configuration's, never the warm
+        # start's: a prescribed collective (a collective sweep) would otherwise
+        # stay at the previous point's value
+        ctl = Controls(collective=(ctl.collective if prob.free_collective
+                                   else initial_collective(cfg)),
+                       cyclic_cos=0.0 if prob.hover else ctl.cyclic_cos,
+                       cyclic_sin=0.0 if prob.hover else ctl.cyclic_sin)
     else:
         q0 = np.zeros((n, n_psi))
         ctl = Controls(collective=initial_collective(cfg))

@@ -189,3 +189,35 @@ def test_warm_started_sweep_is_the_same_in_every_run(tmp_path):
             cold["trim_iterations"].iloc[len(cold) // 2:]).all()
     for col in ("real_part", "frequency_per_rev"):
         assert np.abs(warm[col].to_numpy() - cold[col].to_numpy()).max() < 1e-7
+
+
+@pytest.mark.parametrize("base, param, xs", [
+    # a prescribed collective is not a trim unknown: a warm start that carried the
+    # previous point's controls over kept the neighbour's collective (Fig. 16's
+    # hover sweep came out flat, every point equal to the first: found in review)
+    ({"flight.advance_ratio": 0.0, "flight.collective": 0.0}, "flight.collective",
+     [0.0, 0.05, 0.1, 0.15]),
+    ({"flight.advance_ratio": 0.3, "flight.collective": 0.1}, "flight.collective",
+     [0.1, 0.14]),
+    # the trim targets and the flight condition themselves
+    ({"flight.advance_ratio": 0.3}, "flight.ct_sigma", [0.06, 0.08]),
+    ({}, "flight.advance_ratio", [0.25, 0.3]),
+])
+def test_warm_starts_take_every_trim_input_from_their_own_point(base, param, xs):
+    # each point of a warm-started sweep against the same point computed cold:
+    # equal to the trim's tolerance (4e-9 /rev measured above), whatever field
+    # the sweep varies -- a warm start may change the starting guess only
+    from tefcore.stability import stability
+
+    cfg = MDART.with_overrides(base)
+    kw = dict(progress=False, refine=False, anchor=False)
+    warm = sweep(cfg, param, xs, **kw).table
+    cold = sweep(cfg, param, xs, point=lambda c: stability(c), **kw).table
+    assert len(warm) == len(cold)
+    assert np.abs(warm["trim_collective_deg"].to_numpy()
+                  - cold["trim_collective_deg"].to_numpy()).max() < 1e-6
+    for col in ("real_part", "frequency_per_rev"):
+        assert np.abs(warm[col].to_numpy() - cold[col].to_numpy()).max() < 1e-7
+    if param == "flight.collective":
+        got = np.deg2rad(warm.groupby("value_si")["trim_collective_deg"].first().to_numpy())
+        assert np.allclose(got, sorted(xs), atol=1e-12)
