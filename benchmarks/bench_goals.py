@@ -247,6 +247,56 @@ def goals(args):
     print(f"load average after: {load()}")
 
 
+def breakdown(args):
+    """Where the time of a point and of the CLI goes (for the goals not met)."""
+    repeat = args.repeat
+    base = load_config("mdart")
+    print(f"\nwhere the time goes, medians of {repeat}; load average {load()}")
+    for name, cfg in (("mu = 0.3", base.with_overrides({"flight.advance_ratio": 0.3})),
+                      ("hover", base.with_overrides({"flight.advance_ratio": 0.0}))):
+        stability(cfg)                                     # blade modes cached
+        theta = initial_collective(cfg)
+        t_point = median_ms(lambda c=cfg: stability(c), repeat)
+        t_model = median_ms(lambda c=cfg, th=theta: coupled_model(c, collective=th), repeat)
+        model = coupled_model(cfg, collective=theta)
+        t_trim = median_ms(lambda m=model: trim(m), repeat)
+        tr = trim(model)
+        iterations = len(tr.history)
+
+        def linearise(m=model):
+            t = trim(m)
+            return linear_system(t)
+
+        t_lin = median_ms(linearise, repeat) - t_trim      # the Jacobian at the solution
+        tr.final_blocks()                                  # cached: linear_system is cheap
+        steps = cfg.model.n_floquet_steps
+
+        def floquet(t=tr, k=steps):                        # a fresh system, as in a point
+            s = linear_system(t)
+            return s.modes(n_steps=k, n_sub=1, shapes=s.periodic, on_inaccurate="raise",
+                           participation=s.periodic)
+
+        t_fl = median_ms(floquet, repeat) - median_ms(lambda t=tr: linear_system(t), repeat)
+        rest = t_point - t_model - t_trim - t_lin - t_fl
+        print(f"  {name} point {t_point:.1f} ms: model {t_model:.1f}, trim {t_trim:.1f} "
+              f"({iterations} Newton iterations), linearisation {t_lin:.1f}, "
+              f"Floquet {t_fl:.1f}, labels and table {rest:.1f} ms")
+    env = dict(os.environ)
+    print("  fresh process, imports alone (medians of 5):")
+    for what in ("pass", "import numpy", "import numpy, scipy.linalg",
+                 "import numpy, scipy.linalg, pandas",
+                 "import numpy, scipy.linalg, scipy.optimize, scipy.interpolate, pandas",
+                 "import tefcore.cli, tefcore.stability"):
+        times = []
+        for _ in range(5):
+            r = subprocess.run([sys.executable, "-c", "import time; t = time.perf_counter(); "
+                                f"{what}; print(time.perf_counter() - t)"],
+                               capture_output=True, text=True, env=env,
+                               cwd=tempfile.gettempdir(), check=True)
+            times.append(float(r.stdout))
+        print(f"    {what:<72s} {statistics.median(times):.2f} s")
+
+
 def scaling(args):
     base = load_config("mdart").with_overrides({"flight.advance_ratio": 0.3})
     print(f"\nscaling, mu = 0.3 point (modes cached), medians of {args.repeat}; "
@@ -286,9 +336,13 @@ def main():
     ap.add_argument("--quick", action="store_true", help="small maps only")
     ap.add_argument("--reproduce", action="store_true", help="also time tefcore reproduce")
     ap.add_argument("--no-scaling", action="store_true", help="skip the scaling table")
+    ap.add_argument("--no-breakdown", action="store_true",
+                    help="skip where the time of a point and of the CLI goes")
     args = ap.parse_args()
     apply_defaults()
     goals(args)
+    if not args.no_breakdown:
+        breakdown(args)
     if not args.no_scaling:
         scaling(args)
 
