@@ -375,14 +375,23 @@ HUB_FIELDS = [f"{s}.{p.name}" for s in ("flexbeam", "torque_tube", "pitch_link",
        value=st.one_of(st.floats(allow_nan=True, allow_infinity=True), st.integers(-100, 100)))
 def test_any_hub_value_gives_a_model_or_an_error_naming_it(field, value):
     # every value of a hub field either builds the branched blade or is refused
-    # with a ValueError that names the field (never a traceback elsewhere)
+    # with a ValueError that names the field (never a traceback elsewhere).  The
+    # refusal may come when the blade is assembled: a value inside the field's
+    # range can still leave the assembled mass matrix singular to round-off
+    # (hypothesis found flexbeam.mass = 5e-324 kg/m: smallest eigenvalue
+    # -1.45e-17), which the positive-definiteness check refuses, naming the
+    # fields to check
+    names = {field, "model.n_elements"} if field.endswith("n_elements") else {field}
     try:
         cfg = MLP.with_overrides({field: value})
     except ValueError as err:
-        names = {field, "model.n_elements"} if field.endswith("n_elements") else {field}
         assert any(n in str(err) for n in names), str(err)
         return
-    m = blade_modes(cfg, n_modes=4)
+    try:
+        m = blade_modes(cfg, n_modes=4)
+    except ValueError as err:
+        assert any(n in str(err) for n in names), str(err)
+        return
     assert np.all(np.isfinite(m.frequencies))
 
 
