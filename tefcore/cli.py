@@ -365,7 +365,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--out", default=None,
                    help="stream points to this JSON-lines file; re-running resumes it")
     p.add_argument("--jobs", type=int, default=1, help="parallel processes (joblib)")
-    p.add_argument("--quiet", action="store_true", help="no progress bar")
+    p.add_argument("--quiet", "--no-progress", action="store_true", help="no progress bar")
     p = _add(sub, "map", "stability map over two fields: flutter growth, boundary",
              "Stability map: one sweep of FIELD_X per value of FIELD_Y (resumable with "
              "--out), the flutter root's growth rate at every point and the flutter "
@@ -388,7 +388,7 @@ def build_parser() -> argparse.ArgumentParser:
                    help="dask.distributed scheduler, e.g. tcp://10.0.0.5:8786 (instead of "
                         "local processes)")
     p.add_argument("--no-refine", action="store_true", help="do not refine the boundary")
-    p.add_argument("--quiet", action="store_true", help="no progress bar")
+    p.add_argument("--quiet", "--no-progress", action="store_true", help="no progress bar")
     p = _add(sub, "mechanism", "why a root is (un)stable: work of each term, knockouts",
              "Decompose one root's growth rate into the work of the named terms of the "
              "linearised equations (they add up to its real part), and follow the root with "

@@ -193,7 +193,7 @@ def add_commands(sub, formatter_class=argparse.RawDescriptionHelpFormatter) -> N
                    help="run only these notebooks (e.g. 03 04_cg_offset)")
     p.add_argument("--jobs", type=int, default=None,
                    help="notebooks executed at once (default: the number of cores)")
-    p.add_argument("--no-progress", action="store_true", help="no progress bar")
+    p.add_argument("--no-progress", "--quiet", action="store_true", help="no progress bar")
     p.set_defaults(func=cmd_reproduce)
     p = sub.add_parser("batch", formatter_class=fmt, description=_BATCH,
                        help="run many parameter sets through the notebooks, compare them")
@@ -213,7 +213,7 @@ def add_commands(sub, formatter_class=argparse.RawDescriptionHelpFormatter) -> N
     p.add_argument("--dry-run", action="store_true",
                    help="check the batch and show what would run (new, skip, retry); run "
                         "nothing")
-    p.add_argument("--no-progress", action="store_true", help="no progress bar")
+    p.add_argument("--no-progress", "--quiet", action="store_true", help="no progress bar")
     p.set_defaults(func=cmd_batch)
     p = sub.add_parser("notebooks", formatter_class=fmt, description=_NOTEBOOKS,
                        help="list the notebooks, or copy them for editing (--copy DIR)")
