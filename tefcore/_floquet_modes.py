@@ -41,7 +41,7 @@ from ._floquet_propagators import (
 from ._floquet_result import sorted_result
 from .runtime import blas_limit
 
-__all__ = ["MIN_ROOT", "MAX_SUB", "choose_sub", "floquet_modes", "sub_products"]
+__all__ = ["LIFT_RTOL", "MIN_ROOT", "MAX_SUB", "choose_sub", "floquet_modes", "sub_products"]
 
 
 #: Smallest modulus ``|mu| = |lambda|^(1/K)`` of a lifted root that
@@ -57,6 +57,21 @@ MIN_ROOT = 1e-6
 
 #: Largest number of sub-intervals :func:`floquet_modes` raises ``n_sub`` to.
 MAX_SUB = 16
+
+#: Largest first-order round-off bound ``eps ||Z|| kappa_i / |mu_i|`` of a
+#: resolved lifted root (``kappa_i`` its eigenvalue condition number, from the
+#: left and right eigenvectors, known when the adjoint solutions are wanted)
+#: that :func:`floquet_modes` accepts below :data:`MAX_SUB`; above it ``K`` is
+#: doubled.  A locked pair (two real multipliers at ``k/2`` /rev) is nearly
+#: defective: ``kappa`` 4e8 at ``K = 8`` for a -7.6 /rev root of an imbalanced
+#: flap at mu = 0.35 (bound 40), whose frequency came out 0.4958 instead of
+#: 0.5 /rev; ``K = 16`` (bound 0.1) gives 0.49999.  The bound is pessimistic by
+#: orders of magnitude (the paper's imbalanced baseline: 2e-4 at ``K = 8``, its
+#: roots within 1e-6 /rev of ``K = 16``; ordinary points 1e-11), so it is
+#: acted on only where it says the root may be off by a percent (measured:
+#: 3e-4 at most on ordinary and imbalanced points, 0.7 to 40 where the lift
+#: gave a wrong root; docs/theory.md 5.3).
+LIFT_RTOL = 1e-2
 
 
 def _clusters(mu, scale):
@@ -348,8 +363,13 @@ def _modes(p, period, k_sub, max_sub, shapes, shift_states, min_rate=None, duals
         # eps ||Z|| / |mu| relative (||Z|| = the largest ||Phi_k||), is <= 1e-6
         with np.errstate(over="ignore"):     # an inf norm: no K resolves it (below)
             floor = max(MIN_ROOT, 1e6 * eps * np.linalg.norm(phis, axis=(1, 2)).max())
-        if (split and smallest >= floor) or k_sub >= max_sub:
+        if k_sub >= max_sub:
             break
+        if split and smallest >= floor:
+            if not (duals and _ill_conditioned(mu, blocks, lblocks[0], phis, cut)):
+                break
+            k_sub = min(max_sub, 2 * k_sub)      # a nearly defective root: a finer lift
+            continue
         # |mu| = |lambda|^(1/K): the K that lifts the most damped root to the
         # floor (from the computed root even when it is garbage: then it is
         # below round-off, and the true one smaller still)
@@ -472,6 +492,22 @@ def sub_products(p, k, levels):
         out = tree_product(group(p, k)[0])
     levels[k] = out
     return out
+
+
+def _ill_conditioned(mu, right, left, phis, cut):
+    """Whether a resolved root (``|mu| >= cut``) of the lift has a first-order
+    round-off bound ``eps ||Z|| kappa / |mu|`` above :data:`LIFT_RTOL`
+    (``kappa = |u| |v| / |u^H v|`` of its stacked left and right eigenvectors)."""
+    k_sub, n, m = right.shape
+    v = right.reshape(k_sub * n, m)
+    u = left.reshape(k_sub * n, m)
+    with np.errstate(all="ignore"):
+        kappa = (np.linalg.norm(u, axis=0) * np.linalg.norm(v, axis=0)
+                 / np.abs(np.einsum("ij,ij->j", u.conj(), v)))
+        bound = (np.finfo(float).eps * np.linalg.norm(phis, axis=(1, 2)).max() * kappa
+                 / np.abs(mu))
+    resolved = np.abs(mu) >= cut
+    return bool(np.any(resolved & ~(bound <= LIFT_RTOL)))
 
 
 def choose_sub(p, period, k_min, max_sub, min_rate=None, frozen_rate=None, duals=False,

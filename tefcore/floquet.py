@@ -54,7 +54,7 @@ the periodic change of variables ``x = (1 + 0.3 sin psi) z``:
 from __future__ import annotations
 
 from ._floquet_accuracy import DEFAULT_ATOL, DEFAULT_RTOL, MAX_DOUBLINGS
-from ._floquet_modes import MAX_SUB, MIN_ROOT, floquet_modes
+from ._floquet_modes import LIFT_RTOL, MAX_SUB, MIN_ROOT, floquet_modes
 from ._floquet_multipliers import characteristic_multipliers
 from ._floquet_propagators import (
     DEFAULT_N_STEPS,
@@ -73,6 +73,7 @@ __all__ = [
     "DEFAULT_N_STEPS",
     "DEFAULT_N_SUB",
     "DEFAULT_RTOL",
+    "LIFT_RTOL",
     "MAX_DOUBLINGS",
     "MAX_SUB",
     "MIN_ROOT",

@@ -273,3 +273,32 @@ def test_lock_detection():
     assert locked_pairs(eig, True) == [(0, 2)]
     near = np.array([-1 + 7.0j, -1.1 + (7.0 + 3 * LOCK_TOL) * 1j])
     assert locked_pairs(near, True) == []
+
+
+@pytest.mark.parametrize("overrides, label, frequency, real_part", [
+    # a heavily damped root at a 1/2 /rev lock of an imbalanced, heavy flap: the
+    # lift at K = 8 (chosen before solving) gave 0.4958 /rev, -7.5834 /rev; K = 4
+    # and K = 16 agree on 0.49999, -7.59005 (found by a differential review of the
+    # speed work against the old code, which jumped to K = 16 here)
+    ({"flight.advance_ratio": 0.35, "flap.cg_offset": 0.4, "flap.mass": 0.6,
+      "actuator.stiffness": "60 ft-lb/rad"}, "blade flap 4", 0.5, -7.59005),
+    # the TEF root of an over-balanced flap at its 2 /rev lock: 2.0409, -7.0185 at
+    # K = 8 against 2.000021, -6.98165 (old code and K = 16)
+    ({"flight.advance_ratio": 0.3, "flap.overhang": 0.45, "flap.cg_offset": 0.2}, "TEF",
+     2.0, -6.98165),
+])
+def test_nearly_defective_locked_pair_gets_a_finer_lift(overrides, label, frequency,
+                                                         real_part):
+    # a locked pair is nearly defective: its lifted roots' condition numbers
+    # (4e8 at K = 8) put their round-off far above the eps ||Z|| / |mu| the K
+    # floor assumes, and step doubling cannot see round-off of the lift;
+    # floquet_modes doubles K while a resolved root's first-order bound
+    # eps ||Z|| kappa / |mu| exceeds LIFT_RTOL.  Gates: 1e-4 /rev in frequency and
+    # 2e-3 /rev in real part, a tenth of what the K = 8 lift was off by, and
+    # above the 2e-5 /rev by which the K = 16 results differ from K = 4 / old code
+    from tefcore.stability import stability
+
+    modes = stability(MDART.with_overrides(overrides)).modes
+    row = modes[modes["label"] == label].iloc[0]
+    assert abs(row["frequency_per_rev"] - frequency) < 1e-4
+    assert abs(row["real_part"] - real_part) < 2e-3
