@@ -50,7 +50,6 @@ import re
 from dataclasses import dataclass, field
 from pathlib import Path
 
-import jinja2
 import numpy as np
 import pandas as pd
 
@@ -63,7 +62,7 @@ from .plotting import (
     savefig,
     x_values,
 )
-from .report import FIGURE_TITLES
+from .report import FIGURE_TITLES, template_environment
 
 __all__ = ["ROOTS", "Comparison", "FigurePanel", "comparison", "headlines", "render_comparison",
            "run_curves", "write_comparison"]
@@ -427,18 +426,6 @@ def comparison(out, outcomes, title: str = "tefcore batch comparison") -> tuple:
     return model, runs_df, long_df
 
 
-def _environment() -> jinja2.Environment:
-    env = jinja2.Environment(
-        loader=jinja2.PackageLoader("tefcore.paper", "templates"),
-        autoescape=jinja2.select_autoescape(enabled_extensions=("html", "html.j2"),
-                                            default_for_string=False),
-        trim_blocks=True, lstrip_blocks=True, keep_trailing_newline=True,
-        undefined=jinja2.StrictUndefined)
-    env.filters["mdcell"] = lambda v: str(v).replace("|", "\\|").replace("\n", " ")
-    env.filters["breakable"] = _breakable
-    return env
-
-
 def _breakable(text: str):
     """A dotted name that may wrap after each dot (table headers at 800 px)."""
     from markupsafe import Markup, escape
@@ -468,7 +455,8 @@ def render_comparison(model: Comparison, fmt: str = "html") -> str:
     """
     if fmt not in ("html", "md"):
         raise ValueError(f"format must be 'html' or 'md', got {fmt!r}")
-    return _environment().get_template(f"batch.{fmt}.j2").render(c=model)
+    return template_environment(breakable=_breakable).get_template(
+        f"batch.{fmt}.j2").render(c=model)
 
 
 def write_comparison(out, outcomes, title: str = "tefcore batch comparison") -> tuple:

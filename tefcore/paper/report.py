@@ -33,7 +33,7 @@ from ..safe_io import atomic_write_text
 from .departures import departures_text, load_departures
 
 __all__ = ["FIGURE_TITLES", "Image", "Report", "Section", "build_report", "render",
-           "write_report"]
+           "template_environment", "write_report"]
 
 #: The paper's figure captions (its own words), by tefcore figure name.
 FIGURE_TITLES = {
@@ -353,7 +353,21 @@ def build_report(out, runs, claims: pd.DataFrame, worse: pd.DataFrame, *, figure
         departures=departures_text())
 
 
-def _environment() -> jinja2.Environment:
+def template_environment(**filters) -> jinja2.Environment:
+    """The jinja2 environment of tefcore's report templates (``tefcore/paper/templates``).
+
+    HTML templates are autoescaped, undefined names are errors, and the filter
+    ``mdcell`` makes a value fit one markdown table cell.
+
+    Parameters
+    ----------
+    **filters : callable
+        Further template filters by name (e.g. ``md_to_html``).
+
+    Returns
+    -------
+    jinja2.Environment
+    """
     env = jinja2.Environment(
         loader=jinja2.PackageLoader("tefcore.paper", "templates"),
         autoescape=jinja2.select_autoescape(enabled_extensions=("html", "html.j2"),
@@ -361,7 +375,7 @@ def _environment() -> jinja2.Environment:
         trim_blocks=True, lstrip_blocks=True, keep_trailing_newline=True,
         undefined=jinja2.StrictUndefined)
     env.filters["mdcell"] = lambda v: str(v).replace("|", "\\|").replace("\n", " ")
-    env.filters["md_to_html"] = _md_inline_to_html
+    env.filters.update(filters)
     return env
 
 
@@ -423,7 +437,8 @@ def render(report: Report, fmt: str = "html") -> str:
     """
     if fmt not in ("html", "md"):
         raise ValueError(f"format must be 'html' or 'md', got {fmt!r}")
-    return _environment().get_template(f"report.{fmt}.j2").render(r=report)
+    return template_environment(md_to_html=_md_inline_to_html).get_template(
+        f"report.{fmt}.j2").render(r=report)
 
 
 def write_report(report: Report, out) -> tuple[Path, Path]:
