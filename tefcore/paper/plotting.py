@@ -30,7 +30,7 @@ from ..safe_io import atomic_output, atomic_write_text
 from ..units import from_si
 
 __all__ = ["AXES", "MEASURES", "PAPER_MODES", "STYLE", "curves", "deterministic_matplotlib",
-           "legend_below",
+           "legend_below", "locus_figure",
            "plot_modes", "plot_participation", "plot_root_locus", "savefig", "split_value",
            "x_values"]
 
@@ -468,3 +468,35 @@ def plot_participation(ax, name: str, table: pd.DataFrame, label: str = "TEF"):
     ax.set_ylabel(f"participation in the {label} mode")
     ax.set_xlabel(AXES[name][0])
     return ax
+
+
+def locus_figure(name: str, table: pd.DataFrame, labels=PAPER_MODES):
+    """Root locus of the tracked modes beside the participation in the TEF branch.
+
+    The classic picture of coalescence flutter, one per stability figure of
+    the notebooks: :func:`plot_root_locus` (left) and :func:`plot_participation`
+    (right), titled, legends below.
+
+    Parameters
+    ----------
+    name : str
+        Paper figure.
+    table : DataFrame
+        Sweep table.
+    labels : tuple of str
+        Modes in the root locus.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    import matplotlib.pyplot as plt
+
+    fig, (ax_l, ax_p) = plt.subplots(1, 2, figsize=(11, 4.2))
+    plot_root_locus(ax_l, name, table, labels=labels)
+    ax_l.set_title("root locus (square: start, arrows: increasing x)", fontsize="medium")
+    legend_below(ax_l)
+    plot_participation(ax_p, name, table)
+    ax_p.set_title("participation in the TEF branch", fontsize="medium")
+    legend_below(ax_p, ncol=4)
+    return fig

@@ -153,13 +153,7 @@ nt.savefig(fig, out, "fig08", figure="fig8",
 
 # %%
 nt.report_identity("fig8", res_fig8)
-fig, (ax_l, ax_p) = plt.subplots(1, 2, figsize=(11, 4.2))
-nt.plot_root_locus(ax_l, "fig8", res_fig8.table)
-ax_l.set_title("root locus (square: start, arrows: increasing x)", fontsize="medium")
-nt.legend_below(ax_l)
-nt.plot_participation(ax_p, "fig8", res_fig8.table)
-ax_p.set_title("participation in the TEF branch", fontsize="medium")
-nt.legend_below(ax_p, ncol=4)
+fig = nt.locus_figure("fig8", res_fig8.table)
 nt.savefig(fig, out, "fig08_locus", figure="fig8",
            caption=nt.figure_caption("fig8", cfg_fig8, nt.LOCUS_CAPTION, markers=False));
 

@@ -103,13 +103,7 @@ nt.savefig(fig, out, "fig09", figure="fig9",
 
 # %%
 nt.report_identity("fig9", res_fig9)
-fig, (ax_l, ax_p) = plt.subplots(1, 2, figsize=(11, 4.2))
-nt.plot_root_locus(ax_l, "fig9", res_fig9.table)
-ax_l.set_title("root locus (square: start, arrows: increasing x)", fontsize="medium")
-nt.legend_below(ax_l)
-nt.plot_participation(ax_p, "fig9", res_fig9.table)
-ax_p.set_title("participation in the TEF branch", fontsize="medium")
-nt.legend_below(ax_p, ncol=4)
+fig = nt.locus_figure("fig9", res_fig9.table)
 nt.savefig(fig, out, "fig09_locus", figure="fig9",
            caption=nt.figure_caption("fig9", cfg_fig9, nt.LOCUS_CAPTION, markers=False));
 

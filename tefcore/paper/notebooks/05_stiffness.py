@@ -107,13 +107,7 @@ nt.savefig(fig, out, "fig10", figure="fig10",
 
 # %%
 nt.report_identity("fig10", res_fig10)
-fig, (ax_l, ax_p) = plt.subplots(1, 2, figsize=(11, 4.2))
-nt.plot_root_locus(ax_l, "fig10", res_fig10.table, labels=modes_fig10)
-ax_l.set_title("root locus (square: start, arrows: increasing x)", fontsize="medium")
-nt.legend_below(ax_l)
-nt.plot_participation(ax_p, "fig10", res_fig10.table)
-ax_p.set_title("participation in the TEF branch", fontsize="medium")
-nt.legend_below(ax_p, ncol=4)
+fig = nt.locus_figure("fig10", res_fig10.table, labels=modes_fig10)
 nt.savefig(fig, out, "fig10_locus", figure="fig10",
            caption=nt.figure_caption("fig10", cfg_fig10, nt.LOCUS_CAPTION, markers=False));
 
@@ -173,13 +167,7 @@ nt.savefig(fig, out, "fig11", figure="fig11",
 
 # %%
 nt.report_identity("fig11", res_fig11)
-fig, (ax_l, ax_p) = plt.subplots(1, 2, figsize=(11, 4.2))
-nt.plot_root_locus(ax_l, "fig11", res_fig11.table, labels=modes_fig11)
-ax_l.set_title("root locus (square: start, arrows: increasing x)", fontsize="medium")
-nt.legend_below(ax_l)
-nt.plot_participation(ax_p, "fig11", res_fig11.table)
-ax_p.set_title("participation in the TEF branch", fontsize="medium")
-nt.legend_below(ax_p, ncol=4)
+fig = nt.locus_figure("fig11", res_fig11.table, labels=modes_fig11)
 nt.savefig(fig, out, "fig11_locus", figure="fig11",
            caption=nt.figure_caption("fig11", cfg_fig11, nt.LOCUS_CAPTION, markers=False));
 

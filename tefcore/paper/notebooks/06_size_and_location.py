@@ -95,13 +95,7 @@ nt.savefig(fig, out, "fig13", figure="fig13",
 
 # %%
 nt.report_identity("fig13", res_fig13)
-fig, (ax_l, ax_p) = plt.subplots(1, 2, figsize=(11, 4.2))
-nt.plot_root_locus(ax_l, "fig13", res_fig13.table)
-ax_l.set_title("root locus (square: start, arrows: increasing x)", fontsize="medium")
-nt.legend_below(ax_l)
-nt.plot_participation(ax_p, "fig13", res_fig13.table)
-ax_p.set_title("participation in the TEF branch", fontsize="medium")
-nt.legend_below(ax_p, ncol=4)
+fig = nt.locus_figure("fig13", res_fig13.table)
 nt.savefig(fig, out, "fig13_locus", figure="fig13",
            caption=nt.figure_caption("fig13", cfg_fig13, nt.LOCUS_CAPTION, markers=False));
 
@@ -152,13 +146,7 @@ nt.savefig(fig, out, "fig14", figure="fig14",
 
 # %%
 nt.report_identity("fig14", res_fig14)
-fig, (ax_l, ax_p) = plt.subplots(1, 2, figsize=(11, 4.2))
-nt.plot_root_locus(ax_l, "fig14", res_fig14.table)
-ax_l.set_title("root locus (square: start, arrows: increasing x)", fontsize="medium")
-nt.legend_below(ax_l)
-nt.plot_participation(ax_p, "fig14", res_fig14.table)
-ax_p.set_title("participation in the TEF branch", fontsize="medium")
-nt.legend_below(ax_p, ncol=4)
+fig = nt.locus_figure("fig14", res_fig14.table)
 nt.savefig(fig, out, "fig14_locus", figure="fig14",
            caption=nt.figure_caption("fig14", cfg_fig14, nt.LOCUS_CAPTION, markers=False));
 
@@ -210,13 +198,7 @@ nt.savefig(fig, out, "fig15", figure="fig15",
 
 # %%
 nt.report_identity("fig15", res_fig15)
-fig, (ax_l, ax_p) = plt.subplots(1, 2, figsize=(11, 4.2))
-nt.plot_root_locus(ax_l, "fig15", res_fig15.table)
-ax_l.set_title("root locus (square: start, arrows: increasing x)", fontsize="medium")
-nt.legend_below(ax_l)
-nt.plot_participation(ax_p, "fig15", res_fig15.table)
-ax_p.set_title("participation in the TEF branch", fontsize="medium")
-nt.legend_below(ax_p, ncol=4)
+fig = nt.locus_figure("fig15", res_fig15.table)
 nt.savefig(fig, out, "fig15_locus", figure="fig15",
            caption=nt.figure_caption("fig15", cfg_fig15, nt.LOCUS_CAPTION, markers=False));
 

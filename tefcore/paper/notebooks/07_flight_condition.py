@@ -139,13 +139,7 @@ nt.savefig(fig, out, "fig17", figure="fig17",
 
 # %%
 nt.report_identity("fig17", res_fig17)
-fig, (ax_l, ax_p) = plt.subplots(1, 2, figsize=(11, 4.2))
-nt.plot_root_locus(ax_l, "fig17", res_fig17.table)
-ax_l.set_title("root locus (square: start, arrows: increasing x)", fontsize="medium")
-nt.legend_below(ax_l)
-nt.plot_participation(ax_p, "fig17", res_fig17.table)
-ax_p.set_title("participation in the TEF branch", fontsize="medium")
-nt.legend_below(ax_p, ncol=4)
+fig = nt.locus_figure("fig17", res_fig17.table)
 nt.savefig(fig, out, "fig17_locus", figure="fig17",
            caption=nt.figure_caption("fig17", cfg_fig17, nt.LOCUS_CAPTION, markers=False));
 
