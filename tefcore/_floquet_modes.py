@@ -363,7 +363,8 @@ def _modes(p, period, k_sub, max_sub, shapes, shift_states, min_rate=None, duals
         # a root is trusted when it is above MIN_ROOT and its round-off,
         # eps ||Z|| / |mu| relative (||Z|| = the largest ||Phi_k||), is <= 1e-6
         with np.errstate(over="ignore"):     # an inf norm: no K resolves it (below)
-            floor = max(MIN_ROOT, 1e6 * eps * np.linalg.norm(phis, axis=(1, 2)).max())
+            znorm = float(np.linalg.norm(phis, axis=(1, 2)).max())
+            floor = max(MIN_ROOT, 1e6 * eps * znorm)
         if k_sub >= max_sub:
             break
         if split and smallest >= floor:
@@ -373,7 +374,7 @@ def _modes(p, period, k_sub, max_sub, shapes, shift_states, min_rate=None, duals
             # 3.3 s instead of 0.85 s at MDART mu = 0.3, c_cg 0.33, for the same
             # roots to 1e-6 /rev (measured)
             if not (duals and min_rate is None
-                    and _ill_conditioned(mu, blocks, lblocks[0], phis, cut)):
+                    and _ill_conditioned(mu, blocks, lblocks[0], znorm, cut)):
                 break
             k_sub = min(max_sub, 2 * k_sub)      # a nearly defective root: a finer lift
             continue
@@ -455,7 +456,7 @@ def _modes(p, period, k_sub, max_sub, shapes, shift_states, min_rate=None, duals
     return (sorted_result(eta, multipliers, per[0], period, psi if shapes else None,
                           per if shapes else None, n_sub=k_sub, n_steps=n_steps,
                           participation=part),
-            float(np.linalg.norm(phis, axis=(1, 2)).max()), split)
+            znorm, split)
 
 
 def sub_products(p, k, levels):
@@ -501,9 +502,9 @@ def sub_products(p, k, levels):
     return out
 
 
-def _ill_conditioned(mu, right, left, phis, cut):
+def _ill_conditioned(mu, right, left, znorm, cut):
     """Whether a resolved root (``|mu| >= cut``) of the lift has a first-order
-    round-off bound ``eps ||Z|| kappa / |mu|`` above :data:`LIFT_RTOL`
+    round-off bound ``eps ||Z|| kappa / |mu|`` (``||Z|| = znorm``) above :data:`LIFT_RTOL`
     (``kappa = |u| |v| / |u^H v|`` of its stacked left and right eigenvectors)."""
     k_sub, n, m = right.shape
     v = right.reshape(k_sub * n, m)
@@ -511,8 +512,7 @@ def _ill_conditioned(mu, right, left, phis, cut):
     with np.errstate(all="ignore"):
         kappa = (np.linalg.norm(u, axis=0) * np.linalg.norm(v, axis=0)
                  / np.abs(np.einsum("ij,ij->j", u.conj(), v)))
-        bound = (np.finfo(float).eps * np.linalg.norm(phis, axis=(1, 2)).max() * kappa
-                 / np.abs(mu))
+        bound = np.finfo(float).eps * znorm * kappa / np.abs(mu)
     resolved = np.abs(mu) >= cut
     return bool(np.any(resolved & ~(bound <= LIFT_RTOL)))
 
