@@ -552,5 +552,14 @@ def validate_figure(name: str, result, claims=None, *, cfg=None, variants=None, 
                 agree = _agreement(ctx.frame(c.figure, c.overrides), c.mode)
             except _Fail:
                 pass
+        if (status in ("pass", "fail") and identify == "track" and c.mode != FLUTTER_ROOT
+                and agree < 1.0):
+            # no verdict on a root that is not the claimed mode by its own label
+            # everywhere: the track runs through a veering or an exchange of
+            # character, and which root the paper's curve is cannot be told
+            status = "ambiguous"
+            why = (f"decided on a root labelled {c.mode!r} by its own eigenvector at only "
+                   f"{agree:.0%} of its points (a veering or an exchange of character); "
+                   f"the {'pass' if ok else 'fail'} on it is no verdict")
         rows.append(_row(c, expected, computed, value, status, why, agree))
     return pd.DataFrame(rows, columns=COLUMNS)
