@@ -15,10 +15,10 @@ import statistics
 import sys
 import time
 
-from tefcore.config_io import load_config
-from tefcore.coupled import coupled_model
-from tefcore.stability import linear_system, stability
-from tefcore.trim import initial_collective, trim
+from tefcore.config.io import load_config
+from tefcore.linear.stability import linear_system, stability
+from tefcore.model.coupled import coupled_model
+from tefcore.trimming.trim import initial_collective, trim
 
 OPTIONS = {
     "quasi-steady": {},

@@ -39,13 +39,13 @@ import time
 import numpy as np
 import scipy.integrate
 
-from tefcore import blade
-from tefcore.config_io import load_config
-from tefcore.coupled import coupled_model
+from tefcore.structure import blade
+from tefcore.config.io import load_config
 from tefcore.floquet import floquet_modes
+from tefcore.linear.stability import linear_system, stability
+from tefcore.model.coupled import coupled_model
 from tefcore.runtime import apply_defaults
-from tefcore.stability import linear_system, stability
-from tefcore.trim import initial_collective, trim
+from tefcore.trimming.trim import initial_collective, trim
 
 TWO_PI = 2 * np.pi
 
@@ -169,7 +169,7 @@ def goals(args):
     t_chain = median_ms(chain, max(3, repeat // 3), warmup=1) / len(cfgs)
     line("point inside a sweep <= 10 ms (mu = 0.3)", f"{t_chain:.1f} ms", "", "",
          t_chain <= 10.0)
-    from tefcore.sweep import sweep
+    from tefcore.sweeps.sweep import sweep
 
     t0 = time.perf_counter()
     sweep(cfg03, "actuator.stiffness", values, progress=False, refine=False, anchor=False)
@@ -187,7 +187,7 @@ def goals(args):
         times.append(time.perf_counter() - t0)
     t_cli = statistics.median(times)
     imp = subprocess.run([sys.executable, "-c", "import time; t = time.perf_counter(); "
-                          "import tefcore.cli, tefcore.stability; "
+                          "import tefcore.cli, tefcore.linear.stability; "
                           "print(time.perf_counter() - t)"], capture_output=True, text=True,
                          env=env, cwd=tempfile.gettempdir(), check=True)
     line("`tefcore stability` fresh process <= 0.4 s", f"{t_cli:.2f} s", "", "",
@@ -232,7 +232,7 @@ def goals(args):
         line("`tefcore reproduce` <= 20 s on 2 cores", "(--reproduce)", "", "")
 
     # 7. the 40 x 40 map
-    from tefcore.stability_map import stability_map
+    from tefcore.sweeps.maps import stability_map
 
     size = 10 if args.quick else 40
     t0 = time.perf_counter()
@@ -286,7 +286,7 @@ def breakdown(args):
     for what in ("pass", "import numpy", "import numpy, scipy.linalg",
                  "import numpy, scipy.linalg, pandas",
                  "import numpy, scipy.linalg, scipy.optimize, scipy.interpolate, pandas",
-                 "import tefcore.cli, tefcore.stability"):
+                 "import tefcore.cli, tefcore.linear.stability"):
         times = []
         for _ in range(5):
             r = subprocess.run([sys.executable, "-c", "import time; t = time.perf_counter(); "
@@ -313,7 +313,7 @@ def scaling(args):
                                                 on_inaccurate="raise"), args.repeat)
         print(f"  {n_modes:>11d} {2 * model.n_dof:>6d} {t_point:>7.1f} ms {t_trim:>6.1f} ms "
               f"{t_fl:>6.1f} ms", flush=True)
-    from tefcore.stability_map import stability_map
+    from tefcore.sweeps.maps import stability_map
 
     print(f"\nmaps (actuator stiffness x advance ratio), 2 processes, once each; "
           f"load average {load()}")

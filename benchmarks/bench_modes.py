@@ -10,9 +10,9 @@ Target (issue 2): median <= 20 ms for the equivalent hub.
 import statistics
 import time
 
-from tefcore.blade import blade_model, blade_modes
-from tefcore.config_io import load_config
-from tefcore.structure import beam_modes
+from tefcore.config.io import load_config
+from tefcore.structure.blade import blade_model, blade_modes
+from tefcore.structure.fem import beam_modes
 
 
 def timed(fn, repeat=30):

@@ -5,7 +5,7 @@ of ``N`` fresh interpreters (``--path`` prepended to ``PYTHONPATH``: compare
 two checkouts) times
 
 * ``import tefcore`` alone,
-* the first ``tefcore.stability.stability`` call of the process (MDART,
+* the first ``tefcore.linear.stability.stability`` call of the process (MDART,
   mu = 0.3, configuration loaded beforehand), and
 * the median of the next 10 calls,
 
@@ -37,8 +37,8 @@ t_import = time.perf_counter() - t0
 if sys.argv[1] == "defaults":
     from tefcore.runtime import apply_defaults
     apply_defaults()
-from tefcore.config_io import load_config
-from tefcore.stability import stability
+from tefcore.config.io import load_config
+from tefcore.linear.stability import stability
 cfg = load_config("mdart").with_overrides({"flight.advance_ratio": 0.3})
 t0, c0 = time.perf_counter(), time.process_time()
 stability(cfg)
@@ -55,7 +55,7 @@ print(json.dumps({"import": t_import, "first": t_first, "next": statistics.media
 
 # the checkout of 84ceab7 (settings applied by `import tefcore`) has no
 # config_io.load_config at the top, nor runtime.apply_defaults to call again
-CODE_OLD = CODE.replace("from tefcore.config_io import", "from tefcore.config import")
+CODE_OLD = CODE.replace("from tefcore.config.io import", "from tefcore.config.sections import")
 
 
 def run(mode: str, repeat: int, path: str | None, old: bool) -> dict[str, list[float]]:

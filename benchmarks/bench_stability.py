@@ -18,10 +18,10 @@ The monodromy against a naive solve_ivp is in ``bench_floquet.py``.
 import statistics
 import time
 
-from tefcore.config_io import load_config
-from tefcore.coupled import coupled_model
-from tefcore.stability import stability
-from tefcore.trim import initial_collective, trim
+from tefcore.config.io import load_config
+from tefcore.linear.stability import stability
+from tefcore.model.coupled import coupled_model
+from tefcore.trimming.trim import initial_collective, trim
 
 TARGET_MS = {0.0: 10.0, 0.3: 50.0}
 

@@ -15,25 +15,25 @@ The names a rotor dynamicist uses are importable from ``tefcore`` itself
 process setting; see :mod:`tefcore.runtime`):
 
 Configuration
-    :class:`~tefcore.config.Config`, :func:`~tefcore.config_io.load_config`,
-    :func:`~tefcore.config_io.save_config`
+    :class:`~tefcore.config.sections.Config`, :func:`~tefcore.config.io.load_config`,
+    :func:`~tefcore.config.io.save_config`
 Blade modes
-    :func:`~tefcore.blade.blade_modes`, :func:`~tefcore.blade.fan_plot`
+    :func:`~tefcore.structure.blade.blade_modes`, :func:`~tefcore.structure.blade.fan_plot`
 Trim and stability
-    :func:`~tefcore.trim.trim`, :func:`~tefcore.stability.stability`
-    (:class:`~tefcore.stability.StabilityResult`: ``.modes``, one row per
+    :func:`~tefcore.trimming.trim.trim`, :func:`~tefcore.linear.stability.stability`
+    (:class:`~tefcore.linear.stability.StabilityResult`: ``.modes``, one row per
     Floquet mode), :func:`~tefcore.floquet.floquet_modes`
 Sweeps and maps
-    :func:`~tefcore.sweep.sweep`, :func:`~tefcore.boundary.stability_boundary`,
-    :func:`~tefcore.stability_map.stability_map`
+    :func:`~tefcore.sweeps.sweep.sweep`, :func:`~tefcore.sweeps.boundary.stability_boundary`,
+    :func:`~tefcore.sweeps.maps.stability_map`
 Mechanism of an instability
-    :func:`~tefcore.mechanism.mechanism`
+    :func:`~tefcore.linear.mechanism.mechanism`
 Mode tracking
-    :func:`~tefcore.tracking.track_modes`,
-    :func:`~tefcore.mode_matching.match_modes`, :func:`~tefcore.mode_matching.mac`
+    :func:`~tefcore.modes.tracking.track_modes`,
+    :func:`~tefcore.modes.matching.match_modes`, :func:`~tefcore.modes.matching.mac`
 C81 airfoil decks
-    :func:`~tefcore.c81.read_c81`, :func:`~tefcore.c81.write_c81`,
-    :class:`~tefcore.c81.C81FlapTable`
+    :func:`~tefcore.aero.c81.read_c81`, :func:`~tefcore.aero.c81.write_c81`,
+    :class:`~tefcore.aero.c81.C81FlapTable`
 Units
     :func:`~tefcore.units.to_si`, :func:`~tefcore.units.from_si`
 Process settings
@@ -55,25 +55,25 @@ from ._version import __version__
 
 #: Public name -> the module that defines it (loaded on first use, PEP 562).
 API = {
-    "Config": "tefcore.config",
-    "load_config": "tefcore.config_io",
-    "save_config": "tefcore.config_io",
-    "blade_modes": "tefcore.blade",
-    "fan_plot": "tefcore.blade",
-    "trim": "tefcore.trim",
-    "stability": "tefcore.stability",
-    "StabilityResult": "tefcore.stability",
+    "Config": "tefcore.config.sections",
+    "load_config": "tefcore.config.io",
+    "save_config": "tefcore.config.io",
+    "blade_modes": "tefcore.structure.blade",
+    "fan_plot": "tefcore.structure.blade",
+    "trim": "tefcore.trimming.trim",
+    "stability": "tefcore.linear.stability",
+    "StabilityResult": "tefcore.linear.stability",
     "floquet_modes": "tefcore.floquet",
-    "sweep": "tefcore.sweep",
-    "stability_boundary": "tefcore.boundary",
-    "stability_map": "tefcore.stability_map",
-    "mechanism": "tefcore.mechanism",
-    "track_modes": "tefcore.tracking",
-    "match_modes": "tefcore.mode_matching",
-    "mac": "tefcore.mode_matching",
-    "read_c81": "tefcore.c81",
-    "write_c81": "tefcore.c81",
-    "C81FlapTable": "tefcore.c81",
+    "sweep": "tefcore.sweeps.sweep",
+    "stability_boundary": "tefcore.sweeps.boundary",
+    "stability_map": "tefcore.sweeps.maps",
+    "mechanism": "tefcore.linear.mechanism",
+    "track_modes": "tefcore.modes.tracking",
+    "match_modes": "tefcore.modes.matching",
+    "mac": "tefcore.modes.matching",
+    "read_c81": "tefcore.aero.c81",
+    "write_c81": "tefcore.aero.c81",
+    "C81FlapTable": "tefcore.aero.c81",
     "to_si": "tefcore.units",
     "from_si": "tefcore.units",
     "apply_defaults": "tefcore.runtime",

@@ -8,7 +8,7 @@ editing); ``tefcore --help`` lists them and ``tefcore SUBCOMMAND --help``
 describes one.
 
 Values given with ``--set`` (and ``sweep --values/--range``) follow the
-units rules of :mod:`tefcore.text_input`: a dimensional field needs its
+units rules of :mod:`tefcore.config.text_input`: a dimensional field needs its
 unit.  Output files are checked before anything is computed and written
 atomically (:mod:`tefcore.safe_io`).  The command applies the process
 settings of :func:`tefcore.runtime.apply_defaults` before it runs.  Exit
@@ -29,8 +29,8 @@ import numpy as np
 
 from ._version import __version__
 from .cli_errors import run_command
+from .config.text_input import sweep_values
 from .safe_io import atomic_output, check_output_file
-from .text_input import sweep_values
 
 __all__ = ["build_parser", "main"]
 
@@ -59,8 +59,8 @@ points, bad C81 decks, failing notebooks or claims); 2 an error (one line);
 
 
 def _load(args):
-    from .config_io import load_config
-    from .text_input import parse_overrides
+    from .config.io import load_config
+    from .config.text_input import parse_overrides
 
     cfg = load_config(args.config)
     if args.set:
@@ -83,7 +83,7 @@ def _common(p):
 
 
 def cmd_modes(args) -> int:
-    from .blade import blade_modes
+    from .structure.blade import blade_modes
 
     cfg = _load(args)
     if args.csv:
@@ -102,7 +102,7 @@ def cmd_fanplot(args) -> int:
     matplotlib.use("Agg")
     import matplotlib.figure
 
-    from .blade import fan_plot
+    from .structure.blade import fan_plot
 
     cfg = _load(args)
     fmt = Path(args.out).suffix.lstrip(".").lower() or "png"
@@ -118,7 +118,7 @@ def cmd_fanplot(args) -> int:
 
 
 def cmd_stability(args) -> int:
-    from .stability import stability
+    from .linear.stability import stability
 
     cfg = _load(args)
     if args.csv:
@@ -140,7 +140,7 @@ def cmd_stability(args) -> int:
 
 
 def cmd_sweep(args) -> int:
-    from .sweep import sweep
+    from .sweeps.sweep import sweep
 
     cfg = _load(args)
     values = sweep_values(args.parameter, args.values, args.range)
@@ -161,7 +161,7 @@ def cmd_sweep(args) -> int:
 
 
 def cmd_mechanism(args) -> int:
-    from .mechanism import mechanism
+    from .linear.mechanism import mechanism
 
     cfg = _load(args)
     if args.csv:
@@ -181,13 +181,13 @@ def cmd_mechanism(args) -> int:
 
 def _grid(cfg, field: str, start: str, stop: str, num: str) -> list:
     """Evenly spaced SI values of ``field`` from ``start`` to ``stop``, ``num`` of them
-    (the units rules of ``--range``, :func:`tefcore.text_input.sweep_values`)."""
+    (the units rules of ``--range``, :func:`tefcore.config.text_input.sweep_values`)."""
     values = sweep_values(field, None, (start, stop, num))
     return [float(cfg.with_overrides({field: v}).get(field)) for v in values]
 
 
 def cmd_map(args) -> int:
-    from .stability_map import stability_map
+    from .sweeps.maps import stability_map
 
     cfg = _load(args)
     xs = _grid(cfg, args.x_field, *args.x_range)
@@ -237,8 +237,8 @@ def cmd_map(args) -> int:
 
 
 def cmd_c81_example(args) -> int:
-    from .c81_format import write_c81
-    from .c81_model import example_deck_path, make_example_deck
+    from .aero.c81.format import write_c81
+    from .aero.c81.tables import example_deck_path, make_example_deck
 
     out = args.out or example_deck_path()
     check_output_file(out, "--out")
@@ -247,8 +247,8 @@ def cmd_c81_example(args) -> int:
 
 
 def cmd_c81_check(args) -> int:
-    from .c81_format import COEFFICIENT_LABELS, C81FormatError
-    from .c81_reader import read_c81
+    from .aero.c81.format import COEFFICIENT_LABELS, C81FormatError
+    from .aero.c81.reader import read_c81
 
     status = 0
     for f in args.files:

@@ -4,13 +4,13 @@ Every error tefcore raises on purpose is one of
 
 * ``ValueError`` -- invalid input: a configuration field (the message names
   the dotted field, its value and the allowed range), a unit, a sweep
-  argument.  The named subclasses are :class:`tefcore.c81.C81FormatError`
+  argument.  The named subclasses are :class:`tefcore.aero.c81.C81FormatError`
   (a malformed C81 deck, with file, line and column),
-  :class:`tefcore.c81.C81RangeError` (inputs outside a C81 table),
+  :class:`tefcore.aero.c81.C81RangeError` (inputs outside a C81 table),
   :class:`tefcore.paper.reference.ReferenceDataError` (the paper's reference
   data) and :class:`SweepFileError` (a sweep file that cannot be resumed);
 * :class:`TefcoreError` subclasses that are not input errors:
-  :class:`tefcore.trim.TrimError` (the trim did not converge),
+  :class:`tefcore.trimming.trim.TrimError` (the trim did not converge),
   :class:`tefcore.floquet.FloquetAccuracyError` (the Floquet exponents
   could not be computed to the requested accuracy; its subclass
   ``FloquetOverflowError`` is also a ``ValueError``) and

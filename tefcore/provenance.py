@@ -1,8 +1,8 @@
 """What decides a computed result, as fingerprints: input files and the model code.
 
-A stored result (a point of a sweep file, :mod:`tefcore.sweep_store`) may be
+A stored result (a point of a sweep file, :mod:`tefcore.sweeps.store`) may be
 reused only while everything that decided it is unchanged.  The
-configuration's field values are one part (:func:`tefcore.sweep_store.config_hash`);
+configuration's field values are one part (:func:`tefcore.sweeps.store.config_hash`);
 this module gives the others:
 
 * :func:`input_files` / :func:`input_digests` -- the files a configuration
@@ -19,7 +19,7 @@ this module gives the others:
 
 Examples
 --------
->>> from tefcore.config_io import load_config
+>>> from tefcore.config.io import load_config
 >>> input_digests(load_config("mdart"))   # thin-airfoil aerodynamics: no files read
 {}
 >>> len(model_stamp())
@@ -42,12 +42,12 @@ __all__ = [
     "model_stamp",
 ]
 
-#: Modules that cannot change a computed point (command line, reports, notebooks'
-#: helpers, comparisons with the paper, file handling); every other module counts.
+#: Modules of the solver that cannot change a computed point (command line,
+#: errors, file handling, the boundary's reporting), as dotted names below
+#: ``tefcore``; every other module of the solver counts.  The paper layer
+#: (``tefcore.paper``: figures, claims, notebooks, reports) never does.
 PRESENTATION_MODULES = frozenset({
-    "__main__", "boundary", "calibration", "claim_checks", "cli", "cli_errors",
-    "curve_metrics", "errors", "figure_frames", "figures", "notebook_tools", "provenance",
-    "reference", "reproduce", "safe_io", "validation",
+    "__main__", "cli", "cli_errors", "errors", "provenance", "safe_io", "sweeps.boundary",
 })
 
 
@@ -80,7 +80,7 @@ def input_files(cfg) -> dict[str, Path]:
 
     Parameters
     ----------
-    cfg : tefcore.config.Config
+    cfg : tefcore.config.sections.Config
         The rotor configuration.
 
     Returns
@@ -98,7 +98,7 @@ def input_digests(cfg) -> dict[str, str]:
 
     Parameters
     ----------
-    cfg : tefcore.config.Config
+    cfg : tefcore.config.sections.Config
         The rotor configuration.
 
     Returns
@@ -124,14 +124,23 @@ def input_digests(cfg) -> dict[str, str]:
 def model_stamp() -> str:
     """16 hex digits of SHA-256 over the numerical modules' source (module docstring)."""
     h = hashlib.sha256()
-    package = resources.files("tefcore")
-    names = sorted(f.name for f in package.iterdir() if f.name.endswith(".py"))
-    for name in names:
-        if name.removesuffix(".py") in PRESENTATION_MODULES:
+    for name, data in _solver_sources(resources.files("tefcore"), ""):
+        if name.removesuffix(".py").replace("/", ".") in PRESENTATION_MODULES:
             continue
-        data = package.joinpath(name).read_bytes()
         h.update(name.encode() + b"\0" + len(data).to_bytes(8, "little") + data)
     return h.hexdigest()[:16]
+
+
+def _solver_sources(folder, prefix):
+    """``(path below tefcore, bytes)`` of every solver module, sorted by path."""
+    out = []
+    for entry in folder.iterdir():
+        name = prefix + entry.name
+        if entry.is_dir() and entry.name != "paper" and entry.joinpath("__init__.py").is_file():
+            out += _solver_sources(entry, name + "/")
+        elif entry.name.endswith(".py"):
+            out.append((name, entry.read_bytes()))
+    return sorted(out)
 
 
 def describe_digest(digest: str | None) -> str:

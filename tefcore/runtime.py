@@ -23,8 +23,8 @@ problems and cost time here:
 command, the worker processes of a parallel sweep (joblib, dask) and the
 notebooks (which call it in their set-up cell); a script that computes many
 points may call it too.  Inside the solver, the main entry points
-(:func:`tefcore.stability.stability`, :func:`tefcore.trim.trim`,
-:func:`tefcore.blade.blade_modes`, :func:`tefcore.mechanism.mechanism`, the
+(:func:`tefcore.linear.stability.stability`, :func:`tefcore.trimming.trim.trim`,
+:func:`tefcore.structure.blade.blade_modes`, :func:`tefcore.linear.mechanism.mechanism`, the
 Floquet analysis) run under
 :func:`blas_limit`, which limits BLAS threads for the duration of the call
 only and restores them after: a plain ``import tefcore`` followed by

@@ -25,22 +25,22 @@ import scipy.linalg
 import scipy.optimize
 from scipy.special import kv
 
-from tefcore.aero_states import HarmonicInflow, ShedWake, rotating_inflow_damping
-from tefcore.config_io import load_config
-from tefcore.coupled import coupled_model
-from tefcore.dynamic_inflow import l_matrix, mass_flow, perturbation_matrices, wake_skew
+from tefcore.aero.dynamic_inflow import l_matrix, mass_flow, perturbation_matrices, wake_skew
+from tefcore.aero.states import HarmonicInflow, ShedWake, rotating_inflow_damping
+from tefcore.aero.theodorsen import t_functions
+from tefcore.aero.unsteady import UnsteadyFlapAirfoil, WakeModel, fitted_wake
+from tefcore.config.io import load_config
 from tefcore.floquet import floquet_modes
-from tefcore.linear_system import SecondOrderSystem, augmented_state_matrix, combine
-from tefcore.mechanism import (
+from tefcore.floquet.second_order import SecondOrderSystem, augmented_state_matrix, combine
+from tefcore.linear.mechanism import (
     TERMS,
     energy_decomposition,
     linearized_terms,
     mechanism,
 )
-from tefcore.stability import stability
-from tefcore.theodorsen import t_functions
-from tefcore.trim import initial_collective, trim
-from tefcore.unsteady_aero import UnsteadyFlapAirfoil, WakeModel, fitted_wake
+from tefcore.linear.stability import stability
+from tefcore.model.coupled import coupled_model
+from tefcore.trimming.trim import initial_collective, trim
 
 MDART = load_config("mdart")
 HOVER = MDART.with_overrides({"flight.advance_ratio": 0.0, "flap.cg_offset": 0.33})
@@ -92,7 +92,7 @@ def test_wake_states_range(bad):
 
 
 def test_options_from_toml(tmp_path):
-    from tefcore.config_io import save_config
+    from tefcore.config.io import save_config
 
     path = tmp_path / "c.toml"
     save_config(MDART.with_overrides({"model.aero": "unsteady", "model.inflow": "dynamic",
@@ -309,7 +309,7 @@ def test_forward_flight_trim_harmonics_follow_the_l_matrix():
 
 @pytest.mark.parametrize("mu", [0.0, 0.3])
 def test_rotating_frame_inflow_has_the_fixed_frame_exponents(mu):
-    from tefcore.dynamic_inflow import steady_inflow
+    from tefcore.aero.dynamic_inflow import steady_inflow
 
     lin = perturbation_matrices(steady_inflow(0.0075 * 0.078, 0.0, 1e-5, advance_ratio=mu,
                                               shaft_angle=math.radians(5.0) if mu else 0.0))
@@ -355,7 +355,7 @@ def test_linearised_inflow_rows_are_peters_haquang_and_the_rotor_loads():
 
 
 def _steady(tr):
-    from tefcore.dynamic_inflow import SteadyInflow
+    from tefcore.aero.dynamic_inflow import SteadyInflow
 
     mu = tr.model.cfg.flight.advance_ratio
     f = tr.inflow
@@ -535,8 +535,8 @@ def test_wake_fit_used_is_the_phase_one_fit():
 
 
 def test_sweep_and_map_run_with_the_states(tmp_path):
-    from tefcore.stability_map import stability_map
-    from tefcore.sweep import sweep
+    from tefcore.sweeps.maps import stability_map
+    from tefcore.sweeps.sweep import sweep
 
     cfg = HOVER.with_overrides({"model.aero": "unsteady", "model.inflow": "dynamic"})
     out = tmp_path / "cg.jsonl"
@@ -566,7 +566,7 @@ def test_table_model_with_the_wake_stays_in_range_near_reverse_flow():
     import warnings
 
     import tefcore
-    from tefcore.c81 import C81RangeWarning
+    from tefcore.aero.c81 import C81RangeWarning
 
     deck = os.path.join(os.path.dirname(tefcore.__file__), "data", "naca0012_flap35_xfoil.c81")
     cfg = MDART.with_overrides({"flight.advance_ratio": 0.3, "flap.cg_offset": 0.33,

@@ -206,7 +206,7 @@ def test_stale_runs_are_refused_and_force_recomputes_them(tmp_path, fake):
 
 
 def test_a_changed_configuration_file_makes_a_run_stale(tmp_path, fake):
-    from tefcore.config_io import load_config, save_config
+    from tefcore.config.io import load_config, save_config
 
     fake()
     save_config(load_config("mdart"), tmp_path / "rotor.toml")

@@ -91,7 +91,7 @@ def test_only_keeps_the_runs_notebooks_and_drops_runs_without_any():
 
 
 def test_config_is_relative_to_the_batch_file_or_a_shipped_name(tmp_path):
-    from tefcore.config_io import load_config, save_config
+    from tefcore.config.io import load_config, save_config
 
     save_config(load_config("mdart").with_overrides({"flap.cg_offset": 0.1}),
                 tmp_path / "rotor.toml")

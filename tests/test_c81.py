@@ -1,4 +1,4 @@
-"""Tests of tefcore.c81: C81 deck reading/writing, errors, interpolation, table model."""
+"""Tests of tefcore.aero.c81: C81 deck reading/writing, errors, interpolation, table model."""
 
 import importlib.util
 import sys
@@ -10,7 +10,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from tefcore.c81 import (
+from tefcore.aero.c81 import (
     COEFFICIENTS,
     C81Airfoil,
     C81Deck,
@@ -25,13 +25,13 @@ from tefcore.c81 import (
     read_c81,
     write_c81,
 )
-from tefcore.c81_format import coefficient_text
+from tefcore.aero.c81.format import coefficient_text
 from tefcore.cli import main as tefcore_main
 
-HAVE_FLAP_AERO = importlib.util.find_spec("tefcore.flap_aero") is not None
+HAVE_FLAP_AERO = importlib.util.find_spec("tefcore.aero.thin_airfoil") is not None
 needs_flap_aero = pytest.mark.skipif(
     not HAVE_FLAP_AERO,
-    reason="tefcore.flap_aero (ThinAirfoilFlap, section_loads) does not exist yet; "
+    reason="tefcore.aero.thin_airfoil (ThinAirfoilFlap, section_loads) does not exist yet; "
            "it is written concurrently (issue 3)")
 
 # A small blade deck, hand-written in fixed 7-column fields (line numbers in
@@ -175,7 +175,7 @@ def test_title_counts_may_be_whitespace_separated():
 
 
 # random edits may make a coefficient implausible (|c| > 10): warned, not tested here
-@pytest.mark.filterwarnings("ignore::tefcore.c81.C81PlausibilityWarning")
+@pytest.mark.filterwarnings("ignore::tefcore.aero.c81.C81PlausibilityWarning")
 @settings(max_examples=300, deadline=None)
 @given(deck=st.sampled_from([TOY, TOY_FREE, FLAP]), data=st.data())
 def test_any_corruption_gives_a_format_error_or_a_valid_deck(deck, data):
@@ -271,7 +271,7 @@ def random_deck(rng, flap, n_mach=(3, 4, 2, 12, 5), n_alpha=(5, 3, 4, 2, 6)):
 
 
 # the random decks go to |c| = 12 on purpose (number formats), beyond the plausible range
-@pytest.mark.filterwarnings("ignore::tefcore.c81.C81PlausibilityWarning")
+@pytest.mark.filterwarnings("ignore::tefcore.aero.c81.C81PlausibilityWarning")
 @pytest.mark.parametrize("flap", [False, True])
 def test_round_trip_within_printed_precision(tmp_path, flap):
     deck = random_deck(np.random.default_rng(7), flap)
@@ -453,7 +453,7 @@ def test_blank_line_inside_a_table():
 
 
 # 12.3456 is implausible for a coefficient: warned, not tested here
-@pytest.mark.filterwarnings("ignore::tefcore.c81.C81PlausibilityWarning")
+@pytest.mark.filterwarnings("ignore::tefcore.aero.c81.C81PlausibilityWarning")
 def test_fixed_columns_win_when_numbers_run_together():
     # Fortran semantics: fields are columns 1-7, 8-14, 15-21 whatever the blanks.
     text = replace_line(TOY, 5, "   0.0  12.34567.1")
@@ -677,9 +677,9 @@ def test_loads_delegates_to_flap_aero_section_loads(monkeypatch):
         calls.append((static_model, kw))
         return {"lift": 1.0}
 
-    fake = types.ModuleType("tefcore.flap_aero")
+    fake = types.ModuleType("tefcore.aero.thin_airfoil")
     fake.section_loads = fake_section_loads
-    monkeypatch.setitem(sys.modules, "tefcore.flap_aero", fake)
+    monkeypatch.setitem(sys.modules, "tefcore.aero.thin_airfoil", fake)
     table = C81FlapTable(parse_c81(FLAP), 0.35, 0.29)
     assert table.loads(alpha=0.01, velocity=100.0) == {"lift": 1.0}
     assert calls == [(table, {"alpha": 0.01, "velocity": 100.0})]
@@ -709,7 +709,7 @@ def test_cli_check(tmp_path, capsys):
 EXAMPLE = example_deck_path()
 needs_example = pytest.mark.skipif(
     not EXAMPLE.exists() and not HAVE_FLAP_AERO,
-    reason="the example deck is generated from tefcore.flap_aero, which does not exist yet")
+    reason="the example deck is generated from tefcore.aero.thin_airfoil, which does not exist yet")
 
 
 @needs_example
@@ -735,7 +735,7 @@ def inv_beta_second_derivative(m):
 
 @pytest.fixture(scope="module")
 def thin_airfoil():
-    from tefcore.flap_aero import ThinAirfoilFlap
+    from tefcore.aero.thin_airfoil import ThinAirfoilFlap
 
     return ThinAirfoilFlap(0.35, 0.29, compressibility=True)
 
@@ -807,7 +807,7 @@ def test_example_deck_between_points_within_interpolation_bound(thin_airfoil):
 
 @needs_flap_aero
 def test_table_model_loads_match_thin_airfoil_at_table_points(thin_airfoil):
-    from tefcore.flap_aero import section_loads
+    from tefcore.aero.thin_airfoil import section_loads
 
     deck = read_c81(EXAMPLE)
     table = C81FlapTable(deck, 0.35, 0.29)

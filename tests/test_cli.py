@@ -12,7 +12,7 @@ from tefcore.cli import main
 def test_modes_with_override_writes_csv(tmp_path, capsys):
     out = tmp_path / "modes.csv"
     # Fig. 10 is for the mass-imbalanced flap, whose CG offset is part of the
-    # blade section (tefcore.section_inertia)
+    # blade section (tefcore.structure.section_inertia)
     assert main(["modes", "-s", "hub.pitch_link_stiffness=800 lb/in", "-s", "flap.cg_offset=0.33",
                  "--csv", str(out)]) == 0
     df = pd.read_csv(out)
@@ -85,15 +85,10 @@ def test_every_subcommand_has_a_description():
 
 
 def test_c81_check_reports_each_deck(tmp_path, capsys):
-    from tefcore.c81 import example_deck_path
+    from tefcore.aero.c81 import example_deck_path
 
     bad = tmp_path / "bad.c81"
     bad.write_text("not a deck\n")
     assert main(["c81", "check", str(example_deck_path()), str(bad)]) == 1
     out, err = capsys.readouterr()
     assert "flap deck, 7 deltas" in out and f"{bad} line 1" in err
-
-
-def test_python_m_tefcore_c81_says_where_the_command_went():
-    r = subprocess.run([sys.executable, "-m", "tefcore.c81"], capture_output=True, text=True)
-    assert r.returncode == 2 and "tefcore c81" in r.stderr

@@ -8,11 +8,11 @@ import pandas as pd
 import pytest
 from test_sweep import ToyPoint
 
-import tefcore.stability
-import tefcore.sweep
-from tefcore.c81 import example_deck_path
+import tefcore.linear.stability
+import tefcore.sweeps.sweep
+from tefcore.aero.c81 import example_deck_path
 from tefcore.cli import main
-from tefcore.trim import TrimError
+from tefcore.trimming.trim import TrimError
 
 
 def one_error_line(capsys):
@@ -26,7 +26,7 @@ def one_error_line(capsys):
 def toy_default_point(monkeypatch):
     """`tefcore sweep` evaluates the synthetic point of test_sweep instead of stability."""
     point = ToyPoint()
-    monkeypatch.setattr(tefcore.sweep, "default_point", lambda: point)
+    monkeypatch.setattr(tefcore.sweeps.sweep, "default_point", lambda: point)
     return point
 
 
@@ -36,7 +36,7 @@ def toy_default_point(monkeypatch):
 def test_a_bad_csv_destination_fails_before_computing(tmp_path, monkeypatch, capsys):
     """Finding 2: ``--csv nodir/x.csv`` computed every point, then died with OSError."""
     calls = []
-    monkeypatch.setattr(tefcore.stability, "stability", lambda cfg, **kw: calls.append(cfg))
+    monkeypatch.setattr(tefcore.linear.stability, "stability", lambda cfg, **kw: calls.append(cfg))
     out = tmp_path / "s.jsonl"
     code = main(["sweep", "flap.cg_offset", "--values", "0.0", "0.1", "--quiet",
                  "--csv", str(tmp_path / "nodir" / "x.csv"), "--out", str(out)])
@@ -105,7 +105,7 @@ def test_a_trim_error_is_one_line(monkeypatch, capsys):
     def no_trim(cfg, **kw):
         raise TrimError("trim did not converge in 40 iterations", [])
 
-    monkeypatch.setattr(tefcore.stability, "stability", no_trim)
+    monkeypatch.setattr(tefcore.linear.stability, "stability", no_trim)
     assert main(["stability"]) == 2
     assert "trim did not converge" in one_error_line(capsys)
 
@@ -149,7 +149,7 @@ def test_broken_pipe_ends_quietly():
 
 def test_sweep_exits_nonzero_when_points_failed(tmp_path, monkeypatch, capsys):
     """Finding 10: ``tefcore sweep`` exited 0 when every point failed."""
-    monkeypatch.setattr(tefcore.sweep, "default_point", lambda: ToyPoint(fail_at=[0.0, 0.1]))
+    monkeypatch.setattr(tefcore.sweeps.sweep, "default_point", lambda: ToyPoint(fail_at=[0.0, 0.1]))
     csv = tmp_path / "s.csv"
     assert main(["sweep", "flap.cg_offset", "--values", "0.0", "0.1", "0.2", "--csv", str(csv),
                  "--quiet"]) == 1

@@ -1,4 +1,4 @@
-"""Tests of tefcore.config / tefcore.config_io: Table 1, validation, overrides, TOML."""
+"""Tests of tefcore.config.sections / tefcore.config.io: Table 1, validation, overrides, TOML."""
 
 import copy
 import dataclasses
@@ -12,15 +12,7 @@ from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 from scipy import constants as sc
 
-from tefcore.config import (
-    BLADE_PROPERTIES,
-    REQUIRED,
-    SECTIONS,
-    BladeConfig,
-    Config,
-    resolve_field,
-)
-from tefcore.config_io import (
+from tefcore.config.io import (
     config_from_dict,
     config_to_dict,
     dumps_config,
@@ -29,6 +21,14 @@ from tefcore.config_io import (
     save_config,
     settings_markdown,
     settings_table,
+)
+from tefcore.config.sections import (
+    BLADE_PROPERTIES,
+    REQUIRED,
+    SECTIONS,
+    BladeConfig,
+    Config,
+    resolve_field,
 )
 from tefcore.units import to_si
 

@@ -1,4 +1,4 @@
-"""Tests of tefcore.dynamic_inflow: Pitt-Peters three-state dynamic inflow."""
+"""Tests of tefcore.aero.dynamic_inflow: Pitt-Peters three-state dynamic inflow."""
 
 import math
 
@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 from numpy.testing import assert_allclose
 
-from tefcore.dynamic_inflow import (
+from tefcore.aero.dynamic_inflow import (
     APPARENT_MASS,
     apparent_mass,
     l_matrix,
@@ -15,7 +15,7 @@ from tefcore.dynamic_inflow import (
     steady_inflow,
     wake_skew,
 )
-from tefcore.inflow import momentum_inflow
+from tefcore.aero.inflow import momentum_inflow
 
 
 @pytest.mark.parametrize("ct", [0.002, 0.0064, 0.012])

@@ -13,12 +13,12 @@ of the differences.  A wrong term (e.g. the ``mu cos psi`` slope part of
 import numpy as np
 import pytest
 
-from tefcore.c81 import example_deck_path
-from tefcore.config_io import load_config
-from tefcore.coupled import coupled_model
-from tefcore.residual_jacobian import exact_jacobian, has_exact_jacobian, jacobian_blocks
-from tefcore.stability import linear_system, linearize
-from tefcore.trim import initial_collective, trim
+from tefcore.aero.c81 import example_deck_path
+from tefcore.config.io import load_config
+from tefcore.linear.stability import linear_system, linearize
+from tefcore.model.coupled import coupled_model
+from tefcore.model.jacobian import exact_jacobian, has_exact_jacobian, jacobian_blocks
+from tefcore.trimming.trim import initial_collective, trim
 
 MDART = load_config("mdart")
 
@@ -154,7 +154,7 @@ def test_shed_wake_falls_back_to_differences():
 def test_c81_interpolation_complex_step_is_the_cell_slope():
     # inside a cell the multilinear table has the slope of that cell; beyond the
     # table (clipped) it is constant: complex step gives both exactly
-    from tefcore.c81 import C81FlapTable
+    from tefcore.aero.c81 import C81FlapTable
 
     table = C81FlapTable(str(example_deck_path()), 0.35, 0.29)
     a, m, d = np.radians(3.0), 0.43, np.radians(1.0)

@@ -1,4 +1,4 @@
-"""Tests of tefcore.flap_aero: the balanced-flap thin-airfoil section model."""
+"""Tests of tefcore.aero.thin_airfoil: the balanced-flap thin-airfoil section model."""
 
 import math
 
@@ -7,18 +7,18 @@ import pytest
 from numpy.testing import assert_allclose
 from scipy.optimize import brentq
 
-from tefcore.flap_aero import (
-    MACH_CLIP,
-    ThinAirfoilFlap,
-    prandtl_glauert,
-    section_loads,
-)
-from tefcore.theodorsen import (
+from tefcore.aero.theodorsen import (
     loads_to_tefcore,
     motion_to_theodorsen,
     quadrature_loads,
     quasi_steady_loads,
     t_functions,
+)
+from tefcore.aero.thin_airfoil import (
+    MACH_CLIP,
+    ThinAirfoilFlap,
+    prandtl_glauert,
+    section_loads,
 )
 
 KEYS = ("lift", "drag", "moment", "flap_lift", "hinge_moment", "cl", "cd", "cm", "clf", "ch")
@@ -426,7 +426,7 @@ def test_section_loads_validates_model_geometry():
 def test_lift_slope_scales_circulatory_loads_only():
     # a = 5.73/rad: static lift slope equals it; apparent-mass (delta_accel)
     # loads are inviscid added mass and stay as in thin-airfoil theory.
-    from tefcore.flap_aero import ThinAirfoilFlap
+    from tefcore.aero.thin_airfoil import ThinAirfoilFlap
 
     ref = ThinAirfoilFlap(0.35, 0.29, compressibility=False)
     low = ThinAirfoilFlap(0.35, 0.29, compressibility=False, lift_slope=5.73)

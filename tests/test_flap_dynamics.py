@@ -4,8 +4,8 @@ import numpy as np
 import pytest
 from numpy.testing import assert_allclose
 
-from tefcore.config_io import load_config
-from tefcore.flap_dynamics import (
+from tefcore.config.io import load_config
+from tefcore.model.flap import (
     FlapProperties,
     SectionMotion,
     centrifugal_hinge_moment,
@@ -154,7 +154,7 @@ def test_aerodynamic_balance_cuts_actuation_power_and_raises_response():
     # toward the flap's centre of pressure, so for the same actuator input the
     # hinge moment the actuator fights falls (less power) and the flap follows
     # the aerodynamic load further (larger response) - the mechanism of Fig. 7.
-    from tefcore.flap_dynamics import section_overhang_study
+    from tefcore.model.flap import section_overhang_study
 
     cfg = load_config("mdart")
     f = lambda q: np.deg2rad(2) * np.cos(4 * q - np.deg2rad(240))  # noqa: E731

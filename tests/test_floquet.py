@@ -651,7 +651,7 @@ def test_batched_exponential_matches_scipy():
     # polynomial): within round-off of scipy's Pade expm, 1e-15 relative for small
     # norms, growing with the squarings (1e-13 at norm 30, as for any scaling and
     # squaring); exact for a rotation
-    from tefcore._floquet_propagators import expm_batch
+    from tefcore.floquet._propagators import expm_batch
 
     rng = np.random.default_rng(3)
     for scale, tol in ((1e-3, 1e-15), (0.3, 1e-14), (3.0, 1e-13), (30.0, 1e-12)):
@@ -667,7 +667,7 @@ def test_sub_intervals_are_chosen_before_the_lift(monkeypatch):
     # the K that the heavily damped roots need comes from the explicit product's
     # eigenvalues before solving: one lift, not one per trial K (the -12 /rev
     # pair of the coupled system needs K = 8, found without solving K = 4 first)
-    import tefcore._floquet_modes as fm
+    import tefcore.floquet._analysis as fm
 
     calls = []
     real = fm.lifted

@@ -1,4 +1,4 @@
-"""Mode identity through a Floquet frequency lock (tefcore.tracking, "Floquet locks").
+"""Mode identity through a Floquet frequency lock (tefcore.modes.tracking, "Floquet locks").
 
 A complex pair of Floquet multipliers that meets the real axis becomes two
 real multipliers of one sign: two roots at one frequency ``k/2`` per rev,
@@ -24,11 +24,11 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from tefcore.config_io import load_config
+from tefcore.config.io import load_config
 from tefcore.floquet import floquet_modes
-from tefcore.mode_matching import LOCK_TOL, is_locked, locked_pairs, plane_mac
-from tefcore.sweep import sweep
-from tefcore.tracking import follow_branch, track_modes
+from tefcore.modes.matching import LOCK_TOL, is_locked, locked_pairs, plane_mac
+from tefcore.modes.tracking import follow_branch, track_modes
+from tefcore.sweeps.sweep import sweep
 
 MDART = load_config("mdart")
 PARAM = "flap.cg_offset"
@@ -296,7 +296,7 @@ def test_nearly_defective_locked_pair_gets_a_finer_lift(overrides, label, freque
     # eps ||Z|| kappa / |mu| exceeds LIFT_RTOL.  Gates: 1e-4 /rev in frequency and
     # 2e-3 /rev in real part, a tenth of what the K = 8 lift was off by, and
     # above the 2e-5 /rev by which the K = 16 results differ from K = 4 / old code
-    from tefcore.stability import stability
+    from tefcore.linear.stability import stability
 
     modes = stability(MDART.with_overrides(overrides)).modes
     row = modes[modes["label"] == label].iloc[0]

@@ -4,9 +4,9 @@ Issue 13, findings 9 and 10: byte mutations of the shipped deck raised
 UnicodeDecodeError without file or line (148 of 500), a ``²`` count raised a
 bare ValueError, and a count of 10^7 took 9.7 s and 1.2 GB.  Here the file's
 bytes are mutated (flipped, deleted, inserted, truncated, or a title-line
-count replaced) and read with :func:`~tefcore.c81.read_c81`: the only allowed
-outcomes are a :class:`~tefcore.c81.C81Deck` (possibly with a plausibility
-warning) or a :class:`~tefcore.c81.C81FormatError` with a line and column.
+count replaced) and read with :func:`~tefcore.aero.c81.read_c81`: the only allowed
+outcomes are a :class:`~tefcore.aero.c81.C81Deck` (possibly with a plausibility
+warning) or a :class:`~tefcore.aero.c81.C81FormatError` with a line and column.
 """
 
 import tempfile
@@ -16,7 +16,7 @@ from pathlib import Path
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from tefcore.c81 import C81Deck, C81FormatError, example_deck_path, read_c81
+from tefcore.aero.c81 import C81Deck, C81FormatError, example_deck_path, read_c81
 
 DECK = example_deck_path().read_bytes()
 LINES = DECK.split(b"\n")

@@ -3,7 +3,7 @@
 Issue 13, finding 9 (a 400-digit integer in TOML raised OverflowError) and
 finding 7 (units): the command-line overrides (``--set name=value``) and TOML
 documents -- mutations of the shipped MDART file and arbitrary TOML tables --
-must end in a validated :class:`~tefcore.config.Config` or a ``ValueError``.
+must end in a validated :class:`~tefcore.config.sections.Config` or a ``ValueError``.
 """
 
 import re
@@ -12,9 +12,9 @@ import tomli_w
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from tefcore.config import SECTIONS, Config
-from tefcore.config_io import dumps_config, load_config, loads_config
-from tefcore.text_input import parse_overrides
+from tefcore.config.io import dumps_config, load_config, loads_config
+from tefcore.config.sections import SECTIONS, Config
+from tefcore.config.text_input import parse_overrides
 
 MDART = load_config("mdart")
 FIELDS = [f"{s}.{p.name}" for s, cls in SECTIONS.items() for p in cls.PARAMS]

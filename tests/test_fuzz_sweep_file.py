@@ -3,7 +3,7 @@
 Issue 13, finding 9 (a ``{}`` line raised KeyError) and finding 5 (stale
 files): a valid sweep file is damaged -- truncated at any byte, lines
 replaced by garbage or other JSON, duplicated or deleted, the header edited
--- and resumed.  The only allowed outcomes are a :class:`~tefcore.sweep.SweepResult`
+-- and resumed.  The only allowed outcomes are a :class:`~tefcore.sweeps.sweep.SweepResult`
 (the points that survived loaded, the others recomputed) or a ``ValueError``
 (:class:`~tefcore.errors.SweepFileError`) naming the file.
 """
@@ -17,7 +17,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 from test_sweep import MDART, PARAM, ToyPoint, toy_result  # noqa: F401
 
-from tefcore.sweep import SweepResult, sweep
+from tefcore.sweeps.sweep import SweepResult, sweep
 
 VALUES = [0.0, 0.25, 0.5, 0.75]
 

@@ -1,8 +1,8 @@
 """The bearingless hub as multiple load paths (docs/theory.md section 2.5a).
 
 Flexbeam, torque tube and main blade joined at the clevis, the pitch link
-and the snubber (:func:`tefcore.blade.multiple_load_path_model`, assembled by
-:mod:`tefcore.branched`).  Checks against the single-load-path model it must
+and the snubber (:func:`tefcore.structure.blade.multiple_load_path_model`, assembled by
+:mod:`tefcore.structure.branched`).  Checks against the single-load-path model it must
 reduce to, against closed forms of the torsion load paths (static and
 dynamic) and of the pitch-link kinematics, the modal invariants, and the
 input validation.  No published bearingless-hub or branched-beam case with
@@ -10,7 +10,7 @@ its numbers could be retrieved (searched: Sivaneri & Chopra's bearingless
 element, Magari, Shultz & Murthy's multiple-load-path NASTRAN element
 (Comput. Struct. 29(5) 1988), Nguyen's UMARC MDART study NASA TM-112912: the
 stored copies give abstracts only); the exact twin-cantilever reduction of
-the :mod:`tefcore.branched` docstring stands in as a branched closed form.
+the :mod:`tefcore.structure.branched` docstring stands in as a branched closed form.
 """
 
 import numpy as np
@@ -21,7 +21,10 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 from numpy.testing import assert_allclose
 
-from tefcore.blade import (
+from tefcore.config.io import load_config
+from tefcore.config.sections import SECTIONS
+from tefcore.paper.calibration import frequency_checks, lag_damping_ratio, mode_frequency
+from tefcore.structure.blade import (
     blade_modes,
     element_nodes,
     multiple_load_path_model,
@@ -30,12 +33,13 @@ from tefcore.blade import (
     rotor_units,
     section_function,
 )
-from tefcore.branched import Component, Joint, assemble_branched
-from tefcore.config import SECTIONS
-from tefcore.config_io import load_config
-from tefcore.hub_models import kinematic_pitch_ratio, pitch_flap_delta3, pitch_input_response
-from tefcore.paper.calibration import frequency_checks, lag_damping_ratio, mode_frequency
-from tefcore.structure import RootSprings, assemble_beam, beam_modes, tension_piecewise_linear
+from tefcore.structure.branched import Component, Joint, assemble_branched
+from tefcore.structure.fem import RootSprings, assemble_beam, beam_modes, tension_piecewise_linear
+from tefcore.structure.hub_models import (
+    kinematic_pitch_ratio,
+    pitch_flap_delta3,
+    pitch_input_response,
+)
 
 MDART = load_config("mdart")
 MLP = MDART.with_overrides({"hub.model": "multiple_load_path"})
@@ -351,7 +355,7 @@ def test_bad_hub_input_names_the_field(over, field):
 
 
 def test_missing_hub_sections_are_named():
-    from tefcore.config_io import config_from_dict, config_to_dict
+    from tefcore.config.io import config_from_dict, config_to_dict
 
     data = config_to_dict(MDART)
     del data["flexbeam"]

@@ -20,9 +20,9 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from tefcore.config_io import load_config
-from tefcore.sweep import sweep
-from tefcore.tracking import track_modes
+from tefcore.config.io import load_config
+from tefcore.modes.tracking import track_modes
+from tefcore.sweeps.sweep import sweep
 
 MDART = load_config("mdart")
 PARAM = "flap.cg_offset"
@@ -166,8 +166,8 @@ def test_warm_started_sweep_is_the_same_in_every_run(tmp_path):
     # measured 4e-9 /rev in the real parts), far below what tracking or a figure
     # resolves; a warm start that changed the model (e.g. the blade modes at the
     # neighbour's collective) would move them by 1e-4 or more
-    from tefcore import sweep as sweep_module
-    from tefcore.stability import stability
+    from tefcore.linear.stability import stability
+    from tefcore.sweeps import sweep as sweep_module
 
     cfg = MDART.with_overrides({"flight.advance_ratio": 0.3})
     param, xs = "actuator.stiffness", ["70 ft-lb/rad", "90 ft-lb/rad", "110 ft-lb/rad",
@@ -207,7 +207,7 @@ def test_warm_starts_take_every_trim_input_from_their_own_point(base, param, xs)
     # each point of a warm-started sweep against the same point computed cold:
     # equal to the trim's tolerance (4e-9 /rev measured above), whatever field
     # the sweep varies -- a warm start may change the starting guess only
-    from tefcore.stability import stability
+    from tefcore.linear.stability import stability
 
     cfg = MDART.with_overrides(base)
     kw = dict(progress=False, refine=False, anchor=False)

@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 from numpy.testing import assert_allclose
 
-from tefcore.inflow import drees_gradients, momentum_inflow, rotor_inflow
+from tefcore.aero.inflow import drees_gradients, momentum_inflow, rotor_inflow
 
 
 def test_hover_momentum():

@@ -10,10 +10,10 @@ import pytest
 from scipy import constants as sc
 from test_sweep import ToyPoint
 
-from tefcore.c81 import example_deck_path
-from tefcore.config_io import config_from_dict, config_to_dict, dumps_config, load_config
-from tefcore.flap_aero import prandtl_glauert
-from tefcore.sweep import sweep
+from tefcore.aero.c81 import example_deck_path
+from tefcore.aero.thin_airfoil import prandtl_glauert
+from tefcore.config.io import config_from_dict, config_to_dict, dumps_config, load_config
+from tefcore.sweeps.sweep import sweep
 from tefcore.units import parse_quantity, parse_unit, to_si
 
 MDART = load_config("mdart")
@@ -81,11 +81,11 @@ def test_in_toml_a_dimensional_field_needs_its_unit():
     """Finding 7: a bare number for a dimensional field was silently SI."""
     text = set_line(TOML, "pitch_link_stiffness", "pitch_link_stiffness = 800")
     with pytest.raises(ValueError, match=r"hub\.pitch_link_stiffness = 800 needs a unit"):
-        from tefcore.config_io import loads_config
+        from tefcore.config.io import loads_config
 
         loads_config(text, origin="x.toml")
     # with the unit, or as a table with a unit, it loads
-    from tefcore.config_io import loads_config
+    from tefcore.config.io import loads_config
 
     ok = set_line(TOML, "pitch_link_stiffness", 'pitch_link_stiffness = "800 lb/in"')
     assert loads_config(ok).hub.pitch_link_stiffness == pytest.approx(800 * 175.126835, rel=1e-6)
@@ -140,7 +140,7 @@ def test_units_within_the_limits_still_work():
                                   + ', unit = "ft"}'])
 def test_a_400_digit_integer_in_toml_is_a_field_error(text):
     """Finding 9: a 400-digit integer raised OverflowError."""
-    from tefcore.config_io import loads_config
+    from tefcore.config.io import loads_config
 
     key = text.split(" =")[0]
     bad = set_line(TOML, key, text)

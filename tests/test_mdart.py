@@ -9,9 +9,9 @@ import numpy as np
 import pytest
 from numpy.testing import assert_allclose
 
-from tefcore.blade import blade_modes, fan_data
-from tefcore.config_io import load_config
+from tefcore.config.io import load_config
 from tefcore.paper.calibration import TORSION_TARGETS, frequency_checks, mode_frequency
+from tefcore.structure.blade import blade_modes, fan_data
 
 
 @pytest.fixture(scope="module")

@@ -1,4 +1,4 @@
-"""Tests of tefcore.mechanism: the energy balance closes, knockouts are recomputations,
+"""Tests of tefcore.linear.mechanism: the energy balance closes, knockouts are recomputations,
 the flap mode is found by continuation from zero coupling, and the CLI contract.
 
 Closed forms: a damped oscillator ``m q'' + c q' + k q = 0`` has
@@ -15,9 +15,9 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from tefcore.config_io import load_config
-from tefcore.linear_system import SecondOrderSystem, combine
-from tefcore.mechanism import (
+from tefcore.config.io import load_config
+from tefcore.floquet.second_order import SecondOrderSystem, combine
+from tefcore.linear.mechanism import (
     NOT_REMOVABLE,
     STATE_TERMS,
     TERMS,
@@ -27,7 +27,7 @@ from tefcore.mechanism import (
     mechanism,
     tef_root,
 )
-from tefcore.stability import stability
+from tefcore.linear.stability import stability
 
 
 def constant(m, c, k):

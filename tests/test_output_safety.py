@@ -16,7 +16,7 @@ import pytest
 from test_sweep import MDART, PARAM, XS, ToyPoint, run
 
 from tefcore.paper import reproduce as rp
-from tefcore.sweep import sweep
+from tefcore.sweeps.sweep import sweep
 
 TESTS = Path(__file__).parent
 
@@ -153,7 +153,7 @@ SLOW_SWEEP = """
 import sys, time
 sys.path.insert(0, {tests!r})
 from test_sweep import MDART, PARAM, XS, ToyPoint
-from tefcore.sweep import sweep
+from tefcore.sweeps.sweep import sweep
 
 class SlowPoint(ToyPoint):
     def __call__(self, cfg):

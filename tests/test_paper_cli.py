@@ -70,9 +70,9 @@ def test_copied_notebooks_are_what_reproduce_runs(tmp_path, monkeypatch):
 
 
 def test_static_explorer_marks_the_tef_and_flutter_roots():
-    from tefcore.mechanism import tef_root
+    from tefcore.linear.mechanism import tef_root
+    from tefcore.linear.stability import stability
     from tefcore.paper.explorer import explore, explorer_config, root_map
-    from tefcore.stability import stability
 
     fig = explore(interactive=False, cg_offset=0.33, advance_ratio=0.3)
     roots, bars = fig.axes[0], fig.axes[1]          # (the third is the colour bar)

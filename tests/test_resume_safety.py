@@ -13,8 +13,8 @@ from pathlib import Path
 import pytest
 from test_sweep import MDART, PARAM, XS, ToyPoint, run
 
-from tefcore.c81 import example_deck_path
-from tefcore.sweep import sweep
+from tefcore.aero.c81 import example_deck_path
+from tefcore.sweeps.sweep import sweep
 
 
 def rewrite_header(path, **changes):
@@ -88,8 +88,9 @@ def test_resume_refuses_a_version_1_file_that_recorded_no_inputs(tmp_path):
 def test_model_stamp_covers_the_numerics_not_the_presentation():
     from tefcore.provenance import PRESENTATION_MODULES
 
-    assert {"cli", "reproduce", "figures"} <= PRESENTATION_MODULES
-    assert not {"floquet", "stability", "coupled", "trim", "config"} & PRESENTATION_MODULES
+    assert {"cli", "safe_io", "sweeps.boundary"} <= PRESENTATION_MODULES
+    assert not {"floquet._analysis", "linear.stability", "model.coupled", "trimming.trim",
+                "config.sections"} & PRESENTATION_MODULES
 
 
 @pytest.mark.parametrize("line, reason", [

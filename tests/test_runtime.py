@@ -56,7 +56,8 @@ def test_import_changes_no_process_setting():
     # importing the package and the whole solver leaves BLAS as it was
     got = run_python("""
     import json, numpy, scipy.linalg
-    import tefcore, tefcore.stability, tefcore.sweep, tefcore.mechanism, tefcore.blade
+    import tefcore, tefcore.linear.stability, tefcore.sweeps.sweep
+    import tefcore.linear.mechanism, tefcore.structure.blade
     print(json.dumps(blas_threads()))
     """)
     assert got == UNTOUCHED
@@ -123,8 +124,8 @@ def _settings_point(cfg):
 def test_sweep_workers_apply_the_settings():
     # (loky limits BLAS threads in its workers by itself, so the BLAS count
     # would not tell whether tefcore's worker entry ran)
-    from tefcore.config_io import load_config
-    from tefcore.sweep import sweep
+    from tefcore.config.io import load_config
+    from tefcore.sweeps.sweep import sweep
 
     res = sweep(load_config("mdart"), "flap.cg_offset", [0.0, 0.1], point=_settings_point,
                 n_jobs=2, progress=False)

@@ -14,14 +14,15 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from numpy.testing import assert_allclose
 
-from tefcore.blade import blade_model, element_nodes, pitch_function, rotor_units
-from tefcore.config_io import load_config
-from tefcore.coupled import coupled_model
-from tefcore.flap_dynamics import flap_properties
+from tefcore.config.io import load_config
+from tefcore.model.coupled import coupled_model
+from tefcore.model.flap import flap_properties
 from tefcore.paper.figures import FIGURES, figure_config
-from tefcore.section_inertia import (
+from tefcore.structure.blade import blade_model, element_nodes, pitch_function, rotor_units
+from tefcore.structure.section_inertia import (
     check_coupled_mass,
     check_positive_definite,
+    check_section_inertia,
     coupled_mass_matrix,
     flap_mass_limit,
     flap_share,
@@ -116,7 +117,7 @@ def test_structure_and_flap_equation_use_one_set():
 def _rigid(beam, field):
     """Global vector of a rigid unit plunge (w) or twist (phi) of the beam.
 
-    The documented dof layout (tefcore.structure): six per node
+    The documented dof layout (tefcore.structure.fem): six per node
     ``[u, v, v', w, w', phi]``, then three interior per element
     ``[u(1/3), u(2/3), phi(1/2)]``.
     """
@@ -180,8 +181,9 @@ def test_flap_cg_offset_moves_the_section_cg_in_the_structure():
 
 
 def test_a_heavy_flap_is_refused_naming_the_fields_and_the_bound():
+    heavy = MDART.with_overrides({"flap.mass": "1.0 lb/ft"})  # a configuration, no physics
     with pytest.raises(ValueError) as err:
-        MDART.with_overrides({"flap.mass": "1.0 lb/ft"})
+        check_section_inertia(heavy)
     msg = str(err.value)
     for word in ("flap.mass = 1.488 kg/m (1 lb/ft)", "flap.inertia_cg", "blade.im_lag",
                  "blade.mass", "does not fit", "Allowed here: flap.mass <"):
@@ -189,9 +191,13 @@ def test_a_heavy_flap_is_refused_naming_the_fields_and_the_bound():
     limit = float(msg.split("flap.mass < ")[1].split(" kg/m")[0])
     assert_allclose(limit, flap_mass_limit(MDART), rtol=1e-3)   # message rounds to 4 digits
     # the bound is sharp: just below fits, just above does not
-    MDART.with_overrides({"flap.mass": 0.999 * flap_mass_limit(MDART)})
+    check_section_inertia(MDART.with_overrides({"flap.mass": 0.999 * flap_mass_limit(MDART)}))
     with pytest.raises(ValueError, match="does not fit"):
-        MDART.with_overrides({"flap.mass": 1.001 * flap_mass_limit(MDART)})
+        check_section_inertia(MDART.with_overrides({"flap.mass": 1.001 * flap_mass_limit(MDART)}))
+    # where the blade and the coupled model are assembled, the same error
+    for assemble in (blade_model, coupled_model):
+        with pytest.raises(ValueError, match=r"flap.mass = 1.488 kg/m \(1 lb/ft\) does not fit"):
+            assemble(heavy)
 
 
 def test_flap_mass_limit_is_the_zero_of_the_host_determinant():
@@ -224,19 +230,19 @@ def test_every_figure_sweep_value_is_accepted():
     for name, fig in FIGURES.items():
         base = figure_config(name)
         for v in fig.values:
-            base.with_overrides({fig.parameter: v})
+            check_section_inertia(base.with_overrides({fig.parameter: v}))
 
 
 def test_section_that_cannot_hold_its_cg_offset_is_refused():
     with pytest.raises(ValueError, match=r"blade.im_lag \+ blade.im_flap .* blade.stations\[\d+\]"):
-        MDART.with_overrides({"blade.cg_offset": "3 in"})
+        check_section_inertia(MDART.with_overrides({"blade.cg_offset": "3 in"}))
 
 
 def test_flap_without_inertia_about_its_hinge_is_refused():
     with pytest.raises(ValueError, match=r"mass block \(w, phi, delta\).*flap.inertia_cg"):
-        MDART.with_overrides({"flap.inertia_cg": 0.0})
+        check_section_inertia(MDART.with_overrides({"flap.inertia_cg": 0.0}))
     # a locked flap (no flap dof) needs no inertia of its own
-    MDART.with_overrides({"flap.inertia_cg": 0.0, "model.tef": "none"})
+    check_section_inertia(MDART.with_overrides({"flap.inertia_cg": 0.0, "model.tef": "none"}))
 
 
 @given(mass=st.floats(0.0, 1.5), inertia=st.floats(0.0, 2e-3), cg=st.floats(-0.3, 0.6),
@@ -249,8 +255,9 @@ def test_check_refuses_exactly_the_impossible_flaps(mass, inertia, cg, overhang,
     # message naming the flap fields otherwise.
     over = {"flap.mass": mass, "flap.inertia_cg": inertia, "flap.cg_offset": cg,
             "flap.overhang": overhang, "flap.chord_ratio": chord}
+    cfg = MDART.with_overrides(over)
     try:
-        cfg = MDART.with_overrides(over)
+        check_section_inertia(cfg)
     except ValueError as err:
         msg = str(err)
         assert "flap.mass" in msg or "flap.inertia_cg" in msg, msg
@@ -341,7 +348,7 @@ def test_nodes_on_the_flap_edges():
 def test_lumped_blade_modes_converge_with_the_mesh():
     # 20 elements (paper) against 40 with the imbalanced flap lumped: 0.2 %
     # on the first 9 modes (the step sits on nodes in both meshes)
-    from tefcore.blade import blade_modes
+    from tefcore.structure.blade import blade_modes
 
     cfg = MDART.with_overrides({"flap.cg_offset": 0.33})
     a = blade_modes(cfg, n_elements=20).frequencies

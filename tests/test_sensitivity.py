@@ -8,7 +8,8 @@ import pandas as pd
 import pytest
 from numpy.testing import assert_allclose
 
-from tefcore.config_io import load_config
+from tefcore.config.io import load_config
+from tefcore.linear.stability import stability
 from tefcore.paper.calibration import frequency_checks
 from tefcore.paper.sensitivity import (
     ASSUMPTIONS,
@@ -21,7 +22,6 @@ from tefcore.paper.sensitivity import (
     tornado_plot,
     tornado_table,
 )
-from tefcore.stability import stability
 
 matplotlib.use("Agg")
 MDART = load_config("mdart")
@@ -60,7 +60,7 @@ def test_onset_brackets_a_zero_crossing():
     # a coarse Fig. 8 scan: the onset lies between the grid points where the
     # flutter root changes sign and the root's real part vanishes there
     # (0.55, not 0.6: beyond ~0.59 the over-balanced flap diverges statically and
-    # its trim is refused, tefcore.trim.MAX_FLAP_DEFLECTION_DEG)
+    # its trim is refused, tefcore.trimming.trim.MAX_FLAP_DEFLECTION_DEG)
     h = Headline("fig8", "", {"flight.advance_ratio": 0.0, "flap.cg_offset": 0.0},
                  "flap.overhang", (0.0, 0.2, 0.4, 0.55))
     out = headline_results(MDART, headlines=[h], xtol=1e-6)

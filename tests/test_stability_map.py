@@ -1,4 +1,4 @@
-"""Tests of tefcore.stability_map: grid, boundary refinement, resume, dask, CLI.
+"""Tests of tefcore.sweeps.maps: grid, boundary refinement, resume, dask, CLI.
 
 A toy point function with a known flutter boundary: the flap mode's growth
 is ``g = cg_offset + overhang^2 - 0.3`` (flutter where g >= 0), so along a
@@ -13,8 +13,8 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from tefcore.config_io import load_config
-from tefcore.stability_map import stability_map
+from tefcore.config.io import load_config
+from tefcore.sweeps.maps import stability_map
 
 MDART = load_config("mdart")
 XS = [0.0, 0.1, 0.2, 0.3, 0.4]
@@ -127,7 +127,7 @@ def test_cli_map(tmp_path):
 
 def test_real_map_is_the_same_serial_parallel_and_on_dask():
     # the real point function takes warm starts: each row is cut into the same
-    # fixed chains (tefcore.sweep.WARM_CHAIN) whichever backend runs it -- rows
+    # fixed chains (tefcore.sweeps.sweep.WARM_CHAIN) whichever backend runs it -- rows
     # side by side in joblib workers, chains as dask tasks, or row by row here --
     # so the tables (and refined boundaries) are identical, not merely close.
     # mu = 0.1, a collective sweep in x: the warm start must not carry the
@@ -147,8 +147,8 @@ def test_real_map_is_the_same_serial_parallel_and_on_dask():
     # and each point is its own: equal to the same point computed cold, to the
     # trim's tolerance (4e-9 /rev measured); with the collective carried over,
     # points of one chain came out equal to its first (off by 1e-4 to 1e-3 /rev)
-    from tefcore.stability import stability
-    from tefcore.sweep import FLUTTER_SHARE
+    from tefcore.linear.stability import stability
+    from tefcore.sweeps.sweep import FLUTTER_SHARE
 
     ok = serial.table[serial.table["status"] == "ok"]
     assert len(ok) == 6

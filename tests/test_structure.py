@@ -12,7 +12,7 @@ import scipy.linalg
 import scipy.optimize
 from numpy.testing import assert_allclose
 
-from tefcore.structure import (
+from tefcore.structure.fem import (
     RootSprings,
     _dof_owner,
     _lowest_modes,
@@ -46,7 +46,7 @@ def eig(beam, which="k_elastic", speed_ratio=1.0, n=8):
     f = beam.free
     k = beam.k_elastic if which == "k_elastic" else beam.stiffness(speed_ratio)
     # inverse form (largest 1/lambda) keeps the low modes exact beside the
-    # very stiff axial ones, see tefcore.structure._lowest_modes
+    # very stiff axial ones, see tefcore.structure.fem._lowest_modes
     mu = scipy.linalg.eigh(beam.mass[np.ix_(f, f)], k[np.ix_(f, f)], eigvals_only=True)
     return np.sqrt(1.0 / mu[::-1][:n])
 
@@ -263,9 +263,9 @@ def test_mdart_axial_block_is_skipped_by_inertia(monkeypatch):
     # MDART (CG and tension axis on the elastic axis): axial, torsion and
     # flap-lag separate, and the axial block (lowest ~1e5 (/rev)^2) has no
     # eigenvalue below the 9th one, so it is never solved
-    import tefcore.structure as structure
-    from tefcore.blade import blade_model
-    from tefcore.config_io import load_config
+    import tefcore.structure.fem as structure
+    from tefcore.config.io import load_config
+    from tefcore.structure.blade import blade_model
 
     beam = blade_model(load_config("mdart"), collective=np.deg2rad(8.0))
     f = beam.free
@@ -287,8 +287,8 @@ def test_blade_modes_are_cached_by_the_structure():
     # one set of modes for every configuration with the same structure (a sweep
     # of the flight condition or the actuator); any structural field, the
     # collective or the mode count gives its own, equal to a fresh computation
-    from tefcore import blade
-    from tefcore.config_io import load_config
+    from tefcore.config.io import load_config
+    from tefcore.structure import blade
 
     cfg = load_config("mdart")
     first = blade.blade_modes(cfg, collective=0.1)

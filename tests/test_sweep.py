@@ -1,4 +1,4 @@
-"""Tests of tefcore.sweep: tidy tracked sweeps, failures, streaming/resume, parallel
+"""Tests of tefcore.sweeps.sweep: tidy tracked sweeps, failures, streaming/resume, parallel
 backends, progress, the stability-boundary finder and argument validation.
 
 All tests use a fast synthetic point function (``ToyPoint``) on flap.cg_offset
@@ -29,10 +29,10 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from tefcore.boundary import stability_boundary
-from tefcore.config import SECTIONS
-from tefcore.config_io import load_config
-from tefcore.sweep import config_hash, sweep
+from tefcore.config.io import load_config
+from tefcore.config.sections import SECTIONS
+from tefcore.sweeps.boundary import stability_boundary
+from tefcore.sweeps.sweep import config_hash, sweep
 
 MDART = load_config("mdart")
 PARAM = "flap.cg_offset"
@@ -232,7 +232,7 @@ KILL_SCRIPT = """
 import os, signal, sys
 sys.path.insert(0, {tests!r})
 from test_sweep import MDART, PARAM, XS, ToyPoint
-from tefcore.sweep import sweep
+from tefcore.sweeps.sweep import sweep
 
 class KillingPoint(ToyPoint):
     def __call__(self, cfg):

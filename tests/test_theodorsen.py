@@ -1,4 +1,4 @@
-"""Tests of tefcore.theodorsen: T-functions, quasi-steady loads, flap lift.
+"""Tests of tefcore.aero.theodorsen: T-functions, quasi-steady loads, flap lift.
 
 Every closed form is checked against an independent computation:
 
@@ -17,7 +17,7 @@ import pytest
 from numpy.testing import assert_allclose
 from scipy.integrate import quad
 
-from tefcore.theodorsen import (
+from tefcore.aero.theodorsen import (
     T_NAMES,
     apparent_mass_potential,
     kutta_circulation,

@@ -1,4 +1,4 @@
-"""Tests of tefcore.tracking: MAC and mode tracking along a sweep."""
+"""Tests of tefcore.modes.tracking: MAC and mode tracking along a sweep."""
 
 import numpy as np
 import pandas as pd
@@ -7,8 +7,8 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from hypothesis.extra import numpy as hnp
 
-from tefcore.mode_matching import mac, match_modes
-from tefcore.tracking import ambiguous_steps, label_changes, track_modes
+from tefcore.modes.matching import mac, match_modes
+from tefcore.modes.tracking import ambiguous_steps, label_changes, track_modes
 
 # ------------------------------------------------------------------ MAC
 

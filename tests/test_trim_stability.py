@@ -7,13 +7,13 @@ import pytest
 from numpy.testing import assert_allclose
 
 from tefcore import floquet
-from tefcore.blade import blade_modes
-from tefcore.config_io import load_config
-from tefcore.coupled import coupled_model
-from tefcore.flap_dynamics import flap_natural_frequency, flap_properties
+from tefcore.config.io import load_config
+from tefcore.linear.stability import linearize, stability, state_matrix
+from tefcore.model.coupled import coupled_model
+from tefcore.model.flap import flap_natural_frequency, flap_properties
 from tefcore.paper.calibration import mode_frequency
-from tefcore.stability import linearize, stability, state_matrix
-from tefcore.trim import TrimError, fourier_eval, trim
+from tefcore.structure.blade import blade_modes
+from tefcore.trimming.trim import TrimError, fourier_eval, trim
 
 
 @pytest.fixture(scope="module")
@@ -143,7 +143,7 @@ def test_stability_tables_are_labelled(mdart):
 def test_stability_with_a_prebuilt_model(mdart):
     # the same modes and trim as stability() builds itself (hover does not
     # re-mode), so the tables agree exactly
-    from tefcore.trim import initial_collective
+    from tefcore.trimming.trim import initial_collective
     cfg = mdart.with_overrides({"flight.advance_ratio": 0.0})
     model = coupled_model(cfg, collective=initial_collective(cfg))
     own, given = stability(cfg), stability(cfg, model=model)
@@ -178,7 +178,7 @@ def test_sweep_gives_continuous_labelled_curves(mdart):
     # pitch-link stiffness in hover: every labelled mode is present at every
     # point, one track per label, and the torsion frequency rises smoothly
     # (Fig. 10a's trend) while flap and lag barely move
-    from tefcore.sweep import sweep
+    from tefcore.sweeps.sweep import sweep
 
     cfg = mdart.with_overrides({"flight.advance_ratio": 0.0})
     res = sweep(cfg, "hub.pitch_link_stiffness", ["158 lb/in", "400 lb/in", "800 lb/in"],
@@ -201,7 +201,7 @@ def test_c81_table_aerodynamics_runs_the_coupled_analysis(mdart):
     # the shipped deck is generated from the thin-airfoil model with a = 2 pi,
     # so the trim collective must sit close to a thin-airfoil model with the
     # same lift slope (within 0.3 deg: table interpolation and clipping)
-    from tefcore.c81 import C81RangeWarning, example_deck_path
+    from tefcore.aero.c81 import C81RangeWarning, example_deck_path
 
     base = mdart.with_overrides({"flight.advance_ratio": 0.0,
                                  "rotor.lift_slope": float(2 * np.pi)})
@@ -223,8 +223,8 @@ def test_heavily_damped_root_resolved_by_raising_the_sub_intervals():
     # MDART data the same mechanism put a -7.2 /rev root 1.4 /rev off at K = 4
     # on Fig. 14's 0.22 R span; with the re-derived blade K = 4 is off by
     # 1.4e-4 /rev here, among the largest of the figures' extreme points, measured.)
+    from tefcore.linear.stability import periodic_state_matrix
     from tefcore.paper.figures import figure_config
-    from tefcore.stability import periodic_state_matrix
 
     cfg = figure_config("fig13").with_overrides({"flap.midspan": 0.90})
     tr = stability(cfg).trim_result
@@ -253,7 +253,7 @@ def test_heavily_damped_root_resolved_by_raising_the_sub_intervals():
 def test_lightly_damped_forward_flight_keeps_four_sub_intervals(forward):
     # MDART at mu = 0.3: the most damped root (TEF, about -2 /rev) has
     # |mu| = exp(-2 pi / 2) ~ 0.04 >= MIN_ROOT, so K stays at 4 (no extra cost)
-    from tefcore.stability import periodic_state_matrix
+    from tefcore.linear.stability import periodic_state_matrix
 
     a_of_psi, _ = periodic_state_matrix(forward)
     n = forward.model.n_dof
@@ -267,7 +267,7 @@ def test_statically_diverged_flap_is_refused_not_trimmed(mdart):
     # overhang (its hinge-moment stiffness, actuator included, turns negative):
     # the trim then runs away to flap deflections of hundreds of degrees (215
     # deg at 0.63, measured) -- refused with the reason, not returned
-    from tefcore.trim import MAX_FLAP_DEFLECTION_DEG, TrimError
+    from tefcore.trimming.trim import MAX_FLAP_DEFLECTION_DEG, TrimError
 
     cfg = mdart.with_overrides({"flight.advance_ratio": 0.0, "flap.cg_offset": 0.0,
                                 "flap.overhang": 0.63})

@@ -1,4 +1,4 @@
-"""Tests of tefcore.unsteady_aero: finite-state unsteady loads of the balanced-flap airfoil.
+"""Tests of tefcore.aero.unsteady: finite-state unsteady loads of the balanced-flap airfoil.
 
 References are independent of the module's algebra: Theodorsen's published
 NACA 496 formulas with C(k) written out below (plain flap), the quasi-steady
@@ -14,9 +14,9 @@ import pytest
 from numpy.testing import assert_allclose
 from scipy.integrate import solve_ivp
 
-from tefcore.flap_aero import ThinAirfoilFlap, prandtl_glauert
-from tefcore.theodorsen import t_functions
-from tefcore.unsteady_aero import (
+from tefcore.aero.theodorsen import t_functions
+from tefcore.aero.thin_airfoil import ThinAirfoilFlap, prandtl_glauert
+from tefcore.aero.unsteady import (
     MAX_STATES,
     UnsteadyFlapAirfoil,
     fitted_wake,

@@ -13,8 +13,8 @@ from importlib import resources
 import numpy as np
 import pytest
 
-from tefcore.c81 import C81FlapTable, read_c81
-from tefcore.flap_aero import ThinAirfoilFlap, prandtl_glauert
+from tefcore.aero.c81 import C81FlapTable, read_c81
+from tefcore.aero.thin_airfoil import ThinAirfoilFlap, prandtl_glauert
 
 PATH = resources.files("tefcore") / "data" / "naca0012_flap35_xfoil.c81"
 HINGE_ARM = 0.29 * 0.35          # hinge behind the flap nose, blade chords

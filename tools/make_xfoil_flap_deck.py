@@ -20,7 +20,7 @@ MDART flap of the paper's Table 1), computed with Drela's XFOIL 6.99:
   C_lf = normal force on the flap (perpendicular to the blade chord, up) /
   (q c), C_h = pressure moment about the hinge (the point 0.1015 c aft of the
   nose on the deflected flap's chord line), trailing edge down positive, /
-  (q c^2) -- blade-chord normalisation as in tefcore.flap_aero.
+  (q c^2) -- blade-chord normalisation as in tefcore.aero.thin_airfoil.
 * unconverged points (XFOIL's viscous iteration) are filled by linear
   interpolation in alpha between converged neighbours of the same (M, delta),
   or by the nearest converged value at the ends of the alpha range; their
@@ -51,7 +51,7 @@ import numpy as np
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
-from tefcore.c81 import C81Deck, write_c81  # noqa: E402
+from tefcore.aero.c81 import C81Deck, write_c81  # noqa: E402
 
 FLAP_NOSE = 0.65            # 35 % chord flap (Table 1)
 OVERHANG = 0.29             # hinge 29 % of the flap chord behind its nose (Table 1)

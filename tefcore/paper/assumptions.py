@@ -9,7 +9,7 @@ frequency to the text's four statements when the assumption moves it.
 
 Examples
 --------
->>> from tefcore.config_io import load_config
+>>> from tefcore.config.io import load_config
 >>> cfg = load_config("mdart")
 >>> heavy = apply_assumption(cfg, "flap mass", "high")
 >>> round(heavy.flap.mass / cfg.flap.mass, 2)
@@ -198,7 +198,7 @@ def apply_assumption(cfg, assumption: Assumption | str, end: str):
 
     Parameters
     ----------
-    cfg : tefcore.config.Config
+    cfg : tefcore.config.sections.Config
         Baseline configuration (normally MDART); the end's overrides are
         computed from it.
     assumption : Assumption or str
@@ -208,7 +208,7 @@ def apply_assumption(cfg, assumption: Assumption | str, end: str):
 
     Returns
     -------
-    tefcore.config.Config
+    tefcore.config.sections.Config
         A new configuration; ``cfg`` is unchanged.
 
     Raises

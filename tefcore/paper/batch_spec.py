@@ -69,6 +69,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from ..errors import TefcoreError
+from ..structure.section_inertia import check_section_inertia
 from .notebook_files import (
     NOTEBOOK_FIGURES,
     NOTEBOOKS,
@@ -319,9 +320,9 @@ def _check_values(run: str, nb: str, params: dict, defaults: dict, config, origi
     fig = None
     try:
         base = _base_config(config, str(p.get("aero_model", "thin_airfoil")))
-        base.with_overrides(overrides)
+        check_section_inertia(base.with_overrides(overrides))   # the flap fits its section
         for fig in (f for f in NOTEBOOK_FIGURES[nb] if f in FIGURES):   # stability figures
-            run_config(fig, base, overrides)
+            check_section_inertia(run_config(fig, base, overrides))
     except (ValueError, OSError, TefcoreError) as exc:
         text = " ".join(str(exc).split())
         _fail(origin, where, f"{'overrides: ' if overrides else ''}{text}"
@@ -358,7 +359,7 @@ def _config_path(value, origin: str, where: str, base_dir: Path) -> str | None:
     if not isinstance(value, str) or not value.strip():
         _fail(origin, where, "config must be a path to a TOML file or a shipped "
                              "configuration's name")
-    from ..config_io import available_configs
+    from ..config.io import available_configs
 
     if "/" not in value and not value.endswith(".toml"):
         if value not in available_configs():
@@ -369,7 +370,7 @@ def _config_path(value, origin: str, where: str, base_dir: Path) -> str | None:
     path = (base_dir / value).resolve()
     if not path.is_file():
         _fail(origin, where, f"configuration file {path} not found")
-    from ..config_io import load_config
+    from ..config.io import load_config
 
     try:
         load_config(path)

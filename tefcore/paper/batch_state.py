@@ -10,7 +10,7 @@ when the run starts (``"status": "running"``) and again when it ends::
 
 ``inputs`` (:func:`run_inputs`) is everything that decides the run's
 results, the same ideas as a sweep file's header
-(:mod:`tefcore.sweep_store`):
+(:mod:`tefcore.sweeps.store`):
 
 * ``notebooks`` and ``parameters`` -- the papermill parameters of each
   notebook (its output folder and the configuration's path left out);

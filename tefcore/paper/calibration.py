@@ -11,7 +11,7 @@ them (never a stability claim):
 
 All four at the condition of Figs. 10-11, the mass-imbalanced flap
 (``c_cg/c_f = 0.33, c_b/c_f = 0.29``, :data:`FIGURE_CONDITION`): the flap is
-part of its blade section (:mod:`tefcore.section_inertia`), so its CG offset
+part of its blade section (:mod:`tefcore.structure.section_inertia`), so its CG offset
 adds polar inertia over the flap span and lowers the torsion frequency
 (by 3 % at 800 lb/in on the MDART data) -- the text's frequencies are those of
 that blade.
@@ -49,7 +49,7 @@ import numpy as np
 import pandas as pd
 import scipy.optimize
 
-from ..blade import blade_modes
+from ..structure.blade import blade_modes
 from ..units import to_si
 
 __all__ = ["FIGURE_CONDITION", "LBF_PER_IN", "MLP_FITTED", "TORSION_TARGETS",
@@ -81,8 +81,8 @@ def mode_frequency(modes, label: str) -> float:
 
     Parameters
     ----------
-    modes : tefcore.structure.BladeModes
-        Natural modes of a blade (:func:`tefcore.blade.blade_modes`), with
+    modes : tefcore.structure.fem.BladeModes
+        Natural modes of a blade (:func:`tefcore.structure.blade.blade_modes`), with
         ``labels`` and ``frequencies`` [/rev].
     label : str
         The mode's label: ``"flap 1"``, ``"lag 1"``, ``"torsion 1"``, ...
@@ -108,7 +108,7 @@ def frequency_checks(cfg, n_modes: int | None = None) -> pd.DataFrame:
 
     Parameters
     ----------
-    cfg : tefcore.config.Config
+    cfg : tefcore.config.sections.Config
         Blade to check (normally the MDART baseline); each target's
         overrides (:data:`TORSION_TARGETS`) are applied over it.
     n_modes : int, optional
@@ -141,7 +141,7 @@ def calibrate_torsion(cfg):
 
     Parameters
     ----------
-    cfg : tefcore.config.Config
+    cfg : tefcore.config.sections.Config
         Starting point of the fit and everything it keeps (section inertia,
         GJ distribution, flap); its GJ scale, horn arm and pitch-link
         stiffness are the initial guess.
@@ -180,7 +180,7 @@ def lag_damping_ratio(modes) -> float:
 
     Parameters
     ----------
-    modes : tefcore.structure.BladeModes
+    modes : tefcore.structure.fem.BladeModes
         Blade modes with their modal mass and damping matrices.
 
     Returns
@@ -212,7 +212,7 @@ def calibrate_multiple_load_path(cfg):
 
     Parameters
     ----------
-    cfg : tefcore.config.Config
+    cfg : tefcore.config.sections.Config
         Configuration with the hub sections (its ``hub.model`` is set here).
 
     Returns
@@ -254,7 +254,7 @@ def calibrate_multiple_load_path(cfg):
 
 
 def _main() -> int:
-    from ..config_io import load_config
+    from ..config.io import load_config
 
     base = load_config("mdart")
     fit = calibrate_torsion(base)

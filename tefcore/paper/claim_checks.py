@@ -75,7 +75,7 @@ def _is(labels: pd.Series, mode: str) -> pd.Series:
 
 
 #: The ``mode`` of a claim about the flutter root of each point (the least
-#: stable root with a flap participation >= 0.1, :func:`tefcore.sweep.sweep`).
+#: stable root with a flap participation >= 0.1, :func:`tefcore.sweeps.sweep.sweep`).
 FLUTTER_ROOT = "flutter root"
 #: Quantities of a root's stability, for which a TEF claim also reports the
 #: flutter root's result (for information: the status is the TEF branch's).
@@ -88,7 +88,7 @@ class _Ambiguous(Exception):
 
 def _select(frame, mode, identify="track") -> pd.DataFrame:
     """Rows of `mode`: ``"TEF"`` is the TEF branch (the track of the flap mode
-    at the sweep start, :func:`tefcore.sweep.sweep`); another mode its track
+    at the sweep start, :func:`tefcore.sweeps.sweep.sweep`); another mode its track
     (``identify="track"``), or at each point the mode labelled `mode` there
     (``"label"``, the most participating one if several)."""
     col = "label_here" if identify == "label" and "label_here" in frame else "label"
@@ -129,7 +129,7 @@ def _doubtful(rows, mode, lo, hi) -> list[float]:
         bad = ~rows["tef_branch_certain"].fillna(False).astype(bool).to_numpy()
     else:
         # a coalescence is followed by convention (the less stable root goes
-        # on, tefcore.tracking); only an undecided match is a doubt
+        # on, tefcore.modes.tracking); only an undecided match is a doubt
         bad = rows["identity"].astype(str).to_numpy() == "ambiguous"
     inside = upto if lo is None else upto & (x >= lo * (1 - X_SLACK) - X_SLACK)
     if mode == "TEF":
@@ -143,7 +143,7 @@ def _check_branch_covers(frame, branch, lo, hi) -> None:
     """Raise :class:`_Ambiguous` when the TEF branch stops inside the checked range.
 
     The branch ends where no root of the next point continues it
-    (:func:`tefcore.tracking.follow_branch`); beyond it, which root is the TEF
+    (:func:`tefcore.modes.tracking.follow_branch`); beyond it, which root is the TEF
     is not decided -- a claim about the TEF there is ambiguous, not failed for
     want of points.
     """
@@ -398,7 +398,7 @@ def _check_curve(c: Claim, ctx: _Context):
 
 
 def _check_mechanism(c: Claim, ctx: _Context):
-    from ..mechanism import mechanism
+    from ..linear.mechanism import mechanism
     from .figures import FIGURES as FIGS
     from .figures import figure_config
 
@@ -494,7 +494,7 @@ def validate_figure(name: str, result, claims=None, *, cfg=None, variants=None, 
     name : str
         ``"fig3"`` ... ``"fig17"`` (stability figures of
         :data:`tefcore.paper.figures.FIGURES`) or ``"fig5"``, ``"fig6"``, ``"fig7"``.
-    result : tefcore.sweep.SweepResult, DataFrame, dict or None
+    result : tefcore.sweeps.sweep.SweepResult, DataFrame, dict or None
         The figure's output: SweepResult (or its table), the DataFrame of
         figs. 5 and 7, or the dict of fig. 6.  ``None``: computed when needed.
     claims : list of Claim, optional

@@ -3,7 +3,7 @@
 :func:`explore` shows, for one configuration, every root of the Floquet
 analysis in the s-plane (frequency against real part, coloured by how much
 the flap takes part in it), the TEF root (the root the flap's own mode
-becomes when the coupling is switched on, :func:`tefcore.mechanism.tef_root`)
+becomes when the coupling is switched on, :func:`tefcore.linear.mechanism.tef_root`)
 and the flutter root (the least stable root the flap takes part in), beside
 the damping of the paper's modes.  With ipywidgets in a live notebook,
 sliders for the flap CG offset, the overhang, the actuator stiffness and the
@@ -26,7 +26,7 @@ from dataclasses import dataclass
 
 import pandas as pd
 
-from ..mechanism import FLUTTER_PARTICIPATION, flutter_root, tef_root
+from ..linear.mechanism import FLUTTER_PARTICIPATION, flutter_root, tef_root
 from .figure_runs import base_config
 from .plotting import PAPER_MODES, STYLE, legend_below
 
@@ -52,7 +52,7 @@ def explorer_config(base=None, *, cg_offset: float, overhang: float, actuator_sc
 
     Parameters
     ----------
-    base : tefcore.config.Config, optional
+    base : tefcore.config.sections.Config, optional
         Base configuration (default: MDART, thin-airfoil aerodynamics).
     cg_offset, overhang : float
         Flap CG offset and overhang, fractions of the flap chord.
@@ -75,18 +75,18 @@ class RootMap:
     Parameters
     ----------
     modes : pandas.DataFrame
-        The Floquet roots (:attr:`tefcore.stability.StabilityResult.modes`):
+        The Floquet roots (:attr:`tefcore.linear.stability.StabilityResult.modes`):
         ``label``, ``frequency_per_rev``, ``real_part`` [1/rev, > 0
         unstable], ``share_TEF`` (flap participation) ...; empty when the
         configuration has no roots (``error`` says why).
     tef : complex or None
         The TEF root, ``real_part + 1j * frequency_per_rev`` [1/rev]: the root
         the flap's own mode becomes when its coupling to the blade is switched
-        on (:func:`tefcore.mechanism.tef_root`); None without a flap.
+        on (:func:`tefcore.linear.mechanism.tef_root`); None without a flap.
     flutter : int or None
         Index in ``modes`` of the flutter root, the least stable root with a
         flap participation of at least
-        :data:`tefcore.mechanism.FLUTTER_PARTICIPATION`; None if no root
+        :data:`tefcore.linear.mechanism.FLUTTER_PARTICIPATION`; None if no root
         carries the flap.
     error : str
         Why there are no roots (a refused configuration, a failed trim);
@@ -104,7 +104,7 @@ def root_map(cfg) -> RootMap:
 
     Parameters
     ----------
-    cfg : tefcore.config.Config
+    cfg : tefcore.config.sections.Config
         The configuration.
 
     Returns
@@ -114,7 +114,7 @@ def root_map(cfg) -> RootMap:
         statically, so there is no trim to linearise about).
     """
     from ..errors import TefcoreError
-    from ..stability import stability
+    from ..linear.stability import stability
 
     try:
         res = stability(cfg)
@@ -136,7 +136,7 @@ def explorer_state(base=None, **values) -> RootMap:
 
     Parameters
     ----------
-    base : tefcore.config.Config, optional
+    base : tefcore.config.sections.Config, optional
         Base configuration.
     **values
         The :data:`SLIDERS` values.
@@ -229,7 +229,7 @@ def explore(base=None, interactive: bool = True, **start):
 
     Parameters
     ----------
-    base : tefcore.config.Config, optional
+    base : tefcore.config.sections.Config, optional
         Base configuration (default: MDART, thin-airfoil aerodynamics).
     interactive : bool
         Show ipywidgets sliders (when ipywidgets is installed); False draws the

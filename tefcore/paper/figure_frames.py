@@ -33,7 +33,7 @@ def figure_frame(name: str, result) -> pd.DataFrame:
         The figure: a stability figure of
         :data:`tefcore.paper.reference.FIGURES` (``"fig3"`` ... ``"fig17"``),
         or ``"fig5"``, ``"fig6"``, ``"fig7"``.
-    result : tefcore.sweep.SweepResult, DataFrame or dict
+    result : tefcore.sweeps.sweep.SweepResult, DataFrame or dict
         The figure's result: a stability figure's SweepResult (or its
         ``.table``), the DataFrame of :func:`tefcore.paper.figures.hinge_moment_figure`
         (Fig. 5) or :func:`~tefcore.paper.figures.overhang_actuation_figure`
@@ -79,7 +79,7 @@ def figure_frame(name: str, result) -> pd.DataFrame:
 
 
 def natural_frequency_frame(name, frame, cfg, overrides) -> pd.DataFrame:
-    """Blade natural frequencies (:func:`tefcore.blade.blade_modes`) at the frame's x.
+    """Blade natural frequencies (:func:`tefcore.structure.blade.blade_modes`) at the frame's x.
 
     The quantity ``natural_frequency_per_rev`` of the claims: the rotating
     blade's natural frequencies (flap mass lumped into its sections, no flap
@@ -94,7 +94,7 @@ def natural_frequency_frame(name, frame, cfg, overrides) -> pd.DataFrame:
     frame : pandas.DataFrame
         The figure's frame (:func:`figure_frame`); only its ``x`` column (SI
         values of the swept field) is used.
-    cfg : tefcore.config.Config or None
+    cfg : tefcore.config.sections.Config or None
         Base configuration (None: MDART); the figure's fixed parameters are
         applied over it.
     overrides : dict
@@ -106,7 +106,7 @@ def natural_frequency_frame(name, frame, cfg, overrides) -> pd.DataFrame:
         One row per x and blade mode: ``x``, ``label`` and ``track``
         (``"blade flap 1"``, ...) and ``natural_frequency_per_rev``.
     """
-    from ..blade import blade_modes
+    from ..structure.blade import blade_modes
 
     base = figures.figure_config(name, cfg).with_overrides(overrides)
     rows = []
@@ -126,7 +126,7 @@ def compute_figure(name, cfg=None, values=None, overrides=None, n_jobs=1, progre
     name : str
         A stability figure of :data:`tefcore.paper.reference.FIGURES`, or
         ``"fig5"``, ``"fig6"``, ``"fig7"`` (flap-response analyses).
-    cfg : tefcore.config.Config, optional
+    cfg : tefcore.config.sections.Config, optional
         Base configuration (default: MDART).
     values : sequence, optional
         Swept values instead of the paper's (stability figures), or the
@@ -137,13 +137,13 @@ def compute_figure(name, cfg=None, values=None, overrides=None, n_jobs=1, progre
         mass-balanced flap, ``{"flap.cg_offset": 0.0}``), applied after the
         caption's fixed parameters.
     n_jobs : int
-        Processes of the sweep (:func:`tefcore.sweep.sweep`); 1 runs serially.
+        Processes of the sweep (:func:`tefcore.sweeps.sweep.sweep`); 1 runs serially.
     progress : bool
         Show the sweep's progress bar.
 
     Returns
     -------
-    tefcore.sweep.SweepResult, pandas.DataFrame or dict
+    tefcore.sweeps.sweep.SweepResult, pandas.DataFrame or dict
         As :func:`tefcore.paper.figures.run_figure` for a stability figure;
         the DataFrame of Figs. 5 and 7 or the dict of Fig. 6.
     """
@@ -156,7 +156,7 @@ def compute_figure(name, cfg=None, values=None, overrides=None, n_jobs=1, progre
     values = list(FIGURES[name].values if values is None else values)
     if not overrides:
         return figures.run_figure(name, cfg, values=values, n_jobs=n_jobs, progress=progress)
-    from ..sweep import sweep
+    from ..sweeps.sweep import sweep
 
     base = figures.figure_config(name, cfg).with_overrides(overrides)
     return sweep(base, FIGURES[name].parameter, values, n_jobs=n_jobs, progress=progress)

@@ -25,8 +25,8 @@ from types import SimpleNamespace
 import numpy as np
 import pandas as pd
 
-from ..c81 import example_deck_path, xfoil_deck_path
-from ..config_io import load_config
+from ..aero.c81 import example_deck_path, xfoil_deck_path
+from ..config.io import load_config
 from .claim_checks import variant_key
 from .figures import FIGURES, figure_config
 from .plotting import split_value, x_values
@@ -57,14 +57,14 @@ def base_config(aero_model: str = "thin_airfoil", overrides: dict | None = None,
     overrides : dict, optional
         Dotted configuration fields applied last.
     config : path or str, optional
-        A configuration file (TOML, :mod:`tefcore.config_io`: a complete
+        A configuration file (TOML, :mod:`tefcore.config.io`: a complete
         rotor, e.g. a copy of ``tefcore/data/mdart.toml`` with other values)
         or the name of a shipped one; None: the shipped MDART configuration.
         The notebooks' ``config`` parameter (``tefcore batch`` sets it).
 
     Returns
     -------
-    tefcore.config.Config
+    tefcore.config.sections.Config
         The base configuration with the section aerodynamics set, then
         ``overrides``.
     """
@@ -88,7 +88,7 @@ def run_config(name: str, base=None, overrides: dict | None = None):
     ----------
     name : str
         Paper figure (``"fig9"``).
-    base : tefcore.config.Config, optional
+    base : tefcore.config.sections.Config, optional
         Base configuration (default: MDART).
     overrides : dict, optional
         Dotted fields that win over the caption (e.g. another advance ratio).
@@ -104,10 +104,10 @@ def section_aero(aero_model: str, cfg=None):
     ----------
     aero_model : {"thin_airfoil", "table"}
         See :func:`base_config`.
-    cfg : tefcore.config.Config, optional
+    cfg : tefcore.config.sections.Config, optional
         Source of ``flap.chord_ratio`` and ``flap.overhang``.
     """
-    from ..coupled import section_model
+    from ..model.coupled import section_model
 
     cfg = base_config(aero_model) if cfg is None else cfg
     return section_model(base_config(aero_model).with_overrides({
@@ -160,17 +160,17 @@ def figure_values(name: str, n_points: int | None = None, values=None,
 
 
 def quiet_stability(cfg):
-    """:func:`tefcore.stability.stability` with its numerical warnings counted, not printed.
+    """:func:`tefcore.linear.stability.stability` with its numerical warnings counted, not printed.
 
     Workers' stderr would otherwise reach the notebook; the count is the
     sweep column ``trim_numerical_warnings``.
 
     Parameters
     ----------
-    cfg : tefcore.config.Config
+    cfg : tefcore.config.sections.Config
         The configuration.
     """
-    from ..stability import stability
+    from ..linear.stability import stability
 
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
@@ -194,7 +194,7 @@ def run_stability_figure(name: str, base=None, overrides: dict | None = None,
     ----------
     name : str
         Paper figure.
-    base : tefcore.config.Config, optional
+    base : tefcore.config.sections.Config, optional
         Base configuration.
     overrides : dict, optional
         Dotted fields applied over the caption.
@@ -207,12 +207,12 @@ def run_stability_figure(name: str, base=None, overrides: dict | None = None,
 
     Returns
     -------
-    tefcore.sweep.SweepResult
+    tefcore.sweeps.sweep.SweepResult
         One Floquet analysis per value (trim warnings counted into the
         table's ``trim_numerical_warnings``), with tracked modes, the TEF
         branch and the flutter root.
     """
-    from ..sweep import sweep
+    from ..sweeps.sweep import sweep
 
     cfg = run_config(name, base, overrides)
     if cg_offset is not None:
@@ -228,7 +228,7 @@ def natural_frequencies(name: str, values, base=None, overrides: dict | None = N
     """Blade natural frequencies at each sweep value (no aerodynamics, zero collective).
 
     The "blade frequency" panels of Figs. 10a/11a, as the paper's stated
-    frequencies (and the validation) use them (:func:`tefcore.blade.blade_modes`).
+    frequencies (and the validation) use them (:func:`tefcore.structure.blade.blade_modes`).
 
     Parameters
     ----------
@@ -236,7 +236,7 @@ def natural_frequencies(name: str, values, base=None, overrides: dict | None = N
         Paper figure.
     values : sequence
         Sweep values.
-    base : tefcore.config.Config, optional
+    base : tefcore.config.sections.Config, optional
         Base configuration.
     overrides : dict, optional
         Dotted fields applied over the caption.
@@ -248,7 +248,7 @@ def natural_frequencies(name: str, values, base=None, overrides: dict | None = N
     DataFrame
         In the format of :func:`tefcore.paper.plotting.curves`.
     """
-    from ..blade import blade_modes
+    from ..structure.blade import blade_modes
 
     cfg = run_config(name, base, overrides)
     rows = []

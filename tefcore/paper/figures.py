@@ -2,7 +2,7 @@
 
 Each stability figure (3-4, 8-17) is a sweep of one configuration field about
 the MDART baseline with the fixed parameters of its caption
-(:data:`FIGURES`); :func:`run_figure` runs it with :func:`tefcore.sweep.sweep`.
+(:data:`FIGURES`); :func:`run_figure` runs it with :func:`tefcore.sweeps.sweep.sweep`.
 Figures 5-7 are flap-response analyses about a trimmed forward-flight state
 (:func:`hinge_moment_figure`, :func:`flap_response_figure`,
 :func:`overhang_actuation_figure`). Notebooks and :mod:`tefcore.paper.validation`
@@ -26,11 +26,11 @@ from dataclasses import dataclass, field
 import numpy as np
 import pandas as pd
 
-from ..config_io import load_config
-from ..coupled import coupled_model
-from ..flap_dynamics import SectionMotion, aerodynamic_hinge_moment, flap_properties
-from ..sweep import sweep
-from ..trim import fourier_eval, trim
+from ..config.io import load_config
+from ..model.coupled import coupled_model
+from ..model.flap import SectionMotion, aerodynamic_hinge_moment, flap_properties
+from ..sweeps.sweep import sweep
+from ..trimming.trim import fourier_eval, trim
 
 __all__ = ["FIG5_FLIGHT", "FIGURES", "FORWARD_03", "IMBALANCED", "RESPONSE_TITLES", "Figure",
            "figure_config", "flap_response_figure", "hinge_moment_figure",
@@ -130,12 +130,12 @@ def figure_config(name: str, cfg=None):
     ----------
     name : str
         Stability figure, a key of :data:`FIGURES` (``"fig3"`` ... ``"fig17"``).
-    cfg : tefcore.config.Config, optional
+    cfg : tefcore.config.sections.Config, optional
         Base configuration (default: the MDART baseline, ``load_config("mdart")``).
 
     Returns
     -------
-    tefcore.config.Config
+    tefcore.config.sections.Config
         ``cfg`` with :attr:`Figure.fixed` applied, before the swept field is set.
     """
     fig = FIGURES[name]
@@ -149,19 +149,19 @@ def run_figure(name: str, cfg=None, values=None, **sweep_kw):
     ----------
     name : str
         Stability figure, a key of :data:`FIGURES`.
-    cfg : tefcore.config.Config, optional
+    cfg : tefcore.config.sections.Config, optional
         Base configuration (default: MDART); the figure's fixed parameters
         are applied over it (:func:`figure_config`).
     values : sequence, optional
         Values of the swept field instead of the paper's :attr:`Figure.values`
         (SI numbers or ``"value unit"`` strings).
     **sweep_kw
-        Passed to :func:`tefcore.sweep.sweep` (``n_jobs``, ``out``, ``refine``,
+        Passed to :func:`tefcore.sweeps.sweep.sweep` (``n_jobs``, ``out``, ``refine``,
         ...); ``progress`` defaults to False.
 
     Returns
     -------
-    tefcore.sweep.SweepResult
+    tefcore.sweeps.sweep.SweepResult
         One Floquet analysis per value; ``.table`` is tidy (one row per root
         and point, with the tracked mode, the TEF branch and the flutter root).
 
@@ -187,7 +187,7 @@ def trimmed_section_motion(tr, x: float) -> SectionMotion:
 
     Parameters
     ----------
-    tr : tefcore.trim.TrimResult
+    tr : tefcore.trimming.trim.TrimResult
         Converged trim of a coupled blade/flap model: its periodic response
         (``tr.motion(psi)``), controls and inflow.
     x : float
@@ -196,7 +196,7 @@ def trimmed_section_motion(tr, x: float) -> SectionMotion:
 
     Returns
     -------
-    tefcore.flap_dynamics.SectionMotion
+    tefcore.model.flap.SectionMotion
         Callables of the azimuth [rad] giving the section's speed [m/s],
         angle of attack [rad] and its rates, plunge acceleration, pitch and
         bending slope in SI units (dimensional with ``Omega`` and ``R``).
@@ -235,7 +235,7 @@ def response_config(cfg=None, **over):
 
     Parameters
     ----------
-    cfg : tefcore.config.Config, optional
+    cfg : tefcore.config.sections.Config, optional
         Base configuration (default: MDART).
     **over
         Dotted fields that win over the figures' flight condition.
@@ -258,11 +258,11 @@ def hinge_moment_figure(cfg=None, aero=None, n_psi: int = 72, **over) -> pd.Data
 
     Parameters
     ----------
-    cfg : tefcore.config.Config, optional
+    cfg : tefcore.config.sections.Config, optional
         Base configuration (default: MDART).
     aero : object, optional
         Section aerodynamics model evaluating the hinge moment
-        (:func:`tefcore.coupled.section_model`, e.g. from
+        (:func:`tefcore.model.coupled.section_model`, e.g. from
         :func:`tefcore.paper.figure_runs.section_aero`); default: the trimmed
         model's own.
     n_psi : int
@@ -303,7 +303,7 @@ def flap_response_figure(cfg=None, **over) -> dict:
 
     Parameters
     ----------
-    cfg : tefcore.config.Config, optional
+    cfg : tefcore.config.sections.Config, optional
         Base configuration (default: MDART).
     **over
         Dotted configuration fields that win over Fig. 6's condition and the
@@ -349,7 +349,7 @@ def overhang_actuation_figure(cfg=None, overhangs=(0.0, 0.1, 0.2, 0.29, 0.35, 0.
 
     Parameters
     ----------
-    cfg : tefcore.config.Config, optional
+    cfg : tefcore.config.sections.Config, optional
         Base configuration (default: MDART).
     overhangs : sequence of float
         Flap overhangs ``c_b/c_f`` (hinge behind the flap nose, fraction of

@@ -13,9 +13,9 @@ from dataclasses import dataclass
 import numpy as np
 import pandas as pd
 
-from ..blade import blade_modes, fan_data
-from ..config_io import load_config
-from ..hub_models import HUB_MODELS
+from ..config.io import load_config
+from ..structure.blade import blade_modes, fan_data
+from ..structure.hub_models import HUB_MODELS
 from .figures import run_figure
 
 __all__ = ["HubComparison", "compare_hub_models", "plot_hub_models"]
@@ -28,7 +28,7 @@ class HubComparison:
     Attributes
     ----------
     fan : DataFrame
-        :func:`tefcore.blade.fan_data` of each hub, with ``hub_model``.
+        :func:`tefcore.structure.blade.fan_data` of each hub, with ``hub_model``.
     modes : DataFrame
         The retained modes at the configured rotor speed: ``hub_model, mode,
         label, frequency_per_rev, damping_ratio`` (structural, in vacuum:
@@ -105,7 +105,7 @@ def plot_hub_models(comparison: HubComparison, cfg=None):
     ----------
     comparison : HubComparison
         From :func:`compare_hub_models`.
-    cfg : tefcore.config.Config, optional
+    cfg : tefcore.config.sections.Config, optional
         Its configuration, for the nominal rotor speed (default MDART).
 
     Returns

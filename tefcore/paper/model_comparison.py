@@ -9,12 +9,12 @@ results of the paper under each option:
 
 * the **Fig. 9 onset**: the flap CG offset ``c_cg/c_f`` at which the flutter
   root -- the least stable root with a flap participation of at least 0.1
-  (:func:`tefcore.mechanism.flutter_root`) -- turns unstable at ``mu = 0.3``,
+  (:func:`tefcore.linear.mechanism.flutter_root`) -- turns unstable at ``mu = 0.3``,
   ``c_b/c_f = 0.29`` (paper: 0.26);
 * the **growth rate** of that root at the imbalanced baseline
   (``c_cg/c_f = 0.33``, ``c_b/c_f = 0.29``) in hover and at ``mu = 0.3``;
 * the **mechanism**: the flutter root's growth rate at ``mu = 0.3`` as the work
-  of named terms (:func:`tefcore.mechanism.mechanism`), one column per option,
+  of named terms (:func:`tefcore.linear.mechanism.mechanism`), one column per option,
   with the aerodynamic states' own terms (the lift deficiency ``1 - C``, the
   inflow) where they exist.
 
@@ -33,7 +33,7 @@ from dataclasses import dataclass, field
 
 import pandas as pd
 
-from ..config_io import load_config
+from ..config.io import load_config
 
 __all__ = ["OPTIONS", "ComparisonResult", "compare_models"]
 
@@ -68,7 +68,7 @@ class ComparisonResult:
         (columns) for the flutter root at ``mu = 0.3``; a term an option does
         not have is NaN; the last rows are ``total`` and ``closure``.
     details : dict
-        Option -> its :class:`tefcore.mechanism.MechanismResult`.
+        Option -> its :class:`tefcore.linear.mechanism.MechanismResult`.
     """
 
     headlines: pd.DataFrame
@@ -98,8 +98,8 @@ def compare_models(cfg=None, options=None, *, onset: bool = True,
     -------
     ComparisonResult
     """
-    from ..mechanism import TERMS, mechanism
-    from ..stability import stability
+    from ..linear.mechanism import TERMS, mechanism
+    from ..linear.stability import stability
     from .sensitivity import HEADLINES, flutter_root, headline_results
 
     cfg = cfg or load_config("mdart")

@@ -223,7 +223,7 @@ def curves(name: str, table: pd.DataFrame, labels=PAPER_MODES,
     """One tracked curve per mode, for plotting and printing.
 
     ``"TEF"`` is the TEF branch of the sweep (the track of the flap mode at
-    the sweep start, :func:`tefcore.sweep.sweep`); another mode ``m`` is the
+    the sweep start, :func:`tefcore.sweeps.sweep.sweep`); another mode ``m`` is the
     track labelled ``m`` or ``m (locked)`` that is present at the most
     points (ties: the exact label) -- the same choice as
     :mod:`tefcore.paper.validation`.
@@ -233,7 +233,7 @@ def curves(name: str, table: pd.DataFrame, labels=PAPER_MODES,
     name : str
         Paper figure (sets the x axis).
     table : DataFrame
-        Sweep table (:attr:`tefcore.sweep.SweepResult.table`).
+        Sweep table (:attr:`tefcore.sweeps.sweep.SweepResult.table`).
     labels : tuple of str
         Modes to return.
     measure : {"decay_rate", "damping_ratio"}

@@ -32,7 +32,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from ..config import SECTIONS, resolve_field
+from ..config.sections import SECTIONS, resolve_field
 from ..units import to_si
 from .figures import FIGURES, figure_config
 
@@ -48,7 +48,7 @@ TAGS = ("calibration", "validation")
 #: model has a result, but which of its roots is the claim's mode cannot be
 #: decided over the claim's range (a coalescence or an unresolved veering)
 STATUSES = ("pass", "ambiguous", "not reproducible", "fail")
-#: kinds of root a mechanism claim can expect (:func:`tefcore.mechanism.mechanism`)
+#: kinds of root a mechanism claim can expect (:func:`tefcore.linear.mechanism.mechanism`)
 ROOT_KINDS = ("flutter", "divergence")
 KNOWN_FIGURES = tuple(FIGURES) + ("fig5", "fig6", "fig7")
 _FT_LBF = 1.3558179483314004  # N m per ft-lbf
@@ -202,7 +202,7 @@ class Claim:
         Of a mechanism claim: ``"flutter"`` (oscillatory, growing) or
         ``"divergence"`` (real, growing); see :data:`ROOT_KINDS`.
     driving_terms : tuple of str
-        Terms of :data:`tefcore.mechanism.TERMS`, one of which must do the
+        Terms of :data:`tefcore.linear.mechanism.TERMS`, one of which must do the
         largest destabilising work on the root.
     min_participation : dict
         Least participation share by kind of coordinate (``"flap"``,
@@ -285,7 +285,7 @@ def swept_dimension(figure: str) -> str:
     -------
     str
         The dimension of the configuration field it sweeps, as declared in
-        :mod:`tefcore.config` (used to convert ``"150 lb/in"`` to SI).
+        :mod:`tefcore.config.sections` (used to convert ``"150 lb/in"`` to SI).
 
     Examples
     --------
@@ -579,8 +579,8 @@ def _names(r: _Record, key: str, choices) -> tuple:
 
 
 def _mechanism_claim(r: _Record, kw: dict, figure: str) -> Claim:
-    """A claim about why a root is unstable (:func:`tefcore.mechanism.mechanism`)."""
-    from ..mechanism import TERMS
+    """A claim about why a root is unstable (:func:`tefcore.linear.mechanism.mechanism`)."""
+    from ..linear.mechanism import TERMS
 
     if figure not in FIGURES:
         r.fail("a mechanism claim is about a root of a stability figure")

@@ -310,7 +310,7 @@ def baseline_blade(out: Path, cfg=None) -> pd.DataFrame:
     ----------
     out : pathlib.Path
         Existing output folder.
-    cfg : tefcore.config.Config, optional
+    cfg : tefcore.config.sections.Config, optional
         The blade (default: the shipped MDART configuration); a batch run
         passes its own base configuration with its common overrides.
 
@@ -325,8 +325,8 @@ def baseline_blade(out: Path, cfg=None) -> pd.DataFrame:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    from ..blade import blade_modes, fan_plot
-    from ..config_io import load_config
+    from ..config.io import load_config
+    from ..structure.blade import blade_modes, fan_plot
     from .calibration import frequency_checks
 
     deterministic_matplotlib()

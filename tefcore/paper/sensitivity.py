@@ -19,8 +19,8 @@ a time, to the low and the high end of its plausible range:
 two roots coalesce and share the flap's motion; one is destabilised, the
 other stabilised.  The headlines use the *flutter root*
 (:func:`flutter_root`, the same rule as the sweeps' ``flutter_root`` role,
-:func:`tefcore.mechanism.flutter_root`): the least stable root in which the
-flap participates by at least :data:`tefcore.mechanism.FLUTTER_PARTICIPATION`
+:func:`tefcore.linear.mechanism.flutter_root`): the least stable root in which the
+flap participates by at least :data:`tefcore.linear.mechanism.FLUTTER_PARTICIPATION`
 (participation factors, scale-invariant).  Both members of a coalesced pair
 pass that test, so the destabilised one is found wherever the coalescence
 happens.  Every function takes an ``identify`` callable
@@ -53,10 +53,10 @@ import numpy as np
 import pandas as pd
 import scipy.optimize
 
-from ..config_io import load_config
+from ..config.io import load_config
 from ..errors import TefcoreError
-from ..mechanism import FLUTTER_PARTICIPATION
-from ..mechanism import flutter_root as mechanism_flutter_root
+from ..linear.mechanism import FLUTTER_PARTICIPATION
+from ..linear.mechanism import flutter_root as mechanism_flutter_root
 from ..runtime import worker_init
 from .assumptions import ASSUMPTIONS, Assumption, apply_assumption  # re-exported
 
@@ -85,7 +85,7 @@ def flutter_root(result, threshold: float = FLUTTER_PARTICIPATION) -> pd.Series:
 
     Parameters
     ----------
-    result : tefcore.stability.StabilityResult
+    result : tefcore.linear.stability.StabilityResult
         Floquet analysis of a configuration with the flap degree of freedom.
     threshold : float
         Least flap participation (``share_TEF``) of a root that counts.
@@ -176,8 +176,8 @@ HEADLINES = (
 
 
 def _real_part(cfg, identify, warm=None):
-    from ..stability import stability  # deferred: heavy
-    from ..trim import TrimError
+    from ..linear.stability import stability  # deferred: heavy
+    from ..trimming.trim import TrimError
 
     try:
         res = stability(cfg, trim_result=warm)

@@ -4,7 +4,7 @@ Every function prints (or returns) rounded, deterministic text: the tracked
 modes' damping and frequency tables (:func:`mode_summary`), where damping
 changes sign (:func:`sign_changes`), how the modes were identified
 (:func:`report_identity`), why a root is (un)stable (:func:`explain`, an
-energy balance by :mod:`tefcore.mechanism`), how unsteady the flap mode is
+energy balance by :mod:`tefcore.linear.mechanism`), how unsteady the flap mode is
 (:func:`unsteadiness`), and the paper's claims checked against the results
 (:func:`claims_table`, :func:`show_claims`).
 
@@ -24,8 +24,8 @@ from contextlib import contextmanager
 import numpy as np
 import pandas as pd
 
-from ..mechanism import mechanism
-from ..unsteady_aero import theodorsen_function
+from ..aero.unsteady import theodorsen_function
+from ..linear.mechanism import mechanism
 from . import validation
 from .curve_metrics import zero_crossings
 from .figure_runs import run_config
@@ -39,7 +39,7 @@ __all__ = ["claims_table", "clean", "counted_warnings", "explain", "format_value
 
 def mechanism_summary(cfg, x=None, name=None, root=None, knockouts=True,
                       digits: int = 3) -> pd.DataFrame:
-    """:func:`tefcore.mechanism.mechanism` of one root, as a rounded table.
+    """:func:`tefcore.linear.mechanism.mechanism` of one root, as a rounded table.
 
     Why a root is (un)stable: the work each term of the linearised equations
     does on it over a period (its contribution to the real part), and what
@@ -48,7 +48,7 @@ def mechanism_summary(cfg, x=None, name=None, root=None, knockouts=True,
 
     Parameters
     ----------
-    cfg : tefcore.config.Config or None
+    cfg : tefcore.config.sections.Config or None
         The configuration; with ``name``, the base configuration of the
         figure (None: MDART).
     x : float or str, optional
@@ -101,7 +101,7 @@ def mode_summary(name: str, table: pd.DataFrame | None, labels=PAPER_MODES,
     name : str
         Stability figure (sets the x axis and its label, :data:`AXES`).
     table : pandas.DataFrame or None
-        Sweep table (:attr:`tefcore.sweep.SweepResult.table`); may be None
+        Sweep table (:attr:`tefcore.sweeps.sweep.SweepResult.table`); may be None
         when ``natural`` is given.
     labels : tuple of str
         Modes (columns), in order: ``"TEF"`` is the TEF branch.
@@ -205,7 +205,7 @@ def report_identity(name: str, result) -> None:
     ----------
     name : str
         Stability figure (sets the x axis of the printed positions).
-    result : tefcore.sweep.SweepResult
+    result : tefcore.sweeps.sweep.SweepResult
         The figure's sweep (its ``table`` and the TEF branch's ``anchor``).
     """
     t = result.table
@@ -246,12 +246,12 @@ def explain(name: str, result, x: float, base=None, overrides: dict | None = Non
     ----------
     name : str
         Stability figure.
-    result : tefcore.sweep.SweepResult
+    result : tefcore.sweeps.sweep.SweepResult
         The figure's sweep.
     x : float
         Where to look, in the paper's x units (deg of collective, lb/in,
         fractions of c_f, ...); the nearest point of the figure's own is used.
-    base : tefcore.config.Config, optional
+    base : tefcore.config.sections.Config, optional
         Base configuration the sweep was run with (default: MDART).
     overrides : dict, optional
         Dotted fields the sweep was run with over the caption.
@@ -296,9 +296,9 @@ def unsteadiness(name: str, result, base=None) -> None:
     ----------
     name : str
         Stability figure (its caption's flap and rotor).
-    result : tefcore.sweep.SweepResult
+    result : tefcore.sweeps.sweep.SweepResult
         The figure's sweep.
-    base : tefcore.config.Config, optional
+    base : tefcore.config.sections.Config, optional
         Base configuration (default: MDART).
     """
     cfg = figure_config(name, base)
@@ -352,7 +352,7 @@ def report_sweep(name: str, result) -> None:
     ----------
     name : str
         The figure, the start of the line.
-    result : tefcore.sweep.SweepResult
+    result : tefcore.sweeps.sweep.SweepResult
         The sweep (its ``table``, ``parameter`` and ``failed`` points).
     """
     t = result.table
@@ -376,7 +376,7 @@ def claims_table(name: str, result, cfg=None, variants=None, others=None) -> pd.
         Paper figure.
     result : SweepResult or dict
         The figure's result.
-    cfg : tefcore.config.Config, optional
+    cfg : tefcore.config.sections.Config, optional
         Base configuration of runs the validation adds.
     variants : dict, optional
         ``{variant_key(overrides): result}`` of runs already made (e.g. Fig.

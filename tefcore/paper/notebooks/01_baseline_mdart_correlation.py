@@ -76,7 +76,7 @@ results, variants = {}, {}
 # %%
 import numpy as np
 
-from tefcore.blade import blade_modes, fan_plot
+from tefcore.structure.blade import blade_modes, fan_plot
 from tefcore.paper.calibration import frequency_checks
 
 modes = blade_modes(base).table()

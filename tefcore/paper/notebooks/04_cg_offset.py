@@ -122,7 +122,7 @@ print(nt.mode_summary("fig9", res_fig9.table, labels=("TEF",), quantity="frequen
 # %% [markdown]
 # ### Why: the growth rate as work done by each term
 #
-# `tefcore.mechanism` writes the root's real part as an exact energy balance:
+# `tefcore.linear.mechanism` writes the root's real part as an exact energy balance:
 # each term of the linearised equations (blade inertia and stiffness, the
 # blade's own airloads, the flap's lift and pitching moment on the blade, the
 # hinge moments, the flap's inertial couplings, the actuator ...) does some net

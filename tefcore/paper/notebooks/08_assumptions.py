@@ -43,9 +43,9 @@
 # other stabilised, and a name attached to one root is ambiguous. The *flutter
 # root* here is the least stable root in which the flap takes part materially:
 # its flap participation factor (`share_TEF`) is at least 0.1 -- the same rule
-# as the sweeps' `flutter_root` column (`tefcore.mechanism.flutter_root`). Every
+# as the sweeps' `flutter_root` column (`tefcore.linear.mechanism.flutter_root`). Every
 # function takes an `identify` argument, so another rule (e.g. the TEF branch of
-# `tefcore.tracking`) can replace it.
+# `tefcore.modes.tracking`) can replace it.
 
 # %% tags=["parameters"]
 # Parameters (papermill: `tefcore reproduce -p NAME VALUE`, `papermill -p NAME VALUE`).
@@ -89,7 +89,7 @@ results, variants = {}, {}
 # %%
 import numpy as np
 
-from tefcore import section_inertia as si
+from tefcore.structure import section_inertia as si
 from tefcore.units import from_si
 
 cfg = base.with_overrides(overrides) if overrides else base
@@ -130,9 +130,9 @@ except ValueError as err:
 # every number.
 
 # %%
-from tefcore.blade import blade_modes
+from tefcore.structure.blade import blade_modes
 from tefcore.paper.calibration import frequency_checks
-from tefcore.flap_dynamics import flap_natural_frequency, flap_properties
+from tefcore.model.flap import flap_natural_frequency, flap_properties
 
 fan = []
 for cg in (0.0, 0.33):

@@ -35,7 +35,7 @@
 #    mass-imbalanced flap (c_cg/c_f = 0.33, c_b/c_f = 0.29) -- Figs. 12 and 17
 #    together.
 #
-# Each map is `tefcore.stability_map.stability_map` (the command line has it as
+# Each map is `tefcore.sweeps.maps.stability_map` (the command line has it as
 # `tefcore map`); every row is a resumable sweep, and the points run in
 # parallel on local processes or, with a `dask.distributed` client, on a
 # cluster: `stability_map(..., client=distributed.Client("tcp://scheduler:8786"))`.
@@ -64,7 +64,7 @@ import numpy as np
 import pandas as pd
 
 from tefcore.paper import notebook_tools as nt
-from tefcore.stability_map import stability_map
+from tefcore.sweeps.maps import stability_map
 
 out = nt.setup_notebook(output_dir)
 base = nt.base_config(aero_model, overrides, config=config)

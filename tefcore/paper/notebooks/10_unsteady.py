@@ -58,7 +58,7 @@ import pandas as pd
 
 from tefcore.paper import notebook_tools as nt
 from tefcore.paper.model_comparison import OPTIONS, compare_models
-from tefcore.unsteady_aero import fitted_wake, theodorsen_function
+from tefcore.aero.unsteady import fitted_wake, theodorsen_function
 
 out = nt.setup_notebook(output_dir)
 base = nt.base_config(aero_model, overrides, config=config)
@@ -91,7 +91,7 @@ print(nt.clean(table_c.round(4)).to_string(index=False))
 # Fig. 9 onset (the CG offset where the flutter root turns unstable at
 # mu = 0.3) and the flutter root's growth rate at the imbalanced baseline in
 # hover and at mu = 0.3, and breaks the mu = 0.3 growth rate into the work of
-# each term of the equations (`tefcore.mechanism`, as in notebook 04).
+# each term of the equations (`tefcore.linear.mechanism`, as in notebook 04).
 
 # %%
 with nt.counted_warnings("numerical warnings"):

@@ -1,0 +1,445 @@
+"""Linearisation about the trim and Floquet stability with labelled modes.
+
+``stability(cfg)`` is the paper's analysis in one call: coupled model, trim,
+``M(psi), C(psi), K(psi)`` of eq. (5) by finite differences of the
+nonlinear residual about the trimmed periodic motion
+(:class:`tefcore.floquet.second_order.SecondOrderSystem`), and Floquet
+eigenanalysis (direct eigenanalysis in hover, where the coefficients are
+constant).  Each mode is labelled by the coordinate that carries most of its
+participation (participation factors,
+:meth:`tefcore.floquet.FloquetResult.with_participation`); its shares by
+kind (blade flap, lag, torsion, axial, TEF) and its physical shape
+(:meth:`tefcore.model.coupled.CoupledModel.tracking_basis`) go with it, so that
+modes can be followed along sweeps (:mod:`tefcore.modes.tracking`).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import pandas as pd
+import scipy.optimize
+
+from ..floquet.second_order import STATE_MIN_RATE, SecondOrderSystem
+from ..floquet.second_order import state_matrix as state_matrix
+from ..model.coupled import coupled_model
+from ..model.jacobian import jacobian_blocks
+from ..runtime import blas_limit
+from ..trimming.trim import TrimResult, initial_collective, trim
+
+__all__ = ["REMODE_DEG", "SHARE_KINDS", "StabilityResult", "linear_system", "linearize",
+           "periodic_state_matrix", "stability", "state_matrix"]
+
+#: Kinds of coordinates whose kinetic-energy shares the modes table reports.
+SHARE_KINDS = ("flap", "lag", "torsion", "axial", "TEF")
+
+#: Re-mode threshold [deg] between the modes' collective and the trimmed one.
+REMODE_DEG = 2.0
+
+
+def linearize(tr: TrimResult, psi, step: float = 1e-6, scheme: str = "exact"):
+    """``M, C, K`` (each ``(len(psi), n, n)``) about the trimmed motion.
+
+    Derivatives of the residual with respect to ``q**, q*, q``, vectorised
+    over the azimuths (the residual at one azimuth depends only on the motion
+    there).  ``scheme='exact'``: exact to round-off
+    (:func:`tefcore.model.jacobian.exact_jacobian`; forward differences for
+    the shed-wake states, which it does not cover).  Finite differences:
+    ``'central'``, truncation error ~``step^2``, 2n evaluations per matrix;
+    ``'forward'``: error ~``step`` (1e-6 relative), half the evaluations.
+
+    Parameters
+    ----------
+    tr : tefcore.trimming.trim.TrimResult
+        The trim to linearise about.
+    psi : array_like
+        Azimuths [rad].
+    step : float, optional
+        Finite-difference step, relative.
+    scheme : {"exact", "central", "forward"}, optional
+        Exact, or the finite-difference scheme.
+
+    Returns
+    -------
+    M, C, K : numpy.ndarray
+        Each ``(len(psi), n, n)``.
+    """
+    psi = np.atleast_1d(np.asarray(psi, float))
+    y, yd, ydd, inflow = tr.linear_point(psi)
+    jac, _, _ = jacobian_blocks(tr.model, psi, y, yd, ydd, tr.controls, inflow,
+                                step=step, scheme=scheme, n_second=tr.model.n_dof)
+    return jac[2], jac[1], jac[0]
+
+
+@dataclass
+class StabilityResult:
+    """Modes of the linearised blade/flap system and the trim they belong to.
+
+    Attributes
+    ----------
+    modes : DataFrame
+        One row per mode, see :func:`stability`.
+    eigenvectors : ndarray, shape (2 n, n_modes)
+        State eigenvectors ``[q; q*]`` at psi = 0 (columns as the rows of
+        ``modes``).
+    trim : dict
+        Trim scalars.
+    trim_result : TrimResult
+    vectors : ndarray, shape (2 n_phys, n_modes)
+        Physical shapes of the displacements and velocities at psi = 0
+        (:meth:`tefcore.model.coupled.CoupledModel.tracking_basis` times each):
+        the parameter-independent basis in which modes are compared between
+        sweep points.
+    periodic : bool
+        True for forward flight (Floquet), False for hover (constant
+        coefficients).
+    system : SecondOrderSystem
+        The linearised ``M, C, K`` the modes belong to (with the aerodynamic
+        states as first-order coordinates, if any).
+    aero_modes : DataFrame or None
+        With aerodynamic states (docs/theory.md 6.2): the roots that belong to
+        them rather than to the blade and flap (blade and flap states carry
+        less than half of the root's participation), one row per root
+        (positive frequency): ``kind`` (``wake`` or ``inflow``, the states with
+        the larger share), ``frequency_per_rev, real_part, share_structure,
+        share_TEF``.  They take no mode label and are not in ``modes``.
+    """
+
+    modes: pd.DataFrame
+    eigenvectors: np.ndarray
+    trim: dict
+    trim_result: TrimResult
+    vectors: np.ndarray | None = None
+    periodic: bool = False
+    system: SecondOrderSystem | None = None
+    aero_modes: pd.DataFrame | None = None
+
+
+def _label_modes(frac, labels, freqs, rates, disp):
+    """Label modes by the coordinate they carry, one coordinate per mode.
+
+    ``frac`` are the coordinates' shares of participation (coordinates x
+    modes); the labels are the assignment
+    (``scipy.optimize.linear_sum_assignment``) that maximises the product of
+    the shares, so every coordinate names exactly one mode, even where two
+    modes share one coordinate (flutter). Kinetic-energy shares would hide the
+    light coordinates: the MDART torsion mode in hover carries 0.5 % of its
+    kinetic energy in torsion but 65 % of its participation (measured). A
+    complex pair whose multipliers have become two real ones (frequency
+    locked to a multiple of 1/2 per rev, or overdamped) gives one mode more
+    than coordinates: the pair shares its coordinate's label, the less damped
+    root carrying it plainly and the other with ``(locked)`` appended (the
+    partner is the assigned mode at the closest frequency, ties by the MAC of
+    the physical shapes ``disp``).
+    """
+    # maximise the product of the shares (sum of logs): a coordinate must
+    # participate materially in the mode that carries its name.  Maximising
+    # the plain sum can hand a coordinate a mode where its share is 1e-4
+    # (seen: the TEF label on a flap mode while the TEF flutter mode took a
+    # blade label)
+    rows, cols = scipy.optimize.linear_sum_assignment(-np.log(frac + 1e-300))
+    out = [None] * frac.shape[1]
+    for r, c in zip(rows, cols, strict=True):
+        out[c] = labels[r]
+    unit = disp / np.linalg.norm(disp, axis=0, keepdims=True)
+    mac = np.abs(unit.conj().T @ unit) ** 2
+    for j, lab in enumerate(out):
+        if lab is None:
+            best = min(cols, key=lambda i: (round(abs(freqs[i] - freqs[j]), 6), -mac[i, j]))
+            # the two roots of a locked pair have nearly the same shape, so
+            # which one the assignment named is decided by round-off; name the
+            # less damped root (the one that matters for stability) after the
+            # coordinate, deterministically
+            if rates[j] > rates[best]:
+                out[j], out[best] = out[best], out[best] + " (locked)"
+            else:
+                out[j] = out[best] + " (locked)"
+    return out
+
+
+@blas_limit()
+def stability(cfg, *, trim_result: TrimResult | None = None, n_steps: int | None = None,
+              remode: bool = True, model=None,
+              warm_start: TrimResult | None = None) -> StabilityResult:
+    """Trim the configuration and compute its labelled stability modes.
+
+    Parameters
+    ----------
+    cfg : tefcore.config.sections.Config
+        The rotor configuration.
+    trim_result : TrimResult, optional
+        Warm start for the trim (e.g. the previous sweep point).
+    n_steps : int, optional
+        RK4 steps per revolution for Floquet (default ``cfg.model.n_floquet_steps``).
+    remode : bool
+        Recompute the blade modes at the trimmed collective and trim again
+        when it differs from the modes' collective by more than
+        ``REMODE_DEG`` (the structural flap-lag coupling depends on pitch).
+    model : CoupledModel, optional
+        A model of ``cfg`` built beforehand with
+        :func:`tefcore.model.coupled.coupled_model`, e.g. to keep one set of blade
+        modes for several flight conditions; its modes are used as they are
+        (no re-moding).
+    warm_start : TrimResult, optional
+        The trim of a neighbouring configuration as the first guess of the
+        trim only: the blade modes are those of a cold start (at
+        :func:`tefcore.trimming.trim.initial_collective`), so the result equals the cold
+        one to the trim's tolerance (what sweeps use, :mod:`tefcore.sweeps.sweep`).
+        Its Newton matrix (:meth:`tefcore.trimming.trim.TrimResult.final_blocks`) starts
+        the iterations.
+
+    Returns
+    -------
+    StabilityResult
+        ``modes`` has one row per mode (positive-frequency member of each
+        complex pair): ``mode_id, label, kind, coordinate_share,
+        frequency_per_rev, real_part, damping_ratio, participation`` and
+        ``share_flap, share_lag, share_torsion, share_axial, share_TEF``
+        (participation by kind of coordinate, summing to 1) --
+        ``real_part`` is the damping rate per radian of azimuth (negative:
+        stable).
+
+    Raises
+    ------
+    ValueError
+        If ``model`` was built for another configuration.
+    tefcore.trimming.trim.TrimError
+        If the trim does not converge.
+    tefcore.floquet.FloquetAccuracyError
+        If the Floquet exponents do not meet the default tolerance of
+        :func:`tefcore.floquet.floquet_modes` even at 32 times the steps
+        (``n_steps`` is the starting value and is doubled as needed).
+
+    References
+    ----------
+    .. [1] *Aeroelastic Stability of Trailing-Edge Flap Helicopter Rotors*,
+       "Stability Analysis": the perturbation equations (5) about the trim
+       and their Floquet eigenanalysis; docs/theory.md sections 5 and 8.
+
+    Examples
+    --------
+    The MDART baseline in hover: the flap mode, well above the blade modes,
+    is stable.
+
+    >>> from tefcore.config.io import load_config
+    >>> res = stability(load_config("mdart"))
+    >>> tef = res.modes[res.modes["label"] == "TEF"].iloc[0]
+    >>> bool(tef["real_part"] < 0), bool(tef["frequency_per_rev"] > 12)
+    (True, True)
+    """
+    if model is not None:
+        if model.cfg != cfg:
+            raise ValueError("model was built for another configuration than cfg")
+        return _stability_of(model, trim(model, initial=trim_result or warm_start), n_steps)
+    if warm_start is not None and trim_result is None:
+        theta = initial_collective(cfg)
+        model = coupled_model(cfg, collective=theta)
+        tr = trim(model, initial=warm_start)
+        if remode and abs(tr.controls.collective - theta) > np.deg2rad(REMODE_DEG):
+            model = coupled_model(cfg, collective=tr.controls.collective)
+            tr = trim(model, initial=tr)
+        return _stability_of(model, tr, n_steps)
+    # modes at the collective of the warm start (or the first estimate);
+    # re-mode and re-trim only when the trim lands far from it: the MDART
+    # frequencies move < 0.3 % per degree of collective (measured)
+    theta_modes = (trim_result.controls.collective if trim_result is not None
+                   else initial_collective(cfg))
+    model = coupled_model(cfg, collective=theta_modes)
+    tr = trim(model, initial=trim_result)
+    if remode and abs(tr.controls.collective - theta_modes) > np.deg2rad(REMODE_DEG):
+        model = coupled_model(cfg, collective=tr.controls.collective)
+        tr = trim(model, initial=tr)
+    return _stability_of(model, tr, n_steps)
+
+
+def linear_system(tr: TrimResult) -> SecondOrderSystem:
+    """The paper's eq. (5) linearised about a trim: ``M, C, K`` on the trim grid.
+
+    Hover: one sample (constant coefficients).  Forward flight: the trim's
+    ``cfg.model.n_azimuth`` equally spaced azimuths, interpolated by
+    trigonometric series (the trim resolves harmonics below
+    ``n_azimuth / 2``; twice the samples change the exponents by less than
+    1e-3 /rev, measured on MDART at mu = 0.3).  Exact derivatives: the trim's
+    Newton Jacobian at the solution (:meth:`tefcore.trimming.trim.TrimResult.final_blocks`,
+    the same grid), or with the dynamic-inflow states
+    :func:`tefcore.model.jacobian.exact_jacobian` about the trim; with the
+    shed-wake states forward differences (step 1e-6 relative).
+
+    Parameters
+    ----------
+    tr : tefcore.trimming.trim.TrimResult
+        The trim to linearise about.
+
+    Returns
+    -------
+    tefcore.floquet.second_order.SecondOrderSystem
+    """
+    model = tr.model
+    n_first = model.n_wake + model.n_inflow
+    blocks = tr.final_blocks() if n_first == 0 else None
+    if blocks is not None:
+        # the trim's Newton Jacobian at the solution, on the same grid
+        k, c, m = blocks
+        return SecondOrderSystem(m, c, k)
+    if model.cfg.flight.advance_ratio == 0.0:
+        psi = np.zeros(1)
+    else:
+        psi = np.linspace(0, 2 * np.pi, model.cfg.model.n_azimuth, endpoint=False)
+    m, c, k = linearize(tr, psi, scheme="exact")
+    return SecondOrderSystem(m, c, k, n_first=n_first)
+
+
+def periodic_state_matrix(tr: TrimResult):
+    """State matrix ``A(psi)`` of the system linearised about a forward-flight trim.
+
+    ``M, C, K`` are sampled on the trim's azimuth grid, interpolated by
+    trigonometric series and ``A = [[0, I], [-M^-1 K, -M^-1 C]]`` formed at
+    each azimuth (:meth:`SecondOrderSystem.state_matrix`).
+
+    Parameters
+    ----------
+    tr : tefcore.trimming.trim.TrimResult
+        The trim to linearise about.
+
+    Returns
+    -------
+    a_of_psi : callable
+        Vectorised ``A(psi)``, shape ``(len(psi), 2 n, 2 n)``, for
+        :func:`tefcore.floquet.floquet_modes`.
+    mass : ndarray, shape (n_azimuth, n, n)
+        The mass matrix samples.
+    """
+    system = linear_system(tr)
+    return system.state_matrix, system.m
+
+
+def _tracking_shapes(basis, res, n):
+    """Physical shapes to compare modes by: displacement and velocity at psi = 0.
+
+    ``[B q(0); B q*(0)]`` (velocities per radian of azimuth) from the state
+    eigenvector, which the integer frequency shift of a Floquet mode does not
+    change.  Two Floquet modes can share one displacement shape at psi = 0
+    (MAC 0.96 between MDART's first flap and first torsion modes at
+    mu = 0.3, measured); their velocities, which scale with the frequency,
+    tell them apart.  A sampled motion over the revolution would too, but
+    aliases for modes far above the Floquet steps' frequencies (a 0.1 c
+    flap near 100 /rev), whose velocity shape stays steady.
+    """
+    vec = res.eigenvectors
+    return np.concatenate([basis @ vec[:n], basis @ vec[n:2 * n]], axis=0)
+
+
+def _coordinate_shares(participation, n):
+    """Shares of the coordinates in each mode (n x modes), summing to 1.
+
+    The participation factors of a coordinate's displacement and velocity
+    states, in magnitude, added and normalised per mode.
+    """
+    mag = np.abs(participation[:n]) + np.abs(participation[n:2 * n])
+    return mag / mag.sum(axis=0, keepdims=True)
+
+
+def _stability_of(model, tr: TrimResult, n_steps: int | None) -> StabilityResult:
+    """Linearise a trimmed model and label its (Floquet) modes."""
+    cfg = model.cfg
+    n = model.n_dof
+    system = linear_system(tr)
+    # floquet_modes chooses the sub-intervals K from a bound of the most damped
+    # root (raised for heavily damped roots, seen: -7.2 /rev torsion at Fig. 14's
+    # 0.22 R span), and the steps until its error estimates meet the tolerance;
+    # a result it cannot trust is an error, never a spurious (in)stability
+    # the participation factors from the adjoint solutions (no inverse of the
+    # shapes; within 6e-7 of it on the figures' points, measured)
+    res = system.modes(n_steps=n_steps or cfg.model.n_floquet_steps, n_sub=1,
+                       shapes=system.periodic, on_inaccurate="raise",
+                       participation=system.periodic)
+    if res.participation is None:
+        res = res.with_participation()
+    keep = res.positive_frequency()
+    aero_modes = None
+    if system.n_first:
+        keep, aero_modes = _split_aero_roots(keep, model, system.periodic)
+    # by frequency; the two roots of a locked pair share it exactly, so ties
+    # (to 1e-9 /rev, round-off) go less damped first, not by round-off
+    order = np.lexsort((-keep.damping_rates, np.round(keep.frequencies, 9)))
+    keep = keep.select(order)
+    vec = keep.eigenvectors
+    frac = _coordinate_shares(keep.participation, n)
+    shapes = _tracking_shapes(model.tracking_basis(), keep, n)
+    labels = _label_modes(frac, model.labels, keep.frequencies, keep.damping_rates, shapes)
+    kinds = [lab.split()[1] if lab.startswith("blade") else "TEF" for lab in model.labels]
+    columns = {
+        "mode_id": np.arange(len(labels)),
+        "label": labels,
+        "kind": [lab.split()[1] if lab.startswith("blade") else "TEF" for lab in labels],
+        "coordinate_share": [frac[model.labels.index(lab.split(" (")[0]), j]
+                             for j, lab in enumerate(labels)],
+        "frequency_per_rev": keep.frequencies,
+        "real_part": keep.damping_rates,
+        "damping_ratio": keep.damping_ratios,
+        "participation": frac.max(axis=0),
+    }
+    for kind in SHARE_KINDS:
+        rows = [i for i, k in enumerate(kinds) if k == kind]
+        columns[f"share_{kind}"] = frac[rows].sum(axis=0) if rows else np.zeros(len(labels))
+    table = pd.DataFrame(columns)          # one construction, not column by column
+    summary = tr.summary()
+    summary["reverse_flow_fraction"] = _reverse_flow_fraction(tr)
+    if aero_modes is not None:
+        summary["aero_state_growth"] = (float(aero_modes["real_part"].max())
+                                        if len(aero_modes) else float("nan"))
+    return StabilityResult(modes=table, eigenvectors=vec, trim=summary, trim_result=tr,
+                           vectors=shapes, periodic=system.periodic, system=system,
+                           aero_modes=aero_modes)
+
+
+#: Least share of a root's participation in the blade and flap states for the
+#: root to be a mode of the blade and flap rather than of the aerodynamic states.
+STRUCTURAL_SHARE = 0.5
+
+
+def _split_aero_roots(res, model, periodic):
+    """Roots of the blade and flap, and a table of the aerodynamic-state roots.
+
+    A root whose participation (magnitudes, over all states) lies less than
+    :data:`STRUCTURAL_SHARE` in the blade and flap states ``[q, q*]`` is a root
+    of the shed wake or the inflow: it gets no mode label; so does a root that
+    the assignment of the coordinates' labels leaves over and that is not the
+    partner of a locked pair.
+    """
+    n, nw = model.n_dof, model.n_wake
+    mag = np.abs(res.participation)
+    total = mag.sum(axis=0)
+    structural = mag[:2 * n].sum(axis=0) / total
+    aero = structural < STRUCTURAL_SHARE
+    # a root that the coordinates' labels leave over is a state's, unless it is
+    # the partner of a locked pair (the same frequency as a labelled root): e.g.
+    # the mean inflow root in hover, 58 % in the collective flap motion (measured)
+    cand = np.flatnonzero(~aero)
+    frac = _coordinate_shares(res.participation[:, cand], n)
+    _, cols = scipy.optimize.linear_sum_assignment(-np.log(frac + 1e-300))
+    named = res.frequencies[cand[cols]]
+    for j in np.setdiff1d(np.arange(cand.size), cols):
+        # below STATE_MIN_RATE a periodic root is not resolved (its participation
+        # is not to be trusted): never a locked partner
+        unresolved = periodic and res.damping_rates[cand[j]] < STATE_MIN_RATE
+        if unresolved or np.abs(named - res.frequencies[cand[j]]).min() > 1e-6:
+            aero[cand[j]] = True
+    wake, inflow = mag[2 * n:2 * n + nw].sum(axis=0), mag[2 * n + nw:].sum(axis=0)
+    flap = (mag[n - 1] + mag[2 * n - 1]) / total if model.has_flap else np.zeros(total.size)
+    table = pd.DataFrame({
+        "kind": np.where(wake >= inflow, "wake", "inflow")[aero],
+        "frequency_per_rev": res.frequencies[aero], "real_part": res.damping_rates[aero],
+        "share_structure": structural[aero], "share_TEF": flap[aero]})
+    table = table.sort_values(["kind", "real_part"], ascending=[True, False],
+                              ignore_index=True)
+    return res.select(~aero), table
+
+
+def _reverse_flow_fraction(tr: TrimResult) -> float:
+    """Share of the aerodynamic stations and azimuths in reverse flow (U_T < 0)."""
+    model = tr.model
+    psi = np.linspace(0, 2 * np.pi, 72, endpoint=False)
+    ut = model.x[None, :] + model.cfg.flight.advance_ratio * np.sin(psi)[:, None]
+    return float(np.mean(ut < 0))

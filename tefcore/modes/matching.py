@@ -1,0 +1,570 @@
+"""Matching modes between two points: MAC, eigenvalue distances, the match cost.
+
+An eigen-solver returns the modes of each sweep point in its own order
+(usually by frequency), so where two modes cross in frequency, "mode 3" at
+one point is "mode 4" at the next.  :func:`match_modes` (and
+:func:`tefcore.modes.tracking.track_modes` along a whole sweep) matches the modes of
+two points with an optimal assignment
+(:func:`scipy.optimize.linear_sum_assignment`) on the cost
+
+.. math::
+
+    C_{ij} = (1 - \\text{MAC}_{ij}) + \\min\\Big(1, \\sqrt{
+        \\Big(\\frac{\\Delta\\sigma}{1/2 + (|\\hat\\sigma_i| + |\\sigma_j|)/2}\\Big)^2
+      + \\Big(\\frac{\\Delta\\omega}{s_\\omega}\\Big)^2}\\Big),
+    \\qquad s_\\omega = 1 + (|\\hat\\omega_i| + |\\omega_j|)/2
+
+between track *i* (its last shape and its eigenvalue
+:math:`\\hat\\lambda_i = \\hat\\sigma_i + i\\hat\\omega_i` extrapolated linearly
+to the new parameter value) and mode *j* of the new point, with eigenvalues
+:math:`\\lambda = \\text{real\\_part} + i\\,\\text{frequency\\_per\\_rev}` in
+/rev: damping-rate and frequency differences each relative to their own
+size (a damping-rate difference of 0.7 /rev between two roots near 8 and
+14 /rev is large, though small against the frequencies).  For Floquet
+exponents (``periodic`` points) the frequency difference is taken modulo
+1/rev and up to its sign, since only the multiplier
+:math:`e^{2\\pi\\lambda}` is unique, and measured against its largest
+possible value, :math:`s_\\omega = 1/2` (two Floquet modes near 10.5 and
+3.2 /rev can have one displacement shape at psi = 0; their frequencies
+differ by 0.3 modulo 1, which is what tells them apart).  The shapes are compared in a basis
+that does not change along the sweep (:meth:`tefcore.model.coupled.CoupledModel.tracking_basis`).
+
+A match is *clear* (:func:`is_clear`) when its shape part ``1 - MAC`` is at
+most :data:`CLEAR_COST` (the eigenvalue part alone when no shapes are known)
+and every alternative costs at least :data:`MARGIN` more.  Two roots of one
+point with the same shape and eigenvalue (:func:`is_coalesced`) are a
+coalescence that no step refinement can separate; so are the two real
+multipliers of a Floquet lock (:func:`is_locked`), whose plane of shapes
+(:func:`plane_mac`) holds the one complex shape the pair has outside the
+lock (:mod:`tefcore.modes.tracking`).
+
+Examples
+--------
+>>> import numpy as np
+>>> a = np.array([[1.0, 0.0], [0.0, 1.0]], complex)
+>>> b = np.array([[0.0, 1.0], [1.0, 0.1]], complex)
+>>> np.round(mac(a, b), 3)      # mode 0 of a is mode 1 of b, and the reverse
+array([[0.  , 0.99],
+       [1.  , 0.01]])
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+
+import numpy as np
+import pandas as pd
+from scipy.optimize import linear_sum_assignment
+
+__all__ = ["CLEAR_COST", "COALESCED_DISTANCE", "COALESCED_MAC", "LOCK_TOL", "MARGIN",
+           "MODE_COLUMNS", "as_point", "decide", "eigen_distance", "eigenvalues", "is_clear",
+           "is_coalesced", "is_locked", "locked_pairs", "mac", "match_cost", "match_modes",
+           "plane_mac", "relative_distance"]
+
+#: Columns every modes table must have.
+MODE_COLUMNS = ("mode_id", "label", "frequency_per_rev", "real_part")
+
+#: Largest shape cost ``1 - MAC`` of a clear match: shapes sharing at least
+#: half their (kinematic) norm -- a mode whose shape changed more than that in
+#: one step has not been resolved by the step.  (The eigenvalue part is not
+#: held to it: a flap mode at 18 /rev moves 0.25 /rev in a 0.01 c_f step of
+#: the CG offset, half the range a Floquet frequency is known in, with its
+#: shape unchanged, MAC 1.0 -- measured.)
+CLEAR_COST = 0.5
+#: Smallest lead of a clear match over every alternative.  0.25 is a MAC
+#: difference of a quarter (or an eigenvalue distance of a quarter of the
+#: scale): a lead that round-off or a smooth change over one step does not
+#: overturn; two candidates closer than that are a coin toss and refined.
+MARGIN = 0.25
+#: Two roots of one point with a MAC above this ...
+COALESCED_MAC = 0.9
+#: ... and a :func:`relative_distance` below this are one coalesced pair.
+COALESCED_DISTANCE = 0.05
+#: Two Floquet roots are one locked pair (two real multipliers of one sign)
+#: when their frequencies are equal and at a multiple of 1/2 per rev within
+#: this [/rev].  A real multiplier's frequency is k/2 up to the round-off of
+#: the lifted eigenvalues, worst for heavily damped roots: within 1.5e-6 of
+#: k/2, the two of a pair within 1.3e-6 of each other (480 locked roots of
+#: the paper's sweeps, measured); the complex roots nearest to a lock were
+#: 1.7e-4 from k/2.  1e-5 lies between, with a factor of 7 and 17 to spare.
+LOCK_TOL = 1e-5
+
+
+def mac(phi_a, phi_b) -> np.ndarray:
+    """Modal assurance criterion between the columns of two (complex) mode sets.
+
+    ``MAC[i, j] = |phi_a[:, i]^H phi_b[:, j]|^2 / ((phi_a_i^H phi_a_i)(phi_b_j^H phi_b_j))``,
+    which is 1 for parallel vectors (whatever their complex scaling) and 0
+    for orthogonal ones.
+
+    Parameters
+    ----------
+    phi_a : array_like, shape (n,) or (n, p)
+        First set of mode shapes, one per column.
+    phi_b : array_like, shape (n,) or (n, q)
+        Second set.
+
+    Returns
+    -------
+    ndarray, shape (p, q)
+        (A 1-D input counts as one column.)
+
+    Raises
+    ------
+    ValueError
+        Different vector lengths, or a zero (or non-finite) vector.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> a = np.array([[1, 0], [1j, 1], [0, 0]])
+    >>> mac(a, a * (2 - 3j)).round(3)
+    array([[1. , 0.5],
+           [0.5, 1. ]])
+    """
+    a = np.asarray(phi_a)
+    b = np.asarray(phi_b)
+    a = a[:, None] if a.ndim == 1 else a
+    b = b[:, None] if b.ndim == 1 else b
+    if a.ndim != 2 or b.ndim != 2:
+        raise ValueError(f"mode sets must be 1-D or 2-D, got shapes {a.shape} and {b.shape}")
+    if a.shape[0] != b.shape[0]:
+        raise ValueError(f"mode vectors differ in length: {a.shape[0]} and {b.shape[0]}")
+    na = np.einsum("ij,ij->j", a.conj(), a).real
+    nb = np.einsum("ij,ij->j", b.conj(), b).real
+    for name, norms in (("phi_a", na), ("phi_b", nb)):
+        bad = ~(np.isfinite(norms) & (norms > 0))
+        if bad.any():
+            raise ValueError(f"{name} column(s) {np.flatnonzero(bad).tolist()} are zero or "
+                             "non-finite: MAC undefined")
+    cross = a.conj().T @ b
+    return np.abs(cross) ** 2 / np.outer(na, nb)
+
+
+def eigen_distance(a, b, periodic: bool = False) -> np.ndarray:
+    """Distances [1/rev] between eigenvalues ``a`` (p,) and ``b`` (q,), shape (p, q).
+
+    ``periodic``: Floquet exponents, whose frequency is defined modulo
+    1/rev and (for a real system, whose roots come in conjugate pairs) up to
+    its sign; the distance is then the smallest over those.
+
+    Parameters
+    ----------
+    a, b : array_like of complex
+        Eigenvalues ``real_part + i frequency_per_rev`` [/rev], shapes (p,) and (q,).
+    periodic : bool, optional
+        Floquet exponents: the frequency is known modulo 1/rev and up to its sign.
+
+    Returns
+    -------
+    numpy.ndarray
+        Shape (p, q).
+
+    Examples
+    --------
+    >>> float(eigen_distance([-0.1 + 2.9j], [-0.1 + 0.7j])[0, 0])
+    2.2
+    >>> round(float(eigen_distance([-0.1 + 2.9j], [-0.1 + 0.7j], periodic=True)[0, 0]), 12)
+    0.2
+    >>> float(eigen_distance([-0.1 + 2.9j], [-0.1 + 0.1j], periodic=True)[0, 0])  # conjugate
+    0.0
+    """
+    a = np.atleast_1d(np.asarray(a, complex))
+    b = np.atleast_1d(np.asarray(b, complex))
+    return np.hypot(a.real[:, None] - b.real[None, :], _frequency_gap(a, b, periodic))
+
+
+def _frequency_gap(a, b, periodic):
+    """|frequency difference| (p, q), modulo 1/rev and sign when periodic."""
+    d = np.abs(a.imag[:, None] - b.imag[None, :])
+    if not periodic:
+        return d
+
+    def circ(x):
+        return np.abs((x + 0.5) % 1.0 - 0.5)
+
+    return np.minimum(circ(d), circ(a.imag[:, None] + b.imag[None, :]))
+
+
+def relative_distance(a, b, periodic: bool = False) -> np.ndarray:
+    """Eigenvalue distance of :func:`match_cost`: damping-rate and frequency gaps
+    each relative to their size, combined (p, q).
+
+    Parameters
+    ----------
+    a, b : array_like of complex
+        Eigenvalues ``real_part + i frequency_per_rev`` [/rev], shapes (p,) and (q,).
+    periodic : bool, optional
+        Floquet exponents: the frequency is known modulo 1/rev and up to its sign.
+
+    Returns
+    -------
+    numpy.ndarray
+        Shape (p, q).
+
+    Examples
+    --------
+    >>> round(float(relative_distance([-0.2 + 8j], [-0.9 + 14.2j], periodic=True)[0, 0]), 3)
+    0.777
+    """
+    a = np.atleast_1d(np.asarray(a, complex))
+    b = np.atleast_1d(np.asarray(b, complex))
+    ds = np.abs(a.real[:, None] - b.real[None, :])
+    ss = 0.5 + 0.5 * (np.abs(a.real)[:, None] + np.abs(b.real)[None, :])
+    # a Floquet frequency is known modulo 1/rev: its gap lies in [0, 1/2]
+    # whatever the frequencies, so it is measured against that range
+    sw = 0.5 if periodic else 1.0 + 0.5 * (np.abs(a.imag)[:, None] + np.abs(b.imag)[None, :])
+    return np.hypot(ds / ss, _frequency_gap(a, b, periodic) / sw)
+
+
+def match_cost(pred, prev_vecs, eig, vecs, periodic: bool = False, *,
+               shape_part: bool = False):
+    """Assignment cost between tracks (rows) and the modes of a new point (columns).
+
+    ``(1 - MAC)`` where both shapes are known and of one length (else 0) plus
+    the :func:`relative_distance` of the eigenvalues, capped at 1.  With
+    ``shape_part``, also the ``1 - MAC`` part alone (NaN where no shapes).
+
+    Parameters
+    ----------
+    pred : array_like of complex, shape (p,)
+        Eigenvalues expected for the tracks at the new point.
+    prev_vecs : sequence of ndarray or None, length p
+        The tracks' last shapes.
+    eig : array_like of complex, shape (q,)
+        Eigenvalues of the new point's modes [/rev].
+    vecs : ndarray, shape (d, q), or None
+        Their shapes.
+    periodic : bool
+        Floquet exponents (see :func:`eigen_distance`).
+    shape_part : bool, optional
+        Also return the ``1 - MAC`` part.
+
+    Returns
+    -------
+    cost : numpy.ndarray
+        Shape (p, q).
+    shape : numpy.ndarray
+        Only with ``shape_part``: the ``1 - MAC`` parts (NaN where unknown).
+    """
+    pred = np.asarray(pred, complex)
+    eig = np.asarray(eig, complex)
+    cost = np.minimum(1.0, relative_distance(pred, eig, periodic))
+    shape = np.full(cost.shape, np.nan)
+    if vecs is not None:
+        for i, v in enumerate(prev_vecs):
+            if v is not None and v.shape[0] == vecs.shape[0]:
+                shape[i] = 1.0 - mac(v, vecs)[0]
+                cost[i] += shape[i]
+    return (cost, shape) if shape_part else cost
+
+
+def is_clear(best: float, shape: float, alt: float) -> bool:
+    """A match of total cost ``best`` (shape part ``shape``, NaN: unknown) with the
+    best alternative at ``alt``: clear or not.
+
+    Parameters
+    ----------
+    best : float
+        Total cost of the match.
+    shape : float
+        Its ``1 - MAC`` part (NaN: shapes unknown, the total decides).
+    alt : float
+        Cost of the best alternative.
+
+    Returns
+    -------
+    bool
+        The match's own cost is at most :data:`CLEAR_COST` and it leads by at
+        least :data:`MARGIN`.
+    """
+    own = best if np.isnan(shape) else shape
+    return bool(own <= CLEAR_COST and alt - best >= MARGIN)
+
+
+def decide(cost, rows, cols, shape=None):
+    """Per assigned pair: clear (bool) and the best alternative's column.
+
+    Parameters
+    ----------
+    cost : numpy.ndarray
+        Assignment costs, tracks by modes (:func:`match_cost`).
+    rows, cols : sequence of int
+        The assigned pairs (:func:`scipy.optimize.linear_sum_assignment`).
+    shape : numpy.ndarray, optional
+        The ``1 - MAC`` parts of ``cost`` (NaN: shapes unknown).
+
+    Returns
+    -------
+    clear : list of bool
+        Per pair, whether the match is clear (:func:`is_clear`) against every
+        alternative in its row and column.
+    rival : list of int
+        Per pair, the column of the next best mode for the track (-1: none).
+    """
+    shape = np.full(cost.shape, np.nan) if shape is None else shape
+    clear, rival = [], []
+    for r, c in zip(rows, cols, strict=True):
+        best = cost[r, c]
+        row_alt = np.delete(cost[r], c)
+        col_alt = np.delete(cost[:, c], r)
+        alt = min(row_alt.min(initial=np.inf), col_alt.min(initial=np.inf))
+        clear.append(is_clear(best, shape[r, c], alt))
+        others = [j for j in range(cost.shape[1]) if j != c]
+        rival.append(min(others, key=lambda j: cost[r, j]) if others else -1)
+    return clear, rival
+
+
+def is_coalesced(eig, vecs, j, k, periodic) -> bool:
+    """Roots ``j`` and ``k`` of one point are one coalesced pair.
+
+    Either (nearly) one shape and eigenvalue -- an exceptional point -- or,
+    for Floquet exponents, the two real multipliers of one locked pair
+    (:func:`is_locked`): their identities are two halves of one mode, which
+    no finer step separates.
+
+    Parameters
+    ----------
+    eig : numpy.ndarray of complex
+        The point's eigenvalues [/rev].
+    vecs : numpy.ndarray or None
+        Its mode shapes, one column per root.
+    j, k : int
+        The two roots.
+    periodic : bool
+        Floquet exponents.
+
+    Returns
+    -------
+    bool
+    """
+    if k < 0:
+        return False
+    if is_locked(eig, j, k, periodic):
+        return True
+    if vecs is None:        # without shapes two near roots may as well be two modes
+        return False
+    d = relative_distance(eig[[j]], eig[[k]], periodic)[0, 0]
+    return bool(mac(vecs[:, j], vecs[:, k])[0, 0] >= COALESCED_MAC and d <= COALESCED_DISTANCE)
+
+
+def is_locked(eig, j, k, periodic) -> bool:
+    """Floquet roots ``j`` and ``k`` of one point are the two real multipliers of
+    one locked pair: equal frequencies at a multiple of 1/2 per rev (within
+    :data:`LOCK_TOL`).
+
+    Parameters
+    ----------
+    eig : numpy.ndarray of complex
+        The point's eigenvalues [/rev].
+    j, k : int
+        The two roots (distinct).
+    periodic : bool
+        Floquet exponents (a system with constant coefficients has no lock).
+
+    Returns
+    -------
+    bool
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> eig = np.array([-4.062 + 7.0j, -4.065 + 7.0j, -4.059 + 7.0003j])
+    >>> is_locked(eig, 0, 1, True), is_locked(eig, 0, 2, True), is_locked(eig, 0, 1, False)
+    (True, False, False)
+    """
+    if not periodic or j == k or j < 0 or k < 0:
+        return False
+    f, g = eig[j].imag, eig[k].imag
+    return bool(abs(f - g) <= LOCK_TOL and abs(2 * f - round(2 * f)) <= 2 * LOCK_TOL)
+
+
+def locked_pairs(eig, periodic) -> list[tuple[int, int]]:
+    """The locked pairs of one point (:func:`is_locked`), each ``(j, k)`` with ``j < k``.
+
+    Only pairs: three or more roots at one frequency ``k/2`` (two locks at
+    once) are left out, since which two are one mode is then not known.
+
+    Parameters
+    ----------
+    eig : numpy.ndarray of complex
+        The point's eigenvalues [/rev].
+    periodic : bool
+        Floquet exponents.
+
+    Returns
+    -------
+    list of tuple of int
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> locked_pairs(np.array([-0.4 + 1j, -3 + 2.2j, -0.5 + 1j]), True)
+    [(0, 2)]
+    """
+    eig = np.asarray(eig, complex)
+    groups: dict[int, list[int]] = {}
+    for j in range(len(eig)):
+        for g in groups.values():
+            if is_locked(eig, g[0], j, periodic):
+                g.append(j)
+                break
+        else:
+            if periodic and abs(2 * eig[j].imag - round(2 * eig[j].imag)) <= 2 * LOCK_TOL:
+                groups[j] = [j]
+    return [(g[0], g[1]) for g in groups.values() if len(g) == 2]
+
+
+def plane_mac(pair, phi) -> float:
+    """MAC of a shape with a plane: the share of ``phi`` in the span of two shapes.
+
+    ``|Q^H phi|^2 / |phi|^2`` with ``Q`` an orthonormal basis of the span
+    of the columns of ``pair``: 1 when ``phi`` is a combination of them, 0
+    when it is orthogonal to both.  Where a complex pair of Floquet roots
+    locks into two real multipliers, its shape (a complex vector ``a + ib``)
+    is such a combination of the two real shapes, whatever their share of
+    each.
+
+    Parameters
+    ----------
+    pair : array_like, shape (n, 2)
+        The two shapes spanning the plane (linearly independent).
+    phi : array_like, shape (n,)
+        The shape compared.
+
+    Returns
+    -------
+    float
+
+    Raises
+    ------
+    ValueError
+        Lengths differ, or a zero or non-finite vector.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> pair = np.array([[1.0, 0.0], [0.0, 1.0], [0.0, 0.0]])
+    >>> round(plane_mac(pair, np.array([1.0, 1j, 0.0])), 12), plane_mac(pair, np.array([0, 1, 1.0]))
+    (1.0, 0.5)
+    """
+    pair = np.asarray(pair, complex)
+    phi = np.asarray(phi, complex)
+    if pair.ndim != 2 or pair.shape[1] != 2 or phi.shape != (pair.shape[0],):
+        raise ValueError(f"plane_mac needs shapes (n, 2) and (n,), got {pair.shape} and "
+                         f"{phi.shape}")
+    norm = float(np.vdot(phi, phi).real)
+    if not (np.isfinite(pair).all() and np.isfinite(norm) and norm > 0):
+        raise ValueError("plane_mac: zero or non-finite shape")
+    size = np.linalg.norm(pair, axis=0)
+    if not (size > 0).all():
+        raise ValueError("plane_mac: zero shape in the pair")
+    # orthonormal basis of the span; a pair parallel to round-off (the double
+    # root where a lock begins) spans only its line
+    u, sv, _ = np.linalg.svd(pair / size, full_matrices=False)
+    q = u[:, sv > 1e-8 * sv[0]]
+    return float(min(1.0, np.linalg.norm(q.conj().T @ phi) ** 2 / norm))
+
+
+def match_modes(prev, curr, *, predicted=None, periodic: bool | None = None) -> np.ndarray:
+    """Which mode of `curr` continues each mode of `prev`.
+
+    Parameters
+    ----------
+    prev, curr
+        Points: a result object with ``modes`` (DataFrame) and ``vectors``
+        (or ``eigenvectors``) attributes, a ``(modes, vectors)`` tuple, a
+        mapping with those keys, or a bare modes DataFrame (no vectors).
+    predicted : array_like of complex, optional
+        Eigenvalues of `prev` extrapolated to `curr` (default: as in `prev`).
+    periodic : bool, optional
+        Floquet exponents (default: either point says so).
+
+    Returns
+    -------
+    ndarray of int, one per row of ``prev.modes``
+        Row index in ``curr.modes``, or -1 when `curr` has fewer modes and
+        this one is left unmatched.
+    """
+    pm, pv, pp = as_point(prev)
+    cm, cv, cp = as_point(curr)
+    periodic = (pp or cp) if periodic is None else periodic
+    pred = eigenvalues(pm) if predicted is None else np.asarray(predicted, complex)
+    vecs_prev = [None if pv is None else pv[:, i] for i in range(len(pm))]
+    cost = match_cost(pred, vecs_prev, eigenvalues(cm), cv, periodic)
+    rows, cols = linear_sum_assignment(cost)
+    out = np.full(len(pm), -1)
+    out[rows] = cols
+    return out
+
+
+def eigenvalues(modes: pd.DataFrame) -> np.ndarray:
+    """Eigenvalues ``real_part + i frequency_per_rev`` of a modes table (/rev).
+
+    Parameters
+    ----------
+    modes : pandas.DataFrame
+        With columns ``real_part`` and ``frequency_per_rev``.
+
+    Returns
+    -------
+    numpy.ndarray of complex
+    """
+    return modes["real_part"].to_numpy(float) + 1j * modes["frequency_per_rev"].to_numpy(float)
+
+
+def as_point(p):
+    """Normalise one point of a sweep to ``(modes, vectors, periodic)``.
+
+    Parameters
+    ----------
+    p : pandas.DataFrame, mapping, tuple or object
+        A modes table; a mapping with ``modes`` and optionally ``vectors``
+        (or ``eigenvectors``) and ``periodic``; a tuple ``(modes, vectors[,
+        periodic])``; or an object with those attributes (a stability
+        result).
+
+    Returns
+    -------
+    modes : pandas.DataFrame
+        Index reset; it has the columns of :data:`MODE_COLUMNS`.
+    vectors : numpy.ndarray or None
+        One column per mode.
+    periodic : bool
+        Floquet exponents (frequencies known modulo 1/rev).
+
+    Raises
+    ------
+    TypeError
+        For anything else.
+    ValueError
+        For missing columns or vectors that do not match the modes.
+    """
+    periodic = False
+    if isinstance(p, pd.DataFrame):
+        modes, vecs = p, None
+    elif isinstance(p, Mapping):
+        modes = p["modes"]
+        vecs = p.get("vectors", p.get("eigenvectors"))
+        periodic = bool(p.get("periodic", False))
+    elif isinstance(p, tuple) and len(p) in (2, 3):
+        modes, vecs = p[0], p[1]
+        periodic = bool(p[2]) if len(p) == 3 else False
+    elif hasattr(p, "modes"):
+        modes = p.modes
+        vecs = getattr(p, "vectors", None)
+        if vecs is None:
+            vecs = getattr(p, "eigenvectors", None)
+        periodic = bool(getattr(p, "periodic", False))
+    else:
+        raise TypeError(f"cannot read modes from {type(p).__name__}")
+    missing = [c for c in MODE_COLUMNS if c not in modes.columns]
+    if missing:
+        raise ValueError(f"modes table lacks column(s) {missing}")
+    modes = modes.reset_index(drop=True)
+    if vecs is not None:
+        vecs = np.asarray(vecs)
+        if vecs.ndim != 2 or vecs.shape[1] != len(modes):
+            raise ValueError(f"vectors of shape {vecs.shape} do not match "
+                             f"{len(modes)} modes (one column per mode)")
+    return modes, vecs, periodic

@@ -1,0 +1,664 @@
+"""Wind-tunnel trim: periodic blade/flap response and controls together.
+
+Harmonic balance by Fourier collocation (docs/theory.md section 7): the
+coupled equations are enforced at ``N`` equally spaced azimuths, with the
+azimuth derivatives given by the Fourier differentiation matrix, together
+with the trim targets
+
+* ``C_T/sigma`` equal to the target (unknown: collective; dropped when the
+  collective is prescribed),
+* zero first-harmonic tip flap deflection ``beta_1c = beta_1s = 0``
+  (unknowns: cyclic pitch; forward flight only — in hover the solution is
+  axisymmetric and ``N = 1``),
+* momentum inflow consistent with the thrust (unknown: ``lambda_i``), or with
+  ``model.inflow = "dynamic"`` the steady Pitt-Peters equations (unknowns: the
+  mean, sine and cosine inflow).
+
+With ``model.aero = "unsteady"`` the shed-wake states of every aerodynamic
+station are periodic unknowns too, collocated with the blade equations
+(docs/theory.md section 7).
+
+Newton's method with the exact block structure: the residual at one azimuth
+depends only on ``(q, q*, q**)`` there, so its Jacobian is found for all
+azimuths at once from ``3 n`` perturbed evaluations.  Convergence is
+quadratic; a trim that does not converge raises :class:`TrimError` with its
+residual history.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..aero.dynamic_inflow import SteadyInflow, mass_flow, perturbation_matrices, wake_skew
+from ..aero.inflow import Inflow, drees_gradients, momentum_inflow
+from ..aero.states import HarmonicInflow, InflowLinearization, steady_inflow_residual
+from ..errors import TefcoreError
+from ..model.coupled import Controls, CoupledModel
+from ..model.flap import spectral_derivative
+from ..model.jacobian import exact_jacobian, has_exact_jacobian, jacobian_blocks
+from ..runtime import blas_limit
+from .newton import BroydenSolver, WakeSchur, factor
+
+__all__ = ["MAX_FLAP_DEFLECTION_DEG", "TrimError", "TrimResult", "fourier_coefficients",
+           "fourier_eval", "initial_collective", "trim"]
+
+
+class TrimError(TefcoreError, RuntimeError):
+    """The trim did not converge, or converged to a state beyond the model (a flap
+    diverged statically); ``history`` holds the residual per iteration.
+
+    Parameters
+    ----------
+    message : str
+        What went wrong.
+    history : list of dict, optional
+        The residual of each Newton iteration.
+    """
+
+    def __init__(self, message: str, history: list[dict] | None = None):
+        super().__init__(message)
+        self.history = [] if history is None else history
+
+
+def fourier_coefficients(samples: np.ndarray) -> np.ndarray:
+    """Complex Fourier coefficients (last axis = equally spaced azimuths).
+
+    Parameters
+    ----------
+    samples : numpy.ndarray
+        Periodic samples; the last axis is ``N`` equally spaced azimuths
+        from 0.
+
+    Returns
+    -------
+    numpy.ndarray
+        ``numpy.fft.rfft(samples) / N``: the coefficients ``c_k``, k = 0 .. N/2,
+        of ``x(psi) = c_0 + 2 Re sum_k c_k exp(i k psi)`` (below the Nyquist
+        term).
+    """
+    return np.fft.rfft(samples, axis=-1) / samples.shape[-1]
+
+
+def fourier_eval(samples: np.ndarray, psi, derivative: int = 0) -> np.ndarray:
+    """Trigonometric interpolation of periodic samples (and its derivatives).
+
+    Exact for trigonometric polynomials of degree below ``N/2``; the Nyquist
+    term is kept as a cosine in the value and dropped from derivatives (as in
+    :func:`tefcore.model.flap.spectral_derivative`).
+
+    Parameters
+    ----------
+    samples : numpy.ndarray
+        Periodic samples; the last axis is ``N`` equally spaced azimuths from 0.
+    psi : array_like
+        Azimuths to evaluate at [rad].
+    derivative : int, optional
+        Order of the psi-derivative.
+
+    Returns
+    -------
+    numpy.ndarray
+        Shape ``samples.shape[:-1] + (len(psi),)``.
+
+    Examples
+    --------
+    >>> grid = np.linspace(0, 2 * np.pi, 8, endpoint=False)
+    >>> round(float(fourier_eval(np.sin(2 * grid), np.array([0.3]))[0]), 12)
+    0.564642473395
+    """
+    return _fourier_series(samples, psi, (derivative,))[0]
+
+
+def _fourier_series(samples, psi, derivatives):
+    """:func:`fourier_eval` for several derivatives from one FFT."""
+    n = samples.shape[-1]
+    c = fourier_coefficients(samples)
+    k = np.arange(c.shape[-1])
+    weight = np.where((k == 0) | ((n % 2 == 0) & (k == n // 2)), 1.0, 2.0)
+    psi = np.atleast_1d(np.asarray(psi, float))
+    basis = np.exp(1j * np.outer(k, psi))                # (n_k, n_psi)
+    out = []
+    for derivative in derivatives:
+        ik = (1j * k) ** derivative
+        if derivative and n % 2 == 0:
+            ik = np.where(k == n // 2, 0.0, ik)
+        out.append(np.real((c * weight * ik) @ basis))
+    return out
+
+
+@dataclass
+class TrimResult:
+    """Converged trim: controls, inflow and the periodic response.
+
+    Attributes
+    ----------
+    model : tefcore.model.coupled.CoupledModel
+        The model trimmed.
+    psi : numpy.ndarray
+        Collocation azimuths [rad].
+    q : numpy.ndarray
+        Periodic response, ``(n_dof, len(psi))`` (modal coordinates, then the
+        flap deflection [rad]).
+    controls : tefcore.model.coupled.Controls
+        Trimmed pitch controls.
+    inflow : tefcore.aero.inflow.Inflow or tefcore.aero.states.HarmonicInflow
+        Trimmed inflow: with ``model.inflow = "dynamic"``, the steady
+        Pitt-Peters field.
+    ct_sigma : float
+        Thrust coefficient over solidity reached.
+    history : list
+        Residual per Newton iteration.
+    jacobian : numpy.ndarray or None
+        Jacobian of the trim equations at the solution.
+    states : numpy.ndarray or None
+        The shed-wake states (``model.aero = "unsteady"``; rows as
+        :attr:`CoupledModel.state_labels`), None otherwise.
+    """
+
+    model: CoupledModel
+    psi: np.ndarray
+    q: np.ndarray                 # (n_dof, N) at the collocation azimuths
+    controls: Controls
+    inflow: Inflow
+    ct_sigma: float
+    history: list = field(default_factory=list)
+    jacobian: np.ndarray | None = field(default=None, repr=False)
+    states: np.ndarray | None = None     # shed-wake states (n_wake, N)
+    _problem: object = field(default=None, repr=False, compare=False)
+    _solution: np.ndarray | None = field(default=None, repr=False, compare=False)
+    _blocks: tuple | None = field(default=None, repr=False, compare=False)
+
+    def final_blocks(self):
+        """Exact ``dR/dq, dR/dq*, dR/dq**`` at the trimmed motion on the trim grid.
+
+        One evaluation of the trim's Newton Jacobian at the solution
+        (:func:`tefcore.model.jacobian.exact_jacobian`), cached: its
+        per-azimuth blocks are the linearisation about the trim
+        (:func:`tefcore.linear.stability.linear_system` reuses them where the grids
+        agree), and the Newton matrix replaces :attr:`jacobian`, so a trim
+        warm-started from this one starts from the Jacobian at this solution.
+        None where it does not apply: shed-wake states (finite differences) or
+        no record of the trim equations.
+
+        Returns
+        -------
+        tuple of numpy.ndarray or None
+            ``(K, C, M)`` blocks, each ``(n_psi, n_dof, n_dof)``.
+        """
+        if self._blocks is None and self._problem is not None \
+                and has_exact_jacobian(self.model):
+            jac, _, blocks = self._problem.jacobian(self._solution)
+            self.jacobian = jac
+            self._blocks = tuple(blocks)
+        return self._blocks
+
+    def motion(self, psi):
+        """``q, q*, q**`` at any azimuths, by Fourier interpolation."""
+        return tuple(_fourier_series(self.q, psi, (0, 1, 2)))
+
+    def linear_point(self, psi):
+        """What the linearisation differentiates about, at azimuths ``psi``.
+
+        Returns ``(y, y*, y**, inflow)``: the coordinates followed by the
+        aerodynamic states (shed wake from the trim, dynamic-inflow
+        perturbations zero), and the inflow to evaluate with (with dynamic
+        inflow an :class:`~tefcore.aero.states.InflowLinearization` that holds
+        the perturbation equations about this trim, docs/theory.md 6.2).
+        Without aerodynamic states this is :meth:`motion` and the trim's inflow.
+        """
+        model = self.model
+        y = list(self.motion(psi))
+        if model.n_wake:
+            w, wd = _fourier_series(self.states, psi, (0, 1))
+            y = [np.vstack([a, b]) for a, b in zip(y, (w, wd, np.zeros_like(w)), strict=True)]
+        inflow = self.inflow
+        if model.n_inflow:
+            y = [np.vstack([a, np.zeros((3, a.shape[1]))]) for a in y]
+            inflow = InflowLinearization(inflow, perturbation_matrices(_steady_inflow(
+                model, inflow)), model.cfg.rotor.solidity)
+        return (*y, inflow)
+
+    def summary(self) -> dict:
+        """Scalars for tables: controls [deg], inflow, thrust, flap harmonics."""
+        out = {"collective_deg": np.rad2deg(self.controls.collective),
+               "cyclic_cos_deg": np.rad2deg(self.controls.cyclic_cos),
+               "cyclic_sin_deg": np.rad2deg(self.controls.cyclic_sin),
+               "inflow": self.inflow.total, "induced_inflow": self.inflow.mean_induced,
+               "ct_sigma": self.ct_sigma, "iterations": len(self.history)}
+        if isinstance(self.inflow, HarmonicInflow):
+            out["inflow_sine"], out["inflow_cosine"] = self.inflow.sine, self.inflow.cosine
+        if self.model.has_flap:
+            c = fourier_coefficients(self.q[-1])
+            out["delta_mean_deg"] = float(np.rad2deg(np.real(c[0])))
+            for k in range(1, min(6, c.size)):
+                out[f"delta_{k}c_deg"] = float(np.rad2deg(2 * np.real(c[k])))
+                out[f"delta_{k}s_deg"] = float(np.rad2deg(-2 * np.imag(c[k])))
+        return out
+
+
+def _inflow(model, lam_i):
+    f = model.cfg.flight
+    fs = f.advance_ratio * np.tan(f.shaft_angle)
+    if model.dynamic_inflow:
+        mean, sine, cosine = lam_i
+        return HarmonicInflow(mean=mean, freestream=fs, sine=sine, cosine=cosine)
+    kx, ky = (drees_gradients(f.advance_ratio, fs + lam_i)
+              if model.cfg.model.inflow == "linear" else (0.0, 0.0))
+    return Inflow(mean_induced=lam_i, freestream=fs, kx=kx, ky=ky)
+
+
+def _steady_inflow(model, inflow: HarmonicInflow) -> SteadyInflow:
+    """The trimmed Pitt-Peters field as a :class:`~tefcore.aero.dynamic_inflow.SteadyInflow`."""
+    mu = model.cfg.flight.advance_ratio
+    lam = inflow.freestream + inflow.mean
+    vt, v = mass_flow(mu, lam, inflow.mean)
+    return SteadyInflow(mean=inflow.mean, sine=inflow.sine, cosine=inflow.cosine,
+                        freestream=inflow.freestream, chi=wake_skew(mu, lam), v_total=vt,
+                        v_mass=v, advance_ratio=mu)
+
+
+def initial_collective(cfg) -> float:
+    """First estimate of the collective [rad]: the prescribed one, or blade
+    element momentum theory for a linearly twisted blade,
+    ``C_T/sigma = a/6 [theta_75 (1 + 3/2 mu^2) - 3/2 lambda]`` with momentum
+    inflow (Johnson, *Helicopter Theory*, ch. 5).
+
+    Parameters
+    ----------
+    cfg : tefcore.config.sections.Config
+        The rotor configuration.
+
+    Returns
+    -------
+    float
+    """
+    f = cfg.flight
+    if f.collective is not None:
+        return float(f.collective)
+    sigma = cfg.rotor.solidity
+    lam = (momentum_inflow(f.ct_sigma * sigma, f.advance_ratio, f.shaft_angle)
+           + f.advance_ratio * np.tan(f.shaft_angle))
+    mu2 = f.advance_ratio**2
+    # C_T/sigma = a/6 [theta_75 (1 + 3/2 mu^2) - 3/2 lambda] (Johnson, eq. 5.x)
+    return float((6 * f.ct_sigma / cfg.rotor.lift_slope + 1.5 * lam) / (1 + 1.5 * mu2))
+
+
+@blas_limit()
+def trim(model: CoupledModel, *, tol: float = 1e-10, max_iter: int = 40,
+         initial: TrimResult | None = None) -> TrimResult:
+    """Trim the coupled model (wind-tunnel trim in forward flight).
+
+    Parameters
+    ----------
+    model : CoupledModel
+        The coupled model (:func:`tefcore.model.coupled.coupled_model`).
+    tol : float
+        Convergence on the largest residual (rotor units) and the largest
+        Newton update.
+    max_iter : int
+        Newton iterations allowed.
+    initial : TrimResult, optional
+        Warm start (e.g. the previous point of a sweep).
+
+    Returns
+    -------
+    TrimResult
+
+    Raises
+    ------
+    TrimError
+        If Newton's method does not converge in ``max_iter`` iterations or
+        the residual becomes non-finite.
+    """
+    prob = _Problem(model)
+    cfg, n, n_psi, n_lam = model.cfg, prob.n, prob.n_psi, prob.n_lam
+    # unknowns: Q (n x N; wake states after the coordinates), [theta_0],
+    # [theta_1c, theta_1s], lambda_i (dynamic inflow: lambda_0, lambda_s, lambda_c)
+    if _warm(initial, model, n_psi):
+        q0, ctl = initial.q.copy(), initial.controls
+        if model.n_wake:
+            q0 = np.vstack([q0, initial.states])
+        lam = ([initial.inflow.mean, initial.inflow.sine, initial.inflow.cosine]
+               if model.dynamic_inflow else [initial.inflow.mean_induced])
+        # the controls not solved for are this configuration's, never the warm
+        # start's: a prescribed collective (a collective sweep) would otherwise
+        # stay at the previous point's value
+        ctl = Controls(collective=(ctl.collective if prob.free_collective
+                                   else initial_collective(cfg)),
+                       cyclic_cos=0.0 if prob.hover else ctl.cyclic_cos,
+                       cyclic_sin=0.0 if prob.hover else ctl.cyclic_sin)
+    else:
+        q0 = np.zeros((n, n_psi))
+        ctl = Controls(collective=initial_collective(cfg))
+        lam = ([np.sqrt(max(cfg.flight.ct_sigma * prob.sigma, 1e-6) / 2)]
+               + [0.0] * (n_lam - 1))
+    prob.base = ctl
+    x = np.concatenate([q0.ravel(), [getattr(ctl, k) for k in prob.ctl_names], lam])
+    history = []
+    lu = None
+    if initial is not None and initial.jacobian is not None and \
+            initial.jacobian.shape == (x.size, x.size):
+        lu = factor(initial.jacobian, model, n_psi)
+        jac = initial.jacobian
+    prev = np.inf
+    last = None
+    if lu is None:
+        # cold start: the residual comes with the first Jacobian (its
+        # unperturbed block), not from a separate evaluation
+        jac, (r, norm, thrust, c, li), _ = prob.jacobian(x)
+        # no finiteness checks in the LU calls: a NaN reaches the residual,
+        # and the loop below stops on it with a TrimError and its history
+        lu = factor(jac, model, n_psi)
+        fresh = True
+    else:
+        r, norm, thrust, c, li = prob.full(x)
+        fresh = False
+    broyden = None if isinstance(lu, WakeSchur) else BroydenSolver(lu)
+    for it in range(max_iter):
+        history.append({"iteration": it, "max_residual": norm, "collective_deg":
+                        np.rad2deg(c.collective), "cyclic_cos_deg": np.rad2deg(c.cyclic_cos),
+                        "cyclic_sin_deg": np.rad2deg(c.cyclic_sin),
+                        "inflow": li if n_lam == 1 else li[0]})
+        if not np.isfinite(norm):
+            raise TrimError("trim residual became non-finite", history)
+        if norm < tol:
+            q_tr = x[:prob.nq].reshape(n, n_psi)
+            nd = model.n_dof
+            _check_flap_deflection(model, q_tr[:nd], history)
+            return TrimResult(model=model, psi=prob.psi, q=q_tr[:nd], controls=c,
+                              inflow=_inflow(model, li),
+                              ct_sigma=float(thrust.mean() if n_lam == 1 else thrust[0].mean()),
+                              history=history, jacobian=jac,
+                              states=q_tr[nd:] if model.n_wake else None,
+                              _problem=prob, _solution=x)
+        # chord method with Broyden's updates: keep the factorised Jacobian
+        # while it converges fast, refresh it when the residual falls by less
+        # than REFRESH_RATIO per iteration
+        ratio = REFRESH_RATIO if broyden is not None else CHORD_REFRESH_RATIO
+        if not fresh and norm > ratio * prev:
+            jac = prob.jacobian(x)[0]
+            lu = factor(jac, model, n_psi)
+            broyden = None if isinstance(lu, WakeSchur) else BroydenSolver(lu)
+        elif not fresh and broyden is not None and last is not None:
+            broyden.update(x - last[0], r - last[1])
+        fresh = False
+        prev = norm
+        last = (x, r)
+        step = lu.solve(-r) if broyden is None else broyden.solve(-r)
+        # damped Newton: halve the step while the residual grows; the accepted
+        # trial's residual is the next iteration's (no re-evaluation)
+        alpha = 1.0
+        for _ in range(8):
+            try:
+                trial = prob.full(x + alpha * step)
+            except ValueError:      # a state beyond the models (e.g. Mach > 0.99)
+                trial = None
+            if trial is not None and (trial[1] <= norm or norm < 1e-6):
+                break
+            if alpha == 1.0 and broyden is not None and broyden.u:
+                # a secant step that does not reduce the residual: back to the
+                # factorised Jacobian alone before halving
+                broyden = BroydenSolver(lu)
+                step = broyden.solve(-r)
+                continue
+            alpha *= 0.5
+        if trial is None:
+            raise TrimError("the trim left the range of the models (a section "
+                            "model refused the state)", history)
+        x = x + alpha * step
+        r, norm, thrust, c, li = trial
+    raise TrimError(f"trim did not converge in {max_iter} iterations "
+                    f"(last max residual {history[-1]['max_residual']:.3e})", history)
+
+
+#: The factorised Newton matrix is re-evaluated when the residual falls by less
+#: than this factor in an iteration (Broyden's updates in between).  Measured on
+#: MDART, mu = 0.1 .. 0.35, balanced and imbalanced flap, momentum and dynamic
+#: inflow: a cold trim takes one Jacobian and 9-11 residuals (two and 6-8 with
+#: 0.1 and no updates), 15 % less time.
+REFRESH_RATIO = 0.5
+
+#: The same without Broyden's updates (the shed-wake states' Schur-complement
+#: solves): the plain chord iteration needs the stricter 0.1.
+CHORD_REFRESH_RATIO = 0.1
+
+
+class _Problem:
+    """The trim equations of a model: unknowns, residual and Newton Jacobian."""
+
+    def __init__(self, model):
+        cfg = model.cfg
+        f = cfg.flight
+        self.model = model
+        self.hover = f.advance_ratio == 0.0
+        self.n_psi = 1 if self.hover else cfg.model.n_azimuth
+        self.psi = np.linspace(0, 2 * np.pi, self.n_psi, endpoint=False)
+        self.d1 = spectral_derivative(self.n_psi)
+        self.d2 = self.d1 @ self.d1
+        self.n = model.n_dof + model.n_wake                # coordinates and wake states
+        self.n_lam = 3 if model.dynamic_inflow else 1      # inflow unknowns
+        # sin and cos psi of the collocation points, for the rotor's first moments;
+        # in hover the loads are axisymmetric (one point) and the moments vanish
+        self.harmonics = (np.zeros((2, 1)) if self.hover
+                          else np.array([np.sin(self.psi), np.cos(self.psi)]))
+        self.free_collective = f.collective is None
+        self.sigma = cfg.rotor.solidity
+        self.mu, self.fs = f.advance_ratio, f.advance_ratio * np.tan(f.shaft_angle)
+        self.tip = model.tip_flap                          # tip flap of each mode
+        self.ctl_names = ((["collective"] if self.free_collective else [])
+                          + ([] if self.hover else ["cyclic_cos", "cyclic_sin"]))
+        self.nq = self.n * self.n_psi
+        self.base = Controls()                             # the controls not solved for
+
+    def unpack(self, vec):
+        """``(Q, controls, inflow unknowns)`` of an unknown vector."""
+        b, n_lam = self.base, self.n_lam
+        c = Controls(b.collective, b.cyclic_cos, b.cyclic_sin)
+        for k, val in zip(self.ctl_names, vec[self.nq:vec.size - n_lam], strict=True):
+            setattr(c, k, float(val))
+        li = tuple(float(v) for v in vec[-3:]) if n_lam == 3 else float(vec[-1])
+        return vec[:self.nq].reshape(self.n, self.n_psi), c, li
+
+    def scalars(self, q, thrust, li):
+        """The trim targets and the inflow equations."""
+        n_lam, mu, fs, sigma = self.n_lam, self.mu, self.fs, self.sigma
+        f = self.model.cfg.flight
+        ct_s = thrust.mean() if n_lam == 1 else thrust[0].mean()
+        out = [ct_s - f.ct_sigma] if self.free_collective else []
+        if not self.hover:
+            w_tip = self.tip @ q[:self.model.n_modes]
+            out += [2 * np.mean(w_tip * np.cos(self.psi)),
+                    2 * np.mean(w_tip * np.sin(self.psi))]
+        ct = ct_s * sigma
+        if n_lam == 3:
+            # steady Pitt-Peters, divided by 2 v_T: in hover the mean row is
+            # the momentum row below, lambda_0 - C_T / (2 lambda_0)
+            loads = sigma * (self.harmonics @ thrust[1]) / self.n_psi
+            res = steady_inflow_residual(li, ct, *loads, advance_ratio=mu, freestream=fs)
+            return np.concatenate([out, res / (2 * np.hypot(mu, fs + li[0]))])
+        out.append(li - ct / (2 * np.hypot(mu, fs + li)))
+        return np.array(out)
+
+    def full(self, vec):
+        """Residual, its largest entry, thrust, controls and inflow at ``vec``."""
+        q, c, li = self.unpack(vec)
+        res, thrust = self.model.evaluate(self.psi, q, q @ self.d1.T, q @ self.d2.T, c,
+                                          _inflow(self.model, li))
+        r = np.concatenate([res.ravel(), self.scalars(q, thrust, li)])
+        return r, float(np.max(np.abs(r))), thrust, c, li
+
+    def jacobian(self, vec):
+        """Newton matrix at ``vec``, ``full(vec)`` and the per-azimuth blocks."""
+        q, c, li = self.unpack(vec)
+        jac, (res0, thrust), blocks = _jacobian(self, vec, c, li)
+        r = np.concatenate([res0.ravel(), self.scalars(q, thrust, li)])
+        return jac, (r, float(np.max(np.abs(r))), thrust, c, li), blocks
+
+
+#: Largest mean trimmed flap deflection [deg] accepted as a result.  A
+#: trailing-edge flap travels a few degrees, and the linear flap aerodynamics
+#: (attached flow on the flap) end about here; a trim whose *mean* deflection
+#: needs more is a flap that diverges statically -- an aerodynamically
+#: over-balanced flap in hover trims at 5.6 deg mean at overhang 0.55, 17.9 deg
+#: at 0.60, 180 deg at 0.63 with the collective running away, and at -14 deg
+#: at 0.70 on the other side (MDART, measured): equilibria of a diverged flap
+#: held only by the model's nonlinear kinematics, not results.  The
+#: oscillating part is not limited: a near-resonant response to the actuator
+#: (Fig. 7 at 0.5 overhang: 21 deg half peak-to-peak, measured) is the paper's
+#: own result, out of the linear range as it is.
+MAX_FLAP_DEFLECTION_DEG = 10.0
+
+
+def _warm(initial, model, n_psi) -> bool:
+    """Whether a previous trim can start this one (same unknowns)."""
+    if initial is None or initial.q.shape != (model.n_dof, n_psi):
+        return False
+    if model.n_wake and (initial.states is None
+                         or initial.states.shape != (model.n_wake, n_psi)):
+        return False
+    return isinstance(initial.inflow, HarmonicInflow) == model.dynamic_inflow
+
+
+def _check_flap_deflection(model, q, history) -> None:
+    """Refuse a trim whose mean flap deflection is beyond :data:`MAX_FLAP_DEFLECTION_DEG`."""
+    if not model.has_flap:
+        return
+    mean = float(np.rad2deg(abs(q[-1].mean())))
+    if mean > MAX_FLAP_DEFLECTION_DEG:
+        raise TrimError(
+            f"the mean trimmed flap deflection is {mean:.3g} deg, beyond "
+            f"{MAX_FLAP_DEFLECTION_DEG:g} deg where the flap model holds: the flap diverges "
+            f"statically (its hinge-moment stiffness, actuator included, is near zero or "
+            f"negative: an aerodynamically over-balanced flap, flap.overhang = "
+            f"{model.cfg.flap.overhang:g})", history)
+
+
+def _inflow_tangents(model, li, psi):
+    """``d lambda / d p`` at the stations for the inflow unknowns ``p`` of the trim,
+    each ``(n_psi, n_x)`` (docs/theory.md 6.3).
+
+    Momentum inflow with Drees' gradients,
+    ``lambda = fs + l (1 + kx x cos psi + ky x sin psi)`` with ``kx`` a function of
+    ``chi = atan2(mu, fs + l)``: ``d kx / d chi = 4/3 [sin^2 chi - (1 - cos chi -
+    1.8 mu^2) cos chi] / sin^2 chi``, ``d chi / d l = -mu / (mu^2 + lambda^2)``.
+    Pitt-Peters field ``fs + l_0 + x (l_s sin psi + l_c cos psi)``: ``1, x sin psi,
+    x cos psi``.
+    """
+    x = model.x[None, :]
+    c, s = np.cos(psi)[:, None], np.sin(psi)[:, None]
+    if model.dynamic_inflow:
+        return [np.ones((psi.size, x.size)), x * s, x * c]
+    f = model.cfg.flight
+    mu, fs = f.advance_ratio, f.advance_ratio * np.tan(f.shaft_angle)
+    if model.cfg.model.inflow != "linear" or mu == 0.0:
+        return [np.ones((psi.size, x.size))]
+    kx, ky = drees_gradients(mu, fs + li)
+    lam = fs + li
+    chi = np.arctan2(mu, lam)
+    dkx = 4.0 / 3.0 * (np.sin(chi) ** 2 - (1 - np.cos(chi) - 1.8 * mu**2) * np.cos(chi)) \
+        / np.sin(chi) ** 2 * (-mu / (mu**2 + lam**2))
+    return [1.0 + kx * x * c + ky * x * s + li * dkx * x * c]
+
+
+def _jacobian(prob, x, c, li):
+    """Newton Jacobian using the per-azimuth block structure.
+
+    Returns the Jacobian, ``(R, thrust)`` at ``x`` and the per-azimuth blocks
+    ``dR/dq, dR/dq*, dR/dq**``: exact
+    (:func:`tefcore.model.jacobian.exact_jacobian`, with the control and
+    inflow columns by the chain rule) where implemented, else forward
+    differences with the control and inflow columns evaluated in the same
+    stacked call.
+    """
+    model, psi, d1, d2, n, n_psi, nq = (prob.model, prob.psi, prob.d1, prob.d2, prob.n,
+                                        prob.n_psi, prob.nq)
+    tip, hover, free_collective, n_lam = prob.tip, prob.hover, prob.free_collective, prob.n_lam
+    sigma, mu, fs, scalars = prob.sigma, prob.mu, prob.fs, prob.scalars
+    q = x[:nq].reshape(n, n_psi)
+    qd, qdd = q @ d1.T, q @ d2.T
+    infl = _inflow(model, li)
+    cols = np.arange(nq, x.size)
+    if has_exact_jacobian(model):
+        (jq, jqd, jqdd), tblocks, (res0, thr0), (d_res, d_thr) = exact_jacobian(
+            model, psi, q, qd, qdd, c, infl, inflow_tangents=_inflow_tangents(model, li, psi))
+        # the parameters of exact_jacobian: collective, cyclics, then the inflow
+        names = (["collective"] if free_collective else []) + ([] if hover else
+                                                              ["cyclic_cos", "cyclic_sin"])
+        which = [("collective", "cyclic_cos", "cyclic_sin").index(k) for k in names]
+        which += list(range(3, 3 + n_lam))
+        d_res, d_thr = d_res[which], d_thr[..., which, :]
+    else:
+        # control and inflow columns by forward differences, evaluated at the
+        # same motion in the same stacked call as the per-azimuth blocks
+        h = 1e-7
+        xs = np.repeat(x[None], cols.size, axis=0)
+        xs[np.arange(cols.size), cols] += h
+        parts = [prob.unpack(v) for v in xs]
+        (jq, jqd, jqdd), tblocks, (res0, thr0, perturbed) = jacobian_blocks(
+            model, psi, q, qd, qdd, c, infl, step=1e-7, scheme="forward",
+            extra=[(p[1], _inflow(model, p[2])) for p in parts], n_second=model.n_dof)
+    r0 = np.concatenate([res0.ravel(), scalars(q, thr0, li)])
+    blocks = [jq, jqd, jqdd]
+    # J[(i,m),(j,l)] = J0[m,i,j] I_ml + J1[m,i,j] D_ml + J2[m,i,j] D2_ml, written
+    # straight into the (i, m, j, l) view of the Newton matrix
+    n_s = r0.size - nq
+    jac = np.zeros((r0.size, r0.size))
+    j4 = jac[:nq, :nq].reshape(n, n_psi, n, n_psi)
+    j4[...] = np.einsum("mij,ml->imjl", blocks[1], d1) + np.einsum("mij,ml->imjl",
+                                                                   blocks[2], d2)
+    diag = np.arange(n_psi)
+    j4[:, diag, :, diag] += blocks[0]
+    # thrust derivative wrt Q (mean over azimuth)
+    if n_lam == 3:
+        # with dynamic inflow: the blade's C_T/sigma and its first moment
+        tblocks, t_moment = tblocks
+        harmonics = np.zeros((2, 1)) if hover else np.array([np.sin(psi), np.cos(psi)])
+        dmom = [((t_moment[0] * s).T + (t_moment[1] * s).T @ d1 + (t_moment[2] * s).T @ d2)
+                / n_psi for s in harmonics[:, :, None]]
+    dct = (tblocks[0].T + tblocks[1].T @ d1 + tblocks[2].T @ d2) / n_psi     # (n, N)
+    row = 0
+    if free_collective:
+        jac[nq, :nq] = dct.ravel()
+        row += 1
+    if not hover:
+        w_tip = np.zeros((n, n_psi))
+        w_tip[:model.n_modes] = tip[:, None]
+        jac[nq + row, :nq] = (2 / n_psi * w_tip * np.cos(psi)).ravel()
+        jac[nq + row + 1, :nq] = (2 / n_psi * w_tip * np.sin(psi)).ravel()
+        row += 2
+    if n_lam == 3:
+        denom = 2 * np.hypot(mu, fs + li[0])
+        for i, d in enumerate((dct, *dmom)):
+            jac[nq + row + i, :nq] = -sigma * d.ravel() / denom
+        row += 2
+    else:
+        denom = 2 * np.hypot(mu, fs + li)
+        jac[nq + row, :nq] = -sigma * dct.ravel() / denom
+    assert n_s == row + 1
+    if not has_exact_jacobian(model):
+        for k, (p, (res_k, thr_k)) in zip(cols, zip(parts, perturbed, strict=True),
+                                          strict=True):
+            rk = np.concatenate([res_k.ravel(), scalars(q, thr_k, p[2])])
+            jac[:, k] = (rk - r0) / h
+        return jac, (res0, thr0), blocks
+    # the trim equations are linear in the thrust: their control and inflow
+    # columns are the thrust's derivatives through them (central differences
+    # along the exact thrust derivative, exact for a linear function), plus the
+    # inflow equations' own dependence on the inflow unknowns (central
+    # differences of a scalar function: 1e-10)
+    eps = 1e-6
+    li_vec = np.atleast_1d(np.asarray(li, float))
+    for k, col in enumerate(cols):
+        dl = np.zeros(n_lam)
+        if k >= cols.size - n_lam:
+            dl[k - (cols.size - n_lam)] = eps
+        sides = []
+        for sgn in (1.0, -1.0):
+            lam_k = li_vec + sgn * dl
+            sides.append(scalars(q, thr0 + sgn * eps * d_thr[..., k, :],
+                                 tuple(lam_k) if n_lam == 3 else float(lam_k[0])))
+        jac[:nq, col] = d_res[k].ravel()
+        jac[nq:, col] = (sides[0] - sides[1]) / (2 * eps)
+    return jac, (res0, thr0), blocks
