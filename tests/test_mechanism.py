@@ -21,13 +21,12 @@ from tefcore.linear.mechanism import (
     NOT_REMOVABLE,
     STATE_TERMS,
     TERMS,
-    coupling_homotopy,
     energy_decomposition,
     linearized_terms,
     mechanism,
-    tef_root,
 )
 from tefcore.linear.stability import stability
+from tefcore.modes.continuation import coupling_homotopy, tef_root
 
 
 def constant(m, c, k):

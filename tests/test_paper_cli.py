@@ -70,8 +70,8 @@ def test_copied_notebooks_are_what_reproduce_runs(tmp_path, monkeypatch):
 
 
 def test_static_explorer_marks_the_tef_and_flutter_roots():
-    from tefcore.linear.mechanism import tef_root
     from tefcore.linear.stability import stability
+    from tefcore.modes.continuation import tef_root
     from tefcore.paper.explorer import explore, explorer_config, root_map
 
     fig = explore(interactive=False, cg_offset=0.33, advance_ratio=0.3)

@@ -148,7 +148,7 @@ def test_real_map_is_the_same_serial_parallel_and_on_dask():
     # trim's tolerance (4e-9 /rev measured); with the collective carried over,
     # points of one chain came out equal to its first (off by 1e-4 to 1e-3 /rev)
     from tefcore.linear.stability import stability
-    from tefcore.sweeps.sweep import FLUTTER_SHARE
+    from tefcore.modes.roles import FLUTTER_PARTICIPATION as FLUTTER_SHARE
 
     ok = serial.table[serial.table["status"] == "ok"]
     assert len(ok) == 6

@@ -17,10 +17,10 @@ and
   **divergence** (a real root crossing zero).
 
 Which root: ``"TEF"`` is the root that the flap mode becomes when the
-blade-flap coupling is switched on (:func:`tef_root`: the uncoupled flap on
-its actuator, continued to the full coupling), ``"flutter"`` the least
+blade-flap coupling is switched on (:func:`tefcore.modes.continuation.tef_root`:
+the uncoupled flap on its actuator, continued to the full coupling), ``"flutter"`` the least
 stable root in which the flap participates by at least
-:data:`FLUTTER_PARTICIPATION`, or a label of the stability table
+:data:`tefcore.modes.roles.FLUTTER_PARTICIPATION`, or a label of the stability table
 (``"blade torsion 1"``).
 
 Examples
@@ -41,12 +41,13 @@ import pandas as pd
 
 from ..floquet.second_order import SecondOrderSystem, augmented_state_matrix, combine
 from ..model.coupled import FLAP_PIECES
+from ..modes.continuation import positive_roots, root_solver, tef_root
+from ..modes.roles import FLUTTER_PARTICIPATION, flutter_root
 from ..modes.tracking import FollowResult, follow_root
 from ..runtime import blas_limit
 
 __all__ = ["FLUTTER_PARTICIPATION", "NOT_REMOVABLE", "STATE_TERMS", "TERMS", "MechanismResult",
-           "coupling_homotopy", "energy_decomposition", "flutter_root", "linearized_terms",
-           "mechanism", "tef_root"]
+           "energy_decomposition", "flutter_root", "linearized_terms", "mechanism"]
 
 #: Named terms of the linearised equations: name -> list of (residual piece,
 #: block).  Blocks: ``R`` blade rows/columns, ``F`` the flap's, ``W`` the
@@ -105,11 +106,6 @@ STATE_TERMS = ("shed wake on blade airloads (1 - C)", "shed wake on hinge moment
 #: blade without stiffness), so no knockout is reported for them.
 NOT_REMOVABLE = ("blade inertia", "flap inertia (I_h)", "blade stiffness",
                  "shed wake dynamics", "inflow dynamics")
-#: Least share of the flap's participation for a root to count as a flutter
-#: root of the flap: a tenth, so that a blade mode barely touched by the flap
-#: (shares of 1e-3 ... 1e-2 on MDART) is not named, while both partners of a
-#: flap-torsion coalescence (0.3-0.5 each, measured) are.
-FLUTTER_PARTICIPATION = 0.1
 
 
 def _groups(model) -> dict:
@@ -171,131 +167,6 @@ def linearized_terms(tr, psi=None) -> dict[str, SecondOrderSystem]:
 
 
 # ------------------------------------------------------------------ roots
-
-
-def _positive(res):
-    """Positive-frequency roots, ordered like the stability table."""
-    keep = res.positive_frequency()
-    order = np.lexsort((-keep.damping_rates, np.round(keep.frequencies, 9)))
-    return keep.select(order)
-
-
-def _visible(res, n, basis):
-    """Roots and displacement shapes to follow; with first-order states only the
-    roots that move the blade or flap (an aerodynamic state decoupled from them,
-    e.g. by a knockout, has no shape to compare)."""
-    vec = res.eigenvectors[:n]
-    shapes = vec if basis is None else basis @ vec
-    if res.eigenvectors.shape[0] > 2 * n:
-        size = np.linalg.norm(shapes, axis=0)
-        keep = size > 1e-12 * size.max()
-        res, shapes = res.select(keep), shapes[:, keep]
-    return res, shapes
-
-
-def _solver(system_of_s, n, basis, n_steps):
-    """``solve(s)`` for :func:`follow_root`: positive roots and displacement shapes."""
-    def solve(s):
-        res = _positive(system_of_s(s).modes(n_steps=n_steps, n_sub=4, participation=False))
-        res, shapes = _visible(res, n, basis)
-        return res.exponents, shapes
-    return solve
-
-
-def coupling_homotopy(system: SecondOrderSystem, n_blade: int, s: float) -> SecondOrderSystem:
-    """``system`` with every blade-flap coupling block scaled by ``s``.
-
-    ``s = 0`` is the uncoupled blade and the flap on its actuator (with its
-    own aerodynamic and centrifugal springs); ``s = 1`` the coupled system.
-
-    Aerodynamic states (first-order, after the flap) go with the blade: their
-    couplings with the flap are scaled too, so at ``s = 0`` the flap has its
-    instantaneous airloads only (docs/theory.md 10.1).
-
-    Parameters
-    ----------
-    system : tefcore.floquet.second_order.SecondOrderSystem
-        Blade coordinates first, the flap last.
-    n_blade : int
-        Number of blade coordinates.
-    s : float
-        Coupling scale, 0 (uncoupled) to 1 (coupled).
-
-    Returns
-    -------
-    tefcore.floquet.second_order.SecondOrderSystem
-    """
-    nd = system.n_dof
-    mats = []
-    for a in (system.m, system.c, system.k):
-        b = a.copy()
-        b[..., :n_blade, n_blade:nd] *= s
-        b[..., n_blade:nd, :n_blade] *= s
-        if system.n_first:
-            b[..., nd:, n_blade:nd] *= s
-            b[..., n_blade:nd, nd:] *= s
-        mats.append(b)
-    return SecondOrderSystem(*mats, n_first=system.n_first)
-
-
-def tef_root(system: SecondOrderSystem, *, basis=None, n_steps: int = 72):
-    """The root that the uncoupled flap mode becomes in the coupled system.
-
-    At zero coupling (:func:`coupling_homotopy`) the flap's roots are the
-    ones whose shape is the flap alone; the least damped of them (a locked
-    pair has two) is followed by continuation to the full coupling.  This is
-    the anchor of "the TEF mode": a definition that does not depend on
-    labels, participations or a sweep.
-
-    Parameters
-    ----------
-    system : SecondOrderSystem
-        Blade coordinates first, the flap last.
-    basis : ndarray, optional
-        Map from coordinates to the shapes compared between steps
-        (:meth:`tefcore.model.coupled.CoupledModel.tracking_basis`).
-    n_steps : int, optional
-        Floquet steps per period of each eigenproblem on the path.
-
-    Returns
-    -------
-    eigenvalue : complex
-        The TEF root of ``system`` (positive frequency).
-    follow : FollowResult
-        The continuation (``follow.clear`` False where it met a coalescence).
-    """
-    n = system.n_dof
-    solve = _solver(lambda s: coupling_homotopy(system, n - 1, s), n, basis, n_steps)
-    raw, vec0 = _visible(_positive(coupling_homotopy(system, n - 1, 0.0).modes(
-        n_steps=n_steps, n_sub=4, participation=False)), n, basis)
-    eig0 = raw.exponents
-    share = np.abs(raw.eigenvectors[n - 1]) ** 2 + np.abs(raw.eigenvectors[2 * n - 1]) ** 2
-    share = share / np.sum(np.abs(raw.eigenvectors) ** 2, axis=0)
-    flap = np.flatnonzero(share >= 0.5 * share.max())
-    start = int(flap[np.argmax(eig0[flap].real)])
-    follow = follow_root(solve, 0.0, 1.0, start, periodic=system.periodic, first=(eig0, vec0))
-    return follow.eigenvalue, follow
-
-
-def flutter_root(modes: pd.DataFrame, threshold: float = FLUTTER_PARTICIPATION):
-    """Row of the least stable root with a flap participation >= ``threshold``, or None.
-
-    Parameters
-    ----------
-    modes : pandas.DataFrame
-        A stability modes table (:attr:`tefcore.linear.stability.StabilityResult.modes`),
-        with a ``participation_TEF`` column.
-    threshold : float, optional
-        Smallest flap participation of a flutter root.
-
-    Returns
-    -------
-    pandas.Series or None
-    """
-    cand = modes[modes["share_TEF"] >= threshold]
-    if cand.empty:
-        return None
-    return int(cand["real_part"].idxmax())
 
 
 # ------------------------------------------------------------------ energy
@@ -511,8 +382,8 @@ def mechanism(cfg, mode: str = "TEF", *, knockouts: bool = True, stability_resul
     cfg : tefcore.config.sections.Config
         The rotor configuration.
     mode : str
-        ``"TEF"`` (the root the flap mode becomes, :func:`tef_root`),
-        ``"flutter"`` (:func:`flutter_root`), ``"root"`` (the root nearest
+        ``"TEF"`` (the root the flap mode becomes, :func:`tefcore.modes.continuation.tef_root`),
+        ``"flutter"`` (:func:`tefcore.modes.roles.flutter_root`), ``"root"`` (the root nearest
         `root`, e.g. the TEF branch of a sweep at this point) or a label of
         the stability table (e.g. ``"blade torsion 1"``).
     root : complex, optional
@@ -576,7 +447,7 @@ def mechanism(cfg, mode: str = "TEF", *, knockouts: bool = True, stability_resul
         how = "its label (participation)"
     parts = linearized_terms(tr)
     system = combine(parts)
-    full = _positive(system.modes(n_steps=n_steps, n_sub=4, shapes=True,
+    full = positive_roots(system.modes(n_steps=n_steps, n_sub=4, shapes=True,
                                   participation=False))
     j = int(np.argmin(np.abs(full.exponents - eig_table[row])))
     eta = complex(full.exponents[j])
@@ -600,7 +471,7 @@ def mechanism(cfg, mode: str = "TEF", *, knockouts: bool = True, stability_resul
             if not any(np.any(a) for a in (part.m, part.c, part.k)):
                 f = FollowResult(index=j, eigenvalue=eta, path=[(1.0, eta)], ambiguous=[])
             else:
-                solve = _solver(lambda s, t=t: combine(parts, {t: s}), n, basis, n_steps)
+                solve = root_solver(lambda s, t=t: combine(parts, {t: s}), n, basis, n_steps)
                 f = follow_root(solve, 1.0, 0.0, j, periodic=system.periodic, first=first,
                                 n_steps=4, max_halvings=5)
             outs[t] = f

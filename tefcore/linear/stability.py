@@ -25,6 +25,7 @@ from ..floquet.second_order import STATE_MIN_RATE, SecondOrderSystem
 from ..floquet.second_order import state_matrix as state_matrix
 from ..model.coupled import coupled_model
 from ..model.jacobian import jacobian_blocks
+from ..modes.labels import coordinate_shares, label_modes, tracking_shapes
 from ..runtime import blas_limit
 from ..trimming.trim import TrimResult, initial_collective, trim
 
@@ -114,48 +115,6 @@ class StabilityResult:
     periodic: bool = False
     system: SecondOrderSystem | None = None
     aero_modes: pd.DataFrame | None = None
-
-
-def _label_modes(frac, labels, freqs, rates, disp):
-    """Label modes by the coordinate they carry, one coordinate per mode.
-
-    ``frac`` are the coordinates' shares of participation (coordinates x
-    modes); the labels are the assignment
-    (``scipy.optimize.linear_sum_assignment``) that maximises the product of
-    the shares, so every coordinate names exactly one mode, even where two
-    modes share one coordinate (flutter). Kinetic-energy shares would hide the
-    light coordinates: the MDART torsion mode in hover carries 0.5 % of its
-    kinetic energy in torsion but 65 % of its participation (measured). A
-    complex pair whose multipliers have become two real ones (frequency
-    locked to a multiple of 1/2 per rev, or overdamped) gives one mode more
-    than coordinates: the pair shares its coordinate's label, the less damped
-    root carrying it plainly and the other with ``(locked)`` appended (the
-    partner is the assigned mode at the closest frequency, ties by the MAC of
-    the physical shapes ``disp``).
-    """
-    # maximise the product of the shares (sum of logs): a coordinate must
-    # participate materially in the mode that carries its name.  Maximising
-    # the plain sum can hand a coordinate a mode where its share is 1e-4
-    # (seen: the TEF label on a flap mode while the TEF flutter mode took a
-    # blade label)
-    rows, cols = scipy.optimize.linear_sum_assignment(-np.log(frac + 1e-300))
-    out = [None] * frac.shape[1]
-    for r, c in zip(rows, cols, strict=True):
-        out[c] = labels[r]
-    unit = disp / np.linalg.norm(disp, axis=0, keepdims=True)
-    mac = np.abs(unit.conj().T @ unit) ** 2
-    for j, lab in enumerate(out):
-        if lab is None:
-            best = min(cols, key=lambda i: (round(abs(freqs[i] - freqs[j]), 6), -mac[i, j]))
-            # the two roots of a locked pair have nearly the same shape, so
-            # which one the assignment named is decided by round-off; name the
-            # less damped root (the one that matters for stability) after the
-            # coordinate, deterministically
-            if rates[j] > rates[best]:
-                out[j], out[best] = out[best], out[best] + " (locked)"
-            else:
-                out[j] = out[best] + " (locked)"
-    return out
 
 
 @blas_limit()
@@ -314,32 +273,6 @@ def periodic_state_matrix(tr: TrimResult):
     return system.state_matrix, system.m
 
 
-def _tracking_shapes(basis, res, n):
-    """Physical shapes to compare modes by: displacement and velocity at psi = 0.
-
-    ``[B q(0); B q*(0)]`` (velocities per radian of azimuth) from the state
-    eigenvector, which the integer frequency shift of a Floquet mode does not
-    change.  Two Floquet modes can share one displacement shape at psi = 0
-    (MAC 0.96 between MDART's first flap and first torsion modes at
-    mu = 0.3, measured); their velocities, which scale with the frequency,
-    tell them apart.  A sampled motion over the revolution would too, but
-    aliases for modes far above the Floquet steps' frequencies (a 0.1 c
-    flap near 100 /rev), whose velocity shape stays steady.
-    """
-    vec = res.eigenvectors
-    return np.concatenate([basis @ vec[:n], basis @ vec[n:2 * n]], axis=0)
-
-
-def _coordinate_shares(participation, n):
-    """Shares of the coordinates in each mode (n x modes), summing to 1.
-
-    The participation factors of a coordinate's displacement and velocity
-    states, in magnitude, added and normalised per mode.
-    """
-    mag = np.abs(participation[:n]) + np.abs(participation[n:2 * n])
-    return mag / mag.sum(axis=0, keepdims=True)
-
-
 def _stability_of(model, tr: TrimResult, n_steps: int | None) -> StabilityResult:
     """Linearise a trimmed model and label its (Floquet) modes."""
     cfg = model.cfg
@@ -365,9 +298,9 @@ def _stability_of(model, tr: TrimResult, n_steps: int | None) -> StabilityResult
     order = np.lexsort((-keep.damping_rates, np.round(keep.frequencies, 9)))
     keep = keep.select(order)
     vec = keep.eigenvectors
-    frac = _coordinate_shares(keep.participation, n)
-    shapes = _tracking_shapes(model.tracking_basis(), keep, n)
-    labels = _label_modes(frac, model.labels, keep.frequencies, keep.damping_rates, shapes)
+    frac = coordinate_shares(keep.participation, n)
+    shapes = tracking_shapes(model.tracking_basis(), keep, n)
+    labels = label_modes(frac, model.labels, keep.frequencies, keep.damping_rates, shapes)
     kinds = [lab.split()[1] if lab.startswith("blade") else "TEF" for lab in model.labels]
     columns = {
         "mode_id": np.arange(len(labels)),
@@ -417,7 +350,7 @@ def _split_aero_roots(res, model, periodic):
     # the partner of a locked pair (the same frequency as a labelled root): e.g.
     # the mean inflow root in hover, 58 % in the collective flap motion (measured)
     cand = np.flatnonzero(~aero)
-    frac = _coordinate_shares(res.participation[:, cand], n)
+    frac = coordinate_shares(res.participation[:, cand], n)
     _, cols = scipy.optimize.linear_sum_assignment(-np.log(frac + 1e-300))
     named = res.frequencies[cand[cols]]
     for j in np.setdiff1d(np.arange(cand.size), cols):

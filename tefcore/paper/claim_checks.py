@@ -19,6 +19,14 @@ from dataclasses import replace
 import numpy as np
 import pandas as pd
 
+from ..modes.roles import (
+    FLUTTER_ROOT,
+    ModeNotFound,
+    branch_gap,
+    has_label,
+    mode_rows,
+    undecided_at,
+)
 from .curve_metrics import X_SLACK, compare_curve, stability_intervals, zero_crossings
 from .figure_frames import compute_figure, figure_frame, natural_frequency_frame
 from .reference import FIGURES, QUANTITIES, Claim, load_claims, x_to_si
@@ -70,13 +78,6 @@ def _g(v) -> str:
     return f"{v:.4g}"
 
 
-def _is(labels: pd.Series, mode: str) -> pd.Series:
-    return (labels == mode) | (labels == f"{mode} (locked)")
-
-
-#: The ``mode`` of a claim about the flutter root of each point (the least
-#: stable root with a flap participation >= 0.1, :func:`tefcore.sweeps.sweep.sweep`).
-FLUTTER_ROOT = "flutter root"
 #: Quantities of a root's stability, for which a TEF claim also reports the
 #: flutter root's result (for information: the status is the TEF branch's).
 _STABILITY_QUANTITIES = ("real_part", "damping", "damping_ratio")
@@ -87,81 +88,11 @@ class _Ambiguous(Exception):
 
 
 def _select(frame, mode, identify="track") -> pd.DataFrame:
-    """Rows of `mode`: ``"TEF"`` is the TEF branch (the track of the flap mode
-    at the sweep start, :func:`tefcore.sweeps.sweep.sweep`); another mode its track
-    (``identify="track"``), or at each point the mode labelled `mode` there
-    (``"label"``, the most participating one if several)."""
-    col = "label_here" if identify == "label" and "label_here" in frame else "label"
-    if mode == FLUTTER_ROOT:
-        if "flutter_root" not in frame:
-            raise _Fail("the result has no flutter roots (no flap participation)")
-        rows = frame[frame["flutter_root"].fillna(False).astype(bool)]
-        if rows.empty:
-            raise _Fail("no root with a flap participation >= 0.1 in the sweep")
-        return rows
-    if mode == "TEF" and identify == "track" and "tef_branch" in frame:
-        rows = frame[frame["tef_branch"].fillna(False).astype(bool)]
-        if rows.empty:
-            raise _Fail("the sweep has no TEF branch (no flap mode at its start)")
-        return rows
-    ok = _is(frame[col], mode)
-    if not ok.any():
-        raise _Fail(f"no mode {mode!r} in the result; labels: "
-                    f"{sorted(set(frame[col].dropna().astype(str)))}")
-    if col == "label_here":
-        t = frame[ok]
-        if "participation" in t:
-            t = t.sort_values("participation", ascending=False, kind="stable")
-        return t.drop_duplicates("x")
-    sizes = frame[ok].groupby("track", sort=False).agg(n=("x", "size"), label=("label", "first"))
-    sizes = sizes.assign(exact=sizes["label"] == mode).sort_values(
-        ["n", "exact"], ascending=False, kind="stable")
-    return frame[frame["track"] == sizes.index[0]]
-
-
-def _doubtful(rows, mode, lo, hi) -> list[float]:
-    """x of the rows (within [lo, hi] and before) whose identity is not decided."""
-    if "identity" not in rows:
-        return []
-    x = rows["x"].to_numpy(float)
-    upto = np.ones(len(rows), bool) if hi is None else x <= hi * (1 + X_SLACK) + X_SLACK
-    if mode == "TEF" and "tef_branch_certain" in rows:
-        bad = ~rows["tef_branch_certain"].fillna(False).astype(bool).to_numpy()
-    else:
-        # a coalescence is followed by convention (the less stable root goes
-        # on, tefcore.modes.tracking); only an undecided match is a doubt
-        bad = rows["identity"].astype(str).to_numpy() == "ambiguous"
-    inside = upto if lo is None else upto & (x >= lo * (1 - X_SLACK) - X_SLACK)
-    if mode == "TEF":
-        bad &= inside
-    else:
-        bad &= upto
-    return sorted(set(np.round(x[bad], 12).tolist()))
-
-
-def _check_branch_covers(frame, branch, lo, hi) -> None:
-    """Raise :class:`_Ambiguous` when the TEF branch stops inside the checked range.
-
-    The branch ends where no root of the next point continues it
-    (:func:`tefcore.modes.tracking.follow_branch`); beyond it, which root is the TEF
-    is not decided -- a claim about the TEF there is ambiguous, not failed for
-    want of points.
-    """
-    own = frame[frame["refinement"] == 0] if "refinement" in frame else frame
-    xs = own["x"].to_numpy(float)
-    xs = xs[np.isfinite(xs)]
-    if xs.size == 0 or branch.empty:
-        return
-    a = xs.min() if lo is None else lo
-    b = xs.max() if hi is None else hi
-    bx = branch["x"].to_numpy(float)
-    slack = X_SLACK * max(abs(a), abs(b), 1e-300)
-    if bx.max() < min(b, xs.max()) - slack:
-        raise _Ambiguous(f"the TEF branch ends at x = {bx.max():.4g} (no root continues "
-                         f"it), before {min(b, xs.max()):.4g}")
-    if bx.min() > max(a, xs.min()) + slack:
-        raise _Ambiguous(f"the TEF branch starts at x = {bx.min():.4g}, after "
-                         f"{max(a, xs.min()):.4g}")
+    """:func:`tefcore.modes.roles.mode_rows`; a mode not in the result fails the claim."""
+    try:
+        return mode_rows(frame, mode, identify)
+    except ModeNotFound as err:
+        raise _Fail(str(err)) from None
 
 
 def _series(frame, mode, quantity, lo=None, hi=None, identify="track", until=None):
@@ -175,9 +106,11 @@ def _series(frame, mode, quantity, lo=None, hi=None, identify="track", until=Non
         raise _Fail(f"the result has no {quantity!r} column")
     t = _select(frame, mode, identify) if mode else frame
     if mode == "TEF" and identify == "track" and "tef_branch" in frame:
-        _check_branch_covers(frame, t, lo, hi if until is None else until)
+        gap = branch_gap(frame, t, lo, hi if until is None else until, X_SLACK)
+        if gap:
+            raise _Ambiguous(gap)
     if mode and mode != FLUTTER_ROOT and identify == "track":
-        doubt = _doubtful(t, mode, lo, hi if until is None else until)
+        doubt = undecided_at(t, mode, lo, hi if until is None else until, X_SLACK)
         if doubt:
             raise _Ambiguous(f"the identity of {mode!r} is undecided at x = "
                              + ", ".join(f"{v:.4g}" for v in doubt[:4])
@@ -198,7 +131,7 @@ def _agreement(frame, mode) -> float:
     """Share of the points of `mode`'s track where the point's own label is `mode`."""
     if "label_here" not in frame:
         return np.nan
-    return float(_is(_select(frame, mode)["label_here"], mode).mean())
+    return float(has_label(_select(frame, mode)["label_here"], mode).mean())
 
 
 class _Context:
@@ -405,7 +338,7 @@ def _check_mechanism(c: Claim, ctx: _Context):
     frame = ctx.frame(c.figure, c.overrides)
     xs = float(x_to_si(c.figure, c.x, c.x_unit))
     rows = _select(frame, c.mode, ctx.identify)
-    doubt = [] if c.mode == FLUTTER_ROOT else _doubtful(rows, c.mode, None, xs)
+    doubt = [] if c.mode == FLUTTER_ROOT else undecided_at(rows, c.mode, None, xs, X_SLACK)
     if doubt and ctx.identify == "track":
         raise _Ambiguous(f"the identity of {c.mode!r} is undecided at x = {doubt[0]:.4g}")
     at = rows[np.abs(rows["x"].to_numpy(float) - xs) <= X_SLACK * max(abs(xs), 1.0)]

@@ -3,7 +3,7 @@
 :func:`explore` shows, for one configuration, every root of the Floquet
 analysis in the s-plane (frequency against real part, coloured by how much
 the flap takes part in it), the TEF root (the root the flap's own mode
-becomes when the coupling is switched on, :func:`tefcore.linear.mechanism.tef_root`)
+becomes when the coupling is switched on, :func:`tefcore.modes.continuation.tef_root`)
 and the flutter root (the least stable root the flap takes part in), beside
 the damping of the paper's modes.  With ipywidgets in a live notebook,
 sliders for the flap CG offset, the overhang, the actuator stiffness and the
@@ -26,7 +26,8 @@ from dataclasses import dataclass
 
 import pandas as pd
 
-from ..linear.mechanism import FLUTTER_PARTICIPATION, flutter_root, tef_root
+from ..modes.continuation import tef_root
+from ..modes.roles import FLUTTER_PARTICIPATION, flutter_root
 from .figure_runs import base_config
 from .plotting import PAPER_MODES, STYLE, legend_below
 
@@ -82,11 +83,11 @@ class RootMap:
     tef : complex or None
         The TEF root, ``real_part + 1j * frequency_per_rev`` [1/rev]: the root
         the flap's own mode becomes when its coupling to the blade is switched
-        on (:func:`tefcore.linear.mechanism.tef_root`); None without a flap.
+        on (:func:`tefcore.modes.continuation.tef_root`); None without a flap.
     flutter : int or None
         Index in ``modes`` of the flutter root, the least stable root with a
         flap participation of at least
-        :data:`tefcore.linear.mechanism.FLUTTER_PARTICIPATION`; None if no root
+        :data:`tefcore.modes.roles.FLUTTER_PARTICIPATION`; None if no root
         carries the flap.
     error : str
         Why there are no roots (a refused configuration, a failed trim);

@@ -18,9 +18,9 @@ a time, to the low and the high end of its plausible range:
 **Which root is "the TEF".**  Where the flap frequency meets a blade mode the
 two roots coalesce and share the flap's motion; one is destabilised, the
 other stabilised.  The headlines use the *flutter root*
-(:func:`flutter_root`, the same rule as the sweeps' ``flutter_root`` role,
+(:func:`tefcore.modes.roles.flutter_root`, the same rule as the sweeps' ``flutter_root`` role,
 :func:`tefcore.linear.mechanism.flutter_root`): the least stable root in which the
-flap participates by at least :data:`tefcore.linear.mechanism.FLUTTER_PARTICIPATION`
+flap participates by at least :data:`tefcore.modes.roles.FLUTTER_PARTICIPATION`
 (participation factors, scale-invariant).  Both members of a coalesced pair
 pass that test, so the destabilised one is found wherever the coalescence
 happens.  Every function takes an ``identify`` callable
@@ -55,8 +55,8 @@ import scipy.optimize
 
 from ..config.io import load_config
 from ..errors import TefcoreError
-from ..linear.mechanism import FLUTTER_PARTICIPATION
-from ..linear.mechanism import flutter_root as mechanism_flutter_root
+from ..modes.roles import FLUTTER_PARTICIPATION
+from ..modes.roles import flutter_root as flutter_root_row
 from ..runtime import worker_init
 from .assumptions import ASSUMPTIONS, Assumption, apply_assumption  # re-exported
 
@@ -101,7 +101,7 @@ def flutter_root(result, threshold: float = FLUTTER_PARTICIPATION) -> pd.Series:
     ValueError
         No root carries the flap (``model.tef = "none"``).
     """
-    row = mechanism_flutter_root(result.modes, threshold)
+    row = flutter_root_row(result.modes, threshold)
     if row is None:
         raise ValueError("no root carries the flap: the configuration has no flap dof "
                          "(model.tef = 'none')")
@@ -226,7 +226,7 @@ def headline_results(cfg=None, *, identify: Callable = flutter_root,
         Default MDART.
     identify : callable
         ``StabilityResult -> row`` (with ``real_part``) of the root to follow;
-        default :func:`flutter_root`.
+        default :func:`tefcore.modes.roles.flutter_root`.
     headlines : sequence of Headline
         The results to compute (default :data:`HEADLINES`).
     xtol : float
@@ -278,7 +278,7 @@ def sensitivity(cfg=None, assumptions=ASSUMPTIONS, *, identify: Callable = flutt
         Assumptions varied one at a time, each to its low and high end
         (default: all of :data:`ASSUMPTIONS`).
     identify : callable
-        Root to follow (default :func:`flutter_root`).
+        Root to follow (default :func:`tefcore.modes.roles.flutter_root`).
     headlines : sequence of Headline
         The results computed for each case (default :data:`HEADLINES`).
     n_jobs : int

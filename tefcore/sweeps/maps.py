@@ -10,7 +10,7 @@ flutter boundary is located beyond the grid's resolution.
 
 The mapped quantity is the **flutter root** of each point: the least stable
 root in which the flap participates by at least
-:data:`tefcore.sweeps.sweep.FLUTTER_SHARE` (a property of the point alone, no
+:data:`tefcore.modes.roles.FLUTTER_PARTICIPATION` (a property of the point alone, no
 tracking needed), with its frequency and flap participation; the **TEF
 branch** of each row (the flap mode followed from the row's start) is kept
 too.  Results come as a tidy table and an :class:`xarray.Dataset`.
@@ -47,9 +47,9 @@ import pandas as pd
 from scipy.optimize import brentq
 
 from ..config.sections import Config
+from ..modes.roles import FLUTTER_PARTICIPATION, flutter_root
 from ..runtime import worker_init
 from .sweep import (
-    FLUTTER_SHARE,
     SweepResult,
     check_result,
     default_point,
@@ -106,7 +106,7 @@ class MapResult:
         ds = xr.Dataset(variables, coords={"x": xs, "y": ys})
         ds.attrs.update(x_field=self.x_field, y_field=self.y_field,
                         description="flutter root: least stable root with flap "
-                                    f"participation >= {FLUTTER_SHARE}; growth in 1/rev")
+                                    f"participation >= {FLUTTER_PARTICIPATION}; growth in 1/rev")
         return ds
 
     def plot(self, ax=None, levels=None, x_unit: str | None = None,
@@ -225,9 +225,8 @@ def _flutter_growth(point, cfg, x_field, x, warm=None) -> float:
     if warm is not None:
         warm["trim"] = getattr(result, "trim_result", None)
     modes, _, _ = check_result(result)
-    share = modes["share_TEF"] if "share_TEF" in modes else pd.Series(1.0, index=modes.index)
-    cand = modes[share >= FLUTTER_SHARE]
-    return float(cand["real_part"].max()) if not cand.empty else np.nan
+    row = flutter_root(modes)
+    return float(modes.loc[row, "real_part"]) if row is not None else np.nan
 
 
 def _row_in_worker(cfg, x_field, x_values, point, out, resume):

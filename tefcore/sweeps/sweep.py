@@ -55,12 +55,13 @@ from tqdm import tqdm
 
 from ..config.sections import SECTIONS, Config, resolve_field
 from ..errors import error_text
+from ..modes.roles import anchor_root, anchor_row, assign_roles
 from ..modes.tracking import ambiguous_steps, follow_branch, label_changes, track_modes
 from ..runtime import worker_init
 from ..safe_io import atomic_output
 from .store import SweepFile, config_hash, jsonable, sweep_header, value_key
 
-__all__ = ["FLUTTER_SHARE", "MAX_REFINE", "WARM_CHAIN", "REQUIRED_MODE_COLUMNS", "SweepResult",
+__all__ = ["MAX_REFINE", "WARM_CHAIN", "REQUIRED_MODE_COLUMNS", "SweepResult",
            "check_parameter", "check_result", "config_hash", "decode_complex", "default_point",
            "encode_complex", "shape_vectors", "sweep", "takes_warm_start"]
 
@@ -219,22 +220,6 @@ def shape_vectors(result, eigenvectors):
     return vecs
 
 
-def _anchor_root(result) -> dict | None:
-    """The flap mode of a point by continuation from zero coupling
-    (:func:`tefcore.linear.mechanism.tef_root`): ``{"row", "clear"}``, or None when
-    the result does not carry its linear system (other point functions)."""
-    system = getattr(result, "system", None)
-    tr = getattr(result, "trim_result", None)
-    if system is None or tr is None or not getattr(tr.model, "has_flap", False):
-        return None
-    from ..linear.mechanism import tef_root
-
-    eta, follow = tef_root(system, basis=tr.model.tracking_basis())
-    m = result.modes
-    eig = m["real_part"].to_numpy() + 1j * m["frequency_per_rev"].to_numpy()
-    return {"row": int(np.argmin(np.abs(eig - eta))), "clear": bool(follow.clear)}
-
-
 def _failed_record(key, value, err) -> dict:
     return {"key": key, "value": jsonable(value), "value_si": None, "status": "failed",
             "error": error_text(err), "trim": {}, "modes": None}
@@ -275,7 +260,7 @@ def _evaluate(index, point, cfg, parameter, value, key, anchor=False, depth=0, w
         if shapes is not None:
             rec["vectors"] = encode_complex(shapes)
         if anchor:
-            rec["anchor"] = _anchor_root(result)
+            rec["anchor"] = anchor_root(result)
     except Exception as err:  # recorded, the sweep goes on
         rec["error"] = error_text(err)
         vecs = result = None
@@ -493,8 +478,6 @@ MAX_REFINE_BRANCH = 5
 #: Points refinement may add for the TEF branch, and at least for the other
 #: modes (else twice the points asked for).
 MIN_REFINE_BUDGET = 24
-#: Flap participation of a flutter root (:data:`tefcore.linear.mechanism.FLUTTER_PARTICIPATION`).
-FLUTTER_SHARE = 0.1
 
 
 def encode_complex(a) -> dict:
@@ -566,17 +549,6 @@ def _branch(tracked: pd.DataFrame, records: dict, order: list, step: int, row: i
                          values=[float(records[k]["value_si"]) for k in order])
 
 
-def _anchor_row(rec: dict, modes: pd.DataFrame, use_anchor: bool):
-    """(row of the flap mode at the sweep start, how it was found), or (None, "")."""
-    anchor = (rec.get("anchor") or {}) if use_anchor else {}
-    if anchor.get("clear"):
-        return int(anchor["row"]), "zero coupling"
-    if "share_TEF" in modes and len(modes) and modes["share_TEF"].max() > 0:
-        return int(modes["share_TEF"].to_numpy().argmax()), "largest flap participation"
-    hits = np.flatnonzero(modes["label"].to_numpy() == "TEF")
-    return (int(hits[0]), "label") if hits.size else (None, "")
-
-
 def _refinements(records: dict, budgets: dict, main: set,
                  use_anchor: bool = True) -> list[tuple[float, int, str]]:
     """Midpoints (SI value, depth, budget) of the steps whose tracking is ambiguous.
@@ -593,8 +565,8 @@ def _refinements(records: dict, budgets: dict, main: set,
     branch_steps = set()
     first = next((i for i, k in enumerate(order) if k in main), None)
     if first is not None:
-        row, _ = _anchor_row(records[order[first]], pd.DataFrame(records[order[first]]["modes"]),
-                             use_anchor)
+        start = records[order[first]]
+        row, _ = anchor_row(start.get("anchor"), pd.DataFrame(start["modes"]), use_anchor)
         if row is not None:
             path = _branch(tracked, records, order, first, row)
             branch_steps = set(path.loc[path["doubt"], "step"])
@@ -612,44 +584,6 @@ def _refinements(records: dict, budgets: dict, main: set,
             or mids(ambiguous_steps(tracked), MAX_REFINE, "other"))
 
 
-def _roles(table: pd.DataFrame, records: dict, order: list, main_keys: set,
-           use_anchor: bool = True):
-    """Columns ``tef_branch``, ``tef_branch_certain``, ``flutter_root``; the anchor."""
-    table["tef_branch"] = False
-    table["tef_branch_certain"] = False
-    table["flutter_root"] = False
-    ok = table["status"] == "ok"
-    if "share_TEF" in table:
-        share = table["share_TEF"].where(ok, -1.0).fillna(-1.0)
-        cand = table[ok & (share >= FLUTTER_SHARE)]
-        if not cand.empty:
-            best = cand.groupby("point", sort=False)["real_part"].idxmax()
-            table.loc[best.to_numpy(), "flutter_root"] = True
-    first = next((k for k in order if k in main_keys), None)
-    if first is None:
-        return {}
-    rows = table[ok & (table["key"] == first)]
-    mode_row, method = _anchor_row(records[first], pd.DataFrame(records[first]["modes"]),
-                                   use_anchor)
-    if mode_row is None:
-        return {}
-    row = rows.index[rows["mode_id"] == mode_row][0]
-    # the branch goes on past an undecided match (tefcore.modes.tracking.follow_branch);
-    # a coalescence is a documented convention (the less stable root goes
-    # on), not a doubt; an undecided match is
-    step_of = {k: i for i, k in enumerate(order)}
-    tracked = table[ok].assign(step=table.loc[ok, "key"].map(step_of))
-    path = _branch(tracked, records, order, step_of[first], mode_row)
-    where = {(order[s], m): c for s, m, c in
-             zip(path["step"], path["mode_id"], path["certain"], strict=True)}
-    hit = [where.get((k, int(m))) if good else None
-           for k, m, good in zip(table["key"], table["mode_id"], ok, strict=True)]
-    table["tef_branch"] = [h is not None for h in hit]
-    table["tef_branch_certain"] = [bool(h) for h in hit]          # None: not on it
-    return {"point": int(table.at[row, "point"]), "mode_id": int(table.at[row, "mode_id"]),
-            "method": method}
-
-
 def _build_table(parameter, values, keys, records, anchor=True):
     """Tidy, tracked table from the records (key -> record), in parameter order."""
     n = len(values)
@@ -658,7 +592,9 @@ def _build_table(parameter, values, keys, records, anchor=True):
     index_of = dict(main)
     index_of.update({k: n + r for r, k in enumerate(extra)})
     order = _ok_in_order({k: records[k] for k in index_of})
-    tracked = _track(records, order)
+    points = _points(records, order)
+    values_si = [float(records[k]["value_si"]) for k in order]
+    tracked = track_modes(points, values=values_si)
     tracked.insert(0, "key", np.asarray(order, dtype=object)[tracked.pop("step").to_numpy(int)])
     all_keys = list(keys) + extra
     info = pd.DataFrame({
@@ -684,7 +620,9 @@ def _build_table(parameter, values, keys, records, anchor=True):
     si = pd.to_numeric(table["value_si"], errors="coerce")
     table = table.assign(_x=si.fillna(np.inf)).sort_values(
         ["_x", "point", "track"], kind="stable", ignore_index=True).drop(columns="_x")
-    anchor = _roles(table, records, order, set(keys), anchor)
+    first = next((k for k in order if k in main), None)
+    anchor = assign_roles(table, points, values_si, order, first,
+                          records[first].get("anchor") if first is not None else None, anchor)
     modes = {index_of[k]: pd.DataFrame(records[k]["modes"]) for k in order}
     shapes = {index_of[k]: decode_complex(records[k]["vectors"]) for k in order
               if records[k].get("vectors") is not None}
@@ -751,7 +689,7 @@ def sweep(cfg: Config, parameter: str, values, *, point: Callable | None = None,
         ``refinement > 0``.
     anchor : bool
         Identify the TEF branch at the sweep start by continuation from zero
-        coupling (:func:`tefcore.linear.mechanism.tef_root`) where the point function's
+        coupling (:func:`tefcore.modes.continuation.tef_root`) where the point function's
         result carries its linear system; otherwise by the largest flap
         participation.
 
