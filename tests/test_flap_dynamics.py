@@ -5,15 +5,14 @@ import pytest
 from numpy.testing import assert_allclose
 
 from tefcore.config.io import load_config
+from tefcore.fourier import spectral_derivative
 from tefcore.model.flap import (
     FlapProperties,
-    SectionMotion,
     centrifugal_hinge_moment,
     flap_natural_frequency,
     flap_properties,
-    flap_response,
-    spectral_derivative,
 )
+from tefcore.model.section_response import SectionMotion, flap_response
 
 OMEGA = 41.05                      # MDART rotor speed [rad/s]
 
@@ -154,7 +153,7 @@ def test_aerodynamic_balance_cuts_actuation_power_and_raises_response():
     # toward the flap's centre of pressure, so for the same actuator input the
     # hinge moment the actuator fights falls (less power) and the flap follows
     # the aerodynamic load further (larger response) - the mechanism of Fig. 7.
-    from tefcore.model.flap import section_overhang_study
+    from tefcore.model.section_response import section_overhang_study
 
     cfg = load_config("mdart")
     f = lambda q: np.deg2rad(2) * np.cos(4 * q - np.deg2rad(240))  # noqa: E731

@@ -8,12 +8,13 @@ from numpy.testing import assert_allclose
 
 from tefcore import floquet
 from tefcore.config.io import load_config
+from tefcore.fourier import fourier_eval
 from tefcore.linear.stability import linearize, stability, state_matrix
 from tefcore.model.coupled import coupled_model
 from tefcore.model.flap import flap_natural_frequency, flap_properties
 from tefcore.paper.calibration import mode_frequency
 from tefcore.structure.blade import blade_modes
-from tefcore.trimming.trim import TrimError, fourier_eval, trim
+from tefcore.trimming.trim import TrimError, trim
 
 
 @pytest.fixture(scope="module")

@@ -31,51 +31,7 @@ from ._analysis import floquet_modes
 from ._result import constant_coefficient_modes
 
 __all__ = ["STATE_MIN_RATE", "SecondOrderSystem", "augmented_state_matrix", "combine",
-           "state_matrix", "trig_interpolate"]
-
-
-def trig_interpolate(samples, psi, derivative: int = 0) -> np.ndarray:
-    """Trigonometric interpolant of periodic samples and its exact derivatives.
-
-    ``samples`` has the equally spaced azimuths ``2 pi j / N`` on its first
-    axis; the interpolant is the unique trigonometric polynomial of degree
-    ``N/2`` through them with the Nyquist term (even ``N``) as a cosine, and
-    ``derivative`` differentiates that very function (so the derivative of
-    the Nyquist term is kept: it vanishes on the grid, not between).
-
-    Parameters
-    ----------
-    samples : array_like, shape (N, ...)
-        Values at the azimuths ``2 pi j / N``.
-    psi : array_like, shape (m,)
-        Azimuths to evaluate at [rad].
-    derivative : int
-        Order of the psi-derivative.
-
-    Returns
-    -------
-    ndarray, shape (m, ...)
-
-    Examples
-    --------
-    >>> grid = np.linspace(0, 2 * np.pi, 8, endpoint=False)
-    >>> f = np.cos(4 * grid) + np.sin(grid)
-    >>> psi = np.array([0.3])
-    >>> bool(np.allclose(trig_interpolate(f, psi, 1), -4 * np.sin(4 * psi) + np.cos(psi)))
-    True
-    """
-    s = np.asarray(samples, float)
-    n = s.shape[0]
-    psi = np.atleast_1d(np.asarray(psi, float))
-    c = np.fft.rfft(s, axis=0) / n
-    k = np.arange(c.shape[0])
-    weight = np.where((k == 0) | ((n % 2 == 0) & (k == n // 2)), 1.0, 2.0)
-    # the Nyquist coefficient of real samples is real: its term is the
-    # cosine c cos(k psi), and Re[(ik)^d c e^{ik psi}] its exact derivative
-    coef = c * (weight * (1j * k) ** derivative).reshape((-1,) + (1,) * (s.ndim - 1))
-    basis = np.exp(1j * np.outer(psi, k))                   # (m, n_k)
-    flat = coef.reshape(coef.shape[0], -1)
-    return np.real(basis @ flat).reshape((psi.size,) + s.shape[1:])
+           "state_matrix"]
 
 
 #: With first-order (aerodynamic) states, roots damped faster than this
@@ -156,7 +112,7 @@ class SecondOrderSystem:
     def _fourier(self):
         """Real Fourier coefficients of the stacked ``M, C, K``: ``(a_k, b_k, k)`` with
         ``f(psi) = sum_k a_k cos(k psi) + b_k sin(k psi)`` (the Nyquist term a cosine,
-        as :func:`trig_interpolate`)."""
+        as :func:`tefcore.fourier.trig_interpolate`)."""
         s = np.stack([self.m, self.c, self.k], axis=1)
         n = s.shape[0]
         c = np.fft.rfft(s, axis=0) / n

@@ -146,7 +146,7 @@ def linearized_terms(tr, psi=None) -> dict[str, SecondOrderSystem]:
 
     model = tr.model
     if psi is None:
-        psi = (np.zeros(1) if model.cfg.flight.advance_ratio == 0.0 else
+        psi = (np.zeros(1) if model.hover else
                np.linspace(0, 2 * np.pi, model.cfg.model.n_azimuth, endpoint=False))
     y, yd, ydd, inflow = tr.linear_point(psi)
     jac, _, _ = jacobian_blocks(model, psi, y, yd, ydd, tr.controls, inflow, step=1e-6,

@@ -241,7 +241,7 @@ def linear_system(tr: TrimResult) -> SecondOrderSystem:
         # the trim's Newton Jacobian at the solution, on the same grid
         k, c, m = blocks
         return SecondOrderSystem(m, c, k)
-    if model.cfg.flight.advance_ratio == 0.0:
+    if model.hover:
         psi = np.zeros(1)
     else:
         psi = np.linspace(0, 2 * np.pi, model.cfg.model.n_azimuth, endpoint=False)
@@ -374,5 +374,5 @@ def _reverse_flow_fraction(tr: TrimResult) -> float:
     """Share of the aerodynamic stations and azimuths in reverse flow (U_T < 0)."""
     model = tr.model
     psi = np.linspace(0, 2 * np.pi, 72, endpoint=False)
-    ut = model.x[None, :] + model.cfg.flight.advance_ratio * np.sin(psi)[:, None]
+    ut = model.x[None, :] + model.flight.advance_ratio * np.sin(psi)[:, None]
     return float(np.mean(ut < 0))

@@ -169,6 +169,16 @@ class CoupledModel:
     cache: dict = field(default_factory=dict, repr=False, compare=False)
 
     @property
+    def flight(self):
+        """The flight condition the model is for (:class:`tefcore.config.sections.FlightConfig`)."""
+        return self.cfg.flight
+
+    @property
+    def hover(self) -> bool:
+        """True in hover (``advance_ratio == 0``): the coefficients are constant."""
+        return self.cfg.flight.advance_ratio == 0.0
+
+    @property
     def n_dof(self) -> int:
         """Blade modes and flap: the second-order coordinates."""
         return self.n_modes + int(self.has_flap)
@@ -236,7 +246,7 @@ class CoupledModel:
 
     def actuator_input(self, psi):
         """Actuator base angle ``delta_a(psi)`` and its psi-derivative [rad]."""
-        f = self.cfg.flight
+        f = self.flight
         arg = f.actuator_harmonic * psi - f.actuator_phase
         return (f.actuator_amplitude * np.cos(arg),
                 -f.actuator_amplitude * f.actuator_harmonic * np.sin(arg))
@@ -282,7 +292,7 @@ class CoupledModel:
         ph, phd, phdd = k.pop("phi"), k.pop("phid"), k.pop("phidd")
         theta, theta_d, theta_dd = self.pitch(psi, controls, twist)
         k["theta"], k["theta_d"], k["theta_dd"] = theta + ph, theta_d + phd, theta_dd + phdd
-        mu = self.cfg.flight.advance_ratio
+        mu = self.flight.advance_ratio
         k["slope"] = k["dw"] + self.cfg.rotor.precone
         k["ut"] = x[None, :] + mu * np.sin(psi)[:, None] + k["vd"]
         k["up"] = (inflow(x[None, :], psi[:, None]) + k["wd"]

@@ -1,4 +1,4 @@
-"""Trailing-edge flap and actuator dynamics (docs/theory.md section 4).
+"""The trailing-edge flap and its actuator: the flap's equation, written once (theory 4).
 
 The flap is a rigid chordwise body hinged to the blade section, driven
 through the actuator: a torsional spring ``k_a`` and damper ``c_a`` between
@@ -16,26 +16,25 @@ flap's own pitch, ``eta_h`` the hinge position ahead of the elastic axis
 (negative: the hinge is aft), ``S_f = m_f c_cg`` and ``I_h`` the flap's first
 and second mass moments about its hinge (``c_cg`` positive aft).
 
-Everything here is SI (seconds, not azimuth): these are the section-level
-analyses behind the paper's Figs. 5-7, with the section motion prescribed.
+:func:`flap_moments` is that equation's left-hand side per unit span, term by
+term, together with the flap's reactions on the blade: the rotor model's
+station terms (:mod:`tefcore.model.station_terms`, rotor units) and the
+section analyses of Figs. 5-7 (:mod:`tefcore.model.section_response`, SI) both
+use it; :func:`propeller_moment` is its centrifugal part alone.  The
+aerodynamic hinge moment ``H_aero`` is the section model's
+(``loads()["hinge_moment"]``, :mod:`tefcore.aero`).
 """
 
 from __future__ import annotations
 
-import functools
 from dataclasses import dataclass
 
 import numpy as np
-import pandas as pd
-import scipy.optimize
 
 from ..structure.beam_element import gauss_legendre
 
-__all__ = ["FlapProperties", "FlapResponse", "SectionMotion", "aerodynamic_hinge_moment",
-           "azimuth_grid", "centrifugal_hinge_moment", "flap_natural_frequency",
-           "flap_properties", "flap_response", "hinge_moment_history",
-           "inertial_hinge_moment", "propeller_moment", "rotor_motion",
-           "rotor_section_motion", "section_overhang_study", "spectral_derivative"]
+__all__ = ["FlapProperties", "centrifugal_hinge_moment", "flap_moments",
+           "flap_natural_frequency", "flap_properties", "propeller_moment"]
 
 
 @dataclass(frozen=True)
@@ -122,14 +121,25 @@ def flap_properties(cfg) -> FlapProperties:
                           k_a=cfg.actuator.stiffness, c_a=cfg.actuator.damping)
 
 
+def _flap_pitch(c, s, cd, sd):
+    """``sin Phi, cos Phi`` of the flap's pitch ``Phi = Theta + delta`` by angle addition."""
+    return s * cd + c * sd, c * cd - s * sd
+
+
+def _propeller(ih, sf, eta, c, s_f, c_f):
+    """``I_h sin Phi cos Phi - S_f eta_h cos Theta sin Phi``."""
+    return ih * s_f * c_f - sf * eta * c * s_f
+
+
 def propeller_moment(inertia_hinge, first_moment, hinge_from_ea, pitch, delta):
     """Centrifugal (propeller) moment on the flap per unit span and per Omega^2.
 
     ``I_h sin Phi cos Phi - S_f eta_h cos Theta sin Phi`` with
     ``Phi = Theta + delta``, in whatever consistent units the inertias carry
-    (SI here, rotor units in :mod:`tefcore.model.coupled`). It sits on the inertial
-    side of the flap equation, so it restores the flap toward the plane of
-    rotation.
+    (SI in the section analyses, rotor units in the coupled model:
+    :func:`flap_moments`, which computes it the same way). It sits on the
+    inertial side of the flap equation, so it restores the flap toward the
+    plane of rotation.
 
     Parameters
     ----------
@@ -147,10 +157,110 @@ def propeller_moment(inertia_hinge, first_moment, hinge_from_ea, pitch, delta):
     Returns
     -------
     float or numpy.ndarray
+
+    Examples
+    --------
+    A flap with its CG on the hinge (``S_f = 0``) at ``Phi = 45 deg``:
+    ``I_h sin Phi cos Phi = I_h / 2``.
+
+    >>> round(float(propeller_moment(2.0, 0.0, -0.1, np.pi / 8, np.pi / 8)), 12)
+    1.0
     """
-    phi = pitch + delta
-    return (inertia_hinge * np.sin(phi) * np.cos(phi)
-            - first_moment * hinge_from_ea * np.cos(pitch) * np.sin(phi))
+    c, s = np.cos(pitch), np.sin(pitch)
+    s_f, c_f = _flap_pitch(c, s, np.cos(delta), np.sin(delta))
+    return _propeller(inertia_hinge, first_moment, hinge_from_ea, c, s_f, c_f)
+
+
+def flap_moments(inertia_hinge, first_moment, hinge_from_ea, x, pitch, pitch_accel,
+                 plunge_accel, delta, delta_rate, delta_accel, *, slope, v=0.0, lag_slope=0.0,
+                 lag_accel=0.0, lag_slope_rate=0.0, slope_rate=0.0, omega=None,
+                 sin=np.sin, cos=np.cos):
+    """The flap's equation per unit span, term by term, and its reactions on the blade.
+
+    The left-hand side of the flap equation (module docstring; docs/theory.md
+    4.1) and the flap's delta-dependent inertial loads on the blade (4.2) at
+    one or many stations and azimuths.  In rotor units (the coupled model:
+    derivatives per azimuth, lengths per R) ``omega`` is None; in SI (time
+    derivatives, metres) it is the rotor speed, which scales the centrifugal
+    terms by ``Omega^2`` and the Coriolis terms by ``Omega``.
+
+    Parameters
+    ----------
+    inertia_hinge, first_moment, hinge_from_ea : float
+        ``I_h``, ``S_f``, ``eta_h`` per unit span (module docstring).
+    x : float or numpy.ndarray
+        Radial station.
+    pitch, pitch_accel : numpy.ndarray
+        Section pitch ``Theta`` and its second derivative.
+    plunge_accel : numpy.ndarray
+        Flapwise acceleration ``w**`` of the section.
+    delta, delta_rate, delta_accel : numpy.ndarray
+        Flap deflection and its derivatives.
+    slope : numpy.ndarray
+        Flap slope ``w' + beta_p``.
+    v, lag_slope, lag_accel, lag_slope_rate, slope_rate : numpy.ndarray or float, optional
+        Lag deflection ``v``, slope ``v'``, acceleration ``v**``, slope rate
+        ``v'*`` and flap slope rate ``w'*`` (0: a section without lag motion).
+    omega : float, optional
+        Rotor speed in SI; None in rotor units.
+    sin, cos : callable, optional
+        The sine and cosine (the coupled model passes its complex-step forms).
+
+    Returns
+    -------
+    flap_row : dict of str to numpy.ndarray
+        The named pieces of the flap equation's left-hand side (the
+        aerodynamic hinge moment and the actuator aside): ``flap inertia``,
+        ``flap inertial coupling to torsion``, ``flap inertial coupling to
+        bending``, ``flap centrifugal``, ``flap Coriolis``.
+    blade : list of (str, str, numpy.ndarray)
+        ``(piece, field, load)``: the flap's loads on the blade through the
+        fields ``w, v, phi, dw, dv`` of the mode shapes.
+
+    Examples
+    --------
+    A balanced flap (``S_f = 0``) at rest in the plane of rotation
+    (``Theta = 0``) deflected by ``delta``: only the propeller moment
+    ``I_h sin delta cos delta`` remains.
+
+    >>> row, _ = flap_moments(2.0, 0.0, -0.1, 0.8, np.zeros(1), np.zeros(1), np.zeros(1),
+    ...                       np.full(1, 0.1), np.zeros(1), np.zeros(1), slope=np.zeros(1))
+    >>> round(float(row["flap centrifugal"][0]), 12) == round(float(np.sin(0.2)), 12)
+    True
+    """
+    ih, sf, eta = inertia_hinge, first_moment, hinge_from_ea
+    dl, dld, dldd = delta, delta_rate, delta_accel
+    th, th_dd, wdd = pitch, pitch_accel, plunge_accel
+    c, s = cos(th), sin(th)
+    cd, sd = cos(dl), sin(dl)
+    ipe = ih - sf * eta
+    s_f, c_f = _flap_pitch(c, s, cd, sd)
+    s2, c2 = 2 * s * c, c * c - s * s                         # sin, cos 2 Theta
+    m_cf = ih * (s_f * c_f - s * c) - eta * sf * ((s2 * cd + c2 * sd) - s2)
+    prop = _propeller(ih, sf, eta, c, s_f, c_f)
+    centrifugal = prop - sf * x * (slope * c - lag_slope * s) - sf * v * s
+    coriolis = ipe * (lag_slope_rate * s2 + slope_rate * (1 - c2))
+    if omega is not None:                   # SI: Omega^2 and Omega per the derivatives
+        centrifugal, coriolis = omega**2 * centrifugal, omega * coriolis
+    flap_row = {
+        "flap inertia": ih * dldd,
+        "flap inertial coupling to torsion": ipe * th_dd,
+        "flap inertial coupling to bending": -sf * (wdd * c - lag_accel * s),
+        "flap centrifugal": centrifugal,
+        "flap Coriolis": coriolis,
+    }
+    if omega is not None:
+        m_cf, dl, dld = omega**2 * m_cf, omega**2 * dl, omega * dld
+    blade = [("flap inertial coupling to bending", "w", -sf * c * dldd),
+             ("flap inertial coupling to bending", "v", sf * s * dldd),
+             ("flap inertial coupling to torsion", "phi", ipe * dldd),
+             ("flap centrifugal", "v", -sf * s * dl),
+             ("flap centrifugal", "phi", m_cf),
+             ("flap centrifugal", "dw", -sf * x * c * dl),
+             ("flap centrifugal", "dv", sf * x * s * dl),
+             ("flap Coriolis", "dw", -2 * ipe * s * s * dld),
+             ("flap Coriolis", "dv", -2 * ipe * s * c * dld)]
+    return flap_row, blade
 
 
 def centrifugal_hinge_moment(props: FlapProperties, rotor_speed, pitch, delta):
@@ -210,478 +320,3 @@ def flap_natural_frequency(props: FlapProperties, rotor_speed: float, pitch: flo
     return np.sqrt((props.k_a + props.span * k_cf) / (props.span * props.inertia_hinge))
 
 
-@dataclass
-class SectionMotion:
-    """Prescribed blade-section motion over one revolution at one station.
-
-    All callables take the azimuth ``psi`` [rad] (array) and return SI
-    values: ``velocity`` [m/s], ``alpha`` [rad] and its time derivatives
-    ``alpha_rate`` [rad/s], ``alpha_accel``, the plunge (up) velocity and
-    acceleration of the elastic axis, and the section pitch ``pitch`` with
-    ``pitch_accel`` (for the flap inertia), ``flap_slope`` w' and
-    ``flap_accel`` (w** of the section, for the flap's first moment).
-
-    Attributes
-    ----------
-    velocity : callable
-        Tangential velocity U_T [m/s].
-    alpha : callable
-        Angle of attack [rad].
-    alpha_rate, alpha_accel : callable
-        Its first and second time derivatives [rad/s, rad/s^2].
-    plunge_rate, plunge_accel : callable
-        Upward velocity [m/s] and acceleration [m/s^2] of the elastic axis.
-    pitch, pitch_accel : callable
-        Section pitch Theta [rad] and its second time derivative [rad/s^2].
-    flap_slope : callable
-        Blade flap slope w' [-].
-    flap_accel : callable
-        Flap-wise acceleration w** of the section [m/s^2].
-    """
-
-    velocity: object
-    alpha: object
-    alpha_rate: object
-    alpha_accel: object
-    plunge_rate: object
-    plunge_accel: object
-    pitch: object
-    pitch_accel: object
-    flap_slope: object
-    flap_accel: object
-
-
-def rotor_section_motion(cfg, x: float, *, advance_ratio: float, collective: float,
-                         cyclic_cos: float = 0.0, cyclic_sin: float = 0.0,
-                         inflow: float = 0.0, coning: float = 0.0) -> SectionMotion:
-    """Section motion of a rigid blade with zero cyclic flapping (wind-tunnel trim).
-
-    ``U_T = Omega R (x + mu sin psi)``, ``U_P = Omega R (lambda + mu beta_0 cos psi)``,
-    ``theta = theta_0 + theta_1c cos psi + theta_1s sin psi`` (pretwist
-    included at ``x``), ``alpha = theta - U_P / U_T``.
-
-    Parameters
-    ----------
-    cfg : tefcore.config.sections.Config
-        The rotor configuration.
-    x : float
-        Station, fraction of R.
-    advance_ratio, collective, cyclic_cos, cyclic_sin, inflow, coning : float
-        mu, theta_75 [rad], theta_1c, theta_1s [rad], inflow ratio lambda
-        (positive down through the disk), coning beta_0 [rad].
-
-    Returns
-    -------
-    SectionMotion
-    """
-    om, rad = cfg.rotor.rotor_speed, cfg.rotor.radius
-    tw = np.interp(x, cfg.blade.stations, cfg.blade.twist) - np.interp(
-        0.75, cfg.blade.stations, cfg.blade.twist)
-    mu = advance_ratio
-
-    def theta(p):
-        return collective + tw + cyclic_cos * np.cos(p) + cyclic_sin * np.sin(p)
-
-    def theta_dd(p):       # d2/dt2 = Omega^2 d2/dpsi2
-        return -om**2 * (cyclic_cos * np.cos(p) + cyclic_sin * np.sin(p))
-
-    def ut(p):
-        return om * rad * (x + mu * np.sin(p))
-
-    def up(p):
-        return om * rad * (inflow + mu * coning * np.cos(p))
-
-    def alpha(p):
-        return theta(p) - up(p) / ut(p)
-
-    def d_dt(f, p, h=1e-4):  # central difference in psi, exact enough for smooth f
-        return om * (f(p + h) - f(p - h)) / (2 * h)
-
-    return SectionMotion(
-        velocity=ut, alpha=alpha,
-        alpha_rate=lambda p: d_dt(alpha, p),
-        alpha_accel=lambda p: om * (d_dt(alpha, p + 1e-4) - d_dt(alpha, p - 1e-4)) / 2e-4,
-        plunge_rate=lambda p: np.zeros_like(np.asarray(p, float)),
-        plunge_accel=lambda p: np.zeros_like(np.asarray(p, float)),
-        pitch=theta, pitch_accel=theta_dd,
-        flap_slope=lambda p: np.full_like(np.asarray(p, float), coning),
-        flap_accel=lambda p: np.zeros_like(np.asarray(p, float)))
-
-
-def rotor_motion(cfg, **controls):
-    """Factory ``motion_at(r)`` of :func:`rotor_section_motion` by radius [m].
-
-    Parameters
-    ----------
-    cfg : tefcore.config.sections.Config
-        The rotor configuration.
-    **controls
-        Keyword arguments of :func:`rotor_section_motion` (``advance_ratio``,
-        ``collective``, ...).
-
-    Returns
-    -------
-    callable
-        ``motion_at(r) -> SectionMotion``.
-    """
-    radius = cfg.rotor.radius
-    return lambda r: rotor_section_motion(cfg, r / radius, **controls)
-
-
-def spectral_derivative(n: int) -> np.ndarray:
-    """d/dpsi on ``n`` equally spaced periodic points (Fourier collocation).
-
-    Exact for trigonometric polynomials of degree below n/2 (the Nyquist
-    term, whose derivative is ambiguous on the grid, is dropped).
-
-    Parameters
-    ----------
-    n : int
-        Number of points.
-
-    Returns
-    -------
-    numpy.ndarray
-        The ``(n, n)`` differentiation matrix (a copy: callers may change it).
-
-    Examples
-    --------
-    >>> psi = np.linspace(0, 2 * np.pi, 16, endpoint=False)
-    >>> bool(np.allclose(spectral_derivative(16) @ np.sin(3 * psi), 3 * np.cos(3 * psi)))
-    True
-    """
-    return _spectral_derivative(int(n)).copy()
-
-
-@functools.lru_cache(maxsize=16)
-def _spectral_derivative(n: int) -> np.ndarray:
-    k = np.fft.fftfreq(n, 1.0 / n)
-    if n % 2 == 0:
-        k[n // 2] = 0.0
-    return np.real(np.fft.ifft(1j * k[:, None] * np.fft.fft(np.eye(n), axis=0), axis=0))
-
-
-def azimuth_grid(n: int = 72) -> np.ndarray:
-    """``n`` equally spaced azimuths over one revolution [rad].
-
-    Parameters
-    ----------
-    n : int, optional
-        Number of azimuths.
-
-    Returns
-    -------
-    numpy.ndarray
-        ``2 pi k / n``, k = 0 .. n-1.
-    """
-    return np.linspace(0.0, 2 * np.pi, n, endpoint=False)
-
-
-def _strips(props, motion_at, n_span):
-    r_pts, weights = props.stations(n_span)
-    return [(r, w, motion_at(r)) for r, w in zip(r_pts, weights, strict=True)]
-
-
-def aerodynamic_hinge_moment(aero, props: FlapProperties, motion_at, psi, delta, delta_rate,
-                             delta_accel, *, density: float, speed_of_sound: float,
-                             n_span: int = 3):
-    """Aerodynamic hinge moment of the whole flap [N m], positive TE down.
-
-    Strip theory over the flap span with ``n_span`` Gauss points;
-    ``motion_at(r)`` gives the :class:`SectionMotion` at radius ``r`` [m] and
-    ``aero`` is a section model with the ``loads`` interface
-    (:class:`tefcore.aero.thin_airfoil.ThinAirfoilFlap` or a C81 table model).
-    ``delta_rate``/``delta_accel`` are time derivatives [rad/s, rad/s^2].
-
-    Parameters
-    ----------
-    aero : object
-        Section aerodynamics with the ``loads`` interface
-        (:class:`tefcore.aero.thin_airfoil.ThinAirfoilFlap` or
-        :class:`tefcore.aero.c81.C81FlapTable`).
-    props : FlapProperties
-        The flap (:func:`flap_properties`).
-    motion_at : callable
-        ``motion_at(r)``: the :class:`SectionMotion` at radius ``r`` [m]
-        (e.g. :func:`rotor_motion`).
-    psi : numpy.ndarray
-        Azimuths [rad].
-    delta, delta_rate, delta_accel : numpy.ndarray
-        Flap deflection [rad] and its time derivatives [rad/s, rad/s^2] at ``psi``.
-    density : float
-        Air density [kg/m^3].
-    speed_of_sound : float
-        [m/s], for the Mach number of each strip.
-    n_span : int, optional
-        Gauss points over the flap span.
-
-    Returns
-    -------
-    numpy.ndarray
-        The hinge moment at ``psi`` [N m].
-    """
-    total = 0.0
-    for _, wgt, m in _strips(props, motion_at, n_span):
-        vel = m.velocity(psi)
-        out = aero.loads(alpha=m.alpha(psi), alpha_rate=m.alpha_rate(psi),
-                         alpha_accel=m.alpha_accel(psi), plunge_rate=m.plunge_rate(psi),
-                         plunge_accel=m.plunge_accel(psi), delta=delta, delta_rate=delta_rate,
-                         delta_accel=delta_accel, velocity=vel, density=density,
-                         chord=props.chord, mach=vel / speed_of_sound)
-        total = total + wgt * out["hinge_moment"]
-    return total
-
-
-def inertial_hinge_moment(props: FlapProperties, motion_at, psi, delta, delta_accel, *,
-                          rotor_speed: float, n_span: int = 3):
-    """Inertial and centrifugal moment of the whole flap [N m] (left-hand side).
-
-    ``int [I_h (delta** + Theta**) - S_f eta_h Theta** - S_f w** cos Theta
-    + M_cf(Theta, delta) - Omega^2 S_f r w' cos Theta] dr`` for a section with
-    no lag motion (the lag and Coriolis terms of docs/theory.md section 4
-    enter through the coupled model).
-
-    Parameters
-    ----------
-    props : FlapProperties
-        The flap (:func:`flap_properties`).
-    motion_at : callable
-        ``motion_at(r)``: the :class:`SectionMotion` at radius ``r`` [m]
-        (e.g. :func:`rotor_motion`).
-    psi : numpy.ndarray
-        Azimuths [rad].
-    delta, delta_accel : numpy.ndarray
-        Flap deflection [rad] and its second time derivative [rad/s^2] at ``psi``.
-    rotor_speed : float
-        Omega [rad/s].
-    n_span : int, optional
-        Gauss points over the flap span.
-
-    Returns
-    -------
-    numpy.ndarray
-        The moment at ``psi`` [N m].
-    """
-    total = 0.0
-    ih, sf, eta = props.inertia_hinge, props.first_moment, props.hinge_from_ea
-    for r, wgt, m in _strips(props, motion_at, n_span):
-        th = m.pitch(psi)
-        th_dd = m.pitch_accel(psi)
-        per_span = (ih * (delta_accel + th_dd) - sf * eta * th_dd
-                    - sf * m.flap_accel(psi) * np.cos(th)
-                    + centrifugal_hinge_moment(props, rotor_speed, th, delta)
-                    - rotor_speed**2 * sf * r * m.flap_slope(psi) * np.cos(th))
-        total = total + wgt * per_span
-    return total
-
-
-def hinge_moment_history(aero, props: FlapProperties, motion_at, delta_f, *,
-                         rotor_speed: float, density: float, speed_of_sound: float,
-                         n_psi: int = 72) -> pd.DataFrame:
-    """Hinge moment over one revolution for a prescribed flap motion (Fig. 5).
-
-    Parameters
-    ----------
-    aero : object
-        Section aerodynamics with the ``loads`` interface
-        (:class:`tefcore.aero.thin_airfoil.ThinAirfoilFlap` or
-        :class:`tefcore.aero.c81.C81FlapTable`).
-    props : FlapProperties
-        The flap (:func:`flap_properties`).
-    motion_at : callable
-        ``motion_at(r)``: the :class:`SectionMotion` at radius ``r`` [m]
-        (e.g. :func:`rotor_motion`).
-    delta_f : callable
-        Flap deflection ``delta_f(psi)`` [rad], e.g.
-        ``lambda p: np.deg2rad(2) * np.cos(4 * p - np.deg2rad(240))``.
-    rotor_speed : float
-        Omega [rad/s].
-    density : float
-        Air density [kg/m^3].
-    speed_of_sound : float
-        [m/s].
-    n_psi : int, optional
-        Azimuths per revolution.
-
-    Returns
-    -------
-    pandas.DataFrame
-        ``psi_deg, delta_deg, hinge_moment_aero, hinge_moment_inertial`` [N m].
-    """
-    psi = azimuth_grid(n_psi)
-    d = spectral_derivative(n_psi) * rotor_speed
-    delta = delta_f(psi)
-    rate, accel = d @ delta, d @ (d @ delta)
-    aero_h = aerodynamic_hinge_moment(aero, props, motion_at, psi, delta, rate, accel,
-                                      density=density, speed_of_sound=speed_of_sound)
-    inert = inertial_hinge_moment(props, motion_at, psi, delta, accel, rotor_speed=rotor_speed)
-    return pd.DataFrame({"psi_deg": np.rad2deg(psi), "delta_deg": np.rad2deg(delta),
-                         "hinge_moment_aero": aero_h, "hinge_moment_inertial": inert})
-
-
-@dataclass
-class FlapResponse:
-    """Periodic flap response to an actuator input, with actuation power.
-
-    Attributes
-    ----------
-    psi : numpy.ndarray
-        Azimuths of one revolution [rad].
-    delta_a : numpy.ndarray
-        Actuator input [rad] at ``psi``.
-    delta_f : numpy.ndarray
-        Flap deflection [rad], positive trailing edge down.
-    hinge_moment_aero : numpy.ndarray
-        Aerodynamic hinge moment of the whole flap [N m].
-    actuator_torque : numpy.ndarray
-        Torque the actuator spring and damper apply to the flap [N m].
-    power : numpy.ndarray
-        Actuation power, torque times actuator rate [W].
-    """
-
-    psi: np.ndarray
-    delta_a: np.ndarray
-    delta_f: np.ndarray
-    hinge_moment_aero: np.ndarray
-    actuator_torque: np.ndarray
-    power: np.ndarray
-
-    @property
-    def half_peak_to_peak(self) -> float:
-        """Half the peak-to-peak flap deflection [rad]."""
-        return 0.5 * float(np.ptp(self.delta_f))
-
-    @property
-    def peak_power(self) -> float:
-        """Largest instantaneous actuation power magnitude [W]."""
-        return float(np.max(np.abs(self.power)))
-
-    @property
-    def mean_power(self) -> float:
-        """Mean absolute actuation power over the revolution [W]."""
-        return float(np.mean(np.abs(self.power)))
-
-
-def flap_response(aero, props: FlapProperties, motion_at, delta_a, *, rotor_speed: float,
-                  density: float, speed_of_sound: float, n_psi: int = 72,
-                  tol: float = 1e-10) -> FlapResponse:
-    """Periodic flap deflection driven through the actuator (Fig. 6).
-
-    Solves, by Fourier collocation on ``n_psi`` azimuths (harmonic balance),
-    ``inertial(delta) + c_a (delta* - delta_a*) + k_a (delta - delta_a)
-    = H_aero(delta, delta*, delta**)`` for the periodic ``delta_f(psi)``.
-
-    Parameters
-    ----------
-    aero : object
-        Section aerodynamics with the ``loads`` interface
-        (:class:`tefcore.aero.thin_airfoil.ThinAirfoilFlap` or
-        :class:`tefcore.aero.c81.C81FlapTable`).
-    props : FlapProperties
-        The flap (:func:`flap_properties`).
-    motion_at : callable
-        ``motion_at(r)``: the :class:`SectionMotion` at radius ``r`` [m]
-        (e.g. :func:`rotor_motion`).
-    delta_a : callable
-        Actuator input ``delta_a(psi)`` [rad].
-    rotor_speed : float
-        Omega [rad/s].
-    density : float
-        Air density [kg/m^3].
-    speed_of_sound : float
-        [m/s].
-    n_psi : int, optional
-        Collocation azimuths per revolution.
-    tol : float, optional
-        Tolerance of :func:`scipy.optimize.root` on the residual (in radians).
-
-    Returns
-    -------
-    FlapResponse
-
-    Raises
-    ------
-    RuntimeError
-        If the collocation equations do not converge (with the residual).
-    """
-    psi = azimuth_grid(n_psi)
-    d = spectral_derivative(n_psi) * rotor_speed
-    da = delta_a(psi)
-    da_rate = d @ da
-
-    def parts(delta):
-        rate, accel = d @ delta, d @ (d @ delta)
-        h = aerodynamic_hinge_moment(aero, props, motion_at, psi, delta, rate, accel,
-                                     density=density, speed_of_sound=speed_of_sound)
-        torque = props.k_a * (da - delta) + props.c_a * (da_rate - rate)
-        inert = inertial_hinge_moment(props, motion_at, psi, delta, accel,
-                                      rotor_speed=rotor_speed)
-        return h, torque, inert
-
-    def residual(delta):
-        h, torque, inert = parts(delta)
-        return (inert - torque - h) / props.k_a       # in radians: well scaled
-
-    def jacobian(delta, h=1e-7):
-        # forward differences with a step suited to radians (hybr's default
-        # step, ~1e-8 |delta|, is lost in round-off for sub-degree motions)
-        r0 = residual(delta)
-        return np.stack([(residual(delta + h * e) - r0) / h for e in np.eye(n_psi)], axis=1)
-
-    sol = scipy.optimize.root(residual, da.copy(), jac=jacobian, method="hybr", tol=tol)
-    if not sol.success or np.max(np.abs(sol.fun)) > 1e-8:
-        raise RuntimeError(f"flap response did not converge: {sol.message}; "
-                           f"max residual {np.max(np.abs(sol.fun)):.3e} rad")
-    h, torque, _ = parts(sol.x)
-    return FlapResponse(psi=psi, delta_a=da, delta_f=sol.x, hinge_moment_aero=h,
-                        actuator_torque=torque, power=torque * da_rate)
-
-
-def section_overhang_study(cfg, overhangs, delta_a, *, controls: dict, n_psi: int = 72,
-                           aero_factory=None) -> pd.DataFrame:
-    """Section-level actuation power and flap response versus overhang (Fig. 7).
-
-    The flap (at the configured station, rigid-blade section motion of
-    :func:`rotor_section_motion` with ``controls``) is driven by
-    ``delta_a(psi)``; for each overhang the periodic response is solved.
-
-    Parameters
-    ----------
-    cfg : tefcore.config.sections.Config
-        The rotor configuration.
-    overhangs : sequence of float
-        c_b / c_f values.
-    delta_a : callable
-        Actuator input [rad] versus azimuth.
-    controls : dict
-        Keyword arguments of :func:`rotor_section_motion` (advance_ratio,
-        collective, cyclic_cos, cyclic_sin, inflow, coning).
-    aero_factory : callable, optional
-        ``aero_factory(cfg) -> section model``; default the thin-airfoil model
-        with the configured lift slope.
-    n_psi : int, optional
-        Collocation azimuths per revolution.
-
-    Returns
-    -------
-    pandas.DataFrame
-        ``overhang, half_peak_to_peak_deg, peak_power, mean_power`` [W].
-    """
-    from ..aero.thin_airfoil import ThinAirfoilFlap
-
-    def default(c):
-        return ThinAirfoilFlap(c.flap.chord_ratio, c.flap.overhang,
-                               lift_slope=c.rotor.lift_slope)
-
-    aero_factory = aero_factory or default
-    motion = rotor_motion(cfg, **controls)
-    rows = []
-    for ov in overhangs:
-        c = cfg.with_overrides({"flap.overhang": float(ov)})
-        out = flap_response(aero_factory(c), flap_properties(c), motion, delta_a,
-                            rotor_speed=c.rotor.rotor_speed, density=c.rotor.air_density,
-                            speed_of_sound=c.rotor.speed_of_sound, n_psi=n_psi)
-        rows.append({"overhang": float(ov),
-                     "half_peak_to_peak_deg": np.rad2deg(out.half_peak_to_peak),
-                     "peak_power": out.peak_power, "mean_power": out.mean_power})
-    return pd.DataFrame(rows)

@@ -384,7 +384,7 @@ def exact_jacobian(model: CoupledModel, psi, q, qd, qdd, controls, inflow, *,
                 arr[out_names.index(t.field), rows, :, where] += d
     out_maps, t_flat, by_order = st["out_maps"], st["t_flat"], st["by_order"]
     up = st["up"]
-    mu = model.cfg.flight.advance_ratio
+    mu = model.flight.advance_ratio
     # U_P = lambda + w* + mu (w' + beta_p) cos psi (+ nu_0 + x nu_R): order 0 too
     up0 = np.zeros((n_psi, n_x, n_rows))
     up0[:, :, :nm] = mu * np.cos(psi)[:, None, None] * model.shapes["dw"][None]

@@ -47,6 +47,8 @@ from typing import NamedTuple
 
 import numpy as np
 
+from .flap import flap_moments
+
 __all__ = ["FLAP_VARIABLES", "STATION_VARIABLES", "StationTerm", "airload_terms",
            "local_variables", "station_terms"]
 
@@ -262,37 +264,14 @@ def airload_terms(model, out, sign, cphi, sphi, wq, prefix, flap_only=False):
 
 def _flap_terms(model, loc, th, th_dd, wdd, hinge, x, wf):
     """The flap's reactions on the blade and its own equation (docs/theory.md 4.1, 4.2),
-    per flap station: delta-dependent inertial loads on ``w, v, phi, w', v'`` and
-    the station terms of the flap row."""
+    per flap station (:func:`tefcore.model.flap.flap_moments`), and the aerodynamic
+    hinge moment on the flap row."""
     f = model.flap
-    ih, sf, eta = f["inertia_hinge"], f["first_moment"], f["hinge_from_ea"]
-    dl, dld, dldd = loc["dl"], loc["dld"], loc["dldd"]
-    c, s = _cos(th), _sin(th)
-    cd, sd = _cos(dl), _sin(dl)
-    ipe = ih - sf * eta
-    # the flap's pitch Phi = Theta + delta by the angle-addition formulas
-    s_f, c_f = s * cd + c * sd, c * cd - s * sd
-    s2, c2 = 2 * s * c, c * c - s * s                         # sin, cos 2 Theta
-    m_cf = ih * (s_f * c_f - s * c) - eta * sf * ((s2 * cd + c2 * sd) - s2)
-    # propeller moment (tefcore.model.flap.propeller_moment)
-    prop = ih * s_f * c_f - sf * eta * c * s_f
-    flap_row = {
-        "flap inertia": ih * dldd,
-        "flap inertial coupling to torsion": ipe * th_dd,
-        "flap inertial coupling to bending": -sf * (wdd * c - loc["vdd"] * s),
-        "flap centrifugal": (prop - sf * x * (loc["slope"] * c - loc["dv"] * s)
-                             - sf * loc["v"] * s),
-        "flap Coriolis": ipe * (loc["dvd"] * s2 + loc["dwd"] * (1 - c2)),
-        "airload hinge moment": -hinge,
-    }
-    blade = [("flap inertial coupling to bending", "w", -sf * c * dldd),
-             ("flap inertial coupling to bending", "v", sf * s * dldd),
-             ("flap inertial coupling to torsion", "phi", ipe * dldd),
-             ("flap centrifugal", "v", -sf * s * dl),
-             ("flap centrifugal", "phi", m_cf),
-             ("flap centrifugal", "dw", -sf * x * c * dl),
-             ("flap centrifugal", "dv", sf * x * s * dl),
-             ("flap Coriolis", "dw", -2 * ipe * s * s * dld),
-             ("flap Coriolis", "dv", -2 * ipe * s * c * dld)]
+    flap_row, blade = flap_moments(
+        f["inertia_hinge"], f["first_moment"], f["hinge_from_ea"], x, th, th_dd, wdd,
+        loc["dl"], loc["dld"], loc["dldd"], slope=loc["slope"], v=loc["v"],
+        lag_slope=loc["dv"], lag_accel=loc["vdd"], lag_slope_rate=loc["dvd"],
+        slope_rate=loc["dwd"], sin=_sin, cos=_cos)
+    flap_row["airload hinge moment"] = -hinge
     return ([StationTerm(piece, field, True, arr * wf) for piece, field, arr in blade]
             + [StationTerm(piece, "flap", True, arr * wf) for piece, arr in flap_row.items()])

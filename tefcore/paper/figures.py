@@ -27,10 +27,12 @@ import numpy as np
 import pandas as pd
 
 from ..config.io import load_config
+from ..fourier import fourier_eval
 from ..model.coupled import coupled_model
-from ..model.flap import SectionMotion, aerodynamic_hinge_moment, flap_properties
+from ..model.flap import flap_properties
+from ..model.section_response import SectionMotion, aerodynamic_hinge_moment
 from ..sweeps.sweep import sweep
-from ..trimming.trim import fourier_eval, trim
+from ..trimming.trim import trim
 
 __all__ = ["FIG5_FLIGHT", "FIGURES", "FORWARD_03", "IMBALANCED", "RESPONSE_TITLES", "Figure",
            "figure_config", "flap_response_figure", "hinge_moment_figure",
@@ -196,7 +198,7 @@ def trimmed_section_motion(tr, x: float) -> SectionMotion:
 
     Returns
     -------
-    tefcore.model.flap.SectionMotion
+    tefcore.model.section_response.SectionMotion
         Callables of the azimuth [rad] giving the section's speed [m/s],
         angle of attack [rad] and its rates, plunge acceleration, pitch and
         bending slope in SI units (dimensional with ``Omega`` and ``R``).

@@ -35,14 +35,13 @@ from ..aero.dynamic_inflow import SteadyInflow, mass_flow, perturbation_matrices
 from ..aero.inflow import Inflow, drees_gradients, momentum_inflow
 from ..aero.states import HarmonicInflow, InflowLinearization, steady_inflow_residual
 from ..errors import TefcoreError
+from ..fourier import fourier_coefficients, fourier_series, spectral_derivative
 from ..model.coupled import Controls, CoupledModel
-from ..model.flap import spectral_derivative
 from ..model.jacobian import exact_jacobian, has_exact_jacobian, jacobian_blocks
 from ..runtime import blas_limit
 from .newton import BroydenSolver, WakeSchur, factor
 
-__all__ = ["MAX_FLAP_DEFLECTION_DEG", "TrimError", "TrimResult", "fourier_coefficients",
-           "fourier_eval", "initial_collective", "trim"]
+__all__ = ["MAX_FLAP_DEFLECTION_DEG", "TrimError", "TrimResult", "initial_collective", "trim"]
 
 
 class TrimError(TefcoreError, RuntimeError):
@@ -60,72 +59,6 @@ class TrimError(TefcoreError, RuntimeError):
     def __init__(self, message: str, history: list[dict] | None = None):
         super().__init__(message)
         self.history = [] if history is None else history
-
-
-def fourier_coefficients(samples: np.ndarray) -> np.ndarray:
-    """Complex Fourier coefficients (last axis = equally spaced azimuths).
-
-    Parameters
-    ----------
-    samples : numpy.ndarray
-        Periodic samples; the last axis is ``N`` equally spaced azimuths
-        from 0.
-
-    Returns
-    -------
-    numpy.ndarray
-        ``numpy.fft.rfft(samples) / N``: the coefficients ``c_k``, k = 0 .. N/2,
-        of ``x(psi) = c_0 + 2 Re sum_k c_k exp(i k psi)`` (below the Nyquist
-        term).
-    """
-    return np.fft.rfft(samples, axis=-1) / samples.shape[-1]
-
-
-def fourier_eval(samples: np.ndarray, psi, derivative: int = 0) -> np.ndarray:
-    """Trigonometric interpolation of periodic samples (and its derivatives).
-
-    Exact for trigonometric polynomials of degree below ``N/2``; the Nyquist
-    term is kept as a cosine in the value and dropped from derivatives (as in
-    :func:`tefcore.model.flap.spectral_derivative`).
-
-    Parameters
-    ----------
-    samples : numpy.ndarray
-        Periodic samples; the last axis is ``N`` equally spaced azimuths from 0.
-    psi : array_like
-        Azimuths to evaluate at [rad].
-    derivative : int, optional
-        Order of the psi-derivative.
-
-    Returns
-    -------
-    numpy.ndarray
-        Shape ``samples.shape[:-1] + (len(psi),)``.
-
-    Examples
-    --------
-    >>> grid = np.linspace(0, 2 * np.pi, 8, endpoint=False)
-    >>> round(float(fourier_eval(np.sin(2 * grid), np.array([0.3]))[0]), 12)
-    0.564642473395
-    """
-    return _fourier_series(samples, psi, (derivative,))[0]
-
-
-def _fourier_series(samples, psi, derivatives):
-    """:func:`fourier_eval` for several derivatives from one FFT."""
-    n = samples.shape[-1]
-    c = fourier_coefficients(samples)
-    k = np.arange(c.shape[-1])
-    weight = np.where((k == 0) | ((n % 2 == 0) & (k == n // 2)), 1.0, 2.0)
-    psi = np.atleast_1d(np.asarray(psi, float))
-    basis = np.exp(1j * np.outer(k, psi))                # (n_k, n_psi)
-    out = []
-    for derivative in derivatives:
-        ik = (1j * k) ** derivative
-        if derivative and n % 2 == 0:
-            ik = np.where(k == n // 2, 0.0, ik)
-        out.append(np.real((c * weight * ik) @ basis))
-    return out
 
 
 @dataclass
@@ -196,7 +129,7 @@ class TrimResult:
 
     def motion(self, psi):
         """``q, q*, q**`` at any azimuths, by Fourier interpolation."""
-        return tuple(_fourier_series(self.q, psi, (0, 1, 2)))
+        return tuple(fourier_series(self.q, psi, (0, 1, 2)))
 
     def linear_point(self, psi):
         """What the linearisation differentiates about, at azimuths ``psi``.
@@ -211,7 +144,7 @@ class TrimResult:
         model = self.model
         y = list(self.motion(psi))
         if model.n_wake:
-            w, wd = _fourier_series(self.states, psi, (0, 1))
+            w, wd = fourier_series(self.states, psi, (0, 1))
             y = [np.vstack([a, b]) for a, b in zip(y, (w, wd, np.zeros_like(w)), strict=True)]
         inflow = self.inflow
         if model.n_inflow:
@@ -239,7 +172,7 @@ class TrimResult:
 
 
 def _inflow(model, lam_i):
-    f = model.cfg.flight
+    f = model.flight
     fs = f.advance_ratio * np.tan(f.shaft_angle)
     if model.dynamic_inflow:
         mean, sine, cosine = lam_i
@@ -251,7 +184,7 @@ def _inflow(model, lam_i):
 
 def _steady_inflow(model, inflow: HarmonicInflow) -> SteadyInflow:
     """The trimmed Pitt-Peters field as a :class:`~tefcore.aero.dynamic_inflow.SteadyInflow`."""
-    mu = model.cfg.flight.advance_ratio
+    mu = model.flight.advance_ratio
     lam = inflow.freestream + inflow.mean
     vt, v = mass_flow(mu, lam, inflow.mean)
     return SteadyInflow(mean=inflow.mean, sine=inflow.sine, cosine=inflow.cosine,
@@ -332,7 +265,7 @@ def trim(model: CoupledModel, *, tol: float = 1e-10, max_iter: int = 40,
     else:
         q0 = np.zeros((n, n_psi))
         ctl = Controls(collective=initial_collective(cfg))
-        lam = ([np.sqrt(max(cfg.flight.ct_sigma * prob.sigma, 1e-6) / 2)]
+        lam = ([np.sqrt(max(model.flight.ct_sigma * prob.sigma, 1e-6) / 2)]
                + [0.0] * (n_lam - 1))
     prob.base = ctl
     x = np.concatenate([q0.ravel(), [getattr(ctl, k) for k in prob.ctl_names], lam])
@@ -430,7 +363,7 @@ class _Problem:
 
     def __init__(self, model):
         cfg = model.cfg
-        f = cfg.flight
+        f = model.flight
         self.model = model
         self.hover = f.advance_ratio == 0.0
         self.n_psi = 1 if self.hover else cfg.model.n_azimuth
@@ -464,7 +397,7 @@ class _Problem:
     def scalars(self, q, thrust, li):
         """The trim targets and the inflow equations."""
         n_lam, mu, fs, sigma = self.n_lam, self.mu, self.fs, self.sigma
-        f = self.model.cfg.flight
+        f = self.model.flight
         ct_s = thrust.mean() if n_lam == 1 else thrust[0].mean()
         out = [ct_s - f.ct_sigma] if self.free_collective else []
         if not self.hover:
@@ -550,7 +483,7 @@ def _inflow_tangents(model, li, psi):
     c, s = np.cos(psi)[:, None], np.sin(psi)[:, None]
     if model.dynamic_inflow:
         return [np.ones((psi.size, x.size)), x * s, x * c]
-    f = model.cfg.flight
+    f = model.flight
     mu, fs = f.advance_ratio, f.advance_ratio * np.tan(f.shaft_angle)
     if model.cfg.model.inflow != "linear" or mu == 0.0:
         return [np.ones((psi.size, x.size))]
