@@ -39,12 +39,12 @@ import time
 import numpy as np
 import scipy.integrate
 
-from tefcore.structure import blade
 from tefcore.config.io import load_config
 from tefcore.floquet import floquet_modes
 from tefcore.linear.stability import linear_system, stability
 from tefcore.model.coupled import coupled_model
 from tefcore.runtime import apply_defaults
+from tefcore.structure import blade
 from tefcore.trimming.trim import initial_collective, trim
 
 TWO_PI = 2 * np.pi

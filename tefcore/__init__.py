@@ -15,7 +15,7 @@ The names a rotor dynamicist uses are importable from ``tefcore`` itself
 process setting; see :mod:`tefcore.runtime`):
 
 Configuration
-    :class:`~tefcore.config.sections.Config`, :func:`~tefcore.config.io.load_config`,
+    :class:`~tefcore.config.configuration.Config`, :func:`~tefcore.config.io.load_config`,
     :func:`~tefcore.config.io.save_config`
 Blade modes
     :func:`~tefcore.structure.blade.blade_modes`, :func:`~tefcore.structure.blade.fan_plot`
@@ -55,7 +55,7 @@ from ._version import __version__
 
 #: Public name -> the module that defines it (loaded on first use, PEP 562).
 API = {
-    "Config": "tefcore.config.sections",
+    "Config": "tefcore.config.configuration",
     "load_config": "tefcore.config.io",
     "save_config": "tefcore.config.io",
     "blade_modes": "tefcore.structure.blade",

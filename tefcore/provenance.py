@@ -80,7 +80,7 @@ def input_files(cfg) -> dict[str, Path]:
 
     Parameters
     ----------
-    cfg : tefcore.config.sections.Config
+    cfg : tefcore.config.configuration.Config
         The rotor configuration.
 
     Returns
@@ -98,7 +98,7 @@ def input_digests(cfg) -> dict[str, str]:
 
     Parameters
     ----------
-    cfg : tefcore.config.sections.Config
+    cfg : tefcore.config.configuration.Config
         The rotor configuration.
 
     Returns

@@ -12,6 +12,7 @@ from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 from scipy import constants as sc
 
+from tefcore.config.configuration import SECTIONS, Config, resolve_field
 from tefcore.config.io import (
     config_from_dict,
     config_to_dict,
@@ -22,14 +23,7 @@ from tefcore.config.io import (
     settings_markdown,
     settings_table,
 )
-from tefcore.config.sections import (
-    BLADE_PROPERTIES,
-    REQUIRED,
-    SECTIONS,
-    BladeConfig,
-    Config,
-    resolve_field,
-)
+from tefcore.config.sections import BLADE_PROPERTIES, REQUIRED, BladeConfig
 from tefcore.units import to_si
 
 MDART = load_config("mdart")

@@ -12,8 +12,8 @@ import tomli_w
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
+from tefcore.config.configuration import SECTIONS, Config
 from tefcore.config.io import dumps_config, load_config, loads_config
-from tefcore.config.sections import SECTIONS, Config
 from tefcore.config.text_input import parse_overrides
 
 MDART = load_config("mdart")

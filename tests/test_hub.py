@@ -21,8 +21,8 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 from numpy.testing import assert_allclose
 
+from tefcore.config.configuration import SECTIONS
 from tefcore.config.io import load_config
-from tefcore.config.sections import SECTIONS
 from tefcore.paper.calibration import frequency_checks, lag_damping_ratio, mode_frequency
 from tefcore.structure.blade import (
     blade_modes,

@@ -167,7 +167,7 @@ def test_warm_started_sweep_is_the_same_in_every_run(tmp_path):
     # resolves; a warm start that changed the model (e.g. the blade modes at the
     # neighbour's collective) would move them by 1e-4 or more
     from tefcore.linear.stability import stability
-    from tefcore.sweeps import sweep as sweep_module
+    from tefcore.sweeps import evaluate as sweep_module
 
     cfg = MDART.with_overrides({"flight.advance_ratio": 0.3})
     param, xs = "actuator.stiffness", ["70 ft-lb/rad", "90 ft-lb/rad", "110 ft-lb/rad",

@@ -8,14 +8,9 @@ import numpy as np
 import pytest
 
 from tefcore.paper.figures import FIGURES
-from tefcore.paper.reference import (
-    ReferenceDataError,
-    load_claims,
-    parse_claim,
-    read_wpd_csv,
-    reference_dir,
-    x_to_si,
-)
+from tefcore.paper.quantities import x_to_si
+from tefcore.paper.reference import load_claims, parse_claim
+from tefcore.paper.reference_files import ReferenceDataError, read_wpd_csv, reference_dir
 
 PAPER = Path("/work/shared/paper/000_73c128a31e609ab3.txt")
 

@@ -127,7 +127,7 @@ def test_cli_map(tmp_path):
 
 def test_real_map_is_the_same_serial_parallel_and_on_dask():
     # the real point function takes warm starts: each row is cut into the same
-    # fixed chains (tefcore.sweeps.sweep.WARM_CHAIN) whichever backend runs it -- rows
+    # fixed chains (tefcore.sweeps.evaluate.WARM_CHAIN) whichever backend runs it -- rows
     # side by side in joblib workers, chains as dask tasks, or row by row here --
     # so the tables (and refined boundaries) are identical, not merely close.
     # mu = 0.1, a collective sweep in x: the warm start must not carry the

@@ -29,10 +29,11 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
+from tefcore.config.configuration import SECTIONS
 from tefcore.config.io import load_config
-from tefcore.config.sections import SECTIONS
 from tefcore.sweeps.boundary import stability_boundary
-from tefcore.sweeps.sweep import config_hash, sweep
+from tefcore.sweeps.store import config_hash
+from tefcore.sweeps.sweep import sweep
 
 MDART = load_config("mdart")
 PARAM = "flap.cg_offset"

@@ -8,7 +8,8 @@ import pandas as pd
 import pytest
 
 from tefcore.paper.figures import run_figure
-from tefcore.paper.reference import ReferenceDataError, load_claims, parse_claim
+from tefcore.paper.reference import load_claims, parse_claim
+from tefcore.paper.reference_files import ReferenceDataError
 from tefcore.paper.validation import (
     claims_score,
     compare_curve,

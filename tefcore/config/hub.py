@@ -33,12 +33,11 @@ ValueError: torque_tube.inboard = 0.3 must lie in [rotor.root_offset, flexbeam.c
 
 from __future__ import annotations
 
-from .settings import Param, Section, format_value, settings_section
+from .settings import GEOMETRY_TOL, Param, Section, format_value, settings_section
 
 __all__ = ["HUB_SECTIONS", "FlexbeamConfig", "PitchLinkConfig", "SnubberConfig",
            "TorqueTubeConfig", "check_hub_relations"]
 
-_GEOM_TOL = 1e-12
 
 
 def _beam_params(what: str) -> tuple[Param, ...]:
@@ -176,7 +175,7 @@ def check_hub_relations(cfg) -> None:
 
     Parameters
     ----------
-    cfg : tefcore.config.sections.Config
+    cfg : tefcore.config.configuration.Config
         The configuration.
 
     Raises
@@ -197,7 +196,7 @@ def check_hub_relations(cfg) -> None:
                          "(not set)")
     r0, cutout, chord = cfg.rotor.root_offset, cfg.rotor.root_cutout, cfg.rotor.chord
     fb, tt, pl = cfg.flexbeam, cfg.torque_tube, cfg.pitch_link
-    if not r0 < fb.clevis <= cutout + _GEOM_TOL:
+    if not r0 < fb.clevis <= cutout + GEOMETRY_TOL:
         raise ValueError(f"flexbeam.clevis = {format_value(fb.clevis)} must lie in "
                          f"(rotor.root_offset, rotor.root_cutout] = "
                          f"({format_value(r0)}, {format_value(cutout)}]")
@@ -208,7 +207,7 @@ def check_hub_relations(cfg) -> None:
     if not abs(pl.radial_offset) < chord:
         raise ValueError(f"pitch_link.radial_offset = {format_value(pl.radial_offset)} m must be "
                          f"shorter than rotor.chord = {format_value(chord)} m")
-    if not r0 - _GEOM_TOL <= tt.inboard < fb.clevis:
+    if not r0 - GEOMETRY_TOL <= tt.inboard < fb.clevis:
         raise ValueError(f"torque_tube.inboard = {format_value(tt.inboard)} must lie in "
                          f"[rotor.root_offset, flexbeam.clevis) = [{format_value(r0)}, "
                          f"{format_value(fb.clevis)})")

@@ -41,7 +41,7 @@ import numpy as np
 import tomli_w
 
 from ..safe_io import atomic_write_text
-from .sections import REFERENCE_PARAMS, SECTIONS, Config
+from .configuration import REFERENCE_PARAMS, SECTIONS, Config
 from .settings import Param
 from .text_input import require_unit
 

@@ -35,8 +35,12 @@ import numpy as np
 
 from ..units import DIMENSIONS, SI_UNITS, parse_quantity, parse_unit
 
-__all__ = ["REQUIRED", "Param", "Section", "coerce_value", "did_you_mean", "format_value",
-           "rebuild_section", "settings_section"]
+__all__ = ["GEOMETRY_TOL", "REQUIRED", "Param", "Section", "coerce_value", "did_you_mean",
+           "format_value", "rebuild_section", "settings_section"]
+
+#: Tolerance of the geometric cross-field checks, in fractions of the radius or
+#: chord (stations that must coincide, a flap that must fit on the blade).
+GEOMETRY_TOL = 1e-12
 
 
 class _Required:
@@ -493,7 +497,7 @@ def rebuild_section(section_type, kwargs):
     Parameters
     ----------
     section_type : type
-        A :class:`Section` subclass (or :class:`tefcore.config.sections.Config`).
+        A :class:`Section` subclass (or :class:`tefcore.config.configuration.Config`).
     kwargs : dict
         Its constructor arguments.
 

@@ -41,7 +41,7 @@ from collections.abc import Iterable, Mapping, Sequence
 
 import numpy as np
 
-from .sections import SECTIONS, resolve_field
+from .configuration import SECTIONS, resolve_field
 from .settings import Param, coerce_value
 
 __all__ = ["MAX_SWEEP_POINTS", "field_param", "parse_overrides", "require_unit", "sweep_values"]

@@ -372,6 +372,42 @@ def _classify(eta: complex) -> str:
     return "flutter" if growing else "stable oscillatory"
 
 
+def _root_row(mode, res, eig_table, basis, n_steps, root):
+    """Row of the stability table that `mode` names, and how it was identified."""
+    table = res.modes
+    if mode == "TEF":
+        eta, follow = tef_root(res.system, basis=basis, n_steps=n_steps)
+        row = int(np.argmin(np.abs(eig_table - eta)))
+        how = "continuation from the uncoupled flap mode"
+        labelled = np.flatnonzero(table["label"].to_numpy() == "TEF")
+        if not follow.clear and labelled.size:
+            # the flap's own root met another on the way (a coalescence):
+            # which one it becomes is not decidable, so say so and take the
+            # root that the flap participates in most (its label)
+            row = int(labelled[0])
+            how = ("its label (largest flap participation): the continuation from the "
+                   "uncoupled flap mode met a coalescence at coupling "
+                   f"{follow.ambiguous[0]:.3g} and is ambiguous")
+    elif mode == "flutter":
+        row = flutter_root(table)
+        if row is None:
+            raise ValueError(f"no root with a flap participation >= {FLUTTER_PARTICIPATION}")
+        how = f"least stable root with flap participation >= {FLUTTER_PARTICIPATION}"
+    elif mode == "root":
+        if root is None:
+            raise ValueError("mode 'root' needs the root's eigenvalue (root=...)")
+        row = int(np.argmin(np.abs(eig_table - complex(root))))
+        how = f"the root nearest {complex(root):.4g}"
+    else:
+        rows = np.flatnonzero(table["label"].to_numpy() == mode)
+        if rows.size == 0:
+            raise ValueError(f"no mode labelled {mode!r}; labels: {table['label'].tolist()}; "
+                             "or use 'TEF' or 'flutter'")
+        row = int(rows[0])
+        how = "its label (participation)"
+    return row, how
+
+
 @blas_limit()
 def mechanism(cfg, mode: str = "TEF", *, knockouts: bool = True, stability_result=None,
               n_steps: int | None = None, root: complex | None = None) -> MechanismResult:
@@ -379,7 +415,7 @@ def mechanism(cfg, mode: str = "TEF", *, knockouts: bool = True, stability_resul
 
     Parameters
     ----------
-    cfg : tefcore.config.sections.Config
+    cfg : tefcore.config.configuration.Config
         The rotor configuration.
     mode : str
         ``"TEF"`` (the root the flap mode becomes, :func:`tefcore.modes.continuation.tef_root`),
@@ -415,36 +451,7 @@ def mechanism(cfg, mode: str = "TEF", *, knockouts: bool = True, stability_resul
     eig_table = table["real_part"].to_numpy() + 1j * table["frequency_per_rev"].to_numpy()
     if mode in ("TEF", "flutter") and not model.has_flap:
         raise ValueError(f"mode {mode!r} needs the flap: model.tef is {cfg.model.tef!r}")
-    if mode == "TEF":
-        eta, follow = tef_root(res.system, basis=basis, n_steps=n_steps)
-        row = int(np.argmin(np.abs(eig_table - eta)))
-        how = "continuation from the uncoupled flap mode"
-        labelled = np.flatnonzero(table["label"].to_numpy() == "TEF")
-        if not follow.clear and labelled.size:
-            # the flap's own root met another on the way (a coalescence):
-            # which one it becomes is not decidable, so say so and take the
-            # root that the flap participates in most (its label)
-            row = int(labelled[0])
-            how = ("its label (largest flap participation): the continuation from the "
-                   "uncoupled flap mode met a coalescence at coupling "
-                   f"{follow.ambiguous[0]:.3g} and is ambiguous")
-    elif mode == "flutter":
-        row = flutter_root(table)
-        if row is None:
-            raise ValueError(f"no root with a flap participation >= {FLUTTER_PARTICIPATION}")
-        how = f"least stable root with flap participation >= {FLUTTER_PARTICIPATION}"
-    elif mode == "root":
-        if root is None:
-            raise ValueError("mode 'root' needs the root's eigenvalue (root=...)")
-        row = int(np.argmin(np.abs(eig_table - complex(root))))
-        how = f"the root nearest {complex(root):.4g}"
-    else:
-        rows = np.flatnonzero(table["label"].to_numpy() == mode)
-        if rows.size == 0:
-            raise ValueError(f"no mode labelled {mode!r}; labels: {table['label'].tolist()}; "
-                             "or use 'TEF' or 'flutter'")
-        row = int(rows[0])
-        how = "its label (participation)"
+    row, how = _root_row(mode, res, eig_table, basis, n_steps, root)
     parts = linearized_terms(tr)
     system = combine(parts)
     full = positive_roots(system.modes(n_steps=n_steps, n_sub=4, shapes=True,

@@ -125,7 +125,7 @@ def stability(cfg, *, trim_result: TrimResult | None = None, n_steps: int | None
 
     Parameters
     ----------
-    cfg : tefcore.config.sections.Config
+    cfg : tefcore.config.configuration.Config
         The rotor configuration.
     trim_result : TrimResult, optional
         Warm start for the trim (e.g. the previous sweep point).

@@ -39,7 +39,7 @@ def section_model(cfg):
 
     Parameters
     ----------
-    cfg : tefcore.config.sections.Config
+    cfg : tefcore.config.configuration.Config
         The rotor configuration.
 
     Returns
@@ -105,7 +105,7 @@ class CoupledModel:
 
     Parameters
     ----------
-    cfg : tefcore.config.sections.Config
+    cfg : tefcore.config.configuration.Config
         The configuration.
     modes : tefcore.structure.fem.BladeModes
         The blade modes.
@@ -522,7 +522,7 @@ def coupled_model(cfg, collective: float = 0.0, modes=None) -> CoupledModel:
 
     Parameters
     ----------
-    cfg : tefcore.config.sections.Config
+    cfg : tefcore.config.configuration.Config
         The rotor configuration.
     collective : float
         Pitch at 0.75 R [rad] at which the blade modes are computed (the

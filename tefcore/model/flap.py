@@ -103,7 +103,7 @@ def flap_properties(cfg) -> FlapProperties:
 
     Parameters
     ----------
-    cfg : tefcore.config.sections.Config
+    cfg : tefcore.config.configuration.Config
         The rotor configuration.
 
     Returns

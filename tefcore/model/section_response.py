@@ -78,7 +78,7 @@ def rotor_section_motion(cfg, x: float, *, advance_ratio: float, collective: flo
 
     Parameters
     ----------
-    cfg : tefcore.config.sections.Config
+    cfg : tefcore.config.configuration.Config
         The rotor configuration.
     x : float
         Station, fraction of R.
@@ -129,7 +129,7 @@ def rotor_motion(cfg, **controls):
 
     Parameters
     ----------
-    cfg : tefcore.config.sections.Config
+    cfg : tefcore.config.configuration.Config
         The rotor configuration.
     **controls
         Keyword arguments of :func:`rotor_section_motion` (``advance_ratio``,
@@ -411,7 +411,7 @@ def section_overhang_study(cfg, overhangs, delta_a, *, controls: dict, n_psi: in
 
     Parameters
     ----------
-    cfg : tefcore.config.sections.Config
+    cfg : tefcore.config.configuration.Config
         The rotor configuration.
     overhangs : sequence of float
         c_b / c_f values.

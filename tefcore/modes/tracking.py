@@ -201,35 +201,9 @@ def track_modes(points: Sequence, values=None, *, predict: bool = True) -> pd.Da
             x = float(step)
         eig = eigenvalues(modes)
         col_vec = [None if vecs is None else vecs[:, j] for j in range(len(modes))]
-        assigned = np.full(len(modes), -1)
-        identity = np.full(len(modes), "start", dtype=object)
         per = periodic or prev_periodic
-        if alive and len(modes):
-            pred = np.array([tracks[t].predict(x, predict) for t in alive])
-            cost, shape = match_cost(pred, [tracks[t].vec for t in alive], eig, vecs,
-                                     per, shape_part=True)
-            rows, cols = linear_sum_assignment(cost)
-            clear, rival = decide(cost, rows, cols, shape)
-            for r, c, ok in zip(rows, cols, clear, strict=True):
-                assigned[c] = alive[r]
-                identity[c] = "clear" if ok else "ambiguous"
-            # a step into, within or out of a Floquet lock: the plane rule
-            handled = _lock_steps(cost, shape, rows, cols, alive, (prev_eig, prev_vecs),
-                                  (eig, vecs), per, assigned, identity)
-            partner = {}
-            for c, ok, k in zip(cols, clear, rival, strict=True):
-                if not ok and c not in handled and k not in handled and is_coalesced(
-                        eig, vecs, c, k, per):
-                    identity[c] = "coalescence"
-                    partner[c] = k
-            # a coalesced pair is one mode split into two roots: by convention
-            # the track goes on with the less stable one (the one that matters
-            # for stability), the other root takes the partner's track or a new one
-            for c, k in partner.items():
-                if eig[k].real > eig[c].real and identity[c] == "coalescence":
-                    assigned[c], assigned[k] = assigned[k], assigned[c]
-                    identity[k] = "coalescence"
-                    identity[c] = "coalescence" if assigned[c] >= 0 else "start"
+        assigned, identity = _match_step(tracks, alive, x, predict, eig, vecs, per,
+                                         (prev_eig, prev_vecs))
         tracked_eig = eig.copy()
         if periodic or prev_periodic:
             for j, t in enumerate(assigned):
@@ -244,20 +218,64 @@ def track_modes(points: Sequence, values=None, *, predict: bool = True) -> pd.Da
             tracks[t].update(x, tracked_eig[j], col_vec[j])
         alive = [int(t) for t in assigned]
         prev_periodic, prev_eig, prev_vecs = periodic, eig, vecs
-        frame = modes.drop(columns="label")
-        frame.insert(frame.columns.get_loc("frequency_per_rev") + 1, "frequency_tracked",
-                     tracked_eig.imag)
-        frame.insert(0, "identity", identity)
-        frame.insert(0, "label_here", modes["label"])
-        frame.insert(0, "label", [tracks[t].label for t in assigned])
-        frame.insert(0, "track", assigned)
-        frame.insert(0, "step", step)
-        frames.append(frame)
+        frames.append(_step_frame(step, modes, tracked_eig, identity, assigned, tracks))
     if not frames:
         return pd.DataFrame(columns=["step", "track", "label", "label_here", "identity",
                                      "mode_id", "frequency_per_rev", "real_part"])
     out = pd.concat(frames, ignore_index=True)
     return out.sort_values(["step", "track"], kind="stable", ignore_index=True)
+
+
+def _match_step(tracks, alive, x, predict, eig, vecs, per, prev):
+    """Assign the roots of a new point to the live tracks.
+
+    Returns ``assigned`` (a track per root, -1: none) and ``identity`` (how
+    each root continues its track: ``start``, ``clear``, ``ambiguous``,
+    ``coalescence``; the plane rule of a Floquet lock, :func:`_lock_steps`).
+    """
+    assigned = np.full(eig.size, -1)
+    identity = np.full(eig.size, "start", dtype=object)
+    if not (alive and eig.size):
+        return assigned, identity
+    pred = np.array([tracks[t].predict(x, predict) for t in alive])
+    cost, shape = match_cost(pred, [tracks[t].vec for t in alive], eig, vecs,
+                             per, shape_part=True)
+    rows, cols = linear_sum_assignment(cost)
+    clear, rival = decide(cost, rows, cols, shape)
+    for r, c, ok in zip(rows, cols, clear, strict=True):
+        assigned[c] = alive[r]
+        identity[c] = "clear" if ok else "ambiguous"
+    # a step into, within or out of a Floquet lock: the plane rule
+    handled = _lock_steps(cost, shape, rows, cols, alive, prev, (eig, vecs), per, assigned,
+                          identity)
+    partner = {}
+    for c, ok, k in zip(cols, clear, rival, strict=True):
+        if not ok and c not in handled and k not in handled and is_coalesced(
+                eig, vecs, c, k, per):
+            identity[c] = "coalescence"
+            partner[c] = k
+    # a coalesced pair is one mode split into two roots: by convention
+    # the track goes on with the less stable one (the one that matters
+    # for stability), the other root takes the partner's track or a new one
+    for c, k in partner.items():
+        if eig[k].real > eig[c].real and identity[c] == "coalescence":
+            assigned[c], assigned[k] = assigned[k], assigned[c]
+            identity[k] = "coalescence"
+            identity[c] = "coalescence" if assigned[c] >= 0 else "start"
+    return assigned, identity
+
+
+def _step_frame(step, modes, tracked_eig, identity, assigned, tracks) -> pd.DataFrame:
+    """One point's rows of the tracked table."""
+    frame = modes.drop(columns="label")
+    frame.insert(frame.columns.get_loc("frequency_per_rev") + 1, "frequency_tracked",
+                 tracked_eig.imag)
+    frame.insert(0, "identity", identity)
+    frame.insert(0, "label_here", modes["label"])
+    frame.insert(0, "label", [tracks[t].label for t in assigned])
+    frame.insert(0, "track", assigned)
+    frame.insert(0, "step", step)
+    return frame
 
 
 def _lock_steps(cost, shape, rows, cols, alive, prev, new, periodic, assigned,

@@ -198,7 +198,7 @@ def apply_assumption(cfg, assumption: Assumption | str, end: str):
 
     Parameters
     ----------
-    cfg : tefcore.config.sections.Config
+    cfg : tefcore.config.configuration.Config
         Baseline configuration (normally MDART); the end's overrides are
         computed from it.
     assumption : Assumption or str
@@ -208,7 +208,7 @@ def apply_assumption(cfg, assumption: Assumption | str, end: str):
 
     Returns
     -------
-    tefcore.config.sections.Config
+    tefcore.config.configuration.Config
         A new configuration; ``cfg`` is unchanged.
 
     Raises

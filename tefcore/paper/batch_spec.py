@@ -77,6 +77,7 @@ from .notebook_files import (
     notebooks_dir,
     resolve_notebook,
 )
+from .yaml_input import plain_problem
 
 __all__ = ["MAX_RUNS", "RESERVED_NAMES", "BatchFileError", "RunSpec", "load_batch",
            "parse_batch"]
@@ -89,8 +90,6 @@ RESERVED_NAMES = frozenset({"index.html", "index.md", "runs.csv", "headlines.csv
 _NAME = re.compile(r"[A-Za-z0-9][A-Za-z0-9._=+-]{0,99}\Z")
 _RUN_KEYS = ("config", "grid", "name", "notebooks", "params")
 _TOP_KEYS = _RUN_KEYS + ("runs",)
-#: Most YAML nodes read (aliases can make a small file a huge document).
-_MAX_NODES = 100_000
 _SET_BY_BATCH = {"output_dir": "the batch sets each notebook's output folder",
                  "config": "give the base configuration with the 'config' key of the run "
                            "or of the file"}
@@ -143,31 +142,6 @@ def _check_keys(data: dict, allowed, origin: str, where: str) -> None:
         if key not in allowed:
             _fail(origin, where, f"unknown key {key!r}{_close(key, allowed)}; allowed: "
                                  f"{', '.join(sorted(allowed))}")
-
-
-def _plain(value, origin: str, where: str, budget: list) -> None:
-    """Refuse values papermill and the run record cannot carry (and huge alias trees)."""
-    budget[0] -= 1
-    if budget[0] < 0:
-        _fail(origin, "", f"the file expands to more than {_MAX_NODES} values (YAML aliases?)")
-    if value is None or isinstance(value, bool | int | str):
-        return
-    if isinstance(value, float):
-        if not math.isfinite(value):
-            _fail(origin, where, f"{value!r} is not a finite number")
-        return
-    if isinstance(value, list):
-        for i, v in enumerate(value):
-            _plain(v, origin, f"{where}[{i}]", budget)
-        return
-    if isinstance(value, dict):
-        for k, v in value.items():
-            if not isinstance(k, str) and not (isinstance(k, int) and not isinstance(k, bool)):
-                _fail(origin, where, f"key {k!r} must be a name (a string)")
-            _plain(v, origin, f"{where}.{k}", budget)
-        return
-    _fail(origin, where, f"{value!r} ({type(value).__name__}) is not a number, string, "
-                         "list or mapping")
 
 
 def _notebook(key, origin: str, where: str) -> str:
@@ -428,10 +402,21 @@ def parse_batch(text: str, *, origin: str = "<string>", base_dir=None, only=None
     BatchFileError
         Any problem (module docstring), naming the file, run and field.
     """
+    data = _load_yaml(text, origin)
+    batch = _Batch(data, origin, Path(base_dir or "."), Path(nb_dir or notebooks_dir()),
+                   only, extra_params)
+    specs, seen = [], {}
+    for i, run in enumerate(_run_list(data, origin)):
+        specs += batch.run_specs(i, run, len(specs), seen)
+    if not specs:
+        _fail(origin, "--only", "no run has any of these notebooks")
+    return specs
+
+
+def _load_yaml(text: str, origin: str) -> dict:
+    """The batch file's top-level mapping, checked for plain data of bounded size."""
     import yaml
 
-    base_dir = Path(base_dir or ".")
-    nb_dir = Path(nb_dir or notebooks_dir())
     try:
         data = yaml.safe_load(text)
     except yaml.YAMLError as exc:
@@ -445,99 +430,132 @@ def parse_batch(text: str, *, origin: str = "<string>", base_dir=None, only=None
         _fail(origin, "", "the file is empty; it needs runs, a grid, or one run's keys")
     if not isinstance(data, dict):
         _fail(origin, "", "the top level must be a mapping (runs:, grid:, params:, ...)")
-    _plain(data, origin, "", [_MAX_NODES])
+    problem = plain_problem(data)
+    if problem is not None:
+        _fail(origin, *problem)
     _check_keys(data, _TOP_KEYS, origin, "")
-    top_nbs = _notebooks(data["notebooks"], origin, "notebooks") \
-        if data.get("notebooks") is not None else tuple(NOTEBOOKS)
-    top_params = _params(data.get("params"), origin, "params")
-    top_grid = _grid(data.get("grid"), origin, "grid")
-    top_config = _config_path(data.get("config"), origin, "config", base_dir)
-    extra = list(extra_params or [])
-    keep = None if not only else {_notebook(n, origin, "--only") for n in only}
-    declared = {}
+    return data
 
-    def parameters_of(nb):
-        if nb not in declared:
-            src = nb_dir / f"{nb}.ipynb"
+
+class _Batch:
+    """A batch file's top-level settings, and each run's specs from them."""
+
+    def __init__(self, data, origin, base_dir, nb_dir, only, extra_params):
+        self.data, self.origin, self.base_dir, self.nb_dir = data, origin, base_dir, nb_dir
+        self.has_runs = "runs" in data
+        self.notebooks = _notebooks(data["notebooks"], origin, "notebooks") \
+            if data.get("notebooks") is not None else tuple(NOTEBOOKS)
+        self.params = _params(data.get("params"), origin, "params")
+        self.grid = _grid(data.get("grid"), origin, "grid")
+        self.config = _config_path(data.get("config"), origin, "config", base_dir)
+        self.extra = list(extra_params or [])
+        self.keep = None if not only else {_notebook(n, origin, "--only") for n in only}
+        self.declared: dict = {}
+
+    def parameters_of(self, nb):
+        """The parameters a notebook declares (its parameters cell)."""
+        if nb not in self.declared:
+            src = self.nb_dir / f"{nb}.ipynb"
             if not src.is_file():
-                _fail(origin, "", f"notebook {src} not found")
-            declared[nb] = notebook_parameters(src)
-        return declared[nb]
+                _fail(self.origin, "", f"notebook {src} not found")
+            self.declared[nb] = notebook_parameters(src)
+        return self.declared[nb]
 
-    specs, seen = [], {}
-    for i, run in enumerate(_run_list(data, origin)):
-        name = run.get("name")
-        where = f"runs[{i}]" + (f" {name!r}" if name else "") if "runs" in data else ""
-        _check_keys(run, _RUN_KEYS if "runs" in data else _TOP_KEYS, origin, where)
+    def _run_settings(self, i, run):
+        """``(name, where, notebooks, config, own params, grid axes)`` of one run."""
+        origin, name = self.origin, run.get("name")
+        where = f"runs[{i}]" + (f" {name!r}" if name else "") if self.has_runs else ""
+        _check_keys(run, _RUN_KEYS if self.has_runs else _TOP_KEYS, origin, where)
         if name is not None and not isinstance(name, str):
             _fail(origin, where, f"name must be a string, got {name!r}")
         nbs = _notebooks(run["notebooks"], origin, f"{where}.notebooks".lstrip(".")) \
-            if "runs" in data and run.get("notebooks") is not None else top_nbs
-        if keep is not None:
-            nbs = tuple(n for n in nbs if n in keep)
-            if not nbs:
-                continue
-        config = _config_path(run.get("config"), origin, f"{where}.config", base_dir) \
-            if "runs" in data and run.get("config") is not None else top_config
-        own = _params(run.get("params"), origin, f"{where}.params") if "runs" in data else {}
-        axes = top_grid + (_grid(run.get("grid"), origin, f"{where}.grid")
-                           if "runs" in data else [])
+            if self.has_runs and run.get("notebooks") is not None else self.notebooks
+        if self.keep is not None:
+            nbs = tuple(n for n in nbs if n in self.keep)
+            if not nbs:                 # not in this batch: its settings are not read
+                return name, where, nbs, None, {}, []
+        config = _config_path(run.get("config"), origin, f"{where}.config", self.base_dir) \
+            if self.has_runs and run.get("config") is not None else self.config
+        own = _params(run.get("params"), origin, f"{where}.params") if self.has_runs else {}
+        axes = self.grid + (_grid(run.get("grid"), origin, f"{where}.grid")
+                            if self.has_runs else [])
+        return name, where, nbs, config, own, axes
+
+    def _check_axes(self, axes, nbs, where):
+        """Each grid axis names a notebook of the run and one of its parameters."""
         for target, pname, sub, _ in axes:
             for nb in nbs if target == "all" else (target,):
                 if target != "all" and nb not in nbs:
-                    _fail(origin, f"{where}.grid", f"{target} is not one of the run's "
-                                                   f"notebooks ({', '.join(nbs)})")
-                known = parameters_of(nb)
+                    _fail(self.origin, f"{where}.grid", f"{target} is not one of the run's "
+                                                        f"notebooks ({', '.join(nbs)})")
+                known = self.parameters_of(nb)
                 if pname not in known:
-                    _fail(origin, f"{where}.grid", f"{nb} has no parameter {pname!r}"
-                                                   f"{_close(pname, known)}")
+                    _fail(self.origin, f"{where}.grid", f"{nb} has no parameter {pname!r}"
+                                                        f"{_close(pname, known)}")
                 if sub and not isinstance(known[pname], dict):
-                    _fail(origin, f"{where}.grid", f"{pname} is not a mapping parameter, so "
-                                                   f"{pname}.{sub} means nothing")
-        n_comb = math.prod(len(a[3]) for a in axes)
-        if len(specs) + n_comb > MAX_RUNS:
-            _fail(origin, where, f"the grids make more than {MAX_RUNS} runs "
-                                 f"({n_comb} combinations here); split the batch")
-        labels = _grid_names(axes)
-        for combo in itertools.product(*(a[3] for a in axes)) if axes else [()]:
-            params = {nb: {} for nb in nbs}
-            for layer in (top_params, own):
-                for nb in nbs:
-                    _merge(params[nb], layer.get("all", {}))
-                    _merge(params[nb], layer.get(nb, {}))
-            for (target, pname, sub, _), v in zip(axes, combo, strict=True):
-                for nb in nbs if target == "all" else (target,):
-                    _merge(params[nb], {pname: {sub: v}} if sub else {pname: v})
-            for layer in extra:
-                for nb in nbs:
-                    _merge(params[nb], layer.get("all", {}))
-                    _merge(params[nb], layer.get(nb, {}))
-            parts = [name] if name else []
-            parts += [f"{lab}={_short(v)}" for lab, v in zip(labels, combo, strict=True)]
-            rname = "-".join(parts)
-            if not rname:
-                _fail(origin, where, "a run needs a name (or a grid to name it from)")
-            if not _NAME.match(rname):
-                _fail(origin, where, f"run name {rname!r} is not a folder name: letters, "
-                                     "digits and . _ = + - only, starting with a letter or "
-                                     "digit, at most 100 characters")
-            if rname.lower() in RESERVED_NAMES:
-                _fail(origin, where, f"run name {rname!r} is taken by the batch's own files")
-            if rname.lower() in seen:
-                _fail(origin, where, f"duplicate run name {rname!r} (also {seen[rname.lower()]})"
-                                     "; name the runs apart")
-            seen[rname.lower()] = where or "the file"
+                    _fail(self.origin, f"{where}.grid", f"{pname} is not a mapping parameter, "
+                                                        f"so {pname}.{sub} means nothing")
+
+    def _combination_params(self, nbs, own, axes, combo):
+        """Each notebook's parameters: the file's, the run's, the grid's, the command line's."""
+        params = {nb: {} for nb in nbs}
+        for layer in (self.params, own):
             for nb in nbs:
-                known = parameters_of(nb)
+                _merge(params[nb], layer.get("all", {}))
+                _merge(params[nb], layer.get(nb, {}))
+        for (target, pname, sub, _), v in zip(axes, combo, strict=True):
+            for nb in nbs if target == "all" else (target,):
+                _merge(params[nb], {pname: {sub: v}} if sub else {pname: v})
+        for layer in self.extra:
+            for nb in nbs:
+                _merge(params[nb], layer.get("all", {}))
+                _merge(params[nb], layer.get(nb, {}))
+        return params
+
+    def _run_name(self, name, labels, combo, where, seen) -> str:
+        """The run's name (its own, then the grid's values), checked and unique."""
+        origin = self.origin
+        parts = [name] if name else []
+        parts += [f"{lab}={_short(v)}" for lab, v in zip(labels, combo, strict=True)]
+        rname = "-".join(parts)
+        if not rname:
+            _fail(origin, where, "a run needs a name (or a grid to name it from)")
+        if not _NAME.match(rname):
+            _fail(origin, where, f"run name {rname!r} is not a folder name: letters, "
+                                 "digits and . _ = + - only, starting with a letter or "
+                                 "digit, at most 100 characters")
+        if rname.lower() in RESERVED_NAMES:
+            _fail(origin, where, f"run name {rname!r} is taken by the batch's own files")
+        if rname.lower() in seen:
+            _fail(origin, where, f"duplicate run name {rname!r} (also {seen[rname.lower()]})"
+                                 "; name the runs apart")
+        seen[rname.lower()] = where or "the file"
+        return rname
+
+    def run_specs(self, i, run, n_before, seen) -> list[RunSpec]:
+        """The runs of one entry of the file (one per grid combination)."""
+        name, where, nbs, config, own, axes = self._run_settings(i, run)
+        if not nbs:
+            return []
+        self._check_axes(axes, nbs, where)
+        n_comb = math.prod(len(a[3]) for a in axes)
+        if n_before + n_comb > MAX_RUNS:
+            _fail(self.origin, where, f"the grids make more than {MAX_RUNS} runs "
+                                      f"({n_comb} combinations here); split the batch")
+        labels = _grid_names(axes)
+        specs = []
+        for combo in itertools.product(*(a[3] for a in axes)) if axes else [()]:
+            params = self._combination_params(nbs, own, axes, combo)
+            rname = self._run_name(name, labels, combo, where, seen)
+            for nb in nbs:
+                known = self.parameters_of(nb)
                 for pname in sorted(set(params[nb]) - set(known)):
-                    _fail(origin, f"run {rname!r}", f"{nb} has no parameter {pname!r}"
-                                                    f"{_close(pname, known)}; it has "
-                                                    f"{', '.join(sorted(known))}")
-                _check_values(rname, nb, params[nb], known, config, origin)
+                    _fail(self.origin, f"run {rname!r}", f"{nb} has no parameter {pname!r}"
+                                                         f"{_close(pname, known)}; it has "
+                                                         f"{', '.join(sorted(known))}")
+                _check_values(rname, nb, params[nb], known, config, self.origin)
             specs.append(RunSpec(rname, nbs, params, config, _settings(params, nbs, config)))
-    if not specs:
-        _fail(origin, "--only", "no run has any of these notebooks")
-    return specs
+        return specs
 
 
 def load_batch(path, *, only=None, extra_params=None, nb_dir=None) -> list[RunSpec]:

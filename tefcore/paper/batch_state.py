@@ -52,7 +52,7 @@ from ..errors import TefcoreError
 from ..provenance import describe_digest, file_digest, input_digests, model_stamp
 from ..safe_io import atomic_write_text
 from .notebook_files import notebooks_dir
-from .reference import reference_dir
+from .reference_files import reference_dir
 
 __all__ = ["FORMAT", "RECORD", "RunPlan", "StaleRunError", "changes", "notebook_digest",
            "paper_stamp", "plan_runs", "read_record", "reference_digest", "run_inputs",
@@ -141,7 +141,7 @@ def reference_digest(folder=None) -> str:
     Parameters
     ----------
     folder : path, optional
-        Default :func:`tefcore.paper.reference.reference_dir`.
+        Default :func:`tefcore.paper.reference_files.reference_dir`.
 
     Returns
     -------

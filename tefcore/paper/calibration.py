@@ -108,7 +108,7 @@ def frequency_checks(cfg, n_modes: int | None = None) -> pd.DataFrame:
 
     Parameters
     ----------
-    cfg : tefcore.config.sections.Config
+    cfg : tefcore.config.configuration.Config
         Blade to check (normally the MDART baseline); each target's
         overrides (:data:`TORSION_TARGETS`) are applied over it.
     n_modes : int, optional
@@ -141,7 +141,7 @@ def calibrate_torsion(cfg):
 
     Parameters
     ----------
-    cfg : tefcore.config.sections.Config
+    cfg : tefcore.config.configuration.Config
         Starting point of the fit and everything it keeps (section inertia,
         GJ distribution, flap); its GJ scale, horn arm and pitch-link
         stiffness are the initial guess.
@@ -212,7 +212,7 @@ def calibrate_multiple_load_path(cfg):
 
     Parameters
     ----------
-    cfg : tefcore.config.sections.Config
+    cfg : tefcore.config.configuration.Config
         Configuration with the hub sections (its ``hub.model`` is set here).
 
     Returns

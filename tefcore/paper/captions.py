@@ -57,7 +57,7 @@ def flight_condition(cfg) -> str:
 
     Parameters
     ----------
-    cfg : tefcore.config.sections.Config
+    cfg : tefcore.config.configuration.Config
         The configuration.
     """
     mu = cfg.flight.advance_ratio
@@ -69,7 +69,7 @@ def conditions(cfg, exclude=()) -> str:
 
     Parameters
     ----------
-    cfg : tefcore.config.sections.Config
+    cfg : tefcore.config.configuration.Config
         The configuration actually analysed.
     exclude : iterable of str
         Dotted fields not to mention (the swept one).
@@ -111,7 +111,7 @@ def figure_title(name: str, cfg, width: int | None = None) -> str:
     ----------
     name : str
         Paper figure (``"fig9"``).
-    cfg : tefcore.config.sections.Config
+    cfg : tefcore.config.configuration.Config
         The configuration actually analysed (:func:`conditions`).
     width : int, optional
         Wrap to lines of at most this many characters (for a plot title).
@@ -140,7 +140,7 @@ def figure_caption(name: str, cfg, what: str = "", markers: bool = True) -> str:
     ----------
     name : str
         Paper figure (``"fig9"``).
-    cfg : tefcore.config.sections.Config
+    cfg : tefcore.config.configuration.Config
         The configuration actually analysed (caption fields and overrides).
     what : str
         What the panels show, e.g. ``"(a) TEF frequency; (b) damping"``.

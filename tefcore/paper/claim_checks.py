@@ -29,7 +29,8 @@ from ..modes.roles import (
 )
 from .curve_metrics import X_SLACK, compare_curve, stability_intervals, zero_crossings
 from .figure_frames import compute_figure, figure_frame, natural_frequency_frame
-from .reference import FIGURES, QUANTITIES, Claim, load_claims, x_to_si
+from .quantities import QUANTITIES, x_to_si
+from .reference import FIGURES, Claim, load_claims
 
 __all__ = ["COLUMNS", "validate_figure", "variant_key"]
 

@@ -53,7 +53,7 @@ def explorer_config(base=None, *, cg_offset: float, overhang: float, actuator_sc
 
     Parameters
     ----------
-    base : tefcore.config.sections.Config, optional
+    base : tefcore.config.configuration.Config, optional
         Base configuration (default: MDART, thin-airfoil aerodynamics).
     cg_offset, overhang : float
         Flap CG offset and overhang, fractions of the flap chord.
@@ -105,7 +105,7 @@ def root_map(cfg) -> RootMap:
 
     Parameters
     ----------
-    cfg : tefcore.config.sections.Config
+    cfg : tefcore.config.configuration.Config
         The configuration.
 
     Returns
@@ -137,7 +137,7 @@ def explorer_state(base=None, **values) -> RootMap:
 
     Parameters
     ----------
-    base : tefcore.config.sections.Config, optional
+    base : tefcore.config.configuration.Config, optional
         Base configuration.
     **values
         The :data:`SLIDERS` values.
@@ -230,7 +230,7 @@ def explore(base=None, interactive: bool = True, **start):
 
     Parameters
     ----------
-    base : tefcore.config.sections.Config, optional
+    base : tefcore.config.configuration.Config, optional
         Base configuration (default: MDART, thin-airfoil aerodynamics).
     interactive : bool
         Show ipywidgets sliders (when ipywidgets is installed); False draws the

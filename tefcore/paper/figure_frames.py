@@ -94,7 +94,7 @@ def natural_frequency_frame(name, frame, cfg, overrides) -> pd.DataFrame:
     frame : pandas.DataFrame
         The figure's frame (:func:`figure_frame`); only its ``x`` column (SI
         values of the swept field) is used.
-    cfg : tefcore.config.sections.Config or None
+    cfg : tefcore.config.configuration.Config or None
         Base configuration (None: MDART); the figure's fixed parameters are
         applied over it.
     overrides : dict
@@ -126,7 +126,7 @@ def compute_figure(name, cfg=None, values=None, overrides=None, n_jobs=1, progre
     name : str
         A stability figure of :data:`tefcore.paper.reference.FIGURES`, or
         ``"fig5"``, ``"fig6"``, ``"fig7"`` (flap-response analyses).
-    cfg : tefcore.config.sections.Config, optional
+    cfg : tefcore.config.configuration.Config, optional
         Base configuration (default: MDART).
     values : sequence, optional
         Swept values instead of the paper's (stability figures), or the

@@ -30,7 +30,8 @@ from ..config.io import load_config
 from .claim_checks import variant_key
 from .figures import FIGURES, figure_config
 from .plotting import split_value, x_values
-from .reference import ReferenceDataError, load_claims
+from .reference import load_claims
+from .reference_files import ReferenceDataError
 from .validation import sweep_values
 
 __all__ = ["AERO_MODELS", "base_config", "figure_values", "natural_frequencies",
@@ -64,7 +65,7 @@ def base_config(aero_model: str = "thin_airfoil", overrides: dict | None = None,
 
     Returns
     -------
-    tefcore.config.sections.Config
+    tefcore.config.configuration.Config
         The base configuration with the section aerodynamics set, then
         ``overrides``.
     """
@@ -88,7 +89,7 @@ def run_config(name: str, base=None, overrides: dict | None = None):
     ----------
     name : str
         Paper figure (``"fig9"``).
-    base : tefcore.config.sections.Config, optional
+    base : tefcore.config.configuration.Config, optional
         Base configuration (default: MDART).
     overrides : dict, optional
         Dotted fields that win over the caption (e.g. another advance ratio).
@@ -104,7 +105,7 @@ def section_aero(aero_model: str, cfg=None):
     ----------
     aero_model : {"thin_airfoil", "table"}
         See :func:`base_config`.
-    cfg : tefcore.config.sections.Config, optional
+    cfg : tefcore.config.configuration.Config, optional
         Source of ``flap.chord_ratio`` and ``flap.overhang``.
     """
     from ..model.coupled import section_model
@@ -167,7 +168,7 @@ def quiet_stability(cfg):
 
     Parameters
     ----------
-    cfg : tefcore.config.sections.Config
+    cfg : tefcore.config.configuration.Config
         The configuration.
     """
     from ..linear.stability import stability
@@ -194,7 +195,7 @@ def run_stability_figure(name: str, base=None, overrides: dict | None = None,
     ----------
     name : str
         Paper figure.
-    base : tefcore.config.sections.Config, optional
+    base : tefcore.config.configuration.Config, optional
         Base configuration.
     overrides : dict, optional
         Dotted fields applied over the caption.
@@ -236,7 +237,7 @@ def natural_frequencies(name: str, values, base=None, overrides: dict | None = N
         Paper figure.
     values : sequence
         Sweep values.
-    base : tefcore.config.sections.Config, optional
+    base : tefcore.config.configuration.Config, optional
         Base configuration.
     overrides : dict, optional
         Dotted fields applied over the caption.

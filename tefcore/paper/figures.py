@@ -132,12 +132,12 @@ def figure_config(name: str, cfg=None):
     ----------
     name : str
         Stability figure, a key of :data:`FIGURES` (``"fig3"`` ... ``"fig17"``).
-    cfg : tefcore.config.sections.Config, optional
+    cfg : tefcore.config.configuration.Config, optional
         Base configuration (default: the MDART baseline, ``load_config("mdart")``).
 
     Returns
     -------
-    tefcore.config.sections.Config
+    tefcore.config.configuration.Config
         ``cfg`` with :attr:`Figure.fixed` applied, before the swept field is set.
     """
     fig = FIGURES[name]
@@ -151,7 +151,7 @@ def run_figure(name: str, cfg=None, values=None, **sweep_kw):
     ----------
     name : str
         Stability figure, a key of :data:`FIGURES`.
-    cfg : tefcore.config.sections.Config, optional
+    cfg : tefcore.config.configuration.Config, optional
         Base configuration (default: MDART); the figure's fixed parameters
         are applied over it (:func:`figure_config`).
     values : sequence, optional
@@ -237,7 +237,7 @@ def response_config(cfg=None, **over):
 
     Parameters
     ----------
-    cfg : tefcore.config.sections.Config, optional
+    cfg : tefcore.config.configuration.Config, optional
         Base configuration (default: MDART).
     **over
         Dotted fields that win over the figures' flight condition.
@@ -260,7 +260,7 @@ def hinge_moment_figure(cfg=None, aero=None, n_psi: int = 72, **over) -> pd.Data
 
     Parameters
     ----------
-    cfg : tefcore.config.sections.Config, optional
+    cfg : tefcore.config.configuration.Config, optional
         Base configuration (default: MDART).
     aero : object, optional
         Section aerodynamics model evaluating the hinge moment
@@ -305,7 +305,7 @@ def flap_response_figure(cfg=None, **over) -> dict:
 
     Parameters
     ----------
-    cfg : tefcore.config.sections.Config, optional
+    cfg : tefcore.config.configuration.Config, optional
         Base configuration (default: MDART).
     **over
         Dotted configuration fields that win over Fig. 6's condition and the
@@ -351,7 +351,7 @@ def overhang_actuation_figure(cfg=None, overhangs=(0.0, 0.1, 0.2, 0.29, 0.35, 0.
 
     Parameters
     ----------
-    cfg : tefcore.config.sections.Config, optional
+    cfg : tefcore.config.configuration.Config, optional
         Base configuration (default: MDART).
     overhangs : sequence of float
         Flap overhangs ``c_b/c_f`` (hinge behind the flap nose, fraction of

@@ -105,7 +105,7 @@ def plot_hub_models(comparison: HubComparison, cfg=None):
     ----------
     comparison : HubComparison
         From :func:`compare_hub_models`.
-    cfg : tefcore.config.sections.Config, optional
+    cfg : tefcore.config.configuration.Config, optional
         Its configuration, for the nominal rotor speed (default MDART).
 
     Returns

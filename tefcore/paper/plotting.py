@@ -199,7 +199,7 @@ def x_values(name: str, table: pd.DataFrame) -> np.ndarray:
         Rows with ``value`` (and ``value_si``).
     """
     from .figures import FIGURES
-    from .reference import swept_dimension
+    from .quantities import swept_dimension
 
     _, fn = AXES[name]
     unit = split_value(FIGURES[name].values[0])[1] if name in FIGURES else ""

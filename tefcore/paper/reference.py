@@ -20,26 +20,19 @@ Examples
 
 from __future__ import annotations
 
-import csv
-import io
 import math
-import os
 import re
-import tomllib
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 
-import numpy as np
 import pandas as pd
 
-from ..config.sections import SECTIONS, resolve_field
-from ..units import to_si
+from ..config.configuration import resolve_field
 from .figures import FIGURES, figure_config
+from .quantities import QUANTITIES, x_to_si, y_to_canonical
+from .reference_files import ReferenceDataError, read_toml, read_wpd_csv, reference_dir
 
-__all__ = ["KINDS", "QUANTITIES", "ROOT_KINDS", "STATUSES", "Claim", "ReferenceDataError",
-           "load_claims",
-           "parse_claim", "read_wpd_csv", "reference_dir", "swept_dimension", "x_to_si",
-           "y_to_canonical"]
+__all__ = ["KINDS", "ROOT_KINDS", "STATUSES", "Claim", "load_claims", "parse_claim"]
 
 KINDS = ("value", "threshold", "range", "trend", "comparison", "mechanism", "curve",
          "not_reproducible")
@@ -51,27 +44,6 @@ STATUSES = ("pass", "ambiguous", "not reproducible", "fail")
 #: kinds of root a mechanism claim can expect (:func:`tefcore.linear.mechanism.mechanism`)
 ROOT_KINDS = ("flutter", "divergence")
 KNOWN_FIGURES = tuple(FIGURES) + ("fig5", "fig6", "fig7")
-_FT_LBF = 1.3558179483314004  # N m per ft-lbf
-_PER_REV = {"1/rev": 1.0, "/rev": 1.0, "": 1.0, "1/s": "1/s"}   # eigenvalue / Omega
-_FREQ = {"/rev": 1.0, "1/rev": 1.0, "": 1.0, "Hz": "Hz"}
-_POWER = {"W": 1.0, "hp": 745.6998715822702, "ft-lb/s": _FT_LBF}
-#: quantity -> (figures, canonical unit, {accepted unit: factor}); "1/s" and "Hz"
-#: are converted with the figure's rotor speed
-QUANTITIES = {
-    "real_part": ("stability", "1/rev", _PER_REV),
-    "damping": ("stability", "1/rev", _PER_REV),
-    "damping_ratio": ("stability", "1", {"1": 1.0, "": 1.0, "%": 0.01, "percent": 0.01}),
-    "frequency_per_rev": ("stability", "/rev", _FREQ),
-    "natural_frequency_per_rev": ("stability", "/rev", _FREQ),
-    "hinge_moment": (("fig5",), "N m", {"N m": 1.0, "N-m": 1.0, "Nm": 1.0, "ft-lb": _FT_LBF,
-                                        "in-lb": _FT_LBF / 12}),
-    "half_peak_to_peak_deg": (("fig6", "fig7"), "deg", {"deg": 1.0, "": 1.0}),
-    "peak_power": (("fig6", "fig7"), "W", _POWER),
-    "mean_power": (("fig6", "fig7"), "W", _POWER),
-}
-#: x of the response figures (fig6 has none): {unit: factor to the table's unit}
-_RESPONSE_X = {"fig5": {"": 1.0, "deg": 1.0, "rad": 180 / math.pi},
-               "fig7": {"": 1.0, "%": 0.01, "percent": 0.01}}
 _ID = re.compile(r"^[a-z0-9][a-z0-9._:-]*$")
 _COMMON = {"id", "figure", "panel", "statement", "condition", "kind", "tag", "recorded_status",
            "notes"}
@@ -90,10 +62,6 @@ _FIELDS = {  # kind -> allowed fields besides _COMMON
 }
 _RELATIONS = {"slope": ("less", "greater"), "abs_slope": ("less", "greater"),
               "peak_to_peak": ("less", "greater"), "correlation": ("positive", "negative")}
-
-
-class ReferenceDataError(ValueError):
-    """A malformed reference file; the message names the file and record or row."""
 
 
 @dataclass(frozen=True)
@@ -265,117 +233,6 @@ class Claim:
     reason: str = ""
     example: bool = False
     points: pd.DataFrame | None = field(default=None, repr=False, compare=False)
-
-
-def reference_dir() -> Path:
-    """The reference data folder: ``$TEFCORE_REFERENCE_DATA`` or the repository's."""
-    env = os.environ.get("TEFCORE_REFERENCE_DATA")
-    return Path(env) if env else Path(__file__).resolve().parent / "reference_data"
-
-
-def swept_dimension(figure: str) -> str:
-    """Physical dimension of a stability figure's swept field (e.g. ``"angle"``).
-
-    Parameters
-    ----------
-    figure : str
-        Stability figure, a key of :data:`tefcore.paper.figures.FIGURES`.
-
-    Returns
-    -------
-    str
-        The dimension of the configuration field it sweeps, as declared in
-        :mod:`tefcore.config.sections` (used to convert ``"150 lb/in"`` to SI).
-
-    Examples
-    --------
-    >>> swept_dimension("fig3"), swept_dimension("fig10")
-    ('angle', 'force_per_length')
-    """
-    section, name = resolve_field(FIGURES[figure].parameter)
-    return next(p.dimension for p in SECTIONS[section].PARAMS if p.name == name)
-
-
-def x_to_si(figure: str, values, unit: str = ""):
-    """Convert x values of `figure` from `unit` to the unit of its result table.
-
-    Parameters
-    ----------
-    figure : str
-        A stability figure, ``"fig5"`` or ``"fig7"`` (Fig. 6 has no x).
-    values : float or array_like
-        The x values as the claim writes them.
-    unit : str
-        Their unit: stability figures accept any unit of the swept field's
-        dimension (``"lb/in"``, ``"deg"``, ``"percent"``; ``""``: already SI);
-        Fig. 5 ``""``, ``"deg"`` or ``"rad"`` of azimuth; Fig. 7 ``""``,
-        ``"%"`` or ``"percent"`` of the flap chord.
-
-    Returns
-    -------
-    float or numpy.ndarray
-        ``values`` in the unit of the figure's result table: SI of the swept
-        field, Fig. 5's azimuth in deg, Fig. 7's overhang as a fraction.
-
-    Raises
-    ------
-    ValueError
-        A unit the figure does not accept.
-
-    Examples
-    --------
-    >>> float(x_to_si("fig7", 29, "percent"))
-    0.29
-    """
-    if figure in FIGURES:
-        return to_si(values, unit, swept_dimension(figure)) if unit else values
-    table = _RESPONSE_X.get(figure, {})
-    if unit not in table:
-        raise ValueError(f"x unit {unit!r} not accepted for {figure}; use one of {list(table)}")
-    return np.multiply(values, table[unit])
-
-
-def y_to_canonical(quantity: str, values, unit: str, rotor_speed: float | None = None):
-    """Convert `values` of `quantity` from `unit` to its canonical unit (:data:`QUANTITIES`).
-
-    Parameters
-    ----------
-    quantity : str
-        A key of :data:`QUANTITIES` (``"real_part"``, ``"hinge_moment"``, ...).
-    values : float or array_like
-        Values as digitised or stated.
-    unit : str
-        Their unit, one of those :data:`QUANTITIES` accepts for the quantity
-        (``"1/s"``, ``"Hz"``, ``"%"``, ``"ft-lb"``, ``"hp"``, ...).
-    rotor_speed : float, optional
-        Rotor speed Omega [rad/s] of the figure, needed to turn a rate per
-        second (``"1/s"``) or ``"Hz"`` into per rev.
-
-    Returns
-    -------
-    numpy.ndarray
-        The values in the canonical unit (1/rev, /rev, N m, W, deg or 1).
-
-    Raises
-    ------
-    ValueError
-        A unit not accepted for the quantity, or a per-second unit without
-        ``rotor_speed``.
-
-    Examples
-    --------
-    >>> y_to_canonical("damping_ratio", [2.0], "%")
-    array([0.02])
-    """
-    table = QUANTITIES[quantity][2]
-    if unit not in table:
-        raise ValueError(f"unit {unit!r} not accepted for {quantity}; use one of {list(table)}")
-    factor = table[unit]
-    if isinstance(factor, str):  # per second / Hz -> per rev (rad of azimuth or cycles)
-        if rotor_speed is None:
-            raise ValueError(f"converting {quantity} from {unit!r} needs the rotor speed")
-        factor = (1.0 if factor == "1/s" else 2 * math.pi) / rotor_speed
-    return np.asarray(values, float) * factor
 
 
 # ------------------------------------------------------------------ record checks
@@ -611,98 +468,7 @@ def _mechanism_claim(r: _Record, kw: dict, figure: str) -> Claim:
     return Claim(**kw)
 
 
-def _read_toml(path: Path) -> dict:
-    try:
-        with open(path, "rb") as f:
-            return tomllib.load(f)
-    except tomllib.TOMLDecodeError as err:
-        raise ReferenceDataError(f"{path}: not valid TOML: {err}") from None
-
-
 # ------------------------------------------------------------------ WebPlotDigitizer
-
-
-def _num(cell: str, where: str) -> float:
-    try:
-        v = float(cell)
-    except ValueError:
-        raise ReferenceDataError(f"{where}: {cell!r} is not a number") from None
-    if not math.isfinite(v):
-        raise ReferenceDataError(f"{where}: {cell!r} is not a finite number")
-    return v
-
-
-def read_wpd_csv(path) -> dict[str, pd.DataFrame]:
-    """Read a WebPlotDigitizer CSV export into ``{dataset name: DataFrame(x, y)}``.
-
-    Layouts (``,``, ``;`` or tab separated): *per dataset* -- two columns
-    ``x, y``, no header or one header line, returned under the name ``""``;
-    *export all* -- dataset names on row 1 (above each X column), ``X, Y``
-    pairs on row 2, then the points (shorter datasets leave cells empty).
-
-    Parameters
-    ----------
-    path : path
-        The CSV file.
-
-    Raises
-    ------
-    ReferenceDataError
-        Naming the file and 1-based row.
-    """
-    path = Path(path)
-    text = path.read_text(encoding="utf-8-sig")
-    first = text.lstrip().split("\n", 1)[0]
-    delim = next((d for d in (",", ";", "\t") if d in first), ",")
-    rows = [(n, [c.strip() for c in row]) for n, row in
-            enumerate(csv.reader(io.StringIO(text), delimiter=delim), start=1) if any(
-                c.strip() for c in row)]
-    if not rows:
-        raise ReferenceDataError(f"{path}: no data")
-    xy = [c.upper() for c in (rows[1][1] if len(rows) > 1 else [])]
-    while xy and not xy[-1]:
-        xy.pop()
-    if xy and len(xy) % 2 == 0 and xy == ["X", "Y"] * (len(xy) // 2):
-        return _wpd_export_all(path, rows, len(xy) // 2)
-    return {"": _wpd_two_columns(path, rows)}
-
-
-def _wpd_export_all(path: Path, rows, n_sets: int) -> dict[str, pd.DataFrame]:
-    """WebPlotDigitizer's "export all": names on row 1, X/Y on row 2, points below."""
-    names, out = rows[0][1] + [""] * (2 * n_sets), {}
-    for j in range(0, 2 * n_sets, 2):
-        name = names[j]
-        if not name or name in out:
-            raise ReferenceDataError(f"{path}, row {rows[0][0]}: dataset name above column "
-                                     f"{j + 1} is {'repeated' if name else 'empty'}")
-        pts = []
-        for n, row in rows[2:]:
-            cx, cy = (row + ["", ""])[j:j + 2]
-            if not (cx or cy):
-                continue                    # a shorter dataset ends here
-            if not (cx and cy):
-                raise ReferenceDataError(f"{path}, row {n}: dataset {name!r} has only "
-                                         "one of its X/Y cells")
-            pts.append((_num(cx, f"{path}, row {n}"), _num(cy, f"{path}, row {n}")))
-        out[name] = pd.DataFrame(pts, columns=["x", "y"])
-    return out
-
-
-def _wpd_two_columns(path: Path, rows) -> pd.DataFrame:
-    """One dataset as two columns x, y, with at most one header line."""
-    try:
-        [float(c) for c in rows[0][1] if c]
-    except ValueError:
-        rows = rows[1:]  # one header line such as "x,y"
-    pts = []
-    for n, row in rows:
-        cells = [c for c in row if c]
-        if len(cells) != 2:
-            raise ReferenceDataError(f"{path}, row {n}: expected two columns x, y, got {row}")
-        pts.append((_num(cells[0], f"{path}, row {n}"), _num(cells[1], f"{path}, row {n}")))
-    if not pts:
-        raise ReferenceDataError(f"{path}: no data rows")
-    return pd.DataFrame(pts, columns=["x", "y"])
 
 
 _SIDECAR = {"id", "figure", "panel", "statement", "condition", "tag", "x_unit", "file",
@@ -712,7 +478,7 @@ _DATASET = {"name", "id", "file", "mode", "quantity", "y_unit", "uncertainty",
 
 
 def _load_sidecar(path: Path) -> list[Claim]:
-    side = _Record(_read_toml(path), str(path))
+    side = _Record(read_toml(path), str(path))
     data = side.raw
     if sorted(set(data) - _SIDECAR):
         side.fail(f"unknown field(s) {sorted(set(data) - _SIDECAR)}")
@@ -786,7 +552,7 @@ def load_claims(root=None, include_examples: bool = False) -> list[Claim]:
         if path.parent.name == "curves":
             loaded = _load_sidecar(path)
         else:
-            data = _read_toml(path)
+            data = read_toml(path)
             if set(data) - {"claim", "format"} or not isinstance(data.get("claim", []), list):
                 raise ReferenceDataError(f"{path}: expected only [[claim]] tables and 'format'")
             loaded = [parse_claim(raw, f"{path}: record {i}")

@@ -42,7 +42,8 @@ from .notebook_files import (
     resolve_notebook,
 )
 from .plotting import deterministic_matplotlib, savefig
-from .reference import ReferenceDataError, load_claims, reference_dir
+from .reference import load_claims
+from .reference_files import ReferenceDataError, reference_dir
 from .report import build_report, write_report
 from .run_params import merge_params
 from .validation import claims_score, worse_than_recorded
@@ -310,7 +311,7 @@ def baseline_blade(out: Path, cfg=None) -> pd.DataFrame:
     ----------
     out : pathlib.Path
         Existing output folder.
-    cfg : tefcore.config.sections.Config, optional
+    cfg : tefcore.config.configuration.Config, optional
         The blade (default: the shipped MDART configuration); a batch run
         passes its own base configuration with its common overrides.
 
@@ -416,7 +417,7 @@ def check_reference_data() -> int:
     Returns
     -------
     int
-        The claims in :func:`tefcore.paper.reference.reference_dir`.
+        The claims in :func:`tefcore.paper.reference_files.reference_dir`.
     """
     try:
         claims = load_claims()

@@ -48,7 +48,7 @@ def mechanism_summary(cfg, x=None, name=None, root=None, knockouts=True,
 
     Parameters
     ----------
-    cfg : tefcore.config.sections.Config or None
+    cfg : tefcore.config.configuration.Config or None
         The configuration; with ``name``, the base configuration of the
         figure (None: MDART).
     x : float or str, optional
@@ -251,7 +251,7 @@ def explain(name: str, result, x: float, base=None, overrides: dict | None = Non
     x : float
         Where to look, in the paper's x units (deg of collective, lb/in,
         fractions of c_f, ...); the nearest point of the figure's own is used.
-    base : tefcore.config.sections.Config, optional
+    base : tefcore.config.configuration.Config, optional
         Base configuration the sweep was run with (default: MDART).
     overrides : dict, optional
         Dotted fields the sweep was run with over the caption.
@@ -298,7 +298,7 @@ def unsteadiness(name: str, result, base=None) -> None:
         Stability figure (its caption's flap and rotor).
     result : tefcore.sweeps.sweep.SweepResult
         The figure's sweep.
-    base : tefcore.config.sections.Config, optional
+    base : tefcore.config.configuration.Config, optional
         Base configuration (default: MDART).
     """
     cfg = figure_config(name, base)
@@ -376,7 +376,7 @@ def claims_table(name: str, result, cfg=None, variants=None, others=None) -> pd.
         Paper figure.
     result : SweepResult or dict
         The figure's result.
-    cfg : tefcore.config.sections.Config, optional
+    cfg : tefcore.config.configuration.Config, optional
         Base configuration of runs the validation adds.
     variants : dict, optional
         ``{variant_key(overrides): result}`` of runs already made (e.g. Fig.
@@ -386,7 +386,7 @@ def claims_table(name: str, result, cfg=None, variants=None, others=None) -> pd.
 
     Raises
     ------
-    tefcore.paper.reference.ReferenceDataError
+    tefcore.paper.reference_files.ReferenceDataError
         Without usable reference data (never an empty "0 of 0" table).
     """
     return validation.validate_figure(name, result, cfg=cfg, variants=variants,

@@ -25,15 +25,9 @@ from ..units import parse_quantity
 from .claim_checks import COLUMNS, validate_figure, variant_key
 from .curve_metrics import X_SLACK, compare_curve, stability_intervals, zero_crossings
 from .figure_frames import FIG7_OVERHANGS, compute_figure, figure_frame
-from .reference import (
-    FIGURES,
-    KNOWN_FIGURES,
-    STATUSES,
-    load_claims,
-    reference_dir,
-    swept_dimension,
-    x_to_si,
-)
+from .quantities import swept_dimension, x_to_si
+from .reference import FIGURES, KNOWN_FIGURES, STATUSES, load_claims
+from .reference_files import reference_dir
 
 __all__ = ["COLUMNS", "claims_score", "compare_curve", "figure_frame", "reference_curves",
            "stability_intervals", "sweep_values", "update_recorded_status", "validate_all",
@@ -236,7 +230,7 @@ def update_recorded_status(table: pd.DataFrame, path=None) -> int:
         it keep their recorded status.
     path : path, optional
         The claims file (default ``claims.toml`` of
-        :func:`tefcore.paper.reference.reference_dir`).
+        :func:`tefcore.paper.reference_files.reference_dir`).
 
     Returns
     -------

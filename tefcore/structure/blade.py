@@ -1,6 +1,6 @@
 """The configured blade: finite-element model, modes and fan plot.
 
-This module turns a :class:`tefcore.config.sections.Config` into the rotor-unit
+This module turns a :class:`tefcore.config.configuration.Config` into the rotor-unit
 finite-element beam of :mod:`tefcore.structure.fem` and its coupled modes.  The
 collective pitch is the geometric pitch at 0.75 R; the built-in twist is
 added relative to its value there.  The hub is ``hub.model``: equivalent root
@@ -16,7 +16,7 @@ from collections.abc import Mapping
 import numpy as np
 import pandas as pd
 
-from ..config.sections import SECTIONS
+from ..config.configuration import SECTIONS
 from ..runtime import blas_limit
 from .branched import BranchedBeam, Component, Coupling, Joint, assemble_branched
 from .fem import (
@@ -49,7 +49,7 @@ def rotor_units(cfg) -> RotorUnits:
 
     Parameters
     ----------
-    cfg : tefcore.config.sections.Config
+    cfg : tefcore.config.configuration.Config
         The rotor configuration.
 
     Returns
@@ -68,7 +68,7 @@ def section_function(cfg, units: RotorUnits | None = None):
 
     Parameters
     ----------
-    cfg : tefcore.config.sections.Config
+    cfg : tefcore.config.configuration.Config
         The rotor configuration.
     units : tefcore.structure.scaling.RotorUnits, optional
         Reference scales (default :func:`rotor_units` of ``cfg``).
@@ -92,7 +92,7 @@ def pitch_function(cfg, collective: float = 0.0):
 
     Parameters
     ----------
-    cfg : tefcore.config.sections.Config
+    cfg : tefcore.config.configuration.Config
         The rotor configuration.
     collective : float, optional
         theta_75 [rad].
@@ -117,7 +117,7 @@ def root_springs(cfg, units: RotorUnits | None = None) -> RootSprings:
 
     Parameters
     ----------
-    cfg : tefcore.config.sections.Config
+    cfg : tefcore.config.configuration.Config
         The rotor configuration.
     units : tefcore.structure.scaling.RotorUnits, optional
         Reference scales (default :func:`rotor_units` of ``cfg``).
@@ -139,7 +139,7 @@ def blade_model(cfg, collective: float = 0.0,
 
     Parameters
     ----------
-    cfg : tefcore.config.sections.Config
+    cfg : tefcore.config.configuration.Config
         The rotor configuration.
     collective : float
         Geometric pitch at 0.75 R [rad]; it rotates the section principal
@@ -236,7 +236,7 @@ def multiple_load_path_model(cfg, collective: float = 0.0, n_elements: int | Non
 
     Parameters
     ----------
-    cfg : tefcore.config.sections.Config
+    cfg : tefcore.config.configuration.Config
         Configuration with the hub sections ``flexbeam``, ``torque_tube``,
         ``pitch_link`` and ``snubber``.
     collective : float
@@ -356,7 +356,7 @@ def element_nodes(cfg, n: int, start: float | None = None) -> np.ndarray:
 
     Parameters
     ----------
-    cfg : tefcore.config.sections.Config
+    cfg : tefcore.config.configuration.Config
         The rotor configuration.
     n : int
         Number of elements.
@@ -426,7 +426,7 @@ def structural_key(cfg) -> tuple:
 
     Parameters
     ----------
-    cfg : tefcore.config.sections.Config
+    cfg : tefcore.config.configuration.Config
         The configuration.
 
     Returns
@@ -460,7 +460,7 @@ def blade_modes(cfg, n_modes: int | None = None, collective: float = 0.0,
 
     Parameters
     ----------
-    cfg : tefcore.config.sections.Config
+    cfg : tefcore.config.configuration.Config
         The rotor configuration.
     n_modes : int, optional
         Modes kept (default ``cfg.model.n_modes``).
@@ -508,7 +508,7 @@ def fan_data(cfg, speed_ratios, n_modes: int | None = None,
 
     Parameters
     ----------
-    cfg : tefcore.config.sections.Config
+    cfg : tefcore.config.configuration.Config
         The rotor configuration.
     speed_ratios : array_like
         Rotor speeds, fractions of the configured one.
@@ -545,7 +545,7 @@ def fan_plot(cfg, speed_ratios=None, n_modes: int | None = None, ax=None):
 
     Parameters
     ----------
-    cfg : tefcore.config.sections.Config
+    cfg : tefcore.config.configuration.Config
         The rotor configuration.
     speed_ratios : array_like, optional
         Rotor speeds, fractions of the configured one (default 0.2 to 1.2).

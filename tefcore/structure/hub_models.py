@@ -112,7 +112,7 @@ def pitch_flap_delta3(cfg) -> float:
 
     Parameters
     ----------
-    cfg : tefcore.config.sections.Config
+    cfg : tefcore.config.configuration.Config
         A configuration with ``hub.model = "multiple_load_path"``.
 
     Returns

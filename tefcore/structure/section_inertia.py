@@ -107,7 +107,7 @@ def flap_share(cfg, balanced: bool = False) -> FlapShare:
 
     Parameters
     ----------
-    cfg : tefcore.config.sections.Config
+    cfg : tefcore.config.configuration.Config
         The rotor configuration.
     balanced : bool
         The share of the mass-balanced flap (CG on the hinge), which the
@@ -137,7 +137,7 @@ def flap_span_mask(cfg, x) -> np.ndarray:
 
     Parameters
     ----------
-    cfg : tefcore.config.sections.Config
+    cfg : tefcore.config.configuration.Config
         The rotor configuration.
     x : float or array_like
         Radial stations, fractions of R.
@@ -161,7 +161,7 @@ def lumped_section(cfg, x) -> dict[str, np.ndarray]:
 
     Parameters
     ----------
-    cfg : tefcore.config.sections.Config
+    cfg : tefcore.config.configuration.Config
         The rotor configuration.
     x : float or array_like
         Radial stations, fractions of R.
@@ -208,7 +208,7 @@ def host_section(cfg, x) -> dict[str, np.ndarray]:
 
     Parameters
     ----------
-    cfg : tefcore.config.sections.Config
+    cfg : tefcore.config.configuration.Config
         The rotor configuration.
     x : float or array_like
         Radial stations, fractions of R.
@@ -244,7 +244,7 @@ def flap_mass_limit(cfg, x=None) -> float:
 
     Parameters
     ----------
-    cfg : tefcore.config.sections.Config
+    cfg : tefcore.config.configuration.Config
         The rotor configuration.
     x : float or array_like, optional
         Stations (fractions of R) to take the bound at; default the flap span
@@ -288,7 +288,7 @@ def section_mass_block(cfg, x) -> np.ndarray:
 
     Parameters
     ----------
-    cfg : tefcore.config.sections.Config
+    cfg : tefcore.config.configuration.Config
         The rotor configuration.
     x : float or array_like
         Radial stations, fractions of R.
@@ -334,7 +334,7 @@ def check_section_inertia(cfg) -> None:
 
     Parameters
     ----------
-    cfg : tefcore.config.sections.Config
+    cfg : tefcore.config.configuration.Config
         The rotor configuration.
 
     Raises

@@ -34,16 +34,10 @@ from typing import Any
 import numpy as np
 from scipy.optimize import brentq
 
-from ..config.sections import Config
+from ..config.configuration import Config
 from ..modes.matching import match_modes
-from .sweep import (
-    SweepResult,
-    check_parameter,
-    check_result,
-    default_point,
-    shape_vectors,
-    sweep,
-)
+from .evaluate import check_result, default_point, shape_vectors
+from .sweep import SweepResult, check_parameter, sweep
 
 __all__ = ["BoundaryResult", "stability_boundary"]
 
@@ -165,16 +159,7 @@ def stability_boundary(cfg: Config, parameter: str, bracket, mode: str = "TEF", 
     lo, hi = _to_si(base, parameter, lo), _to_si(base, parameter, hi)
     if not lo < hi:
         raise ValueError(f"bracket must have lo < hi, got ({lo!r}, {hi!r}) in SI")
-    if scan is None:
-        scan = 9
-    if isinstance(scan, numbers.Integral) and not isinstance(scan, bool):
-        if scan < 2:
-            raise ValueError(f"scan needs at least 2 points, got {scan}")
-        xs = np.linspace(lo, hi, int(scan)).tolist()
-    else:
-        xs = sorted({_to_si(base, parameter, v) for v in scan})
-        if len(xs) < 2:
-            raise ValueError("scan needs at least 2 distinct values")
+    xs = _scan_values(base, parameter, lo, hi, scan)
     xtol = 1e-6 * (hi - lo) if xtol is None else float(xtol)
 
     res = sweep(base, parameter, xs, point=point, n_jobs=n_jobs, progress=progress)
@@ -183,53 +168,11 @@ def stability_boundary(cfg: Config, parameter: str, bracket, mode: str = "TEF", 
     if t.empty:
         raise ValueError(f"every scan point of {parameter} failed: "
                          f"{res.failed['error'].iloc[0]}")
-    if mode == "TEF" and res.anchor.get("method", "label") != "label":
-        # the TEF branch (tefcore.sweeps.sweep): the flap mode followed from the scan
-        # start, anchored physically (zero coupling or participation); a
-        # point function that only labels its modes is followed by its labels
-        curve = t[t["tef_branch"].astype(bool)].sort_values("value_si")
-    else:
-        sizes = t[t["label"] == mode].groupby("track").size()
-        if sizes.empty:
-            raise ValueError(f"mode {mode!r} not found at any scan point of {parameter}; "
-                             f"labels present: {sorted(set(t['label_here'].astype(str)))}")
-        candidates = sizes.index[sizes.to_numpy() == sizes.max()].tolist()
-        crossing = [k for k in candidates
-                    if np.ptp(np.sign(t.loc[t["track"] == k, "real_part"].to_numpy())) > 0]
-        track = (crossing or candidates)[0]
-        if len(sizes) > 1:
-            warnings.warn(f"{len(sizes)} tracks are labelled {mode!r}; following track {track} "
-                          "(present at the most scan points, preferring one whose real part "
-                          "changes sign)", UserWarning, stacklevel=2)
-        curve = t[t["track"] == track].sort_values("value_si")
+    curve = _followed_curve(t, res, mode)
     cx = curve["value_si"].to_numpy(float)
     cr = curve["real_part"].to_numpy(float)
 
-    # evaluated points: x -> (modes, shapes, row of the tracked mode)
-    cache: dict[float, tuple] = {}
-    for p, x, mid in zip(curve["point"], cx, curve["mode_id"], strict=True):
-        m = res._modes[p]
-        cache[float(x)] = (m, res.vectors.get(p), int(np.flatnonzero(m["mode_id"] == mid)[0]))
-
-    def real_part(x: float) -> float:
-        x = float(x)
-        if x not in cache:
-            try:
-                result = point(base.with_overrides({parameter: x}))
-                m, v, _ = check_result(result)
-                v = shape_vectors(result, v)
-            except Exception as err:
-                raise RuntimeError(f"{parameter} = {x!r}: point failed while locating the "
-                                   f"{mode!r} boundary: {type(err).__name__}: {err}") from err
-            near = min(cache, key=lambda y: abs(y - x))
-            rm, rv, rj = cache[near]
-            j = match_modes((rm, rv), (m, v))[rj]
-            if j < 0:
-                raise RuntimeError(f"{parameter} = {x!r}: mode {mode!r} lost (fewer modes)")
-            cache[x] = (m, v, int(j))
-        m, _, j = cache[x]
-        return float(m["real_part"].iloc[j])
-
+    real_part = _Follower(curve, res, point, base, parameter, mode)
     crossings = [(float(cx[k]), float(cx[k + 1])) for k in range(len(cx) - 1)
                  if cr[k] == 0 or np.sign(cr[k]) * np.sign(cr[k + 1]) < 0]
     if cr[-1] == 0:
@@ -248,7 +191,7 @@ def stability_boundary(cfg: Config, parameter: str, bracket, mode: str = "TEF", 
                            full_output=True, disp=False)
         iterations, calls, converged = rr.iterations, rr.function_calls, rr.converged
     r_at = real_part(value)
-    m, _, j = cache[float(value)]
+    m, _, j = real_part.cache[float(value)]
     slope = np.sign(real_part(b) - real_part(a)) if b != a else 0.0
     return BoundaryResult(
         parameter=parameter, mode=mode, value=float(value), bracket=(a, b),
@@ -257,3 +200,74 @@ def stability_boundary(cfg: Config, parameter: str, bracket, mode: str = "TEF", 
         frequency_per_rev=float(m["frequency_per_rev"].iloc[j]),
         direction="destabilising" if slope > 0 else "stabilising", scan=res,
         xtol=xtol, rtol=rtol)
+
+
+def _scan_values(base, parameter, lo, hi, scan) -> list[float]:
+    """The scan's values in SI: ``scan`` equally spaced points, or the values given."""
+    if scan is None:
+        scan = 9
+    if isinstance(scan, numbers.Integral) and not isinstance(scan, bool):
+        if scan < 2:
+            raise ValueError(f"scan needs at least 2 points, got {scan}")
+        return np.linspace(lo, hi, int(scan)).tolist()
+    xs = sorted({_to_si(base, parameter, v) for v in scan})
+    if len(xs) < 2:
+        raise ValueError("scan needs at least 2 distinct values")
+    return xs
+
+
+def _followed_curve(t, res, mode):
+    """The scan's rows of the mode whose boundary is wanted, by parameter."""
+    if mode == "TEF" and res.anchor.get("method", "label") != "label":
+        # the TEF branch (tefcore.sweeps.sweep): the flap mode followed from the scan
+        # start, anchored physically (zero coupling or participation); a
+        # point function that only labels its modes is followed by its labels
+        return t[t["tef_branch"].astype(bool)].sort_values("value_si")
+    sizes = t[t["label"] == mode].groupby("track").size()
+    if sizes.empty:
+        raise ValueError(f"mode {mode!r} not found at any scan point of {res.parameter}; "
+                         f"labels present: {sorted(set(t['label_here'].astype(str)))}")
+    candidates = sizes.index[sizes.to_numpy() == sizes.max()].tolist()
+    crossing = [k for k in candidates
+                if np.ptp(np.sign(t.loc[t["track"] == k, "real_part"].to_numpy())) > 0]
+    track = (crossing or candidates)[0]
+    if len(sizes) > 1:
+        warnings.warn(f"{len(sizes)} tracks are labelled {mode!r}; following track {track} "
+                      "(present at the most scan points, preferring one whose real part "
+                      "changes sign)", UserWarning, stacklevel=3)
+    return t[t["track"] == track].sort_values("value_si")
+
+
+class _Follower:
+    """The followed mode's real part at any parameter value, matched from the nearest
+    evaluated point (the scan's, then brentq's): ``cache`` holds x -> (modes, shapes,
+    row of the mode)."""
+
+    def __init__(self, curve, res, point, base, parameter, mode):
+        self.point, self.base, self.parameter, self.mode = point, base, parameter, mode
+        self.cache: dict[float, tuple] = {}
+        for p, x, mid in zip(curve["point"], curve["value_si"].to_numpy(float),
+                             curve["mode_id"], strict=True):
+            m = res._modes[p]
+            self.cache[float(x)] = (m, res.vectors.get(p),
+                                    int(np.flatnonzero(m["mode_id"] == mid)[0]))
+
+    def __call__(self, x: float) -> float:
+        x = float(x)
+        if x not in self.cache:
+            parameter, mode = self.parameter, self.mode
+            try:
+                result = self.point(self.base.with_overrides({parameter: x}))
+                m, v, _ = check_result(result)
+                v = shape_vectors(result, v)
+            except Exception as err:
+                raise RuntimeError(f"{parameter} = {x!r}: point failed while locating the "
+                                   f"{mode!r} boundary: {type(err).__name__}: {err}") from err
+            near = min(self.cache, key=lambda y: abs(y - x))
+            rm, rv, rj = self.cache[near]
+            j = match_modes((rm, rv), (m, v))[rj]
+            if j < 0:
+                raise RuntimeError(f"{parameter} = {x!r}: mode {mode!r} lost (fewer modes)")
+            self.cache[x] = (m, v, int(j))
+        m, _, j = self.cache[x]
+        return float(m["real_part"].iloc[j])

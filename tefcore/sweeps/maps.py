@@ -46,16 +46,11 @@ import numpy as np
 import pandas as pd
 from scipy.optimize import brentq
 
-from ..config.sections import Config
+from ..config.configuration import Config
 from ..modes.roles import FLUTTER_PARTICIPATION, flutter_root
 from ..runtime import worker_init
-from .sweep import (
-    SweepResult,
-    check_result,
-    default_point,
-    sweep,
-    takes_warm_start,
-)
+from .evaluate import check_result, default_point, takes_warm_start
+from .sweep import SweepResult, sweep
 
 __all__ = ["MapResult", "stability_map"]
 
@@ -310,7 +305,7 @@ def stability_map(cfg: Config, x_field: str, x_values, y_field: str, y_values, *
     if backend == "joblib" and n_jobs != 1 and len(y_values) > 1:
         # rows side by side, each a serial sweep in one worker: every worker busy
         # (a row's warm-start chains would leave one idle), the same points and
-        # chains as row by row (tefcore.sweeps.sweep.WARM_CHAIN): the same table
+        # chains as row by row (tefcore.sweeps.evaluate.WARM_CHAIN): the same table
         from joblib import Parallel, delayed
 
         par = Parallel(n_jobs=n_jobs, backend="loky")

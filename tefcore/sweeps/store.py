@@ -70,7 +70,7 @@ from collections.abc import Iterable, Mapping
 
 import numpy as np
 
-from ..config.sections import SECTIONS, Config
+from ..config.configuration import SECTIONS, Config
 from ..errors import SweepFileError
 from ..provenance import describe_digest, input_digests, model_stamp
 from ..safe_io import FileLock, atomic_write_text, check_output_file, open_append

@@ -200,7 +200,7 @@ def initial_collective(cfg) -> float:
 
     Parameters
     ----------
-    cfg : tefcore.config.sections.Config
+    cfg : tefcore.config.configuration.Config
         The rotor configuration.
 
     Returns
@@ -246,9 +246,34 @@ def trim(model: CoupledModel, *, tol: float = 1e-10, max_iter: int = 40,
         the residual becomes non-finite.
     """
     prob = _Problem(model)
-    cfg, n, n_psi, n_lam = model.cfg, prob.n, prob.n_psi, prob.n_lam
-    # unknowns: Q (n x N; wake states after the coordinates), [theta_0],
-    # [theta_1c, theta_1s], lambda_i (dynamic inflow: lambda_0, lambda_s, lambda_c)
+    x = _initial_guess(prob, initial)
+    newton = _Newton(prob, x, initial)
+    history = []
+    for it in range(max_iter):
+        r, norm, thrust, c, li = newton.state
+        history.append({"iteration": it, "max_residual": norm, "collective_deg":
+                        np.rad2deg(c.collective), "cyclic_cos_deg": np.rad2deg(c.cyclic_cos),
+                        "cyclic_sin_deg": np.rad2deg(c.cyclic_sin),
+                        "inflow": li if prob.n_lam == 1 else li[0]})
+        if not np.isfinite(norm):
+            raise TrimError("trim residual became non-finite", history)
+        if norm < tol:
+            return _result(prob, newton, history)
+        if not newton.step():
+            raise TrimError("the trim left the range of the models (a section "
+                            "model refused the state)", history)
+    raise TrimError(f"trim did not converge in {max_iter} iterations "
+                    f"(last max residual {history[-1]['max_residual']:.3e})", history)
+
+
+def _initial_guess(prob, initial: TrimResult | None) -> np.ndarray:
+    """The unknowns' first guess: a warm start's solution, or rest at the first
+    collective estimate; sets ``prob.base``.
+
+    Unknowns: Q (n x N; wake states after the coordinates), [theta_0],
+    [theta_1c, theta_1s], lambda_i (dynamic inflow: lambda_0, lambda_s, lambda_c).
+    """
+    model, cfg, n, n_psi, n_lam = prob.model, prob.model.cfg, prob.n, prob.n_psi, prob.n_lam
     if _warm(initial, model, n_psi):
         q0, ctl = initial.q.copy(), initial.controls
         if model.n_wake:
@@ -268,64 +293,66 @@ def trim(model: CoupledModel, *, tol: float = 1e-10, max_iter: int = 40,
         lam = ([np.sqrt(max(model.flight.ct_sigma * prob.sigma, 1e-6) / 2)]
                + [0.0] * (n_lam - 1))
     prob.base = ctl
-    x = np.concatenate([q0.ravel(), [getattr(ctl, k) for k in prob.ctl_names], lam])
-    history = []
-    lu = None
-    if initial is not None and initial.jacobian is not None and \
-            initial.jacobian.shape == (x.size, x.size):
-        lu = factor(initial.jacobian, model, n_psi)
-        jac = initial.jacobian
-    prev = np.inf
-    last = None
-    if lu is None:
-        # cold start: the residual comes with the first Jacobian (its
-        # unperturbed block), not from a separate evaluation
-        jac, (r, norm, thrust, c, li), _ = prob.jacobian(x)
-        # no finiteness checks in the LU calls: a NaN reaches the residual,
-        # and the loop below stops on it with a TrimError and its history
-        lu = factor(jac, model, n_psi)
-        fresh = True
-    else:
-        r, norm, thrust, c, li = prob.full(x)
-        fresh = False
-    broyden = None if isinstance(lu, WakeSchur) else BroydenSolver(lu)
-    for it in range(max_iter):
-        history.append({"iteration": it, "max_residual": norm, "collective_deg":
-                        np.rad2deg(c.collective), "cyclic_cos_deg": np.rad2deg(c.cyclic_cos),
-                        "cyclic_sin_deg": np.rad2deg(c.cyclic_sin),
-                        "inflow": li if n_lam == 1 else li[0]})
-        if not np.isfinite(norm):
-            raise TrimError("trim residual became non-finite", history)
-        if norm < tol:
-            q_tr = x[:prob.nq].reshape(n, n_psi)
-            nd = model.n_dof
-            _check_flap_deflection(model, q_tr[:nd], history)
-            return TrimResult(model=model, psi=prob.psi, q=q_tr[:nd], controls=c,
-                              inflow=_inflow(model, li),
-                              ct_sigma=float(thrust.mean() if n_lam == 1 else thrust[0].mean()),
-                              history=history, jacobian=jac,
-                              states=q_tr[nd:] if model.n_wake else None,
-                              _problem=prob, _solution=x)
-        # chord method with Broyden's updates: keep the factorised Jacobian
-        # while it converges fast, refresh it when the residual falls by less
-        # than REFRESH_RATIO per iteration
-        ratio = REFRESH_RATIO if broyden is not None else CHORD_REFRESH_RATIO
-        if not fresh and norm > ratio * prev:
-            jac = prob.jacobian(x)[0]
-            lu = factor(jac, model, n_psi)
-            broyden = None if isinstance(lu, WakeSchur) else BroydenSolver(lu)
-        elif not fresh and broyden is not None and last is not None:
-            broyden.update(x - last[0], r - last[1])
-        fresh = False
-        prev = norm
-        last = (x, r)
+    return np.concatenate([q0.ravel(), [getattr(ctl, k) for k in prob.ctl_names], lam])
+
+
+class _Newton:
+    """Damped chord-Newton iterations with Broyden's updates on the trim equations.
+
+    ``state`` is ``(r, norm, thrust, controls, inflow)`` at ``x``; :meth:`step`
+    moves ``x`` by one damped step.
+    """
+
+    def __init__(self, prob, x, initial):
+        self.prob, self.x = prob, x
+        model, n_psi = prob.model, prob.n_psi
+        self.lu = None
+        if initial is not None and initial.jacobian is not None and \
+                initial.jacobian.shape == (x.size, x.size):
+            self.lu = factor(initial.jacobian, model, n_psi)
+            self.jac = initial.jacobian
+        if self.lu is None:
+            # cold start: the residual comes with the first Jacobian (its
+            # unperturbed block), not from a separate evaluation
+            self.jac, self.state, _ = prob.jacobian(x)
+            # no finiteness checks in the LU calls: a NaN reaches the residual,
+            # and the loop of trim() stops on it with a TrimError and its history
+            self.lu = factor(self.jac, model, n_psi)
+            self.fresh = True
+        else:
+            self.state = prob.full(x)
+            self.fresh = False
+        self.broyden = None if isinstance(self.lu, WakeSchur) else BroydenSolver(self.lu)
+        self.prev = np.inf
+        self.last = None
+
+    def _refresh_or_update(self, r, norm) -> None:
+        """Chord method with Broyden's updates: keep the factorised Jacobian while
+        it converges fast, refresh it when the residual falls by less than
+        REFRESH_RATIO per iteration."""
+        ratio = REFRESH_RATIO if self.broyden is not None else CHORD_REFRESH_RATIO
+        if not self.fresh and norm > ratio * self.prev:
+            self.jac = self.prob.jacobian(self.x)[0]
+            self.lu = factor(self.jac, self.prob.model, self.prob.n_psi)
+            self.broyden = None if isinstance(self.lu, WakeSchur) else BroydenSolver(self.lu)
+        elif not self.fresh and self.broyden is not None and self.last is not None:
+            self.broyden.update(self.x - self.last[0], r - self.last[1])
+
+    def step(self) -> bool:
+        """One damped step; False when the models refused every trial state."""
+        r, norm = self.state[0], self.state[1]
+        self._refresh_or_update(r, norm)
+        self.fresh = False
+        self.prev = norm
+        self.last = (self.x, r)
+        lu, broyden = self.lu, self.broyden
         step = lu.solve(-r) if broyden is None else broyden.solve(-r)
         # damped Newton: halve the step while the residual grows; the accepted
         # trial's residual is the next iteration's (no re-evaluation)
         alpha = 1.0
         for _ in range(8):
             try:
-                trial = prob.full(x + alpha * step)
+                trial = self.prob.full(self.x + alpha * step)
             except ValueError:      # a state beyond the models (e.g. Mach > 0.99)
                 trial = None
             if trial is not None and (trial[1] <= norm or norm < 1e-6):
@@ -333,17 +360,30 @@ def trim(model: CoupledModel, *, tol: float = 1e-10, max_iter: int = 40,
             if alpha == 1.0 and broyden is not None and broyden.u:
                 # a secant step that does not reduce the residual: back to the
                 # factorised Jacobian alone before halving
-                broyden = BroydenSolver(lu)
+                broyden = self.broyden = BroydenSolver(lu)
                 step = broyden.solve(-r)
                 continue
             alpha *= 0.5
         if trial is None:
-            raise TrimError("the trim left the range of the models (a section "
-                            "model refused the state)", history)
-        x = x + alpha * step
-        r, norm, thrust, c, li = trial
-    raise TrimError(f"trim did not converge in {max_iter} iterations "
-                    f"(last max residual {history[-1]['max_residual']:.3e})", history)
+            return False
+        self.x = self.x + alpha * step
+        self.state = trial
+        return True
+
+
+def _result(prob, newton, history) -> TrimResult:
+    """The converged trim: the periodic motion, controls and inflow."""
+    model, x = prob.model, newton.x
+    _, _, thrust, c, li = newton.state
+    q_tr = x[:prob.nq].reshape(prob.n, prob.n_psi)
+    nd = model.n_dof
+    _check_flap_deflection(model, q_tr[:nd], history)
+    return TrimResult(model=model, psi=prob.psi, q=q_tr[:nd], controls=c,
+                      inflow=_inflow(model, li),
+                      ct_sigma=float(thrust.mean() if prob.n_lam == 1 else thrust[0].mean()),
+                      history=history, jacobian=newton.jac,
+                      states=q_tr[nd:] if model.n_wake else None,
+                      _problem=prob, _solution=x)
 
 
 #: The factorised Newton matrix is re-evaluated when the residual falls by less

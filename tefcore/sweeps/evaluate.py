@@ -1,0 +1,404 @@
+"""Evaluating sweep points: the point function, its checks, warm-start chains, backends.
+
+A sweep point is ``point(cfg.with_overrides({parameter: value}))``
+(:func:`evaluate_point`), recorded as a JSON-able dict whatever happens: an
+``Exception`` is a failed point with its reason.  Points run in warm-start
+chains (:func:`chains`, :data:`WARM_CHAIN`): each point starts its trim from
+the previous point's.  Chains run serially, in joblib (loky) processes or on
+a dask cluster (:func:`run_serial`, :func:`run_joblib`, :func:`run_dask`).
+"""
+
+from __future__ import annotations
+
+import inspect
+import numbers
+import os
+import time
+from collections.abc import Callable
+from typing import Any
+
+import numpy as np
+import pandas as pd
+
+from ..errors import error_text
+from ..modes.roles import anchor_root
+from ..runtime import worker_init
+from .store import jsonable
+
+__all__ = ["REQUIRED_MODE_COLUMNS", "WARM_CHAIN", "chains", "check_result", "decode_complex",
+           "default_point", "encode_complex", "evaluate_point", "shape_vectors",
+           "takes_warm_start"]
+
+
+#: Columns a point function's ``modes`` table must have.
+REQUIRED_MODE_COLUMNS = ("mode_id", "label", "frequency_per_rev", "real_part", "damping_ratio")
+
+
+_NUMERIC_MODE_COLUMNS = ("frequency_per_rev", "real_part", "damping_ratio")
+
+
+def default_point() -> Callable:
+    """The default point function, :func:`tefcore.linear.stability.stability`.
+
+    Returns
+    -------
+    callable
+        ``stability(cfg)``: one configuration to its modes, eigenvectors and trim.
+    """
+    from ..linear.stability import stability  # deferred: heavy, and written separately
+
+    return stability
+
+
+def point_name(point) -> str:
+    target = point if hasattr(point, "__qualname__") else type(point)
+    return f"{getattr(target, '__module__', '?')}:{getattr(target, '__qualname__', '?')}"
+
+
+def check_result(result) -> tuple[pd.DataFrame, np.ndarray | None, dict]:
+    """Check a point function's result and take it apart.
+
+    Parameters
+    ----------
+    result : object
+        What a point function returned: an object with a ``modes``
+        DataFrame (the columns of :data:`REQUIRED_MODE_COLUMNS`, finite) and
+        optionally ``eigenvectors`` (one column per mode) and ``trim`` (a
+        mapping).
+
+    Returns
+    -------
+    modes : pandas.DataFrame
+        The modes table, index reset.
+    eigenvectors : numpy.ndarray or None
+    trim : dict
+        The trim values, made JSON-serialisable.
+
+    Raises
+    ------
+    TypeError
+        Without a ``modes`` DataFrame.
+    ValueError
+        For missing columns, no modes, non-finite values or eigenvectors
+        that do not match the modes.
+    """
+    modes = getattr(result, "modes", None)
+    if not isinstance(modes, pd.DataFrame):
+        raise TypeError(f"point function returned {type(result).__name__} without a "
+                        "'modes' DataFrame")
+    missing = [c for c in REQUIRED_MODE_COLUMNS if c not in modes.columns]
+    if missing:
+        raise ValueError(f"point function's modes table lacks column(s) {missing}")
+    if modes.empty:
+        raise ValueError("point function returned no modes")
+    modes = modes.reset_index(drop=True)
+    numeric = modes[list(_NUMERIC_MODE_COLUMNS)].to_numpy(float)
+    if not np.isfinite(numeric).all():
+        bad = modes.loc[~np.isfinite(numeric).all(axis=1), "label"].tolist()
+        raise ValueError(f"point function returned non-finite results for mode(s) {bad}")
+    vecs = getattr(result, "eigenvectors", None)
+    if vecs is not None:
+        vecs = np.asarray(vecs)
+        if vecs.ndim != 2 or vecs.shape[1] != len(modes):
+            raise ValueError(f"eigenvectors of shape {vecs.shape} do not match {len(modes)} "
+                             "modes (one column per mode)")
+    trim = getattr(result, "trim", None) or {}
+    return modes, vecs, {str(k): jsonable(v) for k, v in dict(trim).items()}
+
+
+def shape_vectors(result, eigenvectors):
+    """The mode shapes tracking compares: ``result.vectors``, else the eigenvectors.
+
+    Parameters
+    ----------
+    result : object
+        A point function's result (see :func:`check_result`).
+    eigenvectors : numpy.ndarray or None
+        Its eigenvectors, as returned by :func:`check_result`.
+
+    Returns
+    -------
+    numpy.ndarray or None
+        One column per mode, or None when the result has neither.
+
+    Raises
+    ------
+    ValueError
+        For non-finite shapes.
+    """
+    vecs = getattr(result, "vectors", None)
+    vecs = eigenvectors if vecs is None else np.asarray(vecs)
+    if vecs is None:
+        return None
+    if not np.isfinite(vecs).all():
+        raise ValueError("point function returned non-finite mode shapes")
+    return vecs
+
+
+def failed_record(key, value, err) -> dict:
+    return {"key": key, "value": jsonable(value), "value_si": None, "status": "failed",
+            "error": error_text(err), "trim": {}, "modes": None}
+
+
+def evaluate_point(index, point, cfg, parameter, value, key, anchor=False, depth=0, warm=None):
+    """Evaluate one sweep point; never raises an ``Exception`` (it is recorded).
+
+    ``anchor``: also identify the flap mode by continuation from zero
+    coupling (the start of the TEF branch). ``depth``: 0 for a point the
+    caller asked for, k for a point added by the k-th refinement.  ``warm``:
+    the previous point's trim, passed as ``warm_start`` (a point function that
+    takes it); should that fail, the point is computed cold.
+
+    Parameters
+    ----------
+    index : int
+        The point's index in the sweep (returned as is).
+    point : callable
+        The point function.
+    cfg : tefcore.config.sections.Config
+        The base configuration.
+    parameter : str
+        The swept field.
+    value : object
+        Its value at this point, as given.
+    key : str
+        The point's key.
+    anchor : bool, optional
+        Also identify the flap mode by continuation
+        (:func:`tefcore.modes.roles.anchor_root`).
+    depth : int, optional
+        Refinement depth.
+    warm : tefcore.trimming.trim.TrimResult, optional
+        Warm start of the trim.
+
+    Returns
+    -------
+    tuple
+        ``(index, record, vectors, trim_result or None)``.
+    """
+    start = time.perf_counter()
+    rec: dict[str, Any] = {"key": key, "value": jsonable(value), "value_si": None,
+                           "status": "failed", "error": None, "trim": {}, "modes": None}
+    if depth:
+        rec["refinement"] = depth
+    vecs = result = None
+    try:
+        cfg_v = cfg.with_overrides({parameter: value})
+        rec["value_si"] = jsonable(cfg_v.get(parameter))
+        result = None
+        if warm is not None:
+            try:
+                result = point(cfg_v, warm_start=warm)
+            except Exception:  # a warm start can send Newton astray: start cold
+                result = None
+        if result is None:
+            result = point(cfg_v)
+        modes, vecs, trim = check_result(result)
+        shapes = shape_vectors(result, vecs)
+        rec.update(status="ok", trim=trim,
+                   modes={c: jsonable(modes[c].to_numpy()) for c in modes.columns},
+                   periodic=bool(getattr(result, "periodic", False)))
+        if shapes is not None:
+            rec["vectors"] = encode_complex(shapes)
+        if anchor:
+            rec["anchor"] = anchor_root(result)
+    except Exception as err:  # recorded, the sweep goes on
+        rec["error"] = error_text(err)
+        vecs = result = None
+    rec["elapsed_s"] = round(time.perf_counter() - start, 6)
+    return index, rec, vecs, getattr(result, "trim_result", None)
+
+
+def evaluate_chain(chain):
+    """Evaluate a warm-start chain: each point starts from the previous point's trim.
+
+    ``chain`` is a list of ``(index, args, keep)`` (``args`` of :func:`evaluate_point`);
+    a point with ``keep`` False is computed only as the warm start of the next
+    (a resumed sweep: it is in the file already).  A failed point makes the next
+    one start cold.  Yields the ``(index, record, vectors)`` of the kept points
+    as they finish.
+    """
+    warm = None
+    for index, args, keep in chain:
+        point = args[0]
+        i, rec, vecs, tr = evaluate_point(index, *args,
+                                     warm=warm if takes_warm_start(point) else None)
+        warm = tr if rec["status"] == "ok" else None
+        if keep:
+            yield i, rec, vecs
+
+
+def takes_warm_start(point) -> bool:
+    """Whether the point function takes a ``warm_start`` keyword (as
+    :func:`tefcore.linear.stability.stability` does).
+
+    Parameters
+    ----------
+    point : callable
+        A point function.
+
+    Returns
+    -------
+    bool
+    """
+    try:
+        return "warm_start" in inspect.signature(point).parameters
+    except (TypeError, ValueError):
+        return False
+
+
+def evaluate_in_worker(chain):
+    """The task of a worker process: the process settings first (tefcore.runtime)."""
+    worker_init()
+    return list(evaluate_chain(chain))
+
+
+def run_serial(jobs):
+    for chain in jobs:
+        yield from evaluate_chain(chain)
+
+
+def run_joblib(jobs, n_jobs):
+    from joblib import Parallel, delayed
+
+    par = Parallel(n_jobs=n_jobs, backend="loky", return_as="generator_unordered")
+    for done in par(delayed(evaluate_in_worker)(chain) for chain in jobs):
+        yield from done
+
+
+def dask_client(n_jobs, client):
+    """(client, cluster to close or None) for backend='dask'."""
+    try:
+        from distributed import Client, LocalCluster
+    except ImportError as err:
+        raise ImportError("backend='dask' needs dask.distributed: pip install "
+                          "'dask[distributed]' (or the tefcore[dask] extra)") from err
+    if client is not None:
+        return client, None
+    workers = os.cpu_count() if n_jobs < 0 else n_jobs
+    cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
+                           dashboard_address=None)
+    return Client(cluster), cluster
+
+
+def run_dask(jobs, client):
+    from distributed import as_completed
+
+    futures = {}
+    try:
+        for chain in jobs:
+            futures[client.submit(evaluate_in_worker, chain, pure=False)] = chain
+        for fut in as_completed(list(futures)):
+            try:
+                yield from fut.result()
+            except Exception as err:  # e.g. a worker died: record it, go on
+                for i, args, keep in futures[fut]:
+                    if keep:
+                        yield i, failed_record(args[4], args[3], err), None
+    finally:
+        client.cancel(list(futures))
+
+
+def encode_complex(a) -> dict:
+    """A complex array as ``{"re": [...], "im": [...]}`` (exact in JSON).
+
+    Parameters
+    ----------
+    a : array_like of complex
+        Any shape.
+
+    Returns
+    -------
+    dict
+        Nested lists of the real and imaginary parts.
+
+    Examples
+    --------
+    >>> encode_complex([1 + 2j])
+    {'re': [1.0], 'im': [2.0]}
+    >>> decode_complex(encode_complex([1 + 2j]))
+    array([1.+2.j])
+    """
+    a = np.asarray(a)
+    return {"re": np.real(a).tolist(), "im": np.imag(a).tolist()}
+
+
+def decode_complex(d) -> np.ndarray:
+    """Inverse of :func:`encode_complex`.
+
+    Parameters
+    ----------
+    d : dict
+        ``{"re": [...], "im": [...]}``.
+
+    Returns
+    -------
+    numpy.ndarray of complex
+    """
+    return np.asarray(d["re"], float) + 1j * np.asarray(d["im"], float)
+
+
+#: Points of a warm-start chain: the values, in the order of their SI values, are
+#: cut into consecutive chains of this many points, each one job in which every
+#: point starts its trim from the previous point's (:func:`tefcore.linear.stability.stability`,
+#: ``warm_start``; point functions without that keyword are evaluated one by
+#: one).  The chains depend on the values alone, so fresh, resumed and parallel
+#: sweeps compute every point from the same start: identical tables.  A resumed
+#: sweep recomputes the points of a chain before its first missing one (as warm
+#: starts, not stored again); an interrupted parallel sweep loses the finished
+#: points of the chains still running in the workers (a serial one loses none).
+WARM_CHAIN = 8
+
+
+def chains(cfg, parameter, values, keys, records, args_of, length=WARM_CHAIN):
+    """The jobs of a sweep: warm-start chains of the points not in ``records``.
+
+    Chains cut the values sorted by their SI value into runs of ``length``
+    (:data:`WARM_CHAIN`; 1 for a point function without ``warm_start``); a
+    chain runs from its start to its last missing point, recomputing the points
+    before it that are in the file (as warm starts only).  Values the
+    configuration rejects are single jobs (failed points).
+
+    Parameters
+    ----------
+    cfg : tefcore.config.sections.Config
+        The base configuration.
+    parameter : str
+        The swept field.
+    values : list
+        The values asked for; ``keys`` their keys
+        (:func:`tefcore.sweeps.store.value_key`).
+    keys : list of str
+        See `values`.
+    records : dict
+        Key -> record of the points already done (a resumed sweep).
+    args_of : callable
+        ``i -> args`` of :func:`evaluate_point` (after ``index``) for value ``i``.
+    length : int, optional
+        Points per chain.
+
+    Returns
+    -------
+    list of list of tuple
+        The jobs: each a chain of ``(index, args, keep)``.
+    """
+    if length == 1:
+        return [[(i, args_of(i), True)] for i, k in enumerate(keys) if k not in records]
+    si = {}
+    for i, v in enumerate(values):
+        try:
+            x = cfg.with_overrides({parameter: v}).get(parameter)
+        except Exception:  # a rejected value: a failed point of its own
+            continue
+        if isinstance(x, numbers.Real):
+            si[i] = float(x)
+    order = sorted(si, key=lambda i: (si[i], keys[i]))
+    jobs = [[(i, args_of(i), True)] for i in range(len(values))
+            if i not in si and keys[i] not in records]
+    for start in range(0, len(order), length):
+        chain = order[start:start + length]
+        missing = [j for j, i in enumerate(chain) if keys[i] not in records]
+        if missing:
+            jobs.append([(i, args_of(i), keys[i] not in records)
+                         for i in chain[:missing[-1] + 1]])
+    return jobs
