@@ -10,7 +10,7 @@ on a clean checkout -- is reproducible, and a failure it shows is a failure of
 the code, not of the draw.  ``python -m pytest --hypothesis-profile=explore``
 draws fresh random examples (more of them) to look for new edge cases; a case
 found that way is fixed and kept as a test (as ``flexbeam.mass = 5e-324`` in
-``tests/test_hub.py``).
+``tests/structure/test_hub.py``).
 """
 
 from hypothesis import settings

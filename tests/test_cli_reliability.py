@@ -6,7 +6,7 @@ import sys
 
 import pandas as pd
 import pytest
-from test_sweep import ToyPoint
+from tests.sweeps.test_sweep import ToyPoint
 
 import tefcore.linear.stability
 import tefcore.sweeps.sweep

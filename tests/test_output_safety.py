@@ -13,12 +13,12 @@ import time
 from pathlib import Path
 
 import pytest
-from test_sweep import MDART, PARAM, XS, ToyPoint, run
+from tests.sweeps.test_sweep import MDART, PARAM, XS, ToyPoint, run
 
 from tefcore.paper import reproduce as rp
 from tefcore.sweeps.sweep import sweep
 
-TESTS = Path(__file__).parent
+REPO = Path(__file__).resolve().parents[1]   # for `import tests...` in subprocesses
 
 
 def lines(path):
@@ -151,8 +151,8 @@ def test_reproduce_refuses_a_folder_with_tracked_outputs(fake_repo, tmp_path):
 
 SLOW_SWEEP = """
 import sys, time
-sys.path.insert(0, {tests!r})
-from test_sweep import MDART, PARAM, XS, ToyPoint
+sys.path.insert(0, {repo!r})
+from tests.sweeps.test_sweep import MDART, PARAM, XS, ToyPoint
 from tefcore.sweeps.sweep import sweep
 
 class SlowPoint(ToyPoint):
@@ -168,7 +168,7 @@ def test_a_second_sweep_of_the_same_file_fails_clearly(tmp_path):
     """Finding 4: two sweeps on one --out file wrote duplicate records."""
     out = tmp_path / "s.jsonl"
     script = tmp_path / "slow.py"
-    script.write_text(textwrap.dedent(SLOW_SWEEP).format(tests=str(TESTS), out=str(out)))
+    script.write_text(textwrap.dedent(SLOW_SWEEP).format(repo=str(REPO), out=str(out)))
     first = subprocess.Popen([sys.executable, str(script)], stderr=subprocess.PIPE, text=True)
     try:
         deadline = time.monotonic() + 60

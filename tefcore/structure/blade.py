@@ -253,7 +253,7 @@ def multiple_load_path_model(cfg, collective: float = 0.0, n_elements: int | Non
         stay fixed), as :func:`tefcore.structure.fem.assemble_beam` has them.
         With ``torque_tube=False`` and :func:`root_springs` this is the
         equivalent hub on a blade whose inboard part is the flexbeam
-        (tests/test_hub.py).
+        (tests/structure/test_hub.py).
 
     Returns
     -------

@@ -276,9 +276,18 @@ def dask_client(n_jobs, client):
     if client is not None:
         return client, None
     workers = os.cpu_count() if n_jobs < 0 else n_jobs
-    cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
-                           dashboard_address=None)
-    return Client(cluster), cluster
+    # dask sets its workers' environment (OMP_NUM_THREADS, MALLOC_TRIM_THRESHOLD_,
+    # PYTHONHASHSEED, ...) in this process's os.environ and leaves it there
+    # (measured, distributed 2026.8): the caller's later subprocesses would
+    # inherit it.  The workers are spawned by now; the caller gets its own back.
+    saved = dict(os.environ)
+    try:
+        cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
+                               dashboard_address=None)
+        return Client(cluster), cluster
+    finally:
+        os.environ.clear()
+        os.environ.update(saved)
 
 
 def run_dask(jobs, client):

@@ -18,7 +18,7 @@ from tefcore.paper.batch_spec import BatchFileError, load_batch, parse_batch
 
 pytest.importorskip("yaml")
 pytest.importorskip("nbformat")
-EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
+EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
 
 
 def parse(text, **kw):

@@ -298,7 +298,7 @@ def test_snubber_damper_enters_the_modal_damping():
 
 def test_multiple_load_path_hub_meets_the_stated_torsion_frequencies():
     # the same four statements and the same 2 % gate as the equivalent hub
-    # (tests/test_mdart.py); flap and lag essentially unchanged (< 1 %)
+    # (tests/structure/test_mdart.py); flap and lag essentially unchanged (< 1 %)
     checks = frequency_checks(MLP)
     assert checks["error_percent"].abs().max() < 2.0, checks.to_string()
     for col in ("flap1_per_rev", "lag1_per_rev"):

@@ -15,7 +15,7 @@ from pathlib import Path
 
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
-from test_sweep import MDART, PARAM, ToyPoint, toy_result  # noqa: F401
+from tests.sweeps.test_sweep import MDART, PARAM, ToyPoint, toy_result  # noqa: F401
 
 from tefcore.sweeps.sweep import SweepResult, sweep
 

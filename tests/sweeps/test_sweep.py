@@ -39,7 +39,7 @@ MDART = load_config("mdart")
 PARAM = "flap.cg_offset"
 X0 = 0.2  # TEF real part crosses zero here
 XC = 0.15  # TEF / torsion frequency crossing
-TESTS = Path(__file__).parent
+REPO = Path(__file__).resolve().parents[2]   # for `import tests...` in subprocesses
 
 MODES = {  # label: (frequency, real part, dominant state)
     "blade flap 1": (lambda x: 1.1, lambda x: -0.05, 0),
@@ -231,8 +231,8 @@ def test_resume_recomputes_failed_points_only_when_asked(tmp_path):
 
 KILL_SCRIPT = """
 import os, signal, sys
-sys.path.insert(0, {tests!r})
-from test_sweep import MDART, PARAM, XS, ToyPoint
+sys.path.insert(0, {repo!r})
+from tests.sweeps.test_sweep import MDART, PARAM, XS, ToyPoint
 from tefcore.sweeps.sweep import sweep
 
 class KillingPoint(ToyPoint):
@@ -252,7 +252,7 @@ print(res.n_loaded, res.n_computed)
 def test_resume_after_the_process_is_killed(tmp_path):
     out, log = tmp_path / "s.jsonl", tmp_path / "calls.log"
     script = tmp_path / "run_sweep.py"
-    script.write_text(textwrap.dedent(KILL_SCRIPT).format(tests=str(TESTS), log=str(log),
+    script.write_text(textwrap.dedent(KILL_SCRIPT).format(repo=str(REPO), log=str(log),
                                                           out=str(out)))
     env = {**os.environ, "PYTHONHASHSEED": "0"}
     first = subprocess.run([sys.executable, str(script), "5"], capture_output=True, text=True,
@@ -356,6 +356,18 @@ def test_dask_local_cluster_gives_the_same_table(tmp_path):
                   out=tmp_path / "d.jsonl")
     pd.testing.assert_frame_equal(res.table, serial.table)
     assert len(read_lines(tmp_path / "d.jsonl")) == 1 + 7
+
+
+def test_own_dask_cluster_leaves_the_callers_environment(tmp_path):
+    # tefcore's own LocalCluster (no client given): dask writes its workers'
+    # settings (OMP_NUM_THREADS=1, PYTHONHASHSEED, ...) into os.environ; the
+    # caller's environment is given back (fails without the restore in dask_client)
+    pytest.importorskip("distributed")
+    import os
+
+    before = dict(os.environ)
+    res = run(XS[:3], backend="dask", n_jobs=1)
+    assert res.ok and dict(os.environ) == before
 
 
 def test_dask_missing_gives_a_clear_error(monkeypatch):

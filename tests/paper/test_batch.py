@@ -16,7 +16,7 @@ import nbformat
 import numpy as np
 import pandas as pd
 import pytest
-from test_report_html import check_page
+from tests.paper.test_report_html import check_page
 
 from tefcore.cli import main
 from tefcore.errors import OutputError
@@ -27,7 +27,7 @@ from tefcore.paper.reproduce import NotebookRun
 from tefcore.safe_io import FileLock
 
 pytest.importorskip("papermill")
-EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
+EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
 QUICK = {"only": ["04"], "params": [{"all": {"n_points": 4}}]}
 
 

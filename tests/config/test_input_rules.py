@@ -8,7 +8,7 @@ import shutil
 import numpy as np
 import pytest
 from scipy import constants as sc
-from test_sweep import ToyPoint
+from tests.sweeps.test_sweep import ToyPoint
 
 from tefcore.aero.c81 import example_deck_path
 from tefcore.aero.thin_airfoil import prandtl_glauert

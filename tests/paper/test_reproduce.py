@@ -7,7 +7,7 @@ from pathlib import Path
 
 import pandas as pd
 import pytest
-from test_report_html import check_page
+from tests.paper.test_report_html import check_page
 
 from tefcore.cli import main
 from tefcore.paper import notebook_files as nbf

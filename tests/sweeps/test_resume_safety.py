@@ -11,7 +11,7 @@ import shutil
 from pathlib import Path
 
 import pytest
-from test_sweep import MDART, PARAM, XS, ToyPoint, run
+from tests.sweeps.test_sweep import MDART, PARAM, XS, ToyPoint, run
 
 from tefcore.aero.c81 import example_deck_path
 from tefcore.sweeps.sweep import sweep

@@ -1,0 +1,1 @@
+"""tefcore's tests, one folder per layer of the package (tests/<layer>/)."""
