@@ -172,7 +172,7 @@ def goals(args):
     from tefcore.sweeps.sweep import sweep
 
     t0 = time.perf_counter()
-    sweep(cfg03, "actuator.stiffness", values, progress=False, refine=False, anchor=False)
+    sweep(cfg03, "actuator.stiffness", values, progress=False, refine=False)
     t_sweep = 1e3 * (time.perf_counter() - t0) / len(values)
     line("  sweep() per point, tracking included", f"{t_sweep:.1f} ms", "", "")
 

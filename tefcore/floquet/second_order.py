@@ -27,6 +27,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ._accuracy import DEFAULT_ATOL
 from ._analysis import floquet_modes
 from ._result import constant_coefficient_modes
 
@@ -130,7 +131,8 @@ class SecondOrderSystem:
         return state_matrix(m, c, k)
 
     def modes(self, n_steps: int = 72, n_sub: int = 4, shapes: bool = False,
-              on_inaccurate: str = "warn", participation: bool | None = None):
+              on_inaccurate: str = "warn", participation: bool | None = None,
+              atol: float | None = DEFAULT_ATOL):
         """Floquet modes of the system (direct eigenanalysis if constant).
 
         Forward flight: fourth-order Magnus steps (doubled until the
@@ -140,7 +142,9 @@ class SecondOrderSystem:
         With first-order states, roots below :data:`STATE_MIN_RATE` need not
         be resolved.  ``participation`` (default: with first-order states):
         the participation factors come with the result, from the adjoint
-        solutions (:func:`tefcore.floquet.floquet_modes`).
+        solutions (:func:`tefcore.floquet.floquet_modes`).  ``atol=None``
+        switches the accuracy control off (one grid of ``n_steps``: roots
+        to be told apart, not converged).
         Returns a :class:`tefcore.floquet.FloquetResult` with both members
         of each conjugate pair.
         """
@@ -152,7 +156,7 @@ class SecondOrderSystem:
         return floquet_modes(self.state_matrix, n_steps=n_steps, n_sub=n_sub,
                                      method="magnus", shapes=shapes,
                                      shift_states=slice(0, self.n_dof),
-                                     on_inaccurate=on_inaccurate,
+                                     on_inaccurate=on_inaccurate, atol=atol,
                                      min_rate=STATE_MIN_RATE if self.n_first else None,
                                      participation=(bool(self.n_first) if participation is None
                                                     else participation))

@@ -17,11 +17,11 @@ and
   **divergence** (a real root crossing zero).
 
 Which root: ``"TEF"`` is the root that the flap mode becomes when the
-blade-flap coupling is switched on (:func:`tefcore.modes.continuation.tef_root`:
-the uncoupled flap on its actuator, continued to the full coupling), ``"flutter"`` the least
-stable root in which the flap participates by at least
-:data:`tefcore.modes.roles.FLUTTER_PARTICIPATION`, or a label of the stability table
-(``"blade torsion 1"``).
+blade-flap coupling is switched on (:mod:`tefcore.modes.continuation`: the
+uncoupled flap on its actuator, continued to the full coupling),
+``"flutter"`` the least stable flap-induced root
+(:func:`tefcore.modes.roles.flutter_root`), or a name of the stability table
+(``"blade torsion 1"``); by default the flutter root where it is unstable.
 
 Examples
 --------
@@ -375,41 +375,56 @@ def _classify(eta: complex) -> str:
 def _root_row(mode, res, eig_table, basis, n_steps, root):
     """Row of the stability table that `mode` names, and how it was identified."""
     table = res.modes
+    named = "real_part_uncoupled" in table         # named by continuation
+    if mode is None:
+        row = flutter_root(table) if res.trim_result.model.has_flap else None
+        if row is not None and table.at[row, "real_part"] > 0:
+            return row, (f"the flutter root (no mode asked for): {_flutter_rule(named)}, "
+                         f"from {table.at[row, 'label']}")
+        mode = "TEF"
     if mode == "TEF":
+        rows = np.flatnonzero(table["label"].to_numpy() == "TEF")
+        if named and rows.size:
+            return int(rows[0]), "the root the uncoupled flap mode continues into"
         eta, follow = tef_root(res.system, basis=basis, n_steps=n_steps)
         row = int(np.argmin(np.abs(eig_table - eta)))
         how = "continuation from the uncoupled flap mode"
-        labelled = np.flatnonzero(table["label"].to_numpy() == "TEF")
-        if not follow.clear and labelled.size:
+        if not follow.clear and rows.size:
             # the flap's own root met another on the way (a coalescence):
             # which one it becomes is not decidable, so say so and take the
             # root that the flap participates in most (its label)
-            row = int(labelled[0])
+            row = int(rows[0])
             how = ("its label (largest flap participation): the continuation from the "
                    "uncoupled flap mode met a coalescence at coupling "
                    f"{follow.ambiguous[0]:.3g} and is ambiguous")
-    elif mode == "flutter":
+        return row, how
+    if mode == "flutter":
         row = flutter_root(table)
         if row is None:
-            raise ValueError(f"no root with a flap participation >= {FLUTTER_PARTICIPATION}")
-        how = f"least stable root with flap participation >= {FLUTTER_PARTICIPATION}"
-    elif mode == "root":
+            raise ValueError("no flap-induced root (the configuration has no flap)")
+        return row, f"{_flutter_rule(named)}, from {table.at[row, 'label']}"
+    if mode == "root":
         if root is None:
             raise ValueError("mode 'root' needs the root's eigenvalue (root=...)")
-        row = int(np.argmin(np.abs(eig_table - complex(root))))
-        how = f"the root nearest {complex(root):.4g}"
-    else:
-        rows = np.flatnonzero(table["label"].to_numpy() == mode)
-        if rows.size == 0:
-            raise ValueError(f"no mode labelled {mode!r}; labels: {table['label'].tolist()}; "
-                             "or use 'TEF' or 'flutter'")
-        row = int(rows[0])
-        how = "its label (participation)"
-    return row, how
+        return (int(np.argmin(np.abs(eig_table - complex(root)))),
+                f"the root nearest {complex(root):.4g}")
+    rows = np.flatnonzero(table["label"].to_numpy() == mode)
+    if rows.size == 0:
+        raise ValueError(f"no mode named {mode!r}; names: {table['label'].tolist()}; "
+                         "or use 'TEF' or 'flutter'")
+    return int(rows[0]), ("the root continuing from that uncoupled mode" if named
+                          else "its label (participation)")
+
+
+def _flutter_rule(named: bool) -> str:
+    if named:
+        return ("the least stable flap-induced root (unstable, or much less stable, with "
+                "the flap held)")
+    return f"the least stable root with flap participation >= {FLUTTER_PARTICIPATION}"
 
 
 @blas_limit()
-def mechanism(cfg, mode: str = "TEF", *, knockouts: bool = True, stability_result=None,
+def mechanism(cfg, mode: str | None = None, *, knockouts: bool = True, stability_result=None,
               n_steps: int | None = None, root: complex | None = None) -> MechanismResult:
     """Diagnose one root of a configuration: energy balance, knockouts, kind.
 
@@ -417,11 +432,14 @@ def mechanism(cfg, mode: str = "TEF", *, knockouts: bool = True, stability_resul
     ----------
     cfg : tefcore.config.configuration.Config
         The rotor configuration.
-    mode : str
-        ``"TEF"`` (the root the flap mode becomes, :func:`tefcore.modes.continuation.tef_root`),
-        ``"flutter"`` (:func:`tefcore.modes.roles.flutter_root`), ``"root"`` (the root nearest
-        `root`, e.g. the TEF branch of a sweep at this point) or a label of
-        the stability table (e.g. ``"blade torsion 1"``).
+    mode : str, optional
+        ``"TEF"`` (the root the uncoupled flap mode continues into),
+        ``"flutter"`` (the least stable flap-induced root,
+        :func:`tefcore.modes.roles.flutter_root`), ``"root"`` (the root nearest
+        `root`, e.g. the TEF branch of a sweep at this point) or a name of the
+        stability table (e.g. ``"blade torsion 1"``).  None (default): the
+        flutter root when it is unstable, else the TEF; ``identification``
+        says which.
     root : complex, optional
         Eigenvalue (/rev) for ``mode="root"``.
     knockouts : bool
@@ -451,6 +469,8 @@ def mechanism(cfg, mode: str = "TEF", *, knockouts: bool = True, stability_resul
     eig_table = table["real_part"].to_numpy() + 1j * table["frequency_per_rev"].to_numpy()
     if mode in ("TEF", "flutter") and not model.has_flap:
         raise ValueError(f"mode {mode!r} needs the flap: model.tef is {cfg.model.tef!r}")
+    if mode is None and not model.has_flap:
+        raise ValueError("without the flap, name the mode (e.g. 'blade lag 1')")
     row, how = _root_row(mode, res, eig_table, basis, n_steps, root)
     parts = linearized_terms(tr)
     system = combine(parts)

@@ -25,7 +25,9 @@ from ..floquet.second_order import STATE_MIN_RATE, SecondOrderSystem
 from ..floquet.second_order import state_matrix as state_matrix
 from ..model.coupled import coupled_model
 from ..model.jacobian import jacobian_blocks
+from ..modes.continuation import continue_roots
 from ..modes.labels import coordinate_shares, label_modes, tracking_shapes
+from ..modes.roles import name_roots
 from ..runtime import blas_limit
 from ..trimming.trim import TrimResult, initial_collective, trim
 
@@ -98,6 +100,11 @@ class StabilityResult:
     system : SecondOrderSystem
         The linearised ``M, C, K`` the modes belong to (with the aerodynamic
         states as first-order coordinates, if any).
+    identity : tefcore.modes.continuation.ContinuedRoots or None
+        How each root was named: its path from zero coupling
+        (:func:`tefcore.modes.continuation.continue_roots`), where two paths
+        met (``identity.meetings``); None without the flap or with
+        ``identity=False``.
     aero_modes : DataFrame or None
         With aerodynamic states (docs/theory.md 6.2): the roots that belong to
         them rather than to the blade and flap (blade and flap states carry
@@ -115,12 +122,13 @@ class StabilityResult:
     periodic: bool = False
     system: SecondOrderSystem | None = None
     aero_modes: pd.DataFrame | None = None
+    identity: object = None
 
 
 @blas_limit()
 def stability(cfg, *, trim_result: TrimResult | None = None, n_steps: int | None = None,
               remode: bool = True, model=None,
-              warm_start: TrimResult | None = None) -> StabilityResult:
+              warm_start: TrimResult | None = None, identity: bool = True) -> StabilityResult:
     """Trim the configuration and compute its labelled stability modes.
 
     Parameters
@@ -147,6 +155,10 @@ def stability(cfg, *, trim_result: TrimResult | None = None, n_steps: int | None
         one to the trim's tolerance (what sweeps use, :mod:`tefcore.sweeps.sweep`).
         Its Newton matrix (:meth:`tefcore.trimming.trim.TrimResult.final_blocks`) starts
         the iterations.
+    identity : bool, optional
+        Name each root by the uncoupled mode it continues from
+        (:func:`tefcore.modes.continuation.continue_roots`; with the flap).
+        False: by the coordinate it carries most (faster; no roles).
 
     Returns
     -------
@@ -190,7 +202,8 @@ def stability(cfg, *, trim_result: TrimResult | None = None, n_steps: int | None
     if model is not None:
         if model.cfg != cfg:
             raise ValueError("model was built for another configuration than cfg")
-        return _stability_of(model, trim(model, initial=trim_result or warm_start), n_steps)
+        return _stability_of(model, trim(model, initial=trim_result or warm_start), n_steps,
+                            identity)
     if warm_start is not None and trim_result is None:
         theta = initial_collective(cfg)
         model = coupled_model(cfg, collective=theta)
@@ -198,7 +211,7 @@ def stability(cfg, *, trim_result: TrimResult | None = None, n_steps: int | None
         if remode and abs(tr.controls.collective - theta) > np.deg2rad(REMODE_DEG):
             model = coupled_model(cfg, collective=tr.controls.collective)
             tr = trim(model, initial=tr)
-        return _stability_of(model, tr, n_steps)
+        return _stability_of(model, tr, n_steps, identity)
     # modes at the collective of the warm start (or the first estimate);
     # re-mode and re-trim only when the trim lands far from it: the MDART
     # frequencies move < 0.3 % per degree of collective (measured)
@@ -209,7 +222,7 @@ def stability(cfg, *, trim_result: TrimResult | None = None, n_steps: int | None
     if remode and abs(tr.controls.collective - theta_modes) > np.deg2rad(REMODE_DEG):
         model = coupled_model(cfg, collective=tr.controls.collective)
         tr = trim(model, initial=tr)
-    return _stability_of(model, tr, n_steps)
+    return _stability_of(model, tr, n_steps, identity)
 
 
 def linear_system(tr: TrimResult) -> SecondOrderSystem:
@@ -273,10 +286,10 @@ def periodic_state_matrix(tr: TrimResult):
     return system.state_matrix, system.m
 
 
-def _stability_of(model, tr: TrimResult, n_steps: int | None) -> StabilityResult:
-    """Linearise a trimmed model and label its (Floquet) modes."""
+def _stability_of(model, tr: TrimResult, n_steps: int | None,
+                  identity: bool = True) -> StabilityResult:
+    """Linearise a trimmed model, name its (Floquet) modes and their roles."""
     cfg = model.cfg
-    n = model.n_dof
     system = linear_system(tr)
     # floquet_modes chooses the sub-intervals K from a bound of the most damped
     # root (raised for heavily damped roots, seen: -7.2 /rev torsion at Fig. 14's
@@ -297,10 +310,30 @@ def _stability_of(model, tr: TrimResult, n_steps: int | None) -> StabilityResult
     # (to 1e-9 /rev, round-off) go less damped first, not by round-off
     order = np.lexsort((-keep.damping_rates, np.round(keep.frequencies, 9)))
     keep = keep.select(order)
-    vec = keep.eigenvectors
+    table, shapes, frac = _modes_table(model, keep, system.periodic)
+    continued = None
+    if identity and model.has_flap:
+        continued = continue_roots(system, model.labels, keep, basis=model.tracking_basis(),
+                                   final_labels=table["dominant"].tolist())
+        table = name_roots(table, continued, frac, model.labels)
+    summary = tr.summary()
+    summary["reverse_flow_fraction"] = _reverse_flow_fraction(tr)
+    if aero_modes is not None:
+        summary["aero_state_growth"] = (float(aero_modes["real_part"].max())
+                                        if len(aero_modes) else float("nan"))
+    return StabilityResult(modes=table, eigenvectors=keep.eigenvectors, trim=summary,
+                           trim_result=tr, vectors=shapes, periodic=system.periodic,
+                           system=system, aero_modes=aero_modes, identity=continued)
+
+
+def _modes_table(model, keep, periodic):
+    """The modes table by participation (labels: the coordinate each root carries
+    most), the roots' tracking shapes and the coordinates' shares."""
+    n = model.n_dof
     frac = coordinate_shares(keep.participation, n)
     shapes = tracking_shapes(model.tracking_basis(), keep, n)
-    labels = label_modes(frac, model.labels, keep.frequencies, keep.damping_rates, shapes)
+    labels = label_modes(frac, model.labels, keep.frequencies, keep.damping_rates, shapes,
+                         periodic=periodic)
     kinds = [lab.split()[1] if lab.startswith("blade") else "TEF" for lab in model.labels]
     columns = {
         "mode_id": np.arange(len(labels)),
@@ -317,14 +350,8 @@ def _stability_of(model, tr: TrimResult, n_steps: int | None) -> StabilityResult
         rows = [i for i, k in enumerate(kinds) if k == kind]
         columns[f"share_{kind}"] = frac[rows].sum(axis=0) if rows else np.zeros(len(labels))
     table = pd.DataFrame(columns)          # one construction, not column by column
-    summary = tr.summary()
-    summary["reverse_flow_fraction"] = _reverse_flow_fraction(tr)
-    if aero_modes is not None:
-        summary["aero_state_growth"] = (float(aero_modes["real_part"].max())
-                                        if len(aero_modes) else float("nan"))
-    return StabilityResult(modes=table, eigenvectors=vec, trim=summary, trim_result=tr,
-                           vectors=shapes, periodic=system.periodic, system=system,
-                           aero_modes=aero_modes)
+    table.insert(2, "dominant", table["label"])
+    return table, shapes, frac
 
 
 #: Least share of a root's participation in the blade and flap states for the

@@ -1,23 +1,50 @@
 """Identity by continuation: the root a mode of the uncoupled system becomes.
 
 A root's name is where it comes from.  With the blade-flap coupling scaled by
-``s`` (:func:`coupling_homotopy`: the flap row and column of ``M, C, K``),
-``s = 0`` is the uncoupled blade (its modes named by their structural
-labels) and the flap on its actuator; following each root by continuation
-(:func:`tefcore.modes.tracking.follow_root`) to ``s = 1`` names the roots of
-the coupled system.  :func:`tef_root` is the root the uncoupled flap mode
-becomes: "the TEF mode", a definition that depends on no label,
-participation or sweep.
+``eps`` (:func:`coupling_homotopy`: the flap row and column of ``M, C, K``),
+``eps = 0`` is the uncoupled system -- the blade with the flap held at its
+trimmed motion, whose roots carry the structural labels of their modal
+coordinates (``blade flap 1`` ...), and the flap alone on its actuator
+(``TEF``) -- where identity is exact.  :func:`continue_roots` follows every
+root from ``eps = 0`` to ``eps = 1`` (the coupled system), halving a step of
+``eps`` wherever a match between its ends is not decided
+(:func:`tefcore.modes.tracking.track_modes`: eigenvalues compared modulo
+1/rev for Floquet exponents, with the shapes), and so names each root of the
+coupled system by the uncoupled mode it continues from.  The one thing
+continuation cannot decide is a root that meets another on the way
+(coalescence: an *exceptional point* of the two-parameter family in the
+design parameter and ``eps``); such a path is reported with where it met,
+never guessed.
+
+:func:`tef_root` is the one root the uncoupled flap mode becomes: "the TEF
+mode", a definition that depends on no label, participation or sweep.
 """
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
+import pandas as pd
+from scipy.optimize import linear_sum_assignment
 
 from ..floquet.second_order import SecondOrderSystem
+from .labels import coordinate_shares, label_modes, tracking_shapes, trajectory_shapes
+from .matching import COALESCED_DISTANCE, COALESCED_MAC, decide, mac, relative_distance
 from .tracking import follow_root
 
-__all__ = ["coupling_homotopy", "positive_roots", "root_solver", "tef_root", "visible_roots"]
+__all__ = ["FIRST_STEPS", "FLAP_ACTIVE", "MIN_STEP", "ContinuedRoots", "continue_roots",
+           "coupling_homotopy", "path_shapes", "positive_roots", "root_solver", "tef_root",
+           "visible_roots"]
+
+#: Equal steps of ``eps`` the continuation starts with (each step's end is one
+#: eigenproblem); a step whose matches are not all decided is halved.
+FIRST_STEPS = 2
+
+#: Smallest step of ``eps``: 1/256 (7 halvings of the first 1/2).  A match still
+#: undecided at this step is a coalescence on the path (an exceptional point
+#: within ~1/256 of the coupling), reported rather than refined further.
+MIN_STEP = 1.0 / 256
 
 
 def positive_roots(res):
@@ -173,3 +200,496 @@ def tef_root(system: SecondOrderSystem, *, basis=None, n_steps: int = 72):
     start = int(flap[np.argmax(eig0[flap].real)])
     follow = follow_root(solve, 0.0, 1.0, start, periodic=system.periodic, first=(eig0, vec0))
     return follow.eigenvalue, follow
+
+
+# ------------------------------------------------------------------ all roots
+
+
+#: Least share of a root's kinematic motion (squared) in the flap's trailing edge
+#: (the last row of :meth:`tefcore.model.coupled.CoupledModel.tracking_basis`) for
+#: the root to take part in the blade-flap coupling.  Measured on MDART: the blade's
+#: low modes carry 1e-8 to 1e-2 (torsion 1 at c_cg 0.33, mu 0.3: 2e-2 at full
+#: coupling, 1e-4 at half), the roots the flap moves 5e-2 to 1.
+FLAP_ACTIVE = 1e-2
+
+
+def path_shapes(basis, res, n, periodic):
+    """The shapes paths are matched by.
+
+    Floquet roots: their motion over the revolution
+    (:func:`tefcore.modes.labels.trajectory_shapes`), free of the frequency
+    convention; constant coefficients: displacement and velocity shapes
+    (:func:`tefcore.modes.labels.tracking_shapes`).
+
+    Parameters
+    ----------
+    basis : numpy.ndarray
+        Map from coordinates to physical shapes.
+    res : tefcore.floquet.FloquetResult
+        The roots (with their periodic shapes when `periodic`).
+    n : int
+        Number of coordinates.
+    periodic : bool
+        Floquet exponents.
+
+    Returns
+    -------
+    numpy.ndarray
+        One column per root.
+    """
+    return trajectory_shapes(basis, res, n) if periodic else tracking_shapes(basis, res, n)
+
+
+def _flap_share(vecs, n_phys):
+    """Each root's kinematic share in the flap (the basis' last row) over its shape's blocks."""
+    blocks = vecs.reshape(-1, n_phys, vecs.shape[-1])
+    total = np.sum(np.abs(blocks) ** 2, axis=(0, 1))
+    return np.sum(np.abs(blocks[:, -1]) ** 2, axis=0) / np.maximum(total, np.finfo(float).tiny)
+
+
+def _solve(system, n, eps, periodic, n_steps, participation=False):
+    """Positive roots of the system at coupling `eps` (Floquet: one grid, shapes)."""
+    s = coupling_homotopy(system, n - 1, eps)
+    if periodic:
+        res = s.modes(n_steps=n_steps, n_sub=4, shapes=True, participation=participation,
+                      atol=None)
+    else:
+        res = s.modes()
+    if participation and res.participation is None:
+        res = res.with_participation()
+    return positive_roots(res)
+
+
+@dataclass
+class ContinuedRoots:
+    """The identity of a coupled system's roots by continuation from zero coupling.
+
+    Attributes
+    ----------
+    origin : list of str
+        Per root (in the order given to :func:`continue_roots`): the
+        uncoupled mode it continues from.
+    certain : numpy.ndarray of bool
+        Per root: every step of its path was decided (and, in forward flight,
+        its match to the guide's root).
+    uncoupled : numpy.ndarray of complex
+        Per root: the root of the uncoupled system it continues from (for a
+        blade root, the root of the blade with the flap held at its trimmed
+        motion; for the TEF, the flap alone) [/rev]; NaN where there is none.
+    meetings : pandas.DataFrame
+        Where two paths of different uncoupled modes met and could not be
+        told apart at the smallest step (:data:`MIN_STEP`): ``eps`` and the two
+        ``origins`` -- an exceptional point of the family within that step.
+    n_solves : int
+        Eigenproblems solved on the path (the two ends included, and the
+        steps halved).
+    flap_motion : numpy.ndarray
+        Per root: the share of its kinematic motion (squared) in the flap's
+        trailing edge (:data:`FLAP_ACTIVE`).
+    """
+
+    origin: list
+    certain: np.ndarray
+    uncoupled: np.ndarray
+    meetings: pd.DataFrame
+    n_solves: int
+    flap_motion: np.ndarray
+
+
+def continue_roots(system: SecondOrderSystem, labels, final=None, *, basis=None,
+                   final_labels=None, first_steps: int = FIRST_STEPS,
+                   min_step: float = MIN_STEP, n_steps: int = 72) -> ContinuedRoots:
+    """Name every root of the coupled system by the uncoupled mode it continues from.
+
+    **Constant coefficients (hover).**  The roots at ``eps = 0`` are named
+    by the coordinates they carry (:func:`tefcore.modes.labels.label_modes`:
+    the blade's by their structural labels, the flap's ``TEF`` -- exact, the
+    two blocks being decoupled) and marched to ``eps = 1``: at each step all
+    roots of the new ``eps`` are assigned to the paths (shapes by MAC,
+    eigenvalues extrapolated linearly along each path; the assignment of
+    least total cost).  A step whose assignment is not decided for some path
+    (its match not clear against the rival,
+    :func:`tefcore.modes.matching.decide`) is halved, down to `min_step`; a
+    decided step lets the next one double, up to ``1 / first_steps``.  A
+    rival that continues the *same* uncoupled mode (``X`` and ``X (locked)``,
+    the two real roots of an overdamped pair) does not make a step undecided.
+    A match still undecided at `min_step` between two different uncoupled
+    modes is two paths meeting -- an exceptional point of the family -- and
+    goes into ``meetings``; the roots there keep the assignment of least cost
+    and are not ``certain``.
+
+    **Periodic coefficients (forward flight).**  The same march on the
+    Floquet roots, with two differences.  Their frequencies are known modulo
+    1/rev and up to the sign, so the shapes compared are the roots' motion
+    over the revolution (:func:`path_shapes`), which no convention changes.
+    And the blade's low modes sit in frequency locks (pairs of real
+    multipliers at ``k/2`` /rev) whose roots meet and part along ``eps``
+    although the flap takes no part in them: an undecided match between two
+    roots that both carry less than :data:`FLAP_ACTIVE` of their motion in
+    the flap is such a lock of the blade, not an exceptional point of the
+    coupling; it is not refined, and those roots are named by the coordinate
+    they carry (their participation, ``final_labels``) -- what the coupling
+    through the flap cannot have changed.
+
+    Parameters
+    ----------
+    system : tefcore.floquet.second_order.SecondOrderSystem
+        The coupled system, blade coordinates first and the flap last.
+    labels : list of str
+        The coordinates' labels (blade modes, then ``TEF``).
+    final : tefcore.floquet.FloquetResult, optional
+        The coupled system's roots as solved elsewhere (positive frequency,
+        in the order of the modes table; with their periodic shapes in
+        forward flight): the result is per root of it.  Default: the positive
+        roots of `system`, solved here.
+    basis : numpy.ndarray, optional
+        Map from coordinates to physical shapes (default: the coordinates;
+        its last row the flap's motion, as in
+        :meth:`tefcore.model.coupled.CoupledModel.tracking_basis`).
+    final_labels : list of str, optional
+        The coordinate each root of `final` carries most (its participation
+        label): the name of a root that passed through a lock of the blade.
+    first_steps : int, optional
+        ``1 / first_steps`` is the first and the longest step of ``eps``.
+    min_step : float, optional
+        Smallest step of ``eps``.
+    n_steps : int, optional
+        Floquet steps per period of each eigenproblem on the path (forward
+        flight; no error control: identity needs the roots told apart, not
+        converged).
+
+    Returns
+    -------
+    ContinuedRoots
+
+    Examples
+    --------
+    Two oscillators, 1 and 2 rad/rev, coupled through the second ("flap")
+    coordinate: the coupled roots keep their origins.
+
+    >>> import numpy as np
+    >>> from tefcore.floquet.second_order import SecondOrderSystem
+    >>> m = np.eye(2)[None]
+    >>> c = 0.02 * np.eye(2)[None]
+    >>> k = np.array([[[1.0, 0.3], [0.3, 4.0]]])
+    >>> out = continue_roots(SecondOrderSystem(m, c, k), ["blade flap 1", "TEF"])
+    >>> out.origin, out.certain.tolist()
+    (['blade flap 1', 'TEF'], [True, True])
+    """
+    n = system.n_dof
+    basis = np.eye(n) if basis is None else basis
+    per = system.periodic
+    res0 = _solve(system, n, 0.0, per, n_steps, participation=True)
+    if system.n_first:
+        return _by_participation(res0, n, labels, basis, final, final_labels)
+    frac0 = coordinate_shares(res0.participation, n)
+    vec0 = path_shapes(basis, res0, n, per)
+    names0 = label_modes(frac0, labels, res0.frequencies, res0.damping_rates, vec0,
+                         periodic=per)
+    march = _March(res0.exponents, vec0, names0, basis.shape[0], per)
+    h_max, eps, h, n_solves = 1.0 / first_steps, 0.0, 1.0 / first_steps, 1
+    streak = 2                         # clear steps since the last halving
+    while eps < 1.0 - 1e-12:
+        h = min(h, 1.0 - eps)
+        if eps + h == 1.0 and final is not None:
+            res = final
+        else:
+            res = _solve(system, n, eps + h, per, n_steps)
+        n_solves += 1
+        if march.step(eps + h, res.exponents, path_shapes(basis, res, n, per),
+                      final_step=h <= min_step * (1 + 1e-9)):
+            eps += h
+            streak = streak + 1 if march.last_clear else 0
+            if streak >= 2:            # a step that had to be halved is not doubled at once
+                h = min(2 * h, h_max)
+        else:
+            h *= 0.5
+            streak = 0
+    origin, uncoupled = list(march.origin), march.start.copy()
+    if final_labels is not None:
+        # roots that passed a lock of the blade: the names of each group that met
+        # there shared among its roots by the coordinate each carries, and each
+        # compared with the uncoupled root of its name
+        held = dict(zip(names0, res0.exponents, strict=True))
+        for idx in _lock_groups(march):
+            names = _share_names([origin[i] for i in idx], [str(final_labels[i]) for i in idx])
+            for i, name in zip(idx, names, strict=True):
+                origin[i] = name
+                uncoupled[i] = held.get(name, held.get(_base_name(name), np.nan))
+    meetings = pd.DataFrame(march.meetings, columns=["eps", "origins", "gap", "mac"]).drop_duplicates(
+        "origins", keep="first").reset_index(drop=True)
+    return ContinuedRoots(origin=origin, certain=~march.doubt, uncoupled=uncoupled,
+                          meetings=meetings, n_solves=n_solves,
+                          flap_motion=_flap_share(march.vecs, basis.shape[0]))
+
+
+#: Least share of a root's participation in the blade and flap states for it to
+#: be a root of the blade and flap, not of the aerodynamic states (as in
+#: :func:`tefcore.linear.stability.stability`).
+_STRUCTURAL = 0.5
+
+
+def _base_name(name: str) -> str:
+    """A name without its locked-partner suffix."""
+    return name.removesuffix(" (locked)")
+
+
+def _lock_groups(march) -> list[list[int]]:
+    """The roots whose paths met in a lock of the blade, grouped by the locks they shared."""
+    groups: dict = {}
+    for i, (g, locked) in enumerate(zip(march.group, march.lock, strict=True)):
+        if locked:
+            groups.setdefault(int(g), []).append(i)
+    return [idx for idx in groups.values() if len(idx) > 1]
+
+
+def _share_names(names, carried) -> list[str]:
+    """Give a group's names to its roots, each to the root that carries that coordinate.
+
+    Parameters
+    ----------
+    names : list of str
+        The uncoupled names the group's paths brought (one per root).
+    carried : list of str
+        The coordinate each root carries most (its participation label).
+
+    Returns
+    -------
+    list of str
+        `names` reordered: the assignment matching most roots to the name of
+        the coordinate they carry; a root that carries none of them keeps its
+        path's name.
+    """
+    # a root takes the name of the coordinate it carries; one that carries none
+    # of the group's coordinates keeps the name its own path brought
+    score = np.array([[0.0 if _base_name(n) == _base_name(c) else 0.5 if i == j else 1.0
+                       for j, n in enumerate(names)] for i, c in enumerate(carried)])
+    rows, cols = linear_sum_assignment(score)
+    out = list(names)
+    for r, c in zip(rows, cols, strict=True):
+        out[r] = names[c]
+    return out
+
+
+def _by_participation(res0, n, labels, basis, final, final_labels) -> ContinuedRoots:
+    """Names with aerodynamic states: the coordinate each root carries, compared by name.
+
+    The shed wake's roots come in near-repeated families that no continuation
+    step separates; with them, the roots keep their participation labels
+    (``final_labels``) and are compared with the uncoupled root of the same
+    name (the flap held: the blade's roots with their aerodynamic states).
+    """
+    mag = np.abs(res0.participation)
+    keep = mag[:2 * n].sum(axis=0) >= _STRUCTURAL * mag.sum(axis=0)
+    res0 = res0.select(keep)
+    names0 = label_modes(coordinate_shares(res0.participation, n), labels, res0.frequencies,
+                         res0.damping_rates, tracking_shapes(basis, res0, n),
+                         periodic=res0.shapes is not None)
+    held = dict(zip(names0, res0.exponents, strict=True))
+    names = [str(x) for x in final_labels]
+    uncoupled = np.array([held.get(x, held.get(x.removesuffix(" (locked)"), np.nan))
+                          for x in names], complex)
+    return ContinuedRoots(origin=names, certain=np.zeros(len(names), bool),
+                          uncoupled=uncoupled,
+                          meetings=pd.DataFrame(columns=["eps", "origins"]), n_solves=1,
+                          flap_motion=_flap_share(tracking_shapes(basis, final, n),
+                                                  basis.shape[0]))
+
+
+#: A root within this of a multiple of 1/2 /rev may be entering or leaving a
+#: frequency lock (a pair of real multipliers), where the number of positive
+#: roots changes by one: 0.05 /rev, the largest change of a blade root's
+#: frequency over one step of the coupling seen on the paper's cases near a lock
+#: (the lock's own roots sit within :data:`tefcore.modes.matching.LOCK_TOL`).
+LOCK_BAND = 0.05
+
+#: An eigenvalue match is clear by distance alone when the predicted root is at
+#: most this fraction of the way to the next nearest (and the root nearest to no
+#: other path by the same ratio): the linear predictor's error would have to be
+#: three times the distance it is trusted for to swap them.
+NEAR_RATIO = 1.0 / 3.0
+
+#: Cost of a path that ends or a root that appears without a lock to explain it:
+#: above any match (a match costs at most 2), so the assignment drops or adds a
+#: root only at a lock.
+_UNEXPLAINED = 5.0
+
+
+def _near_lock(eig, periodic) -> np.ndarray:
+    """Which roots lie within :data:`LOCK_BAND` of a multiple of 1/2 /rev (Floquet only)."""
+    f = np.asarray(eig, complex).imag
+    if not periodic:
+        return np.zeros(f.size, bool)
+    return np.abs(f - 0.5 * np.round(2 * f)) <= LOCK_BAND
+
+
+def _assign(cost, path_lock, root_lock):
+    """Least-cost assignment of paths (rows) to roots (columns).
+
+    Where the counts differ (a pair entering or leaving a lock at ``k/2``),
+    only a path near a lock ends and only a root near one appears.
+    """
+    p, r = cost.shape
+    if p == r:
+        return linear_sum_assignment(cost)
+    n = max(p, r)
+    full = np.zeros((n, n))
+    full[:p, :r] = cost
+    if r < p:
+        full[:p, r:] = np.where(path_lock, 0.0, _UNEXPLAINED)[:, None]
+    else:
+        full[p:, :r] = np.where(root_lock, 0.0, _UNEXPLAINED)[None, :]
+    rows, cols = linear_sum_assignment(full)
+    keep = (rows < p) & (cols < r)
+    return rows[keep], cols[keep]
+
+
+def _nearest_clear(dist, rows, cols):
+    """Per assigned pair: the root is the path's nearest by :data:`NEAR_RATIO`, and back.
+
+    ``dist`` is the absolute distance [/rev] from each path's predicted root
+    to each root (in the representation the path sees).
+    """
+    out = []
+    for r, c in zip(rows, cols, strict=True):
+        own = dist[r, c]
+        row_alt = np.delete(dist[r], c).min(initial=np.inf)
+        col_alt = np.delete(dist[:, c], r).min(initial=np.inf)
+        out.append(bool(own <= NEAR_RATIO * min(row_alt, col_alt)))
+    return out
+
+
+class _March:
+    """The paths of all roots along ``eps``: their origins, last roots and doubts.
+
+    ``doubt``: the path met another mode's (an exceptional point); ``lock``:
+    the path passed an undecided match among roots the flap takes no part in
+    (a frequency lock of the blade, named by participation at the end).
+    """
+
+    def __init__(self, eig, vecs, names, n_phys, periodic):
+        self.eig, self.vecs = np.asarray(eig, complex), vecs
+        self.n_phys, self.periodic = n_phys, periodic
+        self.origin = [str(x) for x in names]
+        self.start = self.eig.copy()
+        self.before = None                # (eps, each path's eigenvalue) at the step before
+        self.eps = 0.0
+        self.doubt = np.zeros(self.eig.size, bool)
+        self.lock = np.zeros(self.eig.size, bool)
+        self.group = np.arange(self.eig.size)     # paths that met in a lock share a group
+        self.meetings: list[dict] = []
+        self.last_clear = True
+
+    def _base(self, i):
+        return _base_name(self.origin[i])
+
+    def _predicted(self, eps):
+        """Each path's eigenvalue extrapolated linearly from its last two steps."""
+        if self.before is None:
+            return self.eig
+        e0, eig0 = self.before
+        return self.eig + (self.eig - eig0) * (eps - self.eps) / (self.eps - e0)
+
+    def _distance(self, pred, eig):
+        """Eigenvalue part of the cost, (paths, roots), and the roots as each path sees them.
+
+        A Floquet root's frequency is taken in the representation (shift by
+        1/rev, sign) nearest the path's predicted frequency, which is carried
+        unwrapped along the path: a frequency that moves by more than 1/2 /rev
+        over a step is still told from its alias.
+        """
+        if self.periodic:
+            f, q = eig.imag[None, :], pred.imag[:, None]
+            up, down = f + np.round(q - f), -f + np.round(q + f)
+            seen = eig.real[None, :] + 1j * np.where(np.abs(up - q) <= np.abs(down - q), up, down)
+        else:
+            seen = np.broadcast_to(eig[None, :], (pred.size, eig.size))
+        a = pred[:, None]
+        ds = np.abs(a.real - seen.real)
+        ss = 0.5 + 0.5 * (np.abs(a.real) + np.abs(seen.real))
+        sw = 1.0 + 0.5 * (np.abs(a.imag) + np.abs(seen.imag))
+        return np.hypot(ds / ss, np.abs(a.imag - seen.imag) / sw), seen
+
+    def step(self, eps, eig, vecs, final_step) -> bool:
+        """Assign the roots at `eps` to the paths; False when the step must be halved."""
+        eig = np.asarray(eig, complex)
+        pred = self._predicted(eps)
+        # shapes by MAC, against the path's shape and its conjugate (the sign of
+        # a Floquet frequency is a convention: the conjugate root is the same mode)
+        shape = 1.0 - np.maximum(mac(self.vecs, vecs), mac(self.vecs.conj(), vecs))
+        dist, seen = self._distance(pred, eig)
+        cost = np.minimum(1.0, dist) + shape
+        rows, cols = _assign(cost, _near_lock(pred, self.periodic), _near_lock(eig, self.periodic))
+        clear, rival = decide(cost, rows, cols, shape)
+        near = _nearest_clear(np.abs(seen - pred[:, None]), rows, cols)
+        clear = [a or b for a, b in zip(clear, near, strict=True)]
+        path_of = dict(zip(cols, rows, strict=True))
+        active = _flap_share(vecs, self.n_phys) >= FLAP_ACTIVE
+        meet, lock = [], []
+        for r, c, ok, k in zip(rows, cols, clear, rival, strict=True):
+            other = path_of.get(k)
+            if ok or (other is not None and self._base(other) == self._base(r)):
+                continue
+            if self.periodic and not (active[c] or (k >= 0 and active[k])):
+                # two roots neither of which moves the flap: where they meet the
+                # coupling through the flap is not what brings them together (it
+                # moves a root in proportion to the root's motion of the flap)
+                lock.append((r, other))
+            else:
+                meet.append((r, other))
+        self.last_clear = not meet
+        if meet and not final_step:
+            return False
+        self._accept(eps, seen, vecs, rows, cols, meet, lock)
+        return True
+
+    def _accept(self, eps, seen, vecs, rows, cols, meet, lock):
+        # each root as the path it continues sees it (its frequency unwrapped)
+        eig = seen[0].copy()
+        for r, c in zip(rows, cols, strict=True):
+            eig[c] = seen[r, c]
+        origin = [""] * eig.size
+        start = np.full(eig.size, np.nan, complex)
+        last = np.full(eig.size, np.nan, complex)     # each path's eigenvalue a step back
+        doubt = np.zeros(eig.size, bool)
+        locked = np.zeros(eig.size, bool)
+        group = np.full(eig.size, -1)
+        for r, c in zip(rows, cols, strict=True):
+            origin[c], start[c], last[c] = self.origin[r], self.start[r], self.eig[r]
+            doubt[c], locked[c], group[c] = self.doubt[r], self.lock[r], self.group[r]
+        col_of = dict(zip(rows, cols, strict=True))
+        for r, other in lock:
+            both = [col_of[x] for x in (r, other) if x is not None]
+            locked[both] = True
+            group[np.isin(group, group[both])] = group[both].min()
+        for r, other in meet:
+            doubt[[col_of[x] for x in (r, other) if x is not None]] = True
+            pair = sorted({self._base(r), self._base(other) if other is not None else "?"})
+            if len(pair) < 2 or other is None:
+                continue
+            a, b = col_of[r], col_of[other]
+            gap = float(relative_distance(eig[a:a + 1], eig[b:b + 1], self.periodic)[0, 0])
+            shape = float(max(mac(vecs[:, a], vecs[:, b])[0, 0],
+                              mac(vecs[:, a].conj(), vecs[:, b])[0, 0]))
+            # a meeting is an exceptional point only where the two roots
+            # coalesce, one eigenvalue and one shape; two roots still apart
+            # whose match no step decided keep the assignment of least cost,
+            # uncertain but not a coalescence (measured on the paper's
+            # figures: undecided pairs at MAC 0.18-0.8 or 0.1-0.6 apart, and
+            # coalescing pairs at MAC 0.97, 0.03 apart)
+            if shape >= COALESCED_MAC and gap <= COALESCED_DISTANCE:
+                self.meetings.append({"eps": eps, "origins": " / ".join(pair),
+                                      "gap": gap, "mac": shape})
+        assigned = np.isin(np.arange(eig.size), cols)
+        for c in np.flatnonzero(~assigned):
+            # a root that appears: a pair became two real roots (a lock, overdamped)
+            gap = relative_distance(eig[c:c + 1], eig, self.periodic)[0]
+            near = int(np.argmin(np.where(assigned, gap, np.inf)))
+            origin[c] = _base_name(origin[near]) + " (locked)"
+            start[c], doubt[c], last[c] = start[near], doubt[near], eig[c]
+            locked[[c, near]] = True
+            group[c] = group[near]
+        self.before = (self.eps, last)
+        self.eps, self.eig, self.vecs = eps, eig, vecs
+        self.origin, self.start, self.doubt, self.lock = origin, start, doubt, locked
+        self.group = group

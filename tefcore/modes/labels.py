@@ -19,10 +19,10 @@ from __future__ import annotations
 import numpy as np
 import scipy.optimize
 
-__all__ = ["coordinate_shares", "label_modes", "tracking_shapes"]
+__all__ = ["coordinate_shares", "label_modes", "tracking_shapes", "trajectory_shapes"]
 
 
-def label_modes(frac, labels, freqs, rates, disp):
+def label_modes(frac, labels, freqs, rates, disp, periodic: bool = False):
     """Label modes by the coordinate they carry, one coordinate per mode.
 
     ``frac`` are the coordinates' shares of participation (coordinates x
@@ -36,8 +36,10 @@ def label_modes(frac, labels, freqs, rates, disp):
     locked to a multiple of 1/2 per rev, or overdamped) gives one mode more
     than coordinates: the pair shares its coordinate's label, the less damped
     root carrying it plainly and the other with ``(locked)`` appended (the
-    partner is the assigned mode at the closest frequency, ties by the MAC of
-    the physical shapes ``disp``).
+    partner is the assigned mode at the closest frequency -- for Floquet
+    exponents modulo 1/rev and up to its sign, so that the two real roots of
+    a lock at 1/2 /rev are partners whether the convention wrote them 0.5 or
+    2.5 -- ties by the MAC of the physical shapes ``disp``).
 
     Parameters
     ----------
@@ -50,6 +52,8 @@ def label_modes(frac, labels, freqs, rates, disp):
         Frequencies and damping rates of the modes [1/rev].
     disp : numpy.ndarray
         Physical shapes of the modes, one column each (:func:`tracking_shapes`).
+    periodic : bool, optional
+        Floquet exponents: frequencies known modulo 1/rev and up to their sign.
 
     Returns
     -------
@@ -69,7 +73,8 @@ def label_modes(frac, labels, freqs, rates, disp):
     mac = np.abs(unit.conj().T @ unit) ** 2
     for j, lab in enumerate(out):
         if lab is None:
-            best = min(cols, key=lambda i: (round(abs(freqs[i] - freqs[j]), 6), -mac[i, j]))
+            best = min(cols, key=lambda i: (round(_gap(freqs[i], freqs[j], periodic), 6),
+                                            -mac[i, j]))
             # the two roots of a locked pair have nearly the same shape, so
             # which one the assignment named is decided by round-off; name the
             # less damped root (the one that matters for stability) after the
@@ -79,6 +84,51 @@ def label_modes(frac, labels, freqs, rates, disp):
             else:
                 out[j] = out[best] + " (locked)"
     return out
+
+
+def _gap(f, g, periodic):
+    """|f - g|, for Floquet frequencies modulo 1/rev and up to the sign."""
+    if not periodic:
+        return abs(f - g)
+    def circ(x):
+        return abs((x + 0.5) % 1.0 - 0.5)
+    return min(circ(f - g), circ(f + g))
+
+
+def trajectory_shapes(basis, res, n, samples: int = 8):
+    """Physical shapes of Floquet modes over one revolution, free of the frequency convention.
+
+    The motion ``x(psi) = exp(i omega psi) p(psi)`` of a mode (without its
+    decay over the revolution) sampled at `samples` equally spaced azimuths,
+    displacements only, through ``basis``, stacked.  Whichever integer shift
+    of the frequency the convention chose, ``exp(i omega psi) p(psi)`` is the
+    same; so is the conjugate up to conjugation (compare both).  Two modes
+    whose shapes at psi = 0 are alike (MAC 0.96 between MDART's first flap
+    and torsion modes at mu = 0.3) differ over the revolution.
+
+    Parameters
+    ----------
+    basis : numpy.ndarray
+        Map from coordinates to physical shapes.
+    res : tefcore.floquet.FloquetResult
+        Roots with their periodic shapes (``res.shapes``; without them, the
+        displacement shapes at psi = 0).
+    n : int
+        Number of coordinates.
+    samples : int, optional
+        Azimuths sampled.
+
+    Returns
+    -------
+    numpy.ndarray
+        ``(samples * n_phys, n_modes)``.
+    """
+    if res.shapes is None:
+        return basis @ res.eigenvectors[:n]
+    idx = np.linspace(0, len(res.psi), samples, endpoint=False).astype(int)
+    psi = res.psi[idx]
+    x = res.shapes[idx][:, :n, :] * np.exp(1j * np.outer(psi, res.exponents.imag))[:, None, :]
+    return np.concatenate([basis @ x[k] for k in range(idx.size)], axis=0)
 
 
 def tracking_shapes(basis, res, n):

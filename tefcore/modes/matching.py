@@ -57,9 +57,10 @@ import pandas as pd
 from scipy.optimize import linear_sum_assignment
 
 __all__ = ["CLEAR_COST", "COALESCED_DISTANCE", "COALESCED_MAC", "LOCK_TOL", "MARGIN",
-           "MODE_COLUMNS", "as_point", "decide", "eigen_distance", "eigenvalues", "is_clear",
-           "is_coalesced", "is_locked", "locked_pairs", "mac", "match_cost", "match_modes",
-           "plane_mac", "relative_distance"]
+           "MODE_COLUMNS", "as_point", "continuous_frequency", "decide", "eigen_distance",
+           "eigenvalues", "is_clear", "is_coalesced", "is_locked", "locked_pairs", "mac",
+           "match_cost", "match_modes",
+           "plane_mac", "relative_distance", "unwrap_frequency"]
 
 #: Columns every modes table must have.
 MODE_COLUMNS = ("mode_id", "label", "frequency_per_rev", "real_part")
@@ -568,3 +569,142 @@ def as_point(p):
             raise ValueError(f"vectors of shape {vecs.shape} do not match "
                              f"{len(modes)} modes (one column per mode)")
     return modes, vecs, periodic
+
+
+def unwrap_frequency(eig: complex, predicted: complex, periodic: bool) -> float:
+    """The frequency of a root, in the representation nearest a predicted one.
+
+    A Floquet exponent's frequency is known modulo 1/rev and up to its sign
+    (the conjugate root is the same mode): of ``f + k`` and ``-f + k`` the one
+    nearest the predicted frequency.  At a lock (the prediction at a multiple
+    of 1/2) the two are mirror images about it: the solver's sign is kept, not
+    whichever the round-off of the locked frequency favours.  A root of
+    constant coefficients has one frequency.
+
+    Parameters
+    ----------
+    eig : complex
+        The root, ``real_part + i frequency_per_rev`` [/rev].
+    predicted : complex
+        The root expected (its imaginary part: the frequency expected).
+    periodic : bool
+        Floquet exponent.
+
+    Returns
+    -------
+    float
+        The frequency [/rev].
+
+    Examples
+    --------
+    A frequency falling from 21.77 /rev, seen by the Floquet convention as 0.32
+    mirrored (-20.68 mod 1 = 0.32 ... or 0.68): continuity picks 20.68.
+
+    >>> unwrap_frequency(-0.5 + 0.32j, -0.5 + 20.7j, True)
+    20.68
+    """
+    f, p = eig.imag, predicted.imag
+    if not periodic:
+        return float(f)
+    up, down = f + round(p - f), -f + round(p + f)
+    if abs(2 * p - round(2 * p)) <= 2 * LOCK_TOL:
+        return float(up)
+    return float(up if abs(up - p) <= abs(down - p) else down)
+
+
+def continuous_frequency(x, f, *, span: int = 3, weight: float = 0.1,
+                         reach: int = 2) -> np.ndarray:
+    """Floquet frequencies along a curve, in the representation that makes it smoothest.
+
+    Each point's frequency ``f`` is known modulo 1/rev and up to its sign (the
+    Floquet convention writes the dominant harmonic of the mode's motion).
+    The candidates at a point are its representations ``+-f + k`` within
+    `span` /rev of the conventions of the points up to `reach` places on
+    either side; of these, the choice at every point that minimises the
+    curve's squared change of slope plus `weight` times each point's distance
+    from its own convention is found by dynamic programming over the whole
+    curve.  So a 1/rev jump of the convention (two harmonics of nearly equal
+    power) is smoothed away, and a stretch written as the mirror image
+    (``k - f``) is put back where its neighbours say; the same points give the
+    same curve whatever order they came in.
+
+    Parameters
+    ----------
+    x : array_like
+        The parameter at the points (any order; ties keep their order).
+    f : array_like
+        Their frequencies by the Floquet convention [/rev] (NaN: skipped).
+    span : int, optional
+        How far from a neighbour's convention a candidate may lie [/rev].
+    weight : float, optional
+        Cost of one /rev away from a point's convention, against the squared
+        change of slope (in /rev, the slope per local step).  Near a lock
+        (``k/2``) a root and its mirror image lie a few hundredths apart and
+        either is continuous (measured: the TEF branch of Fig. 9 at overhang
+        0.1 passes 18.5 /rev with the convention writing 18.462 then 17.668).
+    reach : int, optional
+        Neighbours on each side whose conventions place the candidates.
+
+    Returns
+    -------
+    numpy.ndarray
+        The continuous frequencies, in the order of `x`.
+
+    Examples
+    --------
+    A frequency falling 1.3 /rev per step from 21.77, written by the convention
+    as the mirrored alias at two points and one 1/rev off at another:
+
+    >>> true = 21.77 - 1.3 * np.arange(8)
+    >>> seen = true.copy()
+    >>> seen[[3, 4]] = 43.0 - seen[[3, 4]]     # -f + 43: the mirror
+    >>> seen[6] += 1.0
+    >>> bool(np.allclose(continuous_frequency(np.arange(8.0), seen), true))
+    True
+    """
+    x = np.asarray(x, float)
+    f = np.asarray(f, float)
+    out = f.copy()
+    good = np.flatnonzero(np.isfinite(f) & np.isfinite(x))
+    if good.size < 3:
+        return out
+    idx = good[np.argsort(x[good], kind="stable")]
+    xs, fs = x[idx], f[idx]
+    cand = _candidates(fs, span, reach)
+    dev = np.where(np.isfinite(cand), weight * np.abs(cand - fs[:, None]), np.inf)
+    cost = dev[0][:, None] + dev[1][None, :]      # (choice at i-1, choice at i)
+    back = []
+    for i in range(2, len(xs)):
+        h0, h1 = max(xs[i - 1] - xs[i - 2], 1e-300), max(xs[i] - xs[i - 1], 1e-300)
+        s0 = (cand[i - 1][None, :] - cand[i - 2][:, None]) / h0          # (z, a)
+        s1 = (cand[i][None, :] - cand[i - 1][:, None]) / h1              # (a, b)
+        curv = ((s1[None, :, :] - s0[:, :, None]) * (0.5 * (h0 + h1))) ** 2
+        total = np.where(np.isfinite(curv), cost[:, :, None] + curv, np.inf)
+        arg = np.argmin(total, axis=0)                                   # (a, b) -> z
+        cost = np.take_along_axis(total, arg[None], axis=0)[0] + dev[i][None, :]
+        back.append(arg)
+    a, b = np.unravel_index(int(np.argmin(cost)), cost.shape)
+    choice = [b, a]
+    for arg in reversed(back):
+        choice.append(int(arg[choice[-1], choice[-2]]))
+    choice = choice[::-1]
+    out[idx] = cand[np.arange(len(xs)), choice]
+    return out
+
+
+def _candidates(fs, span, reach):
+    """Per point, its representations +-f + k near its neighbours' conventions (NaN-padded)."""
+    rows = []
+    for i, fi in enumerate(fs):
+        refs = fs[max(0, i - reach):i + reach + 1]
+        vals = set()
+        for r in refs:
+            for sign in (1.0, -1.0):
+                base = sign * fi
+                for k in range(int(np.floor(r - span - base)), int(np.ceil(r + span - base)) + 1):
+                    c = base + k
+                    if abs(c - r) <= span + 1e-9:
+                        vals.add(round(c, 9))
+        rows.append(sorted(vals))
+    width = max(len(r) for r in rows)
+    return np.array([r + [np.nan] * (width - len(r)) for r in rows])

@@ -1,27 +1,41 @@
 """The roles a root plays: the TEF mode, the flutter root, and a claim's mode.
 
-A role is a name given to one root of each point, by a rule that says why:
+A root's *name* is where it comes from: the uncoupled mode it continues into
+as the blade-flap coupling is switched on
+(:func:`tefcore.modes.continuation.continue_roots`; :func:`name_roots` writes
+it into a point's modes table).  A *role* is a name given to one root of each
+point by a rule that says why:
 
-* **the TEF mode** -- the root the uncoupled flap mode becomes when the
-  blade-flap coupling is switched on (:func:`anchor_root`, by
-  :func:`tefcore.modes.continuation.tef_root`); along a sweep the TEF
-  *branch* is that root at the sweep start followed from point to point
-  (:func:`assign_roles`, by :func:`tefcore.modes.tracking.follow_branch`);
-* **the flutter root** -- the least stable root of a point in which the flap
-  participates by at least :data:`FLUTTER_PARTICIPATION`
-  (:func:`flutter_root`, :func:`flutter_root_rows`);
+* **the TEF mode** -- the root the uncoupled flap mode continues into (the
+  rows named ``TEF``; along a sweep the *TEF branch*, ``tef_branch``);
+* **the flutter root** -- the least stable *flap-induced* root of a point:
+  a root that freeing the flap makes unstable, or much less stable, than it
+  is with the flap held at its trimmed motion (:func:`flap_induced`,
+  :func:`flutter_root`);
 * **a claim's mode** -- the rows of a figure's table that a claim about
   ``"TEF"``, ``"blade torsion 1"`` or ``"flutter root"`` is about
-  (:func:`mode_rows`), and where their identity is not decided
-  (:func:`undecided_at`, :func:`branch_gap`).
+  (:func:`mode_rows`).
+
+Which root is which has no answer at one kind of place only: an
+**exceptional point**, where two roots of the family in (parameter,
+coupling) coalesce; passing it, the names of two roots exchange.  Along a
+sweep it shows as a root whose name changes between neighbouring points, or
+a point where two paths met (:func:`exceptional_points`); a claim whose range
+holds one for its mode is undecided.
 
 Examples
 --------
+The blade torsion root is unstable with the flap free (+0.3 /rev) and stable
+with it held (-0.5): flap-induced, and the least stable such root.  The
+lag root is unstable either way, the flap changing little: not the flap's.
+
 >>> import pandas as pd
->>> modes = pd.DataFrame({"label": ["blade flap 1", "TEF", "blade torsion 1"],
-...                       "real_part": [-0.2, -0.05, 0.3], "share_TEF": [0.01, 0.8, 0.4]})
->>> flutter_root(modes)        # the torsion root, unstable and 40 % flap
-2
+>>> modes = pd.DataFrame({"label": ["blade lag 1", "TEF", "blade torsion 1"],
+...                       "real_part": [0.4, -0.05, 0.3],
+...                       "real_part_uncoupled": [0.39, -1.2, -0.5],
+...                       "flap_motion": [1e-6, 0.9, 0.2]})
+>>> flap_induced(modes).tolist(), flutter_root(modes)
+([False, True, True], 2)
 """
 
 from __future__ import annotations
@@ -29,233 +43,365 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
-from .continuation import tef_root
-from .tracking import follow_branch
+from .continuation import FLAP_ACTIVE
 
-__all__ = ["FLUTTER_PARTICIPATION", "FLUTTER_ROOT", "ModeNotFound", "anchor_root",
-           "anchor_row", "assign_roles", "branch_gap", "flutter_root", "flutter_root_rows",
-           "has_label", "mode_rows", "undecided_at"]
+__all__ = ["FLUTTER_PARTICIPATION", "FLUTTER_ROOT", "RATE_RESOLUTION", "ModeNotFound",
+           "assign_roles", "base_name", "exceptional_points", "flap_induced", "flutter_root",
+           "mode_rows", "name_roots", "switch_steps"]
 
-#: Least share of the flap's participation for a root to count as a flutter
-#: root of the flap: a tenth, so that a blade mode barely touched by the flap
-#: (shares of 1e-3 ... 1e-2 on MDART) is not named, while both partners of a
-#: flap-torsion coalescence (0.3-0.5 each, measured) are.
+#: Least share of the flap's participation for a root to count as a flutter root
+#: where roots are not named by continuation (a point function that labels its
+#: modes otherwise): a tenth.
 FLUTTER_PARTICIPATION = 0.1
 
 #: The ``mode`` of a claim about the flutter root of each point.
 FLUTTER_ROOT = "flutter root"
+
+#: Smallest rise of a damping rate [/rev] that counts as the flap's doing: the
+#: resolution of the paper's damping plots (about 0.01 /rev), ten times the
+#: Floquet exponents' accuracy (:data:`tefcore.floquet.DEFAULT_ATOL`).
+RATE_RESOLUTION = 1e-2
 
 
 class ModeNotFound(ValueError):
     """The rows a mode's role asks for are not in the table."""
 
 
+def base_name(name) -> str:
+    """A root's name without the suffix of a locked pair's second root.
+
+    Parameters
+    ----------
+    name : object
+        ``"blade flap 1 (locked)"``, ``"TEF"``, ...
+
+    Returns
+    -------
+    str
+
+    Examples
+    --------
+    >>> base_name("blade flap 1 (locked)")
+    'blade flap 1'
+    """
+    return str(name).removesuffix(" (locked)")
+
+
 # ------------------------------------------------------------------ one point
 
 
-def flutter_root(modes: pd.DataFrame, threshold: float = FLUTTER_PARTICIPATION):
-    """Row of the least stable root with a flap participation >= ``threshold``, or None.
+def flap_induced(modes: pd.DataFrame) -> np.ndarray:
+    """Which roots of a point the flap makes unstable, or much less stable.
+
+    A root of the coupled system continues from a root of the uncoupled one
+    (``real_part_uncoupled``, :func:`name_roots`): for a blade root, the root
+    of the blade with the flap held at its trimmed motion; for the TEF, the
+    flap alone.  The rule (docs/theory.md 9.2): the TEF root is the flap's
+    own; a blade root is flap-induced when the flap moves in it (``flap_motion
+    >=`` :data:`tefcore.modes.continuation.FLAP_ACTIVE`: a root without flap
+    motion is not driven through the flap), freeing the flap raises its real
+    part by more than :data:`RATE_RESOLUTION`, and either it was stable with
+    the flap held or at least half its growth comes from the flap
+    (``sigma - sigma_held >= sigma / 2``).  A root unstable with the flap held
+    and barely changed by freeing it is not the flap's instability.
 
     Parameters
     ----------
     modes : pandas.DataFrame
-        A stability modes table (:attr:`tefcore.linear.stability.StabilityResult.modes`)
-        with ``real_part`` and ``share_TEF`` (without it, a point function that
-        does not report the flap's share: every root counts).
+        A stability modes table with ``label`` (the continued identity),
+        ``real_part``, ``real_part_uncoupled`` and ``flap_motion``.
+
+    Returns
+    -------
+    numpy.ndarray of bool
+    """
+    sigma = modes["real_part"].to_numpy(float)
+    held = modes["real_part_uncoupled"].to_numpy(float)
+    own = np.array([base_name(x) == "TEF" for x in modes["label"]], bool)
+    moves = modes["flap_motion"].to_numpy(float) >= FLAP_ACTIVE
+    raised = sigma - held
+    with np.errstate(invalid="ignore"):      # NaN: no uncoupled root, not induced
+        return own | (moves & (raised > RATE_RESOLUTION)
+                      & ((held < 0.0) | (raised >= 0.5 * np.maximum(sigma, 0.0))))
+
+
+def flutter_root(modes: pd.DataFrame, threshold: float = FLUTTER_PARTICIPATION):
+    """Row of the least stable flap-induced root, or None.
+
+    Parameters
+    ----------
+    modes : pandas.DataFrame
+        A stability modes table (:attr:`tefcore.linear.stability.StabilityResult.modes`).
+        Named by continuation (with ``real_part_uncoupled``): the least
+        stable root of :func:`flap_induced`.  Otherwise (a point function that
+        names roots its own way): the least stable root with a flap
+        participation ``share_TEF >= threshold``; without that either, the
+        least stable root.
     threshold : float, optional
-        Smallest flap participation of a flutter root.
+        Smallest flap participation, for tables not named by continuation.
 
     Returns
     -------
     int or None
         The row's index label.
     """
-    if "share_TEF" not in modes:
-        return int(modes["real_part"].idxmax()) if len(modes) else None
-    cand = modes[modes["share_TEF"] >= threshold]
+    if "real_part_uncoupled" in modes and "flap_motion" in modes:
+        cand = modes[flap_induced(modes)]
+    elif "share_TEF" in modes:
+        cand = modes[modes["share_TEF"] >= threshold]
+    else:
+        cand = modes
     if cand.empty:
         return None
     return int(cand["real_part"].idxmax())
 
 
-def anchor_root(result) -> dict | None:
-    """The flap mode of a point by continuation from zero coupling.
+def name_roots(table: pd.DataFrame, continued, shares=None, coordinates=None) -> pd.DataFrame:
+    """A point's modes table named by continuation, with its flutter root.
 
     Parameters
     ----------
-    result : object
-        A point function's result; the continuation
-        (:func:`tefcore.modes.continuation.tef_root`) needs its linear system
-        (``result.system``) and trim (``result.trim_result``).
+    table : pandas.DataFrame
+        The modes table by participation (``label`` the coordinate a root
+        carries most; kept as ``dominant``).
+    continued : tefcore.modes.continuation.ContinuedRoots
+        The roots' paths from zero coupling, per row of `table`.
+    shares : numpy.ndarray, optional
+        The coordinates' shares of each root (coordinates x rows,
+        :func:`tefcore.modes.labels.coordinate_shares`), for ``coordinate_share``.
+    coordinates : list of str, optional
+        The coordinates' labels (the rows of `shares`).
 
     Returns
     -------
-    dict or None
-        ``{"row", "clear"}``: the row of ``result.modes`` nearest the TEF root
-        and whether the continuation met no coalescence; None when the result
-        does not carry its linear system (other point functions) or has no flap.
+    pandas.DataFrame
+        `table` with ``label`` the continued identity (the uncoupled mode the
+        root continues from; of a locked pair the less stable root has the
+        plain name; ``kind`` and ``coordinate_share`` of it),
+        ``identity_certain`` (every step of its path decided), ``meets`` (the
+        name of the root its path met: an exceptional point within the
+        smallest step of the coupling; empty otherwise),
+        ``real_part_uncoupled`` (where the path starts: the root with the flap
+        held, or the flap alone), ``flap_motion``, ``flap_induced`` and
+        ``flutter_root`` (one row at most).
     """
-    system = getattr(result, "system", None)
-    tr = getattr(result, "trim_result", None)
-    if system is None or tr is None or not getattr(tr.model, "has_flap", False):
-        return None
-    eta, follow = tef_root(system, basis=tr.model.tracking_basis())
-    m = result.modes
-    eig = m["real_part"].to_numpy() + 1j * m["frequency_per_rev"].to_numpy()
-    return {"row": int(np.argmin(np.abs(eig - eta))), "clear": bool(follow.clear)}
+    out = table.copy()
+    origin = _plain_name_to_less_stable(list(continued.origin),
+                                        table["real_part"].to_numpy(float))
+    out["label"] = origin
+    out["kind"] = [o.split()[1] if o.startswith("blade") else "TEF" for o in origin]
+    if shares is not None:
+        names = list(coordinates)
+        out["coordinate_share"] = [shares[names.index(base_name(o)), j]
+                                   if base_name(o) in names else np.nan
+                                   for j, o in enumerate(origin)]
+    pos = list(out.columns).index("real_part") + 1
+    out.insert(pos, "real_part_uncoupled", continued.uncoupled.real)
+    out.insert(pos + 1, "frequency_uncoupled", continued.uncoupled.imag)
+    out.insert(3, "identity_certain", continued.certain)
+    met: dict = {}
+    for pair in continued.meetings["origins"]:
+        a, b = pair.split(" / ")
+        met.setdefault(a, []).append(b)
+        met.setdefault(b, []).append(a)
+    out.insert(4, "meets", [", ".join(met.get(base_name(o), [])) for o in origin])
+    out["flap_motion"] = continued.flap_motion
+    out["flap_induced"] = flap_induced(out)
+    out["flutter_root"] = False
+    row = flutter_root(out)
+    if row is not None:
+        out.loc[row, "flutter_root"] = True
+    return out
 
 
-def anchor_row(anchor: dict | None, modes: pd.DataFrame, use_anchor: bool = True):
-    """Row of the flap mode at a sweep's start, and how it was found.
-
-    Parameters
-    ----------
-    anchor : dict or None
-        The start point's :func:`anchor_root`.
-    modes : pandas.DataFrame
-        The start point's modes table.
-    use_anchor : bool, optional
-        Use the continuation where it was clear; else (or when it was not)
-        the root with the largest flap participation, else the one labelled
-        ``TEF``.
-
-    Returns
-    -------
-    row : int or None
-    method : str
-        ``"zero coupling"``, ``"largest flap participation"``, ``"label"`` or ``""``.
-    """
-    anchor = (anchor or {}) if use_anchor else {}
-    if anchor.get("clear"):
-        return int(anchor["row"]), "zero coupling"
-    if "share_TEF" in modes and len(modes) and modes["share_TEF"].max() > 0:
-        return int(modes["share_TEF"].to_numpy().argmax()), "largest flap participation"
-    hits = np.flatnonzero(modes["label"].to_numpy() == "TEF")
-    return (int(hits[0]), "label") if hits.size else (None, "")
+def _plain_name_to_less_stable(names, rates):
+    """Of two roots named ``X`` and ``X (locked)``, the plain name to the less stable
+    (and to a root that is the only one of its name)."""
+    names = list(names)
+    for x in {base_name(n) for n in names}:
+        idx = [i for i, n in enumerate(names) if base_name(n) == x]
+        if len(idx) == 1:              # the pair left its lock: one root, the plain name
+            names[idx[0]] = x
+        if len(idx) == 2:
+            lo, hi = sorted(idx, key=lambda i: -rates[i])
+            names[lo], names[hi] = x, x + " (locked)"
+    return names
 
 
 # ------------------------------------------------------------------ along a sweep
 
 
-def flutter_root_rows(table: pd.DataFrame, threshold: float = FLUTTER_PARTICIPATION):
-    """Index of the flutter root's row at each ok point of a sweep table.
-
-    Parameters
-    ----------
-    table : pandas.DataFrame
-        Rows of (point, mode) with ``point``, ``status``, ``real_part`` and
-        ``share_TEF``.
-    threshold : float, optional
-        Smallest flap participation of a flutter root.
-
-    Returns
-    -------
-    numpy.ndarray
-        Index labels of the rows (one per point that has a flutter root).
-    """
-    if "share_TEF" not in table:
-        return np.array([], dtype=table.index.dtype)
-    ok = table["status"] == "ok"
-    share = table["share_TEF"].where(ok, -1.0).fillna(-1.0)
-    cand = table[ok & (share >= threshold)]
-    if cand.empty:
-        return np.array([], dtype=table.index.dtype)
-    return cand.groupby("point", sort=False)["real_part"].idxmax().to_numpy()
-
-
-def assign_roles(table: pd.DataFrame, points: list, values: list, order: list,
-                 first, start_anchor: dict | None, use_anchor: bool = True) -> dict:
+def assign_roles(table: pd.DataFrame, threshold: float = FLUTTER_PARTICIPATION) -> None:
     """Columns ``tef_branch``, ``tef_branch_certain`` and ``flutter_root`` of a sweep table.
 
     Parameters
     ----------
     table : pandas.DataFrame
-        The tracked sweep table: one row per (point, mode), with ``key``
-        (the point's key), ``status``, ``point``, ``mode_id`` and the mode
-        columns; changed in place.
-    points : list
-        The ok points in parameter order (as :func:`tefcore.modes.tracking.track_modes`
-        takes them); ``order`` their keys.
-    values : list of float
-        Their parameter values (SI).
-    order : list
-        Keys of `points`.
-    first : object or None
-        Key of the sweep's start (the first point asked for).
-    start_anchor : dict or None
-        The start point's :func:`anchor_root`.
-    use_anchor : bool, optional
-        See :func:`anchor_row`.
+        A sweep table: one row per (point, mode), with ``point``, ``status``,
+        ``label`` (each row's name) and the mode columns; changed in place.
+        ``tef_branch``: the rows named ``TEF`` (the root the uncoupled flap
+        continues into, at every point); ``tef_branch_certain``: and its path
+        was decided (``identity_certain``, where the table has it);
+        ``flutter_root``: the points' own flutter roots (the column the
+        point function gave, else :func:`flutter_root` by the share cut).
+    threshold : float, optional
+        Smallest flap participation of a flutter root, for points not named
+        by continuation.
+    """
+    ok = (table["status"] == "ok").to_numpy()
+    tef = ok & (table["label"].astype(str).to_numpy() == "TEF")
+    table["tef_branch"] = tef
+    certain = (table["identity_certain"].fillna(False).astype(bool).to_numpy()
+               if "identity_certain" in table else np.ones(len(table), bool))
+    table["tef_branch_certain"] = tef & certain
+    if "flutter_root" in table and "real_part_uncoupled" in table:
+        table["flutter_root"] = ok & table["flutter_root"].fillna(False).astype(bool).to_numpy()
+        return
+    table["flutter_root"] = False
+    good = table[ok]
+    for _, rows in good.groupby("point", sort=False):
+        row = flutter_root(rows, threshold)
+        if row is not None:
+            table.loc[row, "flutter_root"] = True
+
+
+def _switches(table: pd.DataFrame, x: str):
+    """Consecutive rows of one track whose names differ across an exceptional point.
+
+    The exchange of two names ``a -> b`` along a track between two points is
+    one when: the root of the other name is there at both points (the pair
+    exchanged, not a lock forming), both names were decided at both points
+    (``identity_certain``), both roots move the flap on one side at least
+    (at an exceptional point the two share one shape, flap and all:
+    :data:`tefcore.modes.continuation.FLAP_ACTIVE`), and the two uncoupled
+    roots did not cross between the points (their frequencies at zero
+    coupling changing order: the uncoupled modes themselves change places,
+    exactly known on either side, and the name moves across the coupled
+    pair's gap with them).
+    """
+    out = []
+    t = table.sort_values([x, "track"], kind="stable")
+    base = t["label"].map(base_name)
+    at = {(float(v), n): r for v, n, r in zip(t[x], base, t.index, strict=True)}
+    for _, g in t.groupby("track", sort=False):
+        names = g["label"].map(base_name).to_numpy()
+        xs = g[x].to_numpy(float)
+        for i in np.flatnonzero(names[1:] != names[:-1]):
+            a, b = names[i], names[i + 1]
+            rows = [at.get((xs[i], a)), at.get((xs[i], b)), at.get((xs[i + 1], a)),
+                    at.get((xs[i + 1], b))]
+            if None in rows or not _is_exceptional(t.loc[rows]):
+                continue
+            out.append((xs[i], xs[i + 1], a, b))
+    return out
+
+
+def _is_exceptional(rows: pd.DataFrame) -> bool:
+    """Rows (a, b at the first point; a, b at the second) of an exchange through an EP."""
+    if "identity_certain" in rows and not rows["identity_certain"].fillna(False).astype(bool).all():
+        return False
+    if "flap_motion" in rows:
+        m = rows["flap_motion"].to_numpy(float)
+        if not (max(m[0], m[2]) >= FLAP_ACTIVE and max(m[1], m[3]) >= FLAP_ACTIVE):
+            return False
+    if "frequency_uncoupled" in rows:
+        f = rows["frequency_uncoupled"].to_numpy(float)
+        before, after = f[0] - f[1], f[2] - f[3]
+        # the uncoupled pair changed order (within half a /rev either side: a
+        # change of the Floquet convention of one of them is not a crossing)
+        if before * after < 0 and max(abs(before), abs(after)) < 0.5:
+            return False
+    return True
+
+
+def switch_steps(table: pd.DataFrame, x: str = "value_si") -> list[tuple[float, float]]:
+    """The parameter steps across which a root's name changes (an exceptional point between).
+
+    A root followed along a sweep (its ``track``) whose continued name differs
+    between two neighbouring points has passed an exceptional point of the
+    family in (parameter, coupling) between them; the flap moves in the root
+    there (``flap_motion >=`` :data:`tefcore.modes.continuation.FLAP_ACTIVE`:
+    at an exceptional point the two roots share one shape, flap and all).  A
+    locked pair's two roots exchanging their names is not one.
+
+    Parameters
+    ----------
+    table : pandas.DataFrame
+        A sweep table (ok rows) with `x`, ``track``, ``label``.
+    x : str, optional
+        The column of the parameter.
 
     Returns
     -------
-    dict
-        Where the TEF branch starts: ``point``, ``mode_id``, ``method``; empty
-        without one.
+    list of (float, float)
+        The steps ``(x_before, x_after)``, sorted, without repeats.
     """
-    table["tef_branch"] = False
-    table["tef_branch_certain"] = False
-    table["flutter_root"] = False
-    ok = table["status"] == "ok"
-    table.loc[flutter_root_rows(table), "flutter_root"] = True
-    if first is None:
-        return {}
-    step_of = {k: i for i, k in enumerate(order)}
-    start_modes = points[step_of[first]]["modes"]
-    mode_row, method = anchor_row(start_anchor, start_modes, use_anchor)
-    if mode_row is None:
-        return {}
-    rows = table[ok & (table["key"] == first)]
-    row = rows.index[rows["mode_id"] == mode_row][0]
-    # the branch goes on past an undecided match (tefcore.modes.tracking.follow_branch);
-    # a coalescence is a documented convention (the less stable root goes
-    # on), not a doubt; an undecided match is
-    tracked = table[ok].assign(step=table.loc[ok, "key"].map(step_of))
-    path = follow_branch(tracked, points, (step_of[first], mode_row), values=values)
-    where = {(order[s], m): c for s, m, c in
-             zip(path["step"], path["mode_id"], path["certain"], strict=True)}
-    hit = [where.get((k, int(m))) if good else None
-           for k, m, good in zip(table["key"], table["mode_id"], ok, strict=True)]
-    table["tef_branch"] = [h is not None for h in hit]
-    table["tef_branch_certain"] = [bool(h) for h in hit]          # None: not on it
-    return {"point": int(table.at[row, "point"]), "mode_id": int(table.at[row, "mode_id"]),
-            "method": method}
+    return sorted({(a, b) for a, b, _, _ in _switches(table, x)})
+
+
+def exceptional_points(table: pd.DataFrame, x: str = "x") -> pd.DataFrame:
+    """Where along a sweep which root is which has no answer.
+
+    Two kinds, both an exceptional point of the family in (parameter,
+    coupling): a root whose name changes between neighbouring points
+    (:func:`switch_steps`; the point lies between them), and a point where
+    two paths met on the way from zero coupling (its rows' ``meets``).
+
+    Parameters
+    ----------
+    table : pandas.DataFrame
+        A sweep table or figure frame (ok rows) with `x`, ``track``,
+        ``label`` (and ``meets``, ``flap_motion`` where known).
+    x : str, optional
+        The column of the parameter.
+
+    Returns
+    -------
+    pandas.DataFrame
+        ``modes`` (the two names, ``"A / B"``), ``x_low``, ``x_high``,
+        ``kind`` (``"names exchange"`` or ``"paths meet"``); overlapping
+        intervals of one pair merged.
+    """
+    rows = [{"modes": " / ".join(sorted((a, b))), "x_low": lo, "x_high": hi,
+             "kind": "names exchange"} for lo, hi, a, b in _switches(table, x)]
+    if "meets" in table:
+        met = table[table["meets"].fillna("").astype(str) != ""]
+        for _, r in met.iterrows():
+            for other in str(r["meets"]).split(", "):
+                rows.append({"modes": " / ".join(sorted((base_name(r["label"]), other))),
+                             "x_low": float(r[x]), "x_high": float(r[x]),
+                             "kind": "paths meet"})
+    out = pd.DataFrame(rows, columns=["modes", "x_low", "x_high", "kind"])
+    if out.empty:
+        return out
+    merged = []
+    for (modes, kind), g in out.sort_values("x_low").groupby(["modes", "kind"], sort=True):
+        lo, hi = None, None
+        for a, b in zip(g["x_low"], g["x_high"], strict=True):
+            if lo is not None and a <= hi:
+                hi = max(hi, b)
+                continue
+            if lo is not None:
+                merged.append({"modes": modes, "x_low": lo, "x_high": hi, "kind": kind})
+            lo, hi = a, b
+        merged.append({"modes": modes, "x_low": lo, "x_high": hi, "kind": kind})
+    return pd.DataFrame(merged).sort_values(["x_low", "modes"], ignore_index=True)
 
 
 # ------------------------------------------------------------------ a claim's mode
 
 
-def has_label(labels: pd.Series, mode: str) -> pd.Series:
-    """True where a point label is `mode` (or its locked partner, ``mode (locked)``).
-
-    Parameters
-    ----------
-    labels : pandas.Series
-        Point labels.
-    mode : str
-        A mode label, e.g. ``"blade torsion 1"``.
-
-    Returns
-    -------
-    pandas.Series of bool
-    """
-    return (labels == mode) | (labels == f"{mode} (locked)")
-
-
-def mode_rows(frame: pd.DataFrame, mode: str, identify: str = "track") -> pd.DataFrame:
-    """Rows of a figure's table that are `mode`.
+def mode_rows(frame: pd.DataFrame, mode: str) -> pd.DataFrame:
+    """Rows of a figure's table that are `mode`, one per point.
 
     Parameters
     ----------
     frame : pandas.DataFrame
-        A figure's long table (an ``x`` column, a sweep's role and track columns).
+        A figure's long table (an ``x`` column, a sweep's names and roles).
     mode : str
-        ``"TEF"`` (the TEF branch), :data:`FLUTTER_ROOT` (the flutter root of
-        each point) or a label (``"blade torsion 1"``: its track, the longest
-        one labelled so at its start).
-    identify : {"track", "label"}, optional
-        ``"label"``: at each point the root labelled `mode` there instead
-        (the most participating one if several).
+        :data:`FLUTTER_ROOT` (the flutter root of each point) or a name
+        (``"TEF"``, ``"blade torsion 1"``: the root of that name at each point;
+        of a locked pair the less stable, which has the plain name).
 
     Returns
     -------
@@ -266,105 +412,15 @@ def mode_rows(frame: pd.DataFrame, mode: str, identify: str = "track") -> pd.Dat
     ModeNotFound
         The table has no such rows.
     """
-    col = "label_here" if identify == "label" and "label_here" in frame else "label"
     if mode == FLUTTER_ROOT:
         if "flutter_root" not in frame:
-            raise ModeNotFound("the result has no flutter roots (no flap participation)")
+            raise ModeNotFound("the result has no flutter roots (no flap)")
         rows = frame[frame["flutter_root"].fillna(False).astype(bool)]
         if rows.empty:
-            raise ModeNotFound(f"no root with a flap participation >= {FLUTTER_PARTICIPATION} "
-                               "in the sweep")
+            raise ModeNotFound("no flap-induced root in the sweep")
         return rows
-    if mode == "TEF" and identify == "track" and "tef_branch" in frame:
-        rows = frame[frame["tef_branch"].fillna(False).astype(bool)]
-        if rows.empty:
-            raise ModeNotFound("the sweep has no TEF branch (no flap mode at its start)")
-        return rows
-    ok = has_label(frame[col], mode)
-    if not ok.any():
-        raise ModeNotFound(f"no mode {mode!r} in the result; labels: "
-                           f"{sorted(set(frame[col].dropna().astype(str)))}")
-    if col == "label_here":
-        t = frame[ok]
-        if "participation" in t:
-            t = t.sort_values("participation", ascending=False, kind="stable")
-        return t.drop_duplicates("x")
-    sizes = frame[ok].groupby("track", sort=False).agg(n=("x", "size"), label=("label", "first"))
-    sizes = sizes.assign(exact=sizes["label"] == mode).sort_values(
-        ["n", "exact"], ascending=False, kind="stable")
-    return frame[frame["track"] == sizes.index[0]]
-
-
-def undecided_at(rows: pd.DataFrame, mode: str, lo, hi, slack: float) -> list[float]:
-    """x of the rows of `mode` (within [lo, hi] and before) whose identity is not decided.
-
-    Parameters
-    ----------
-    rows : pandas.DataFrame
-        :func:`mode_rows` of `mode`.
-    mode : str
-        The mode.
-    lo, hi : float or None
-        The range a claim checks (None: the whole sweep).
-    slack : float
-        Relative tolerance on the range's ends.
-
-    Returns
-    -------
-    list of float
-    """
-    if "identity" not in rows:
-        return []
-    x = rows["x"].to_numpy(float)
-    upto = np.ones(len(rows), bool) if hi is None else x <= hi * (1 + slack) + slack
-    if mode == "TEF" and "tef_branch_certain" in rows:
-        bad = ~rows["tef_branch_certain"].fillna(False).astype(bool).to_numpy()
-    else:
-        # a coalescence is followed by convention (the less stable root goes
-        # on, tefcore.modes.tracking); only an undecided match is a doubt
-        bad = rows["identity"].astype(str).to_numpy() == "ambiguous"
-    inside = upto if lo is None else upto & (x >= lo * (1 - slack) - slack)
-    if mode == "TEF":
-        bad &= inside
-    else:
-        bad &= upto
-    return sorted(set(np.round(x[bad], 12).tolist()))
-
-
-def branch_gap(frame: pd.DataFrame, branch: pd.DataFrame, lo, hi, slack: float) -> str | None:
-    """Why the TEF branch does not cover a checked range, or None when it does.
-
-    The branch ends where no root of the next point continues it
-    (:func:`tefcore.modes.tracking.follow_branch`); beyond it, which root is the
-    TEF is not decided.
-
-    Parameters
-    ----------
-    frame : pandas.DataFrame
-        The figure's long table.
-    branch : pandas.DataFrame
-        Its TEF-branch rows.
-    lo, hi : float or None
-        The checked range (None: the sweep's).
-    slack : float
-        Relative tolerance on the range's ends.
-
-    Returns
-    -------
-    str or None
-    """
-    own = frame[frame["refinement"] == 0] if "refinement" in frame else frame
-    xs = own["x"].to_numpy(float)
-    xs = xs[np.isfinite(xs)]
-    if xs.size == 0 or branch.empty:
-        return None
-    a = xs.min() if lo is None else lo
-    b = xs.max() if hi is None else hi
-    bx = branch["x"].to_numpy(float)
-    tol = slack * max(abs(a), abs(b), 1e-300)
-    if bx.max() < min(b, xs.max()) - tol:
-        return (f"the TEF branch ends at x = {bx.max():.4g} (no root continues it), before "
-                f"{min(b, xs.max()):.4g}")
-    if bx.min() > max(a, xs.min()) + tol:
-        return f"the TEF branch starts at x = {bx.min():.4g}, after {max(a, xs.min()):.4g}"
-    return None
+    rows = frame[frame["label"].astype(str) == mode]
+    if rows.empty:
+        raise ModeNotFound(f"no mode {mode!r} in the result; names: "
+                           f"{sorted(set(frame['label'].dropna().astype(str)))}")
+    return rows.drop_duplicates("x")

@@ -108,6 +108,7 @@ from .matching import (
     mac,
     match_cost,
     plane_mac,
+    unwrap_frequency,
 )
 
 __all__ = ["EXCHANGE_MAC", "FollowResult", "ambiguous_steps", "follow_branch", "follow_root",
@@ -414,16 +415,8 @@ def _flag_close_passes(identity, assigned, eig, tracks, vecs, periodic=False) ->
 
 
 def _unwrap(eig: complex, predicted: complex) -> complex:
-    """The representative of a Floquet exponent (frequency modulo 1/rev, up to
-    its sign) whose frequency is closest to the predicted one."""
-    f, p = eig.imag, predicted.imag
-    up, down = f + round(p - f), -f + round(p + f)
-    if abs(2 * p - round(2 * p)) <= 2 * LOCK_TOL:
-        # predicted at a lock (k/2): the two are mirror images about it, one
-        # root up to its sign -- keep the solver's sign, not whichever the
-        # round-off of the locked frequency (1e-6) favours
-        return complex(eig.real, up)
-    return complex(eig.real, up if abs(up - p) <= abs(down - p) else down)
+    """The Floquet root with its frequency in the representation nearest the predicted."""
+    return complex(eig.real, unwrap_frequency(eig, predicted, True))
 
 
 def follow_branch(tracked: pd.DataFrame, points: Sequence, start: tuple[int, int],

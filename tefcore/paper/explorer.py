@@ -3,7 +3,7 @@
 :func:`explore` shows, for one configuration, every root of the Floquet
 analysis in the s-plane (frequency against real part, coloured by how much
 the flap takes part in it), the TEF root (the root the flap's own mode
-becomes when the coupling is switched on, :func:`tefcore.modes.continuation.tef_root`)
+becomes when the coupling is switched on, :mod:`tefcore.modes.continuation`)
 and the flutter root (the least stable root the flap takes part in), beside
 the damping of the paper's modes.  With ipywidgets in a live notebook,
 sliders for the flap CG offset, the overhang, the actuator stiffness and the
@@ -26,8 +26,7 @@ from dataclasses import dataclass
 
 import pandas as pd
 
-from ..modes.continuation import tef_root
-from ..modes.roles import FLUTTER_PARTICIPATION, flutter_root
+from ..modes.roles import flutter_root
 from .figure_runs import base_config
 from .plotting import PAPER_MODES, STYLE, legend_below
 
@@ -83,12 +82,10 @@ class RootMap:
     tef : complex or None
         The TEF root, ``real_part + 1j * frequency_per_rev`` [1/rev]: the root
         the flap's own mode becomes when its coupling to the blade is switched
-        on (:func:`tefcore.modes.continuation.tef_root`); None without a flap.
+        on (:mod:`tefcore.modes.continuation`); None without a flap.
     flutter : int or None
-        Index in ``modes`` of the flutter root, the least stable root with a
-        flap participation of at least
-        :data:`tefcore.modes.roles.FLUTTER_PARTICIPATION`; None if no root
-        carries the flap.
+        Index in ``modes`` of the flutter root, the least stable flap-induced
+        root (:func:`tefcore.modes.roles.flutter_root`); None without a flap.
     error : str
         Why there are no roots (a refused configuration, a failed trim);
         ``""`` when there are.
@@ -122,8 +119,9 @@ def root_map(cfg) -> RootMap:
     except (TefcoreError, ValueError) as exc:
         return RootMap(pd.DataFrame(), None, None, f"{type(exc).__name__}: {exc}")
     tef = None
-    if cfg.model.tef != "none":
-        tef, _ = tef_root(res.system, basis=res.trim_result.model.tracking_basis())
+    rows = res.modes[res.modes["label"] == "TEF"]
+    if cfg.model.tef != "none" and not rows.empty:
+        tef = complex(rows["real_part"].iloc[0], rows["frequency_per_rev"].iloc[0])
     return RootMap(res.modes, tef, flutter_root(res.modes), "")
 
 
@@ -188,7 +186,7 @@ def draw_root_map(fig, state: RootMap, trail=(), title: str = ""):
         if state.flutter is not None:
             r = m.loc[state.flutter]
             ax.plot(r["frequency_per_rev"], r["real_part"], "kx", ms=11, mew=2, zorder=5,
-                    label=f"flutter root (flap ≥ {FLUTTER_PARTICIPATION:.0%})")
+                    label=f"flutter root (from {r['label']})")
         legend_below(ax, ncol=2)
     ax.axhline(0.0, color="k", lw=0.8)
     ax.set_xlim(0, MAX_FREQUENCY)

@@ -30,7 +30,7 @@ from ..safe_io import atomic_output, atomic_write_text
 from ..units import from_si
 
 __all__ = ["AXES", "MEASURES", "PAPER_MODES", "STYLE", "curves", "deterministic_matplotlib",
-           "legend_below", "locus_figure",
+           "flutter_legend", "legend_below", "locus_figure",
            "plot_modes", "plot_participation", "plot_root_locus", "savefig", "split_value",
            "x_values"]
 
@@ -220,12 +220,13 @@ def _base_label(s: pd.Series) -> pd.Series:
 
 def curves(name: str, table: pd.DataFrame, labels=PAPER_MODES,
            measure: str = "decay_rate") -> pd.DataFrame:
-    """One tracked curve per mode, for plotting and printing.
+    """One curve per mode, for plotting and printing: the root of that name at each point.
 
-    ``"TEF"`` is the TEF branch of the sweep (the track of the flap mode at
-    the sweep start, :func:`tefcore.sweeps.sweep.sweep`); another mode ``m`` is the
-    track labelled ``m`` or ``m (locked)`` that is present at the most
-    points (ties: the exact label) -- the same choice as
+    A root's name is the uncoupled mode it continues from
+    (:mod:`tefcore.modes.continuation`): ``"TEF"`` is the root the flap's own
+    mode continues into (the TEF branch), ``"blade torsion 1"`` the one the
+    blade's first torsion mode does -- whatever its character there, in
+    whatever order the points were computed.  The same choice as
     :mod:`tefcore.paper.validation`.
 
     Parameters
@@ -242,35 +243,22 @@ def curves(name: str, table: pd.DataFrame, labels=PAPER_MODES,
     Returns
     -------
     DataFrame
-        Columns ``label, track, x, frequency_per_rev`` (continued along the
-        track: whole /rev of a Floquet frequency are not allowed to jump),
-        ``damping, same_character, certain, refinement``; ``same_character``
-        is False where the mode's own label at that point is another mode's
-        (it exchanged character with it), ``certain`` is False from the first
-        point where its identity could not be decided.
+        Columns ``label, track, x, frequency_per_rev`` (continuous along the
+        name: whole /rev of a Floquet frequency are not allowed to jump, nor
+        its sign to mirror), ``damping, same_character, certain,
+        refinement``; ``same_character`` is False where the root carries
+        another coordinate most (it exchanged character in a veering),
+        ``certain`` is False where its path from zero coupling met another's.
     """
     _, fn = MEASURES[measure]
     ok = table[table["status"] == "ok"].copy()
-    ok["base"] = _base_label(ok["label"])
     parts = []
     for lab in labels:
-        if lab == "TEF" and "tef_branch" in ok:
-            g = ok[ok["tef_branch"].fillna(False).astype(bool)].copy()
-            if g.empty:
-                continue
-            g["certain"] = g["tef_branch_certain"].fillna(False).astype(bool)
-        else:
-            sub = ok[ok["base"] == lab]
-            if sub.empty:
-                continue
-            sizes = sub.groupby("track", sort=False).agg(n=("point", "size"),
-                                                         first=("label", "first"))
-            sizes = sizes.assign(exact=sizes["first"] == lab).sort_values(
-                ["n", "exact"], ascending=False, kind="stable")
-            g = sub[sub["track"] == sizes.index[0]].copy()
-            ident = g["identity"] if "identity" in g else pd.Series("clear", index=g.index)
-            g["certain"] = (ident != "ambiguous").cummin().to_numpy()
-        g["label"] = lab
+        g = ok[ok["label"].astype(str) == lab].drop_duplicates("point").copy()
+        if g.empty:
+            continue
+        g["certain"] = (g["identity_certain"].fillna(False).astype(bool)
+                        if "identity_certain" in g else True)
         parts.append(g)
     if not parts:
         return pd.DataFrame(columns=_CURVE_COLUMNS)
@@ -281,7 +269,8 @@ def curves(name: str, table: pd.DataFrame, labels=PAPER_MODES,
         cv["refinement"] = 0
     cv["x"] = x_values(name, cv)
     cv["damping"] = fn(cv)
-    cv["same_character"] = _base_label(cv["label_here"]) == cv["label"]
+    character = cv["dominant"] if "dominant" in cv else cv["label"]
+    cv["same_character"] = _base_label(character) == _base_label(cv["label"])
     cv = cv.sort_values(["x"], kind="stable")
     order = {lab: i for i, lab in enumerate(labels)}
     cv = cv.sort_values("label", key=lambda s: s.map(order), kind="stable")
@@ -360,7 +349,7 @@ def plot_modes(ax, name: str, table: pd.DataFrame, labels=PAPER_MODES,
                    & (table["refinement"] == 0)]
         if not fr.empty:
             ax.plot(x_values(name, fr), MEASURES[measure][1](fr), "k.", ms=5, zorder=5,
-                    label=f"flutter root{label_suffix}")
+                    label=flutter_legend(fr) + label_suffix)
     if reference is not None and not reference.empty:
         for lab, g in reference.groupby("label", sort=True):
             ax.plot(g["x"], g["y"], ls="none", marker="x", color="k", ms=6,
@@ -421,15 +410,42 @@ def plot_root_locus(ax, name: str, table: pd.DataFrame, labels=PAPER_MODES,
     if flutter and "flutter_root" in table:
         fr = table[(table["status"] == "ok") & table["flutter_root"].fillna(False).astype(bool)]
         freq = fr["frequency_tracked"] if "frequency_tracked" in fr else fr["frequency_per_rev"]
-        ax.plot(freq, fr["real_part"], "k.", ms=4, label="flutter root (each point)")
+        ax.plot(freq, fr["real_part"], "k.", ms=4, label=flutter_legend(fr))
     ax.axhline(0.0, color="k", lw=0.8)
     ax.set_xlabel("frequency [/rev]")
     ax.set_ylabel("real part Re(s)/Ω [1/rev]  (> 0 unstable)")
     return ax
 
 
+def flutter_legend(rows: pd.DataFrame) -> str:
+    """The flutter root's legend entry, naming the modes it continues from.
+
+    Parameters
+    ----------
+    rows : pandas.DataFrame
+        The flutter root's rows (one per point), with ``label`` (the name: the
+        uncoupled mode the root continues from).
+
+    Returns
+    -------
+    str
+        E.g. ``"flutter root (from blade torsion 2)"``; several names in order
+        of the number of points, most first.
+
+    Examples
+    --------
+    >>> flutter_legend(pd.DataFrame({"label": ["blade torsion 2"] * 3 + ["TEF"]}))
+    'flutter root (from blade torsion 2, TEF)'
+    """
+    if "label" not in rows or rows.empty:
+        return "flutter root"
+    names = _base_label(rows["label"]).value_counts(sort=False)
+    names = names.sort_values(ascending=False, kind="stable")
+    return "flutter root (from " + ", ".join(names.index.astype(str)) + ")"
+
+
 def plot_participation(ax, name: str, table: pd.DataFrame, label: str = "TEF"):
-    """Participation by kind of coordinate along one tracked mode (stacked).
+    """Participation by kind of coordinate along one mode (stacked).
 
     The shares are participation factors
     (:meth:`tefcore.floquet.FloquetResult.with_participation`), summing to 1
@@ -445,19 +461,21 @@ def plot_participation(ax, name: str, table: pd.DataFrame, label: str = "TEF"):
     table : DataFrame
         Sweep table.
     label : str
-        The mode (``"TEF"``: the TEF branch).
+        The mode (``"TEF"``: the TEF branch; ``"flutter root"``: the flutter
+        root of each point; else a name).
 
     Returns
     -------
     matplotlib.axes.Axes
         ``ax``.
     """
-    cv = curves(name, table, (label,))
     ok = table[table["status"] == "ok"]
-    if label == "TEF" and "tef_branch" in ok:
-        rows = ok[ok["tef_branch"].fillna(False).astype(bool)]
+    if label == "flutter root":
+        rows = ok[ok["flutter_root"].fillna(False).astype(bool)]
     else:
-        rows = ok[ok["track"].isin(cv["track"].unique())]
+        rows = ok[ok["label"].astype(str) == label].drop_duplicates("point")
+    if "refinement" in rows:
+        rows = rows[rows["refinement"] == 0]
     rows = rows.assign(x=x_values(name, rows)).sort_values("x")
     kinds = [k for k in ("TEF", "torsion", "flap", "lag") if f"share_{k}" in rows]
     colors = {"TEF": "C3", "torsion": "C1", "flap": "C0", "lag": "C2"}
@@ -465,17 +483,19 @@ def plot_participation(ax, name: str, table: pd.DataFrame, label: str = "TEF"):
                  labels=[("flap (TEF)" if k == "TEF" else f"blade {k}") for k in kinds],
                  colors=[colors[k] for k in kinds], alpha=0.8)
     ax.set_ylim(0, 1)
-    ax.set_ylabel(f"participation in the {label} mode")
+    ax.set_ylabel(f"participation in the {label}" if label == "flutter root"
+                  else f"participation in the {label} mode")
     ax.set_xlabel(AXES[name][0])
     return ax
 
 
 def locus_figure(name: str, table: pd.DataFrame, labels=PAPER_MODES):
-    """Root locus of the tracked modes beside the participation in the TEF branch.
+    """Root locus beside the participation in the TEF branch and in the flutter root.
 
     The classic picture of coalescence flutter, one per stability figure of
-    the notebooks: :func:`plot_root_locus` (left) and :func:`plot_participation`
-    (right), titled, legends below.
+    the notebooks: :func:`plot_root_locus` (left), :func:`plot_participation`
+    of the TEF branch (middle) and of the flutter root (right, titled with the
+    modes it continues from), legends below.
 
     Parameters
     ----------
@@ -492,11 +512,19 @@ def locus_figure(name: str, table: pd.DataFrame, labels=PAPER_MODES):
     """
     import matplotlib.pyplot as plt
 
-    fig, (ax_l, ax_p) = plt.subplots(1, 2, figsize=(11, 4.2))
+    fig, (ax_l, ax_p, ax_f) = plt.subplots(1, 3, figsize=(15, 4.2))
     plot_root_locus(ax_l, name, table, labels=labels)
     ax_l.set_title("root locus (square: start, arrows: increasing x)", fontsize="medium")
     legend_below(ax_l)
     plot_participation(ax_p, name, table)
     ax_p.set_title("participation in the TEF branch", fontsize="medium")
-    legend_below(ax_p, ncol=4)
+    legend_below(ax_p, ncol=2)
+    if "flutter_root" in table and table["flutter_root"].fillna(False).astype(bool).any():
+        ok = table[(table["status"] == "ok") & table["flutter_root"].fillna(False).astype(bool)]
+        plot_participation(ax_f, name, table, "flutter root")
+        ax_f.set_title(flutter_legend(ok).replace("flutter root", "participation in the "
+                                                  "flutter root", 1), fontsize="medium")
+        legend_below(ax_f, ncol=2)
+    else:
+        ax_f.set_axis_off()
     return fig

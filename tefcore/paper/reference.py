@@ -56,7 +56,7 @@ _FIELDS = {  # kind -> allowed fields besides _COMMON
     "comparison": _CHECKED | {"interval", "statistic", "relation", "other_figure", "other_mode",
                               "other_quantity", "other_interval", "other_overrides"},
     "mechanism": _CHECKED | {"x", "root_kind", "driving_terms", "min_participation",
-                             "knockout_terms"},
+                             "knockout_terms", "rival_terms"},
     "curve": _CHECKED,
     "not_reproducible": {"mode", "quantity", "reason"},
 }
@@ -179,6 +179,10 @@ class Claim:
     knockout_terms : tuple of str
         Terms of which at least one, removed from the equations (a knockout),
         must take away ``tolerance`` or more of the root's growth rate.
+    rival_terms : tuple of str
+        The terms of a competing path (e.g. the flap's coupling to blade
+        bending against its coupling to torsion): the claimed path's best
+        knockout must take away more of the growth rate than any of these.
     reason : str
         Why a ``not_reproducible`` claim cannot be checked (e.g. it compares
         with test data tefcore does not have).
@@ -230,6 +234,7 @@ class Claim:
     driving_terms: tuple = ()
     min_participation: dict = field(default_factory=dict)
     knockout_terms: tuple = ()
+    rival_terms: tuple = ()
     reason: str = ""
     example: bool = False
     points: pd.DataFrame | None = field(default=None, repr=False, compare=False)
@@ -446,6 +451,7 @@ def _mechanism_claim(r: _Record, kw: dict, figure: str) -> Claim:
               root_kind=r.text("root_kind", choices=("",) + ROOT_KINDS),
               driving_terms=_names(r, "driving_terms", TERMS),
               knockout_terms=_names(r, "knockout_terms", TERMS),
+              rival_terms=_names(r, "rival_terms", TERMS),
               tolerance=r.number("tolerance"), tolerance_reason=r.text("tolerance_reason"))
     share = r.raw.get("min_participation", {})
     kinds = ("flap", "lag", "torsion", "axial", "TEF")
@@ -462,6 +468,8 @@ def _mechanism_claim(r: _Record, kw: dict, figure: str) -> Claim:
             or kw["knockout_terms"]):
         r.fail("a mechanism claim needs root_kind, driving_terms, min_participation or "
                "knockout_terms")
+    if kw["rival_terms"] and not kw["knockout_terms"]:
+        r.fail("rival_terms (a competing path) need knockout_terms (the claimed path)")
     if kw["knockout_terms"] and (kw["tolerance"] is None or not kw["tolerance_reason"]):
         r.fail("knockout_terms need 'tolerance' (the least share of the growth rate a "
                "knockout removes) and 'tolerance_reason'")

@@ -15,15 +15,11 @@ a time, to the low and the high end of its plausible range:
 * ``fig8_onset``: the overhang ``c_b/c_f`` at which it turns unstable in
   hover with the mass-balanced flap (paper: above 0.50).
 
-**Which root is "the TEF".**  Where the flap frequency meets a blade mode the
-two roots coalesce and share the flap's motion; one is destabilised, the
-other stabilised.  The headlines use the *flutter root*
-(:func:`tefcore.modes.roles.flutter_root`, the same rule as the sweeps' ``flutter_root`` role,
-:func:`tefcore.linear.mechanism.flutter_root`): the least stable root in which the
-flap participates by at least :data:`tefcore.modes.roles.FLUTTER_PARTICIPATION`
-(participation factors, scale-invariant).  Both members of a coalesced pair
-pass that test, so the destabilised one is found wherever the coalescence
-happens.  Every function takes an ``identify`` callable
+**Which root.**  The headlines use the *flutter root*
+(:func:`tefcore.modes.roles.flutter_root`, the same rule as the sweeps'
+``flutter_root`` role): the least stable flap-induced root -- unstable, or
+much less stable, with the flap held at its trimmed motion -- whatever mode
+it continues from.  Every function takes an ``identify`` callable
 (``StabilityResult -> row with real_part and frequency_per_rev``).
 
 The assumptions and their ranges are in :mod:`tefcore.paper.assumptions` (re-exported
@@ -81,14 +77,15 @@ _IMBALANCED = {"flap.overhang": 0.29, "flap.cg_offset": 0.33}
 
 
 def flutter_root(result, threshold: float = FLUTTER_PARTICIPATION) -> pd.Series:
-    """The least stable root among those the flap participates in.
+    """The least stable flap-induced root (:func:`tefcore.modes.roles.flutter_root`).
 
     Parameters
     ----------
     result : tefcore.linear.stability.StabilityResult
         Floquet analysis of a configuration with the flap degree of freedom.
     threshold : float
-        Least flap participation (``share_TEF``) of a root that counts.
+        Least flap participation (``share_TEF``) of a root that counts, for
+        results not named by continuation.
 
     Returns
     -------

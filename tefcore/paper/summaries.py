@@ -26,6 +26,7 @@ import pandas as pd
 
 from ..aero.unsteady import theodorsen_function
 from ..linear.mechanism import mechanism
+from ..modes.roles import exceptional_points
 from . import validation
 from .curve_metrics import zero_crossings
 from .figure_runs import run_config
@@ -194,44 +195,47 @@ def sign_changes(name: str, table: pd.DataFrame, label: str = "TEF",
 
 
 def report_identity(name: str, result) -> None:
-    """A few deterministic lines on how the sweep's modes were identified.
+    """A few deterministic lines on which root is which along the sweep.
 
-    Where the TEF branch starts and how it was anchored, how many points the
-    refinement added, where the branch's identity is undecided, and where
-    the flutter root (least stable root the flap takes part in) is a root
-    other than the TEF branch's.  Printed; nothing is returned.
+    Every root is named by the uncoupled mode it continues from (at every
+    point, by continuation in the blade-flap coupling); printed: the
+    exceptional points where two names exchange (none: every root keeps its
+    name over the range), how many points the refinement added to locate
+    them, and the modes the flutter root continues from.  Nothing is returned.
 
     Parameters
     ----------
     name : str
         Stability figure (sets the x axis of the printed positions).
     result : tefcore.sweeps.sweep.SweepResult
-        The figure's sweep (its ``table`` and the TEF branch's ``anchor``).
+        The figure's sweep.
     """
     t = result.table
     ok = t[t["status"] == "ok"]
-    n_ref = ok.loc[ok["refinement"] > 0, "point"].nunique() if "refinement" in ok else 0
-    anchor = getattr(result, "anchor", {}) or {}
-    x = x_values(name, ok.assign(value=ok["value"])) if len(ok) else np.array([])
-    ok = ok.assign(x=x)
-    if not anchor:
-        print(f"{name}: no TEF branch (no flap mode at the sweep start)")
+    if ok.empty:
+        print(f"{name}: no point computed")
         return
-    start = ok[(ok["point"] == anchor["point"])]["x"].iloc[0]
-    print(f"{name}: TEF branch anchored at x = {start:.4g} by {anchor['method']}; "
-          f"{n_ref} points added where identities were ambiguous")
-    branch = ok[ok["tef_branch"].fillna(False).astype(bool)]
-    unsure = branch[~branch["tef_branch_certain"].fillna(False).astype(bool)]
-    print("  TEF branch identity undecided from x = "
-          + (f"{unsure['x'].min():.4g}" if not unsure.empty else "nowhere (decided throughout)"))
+    n_ref = ok.loc[ok["refinement"] > 0, "point"].nunique() if "refinement" in ok else 0
+    ok = ok.assign(x=x_values(name, ok))
+    eps = exceptional_points(ok, x="x")
+    print(f"{name}: roots named by the uncoupled mode they continue from; "
+          f"{n_ref} points added to locate exceptional points")
+    if eps.empty:
+        print("  no exceptional point in the range: every root keeps its name")
+    for _, e in eps.iterrows():
+        where = (f"at x = {e['x_low']:.4g}" if e["x_low"] == e["x_high"]
+                 else f"between x = {e['x_low']:.4g} and {e['x_high']:.4g}")
+        print(f"  exceptional point of {e['modes']} {where} ({e['kind']})")
     fr = ok[ok["flutter_root"].fillna(False).astype(bool)]
-    other = fr[~fr["tef_branch"].fillna(False).astype(bool) & (fr["refinement"] == 0)]
-    if other.empty:
-        print("  the flutter root is the TEF branch's root at every point")
-    else:
-        labs = sorted(set(other["label_here"].astype(str)))
-        print(f"  the flutter root is another root at {len(other)} of "
-              f"{int((fr['refinement'] == 0).sum())} points (labelled {', '.join(labs)})")
+    if "refinement" in fr:
+        fr = fr[fr["refinement"] == 0]
+    if fr.empty:
+        print("  no flutter root (no flap-induced root)")
+        return
+    counts = fr["label"].astype(str).str.removesuffix(" (locked)").value_counts()
+    counts = counts.sort_index().sort_values(ascending=False, kind="stable")
+    print("  the flutter root continues from "
+          + ", ".join(f"{lab} ({n} of {len(fr)} points)" for lab, n in counts.items()))
 
 
 def explain(name: str, result, x: float, base=None, overrides: dict | None = None,
@@ -277,8 +281,9 @@ def explain(name: str, result, x: float, base=None, overrides: dict | None = Non
     r = rows.iloc[int(np.argmin(np.abs(xs - x)))]
     cfg = run_config(name, base, overrides).with_overrides(
         {FIGURES[name].parameter: r["value_si"]})
+    character = r["dominant"] if "dominant" in r else r["label"]
     print(f"{name}, {which} at x = {float(xs[int(np.argmin(np.abs(xs - x)))]):.4g} "
-          f"(labelled {r['label_here']} there):")
+          f"(from {r['label']}; carries {character} most there):")
     return mechanism_summary(cfg, root=complex(r["real_part"], r["frequency_per_rev"]),
                              knockouts=knockouts)
 
@@ -303,7 +308,8 @@ def unsteadiness(name: str, result, base=None) -> None:
     """
     cfg = figure_config(name, base)
     t = result.table
-    own_label = t["label_here"].astype(str).str.removesuffix(" (locked)")
+    own_label = t["dominant" if "dominant" in t else "label"].astype(str).str.removesuffix(
+        " (locked)")
     own = t[(t["status"] == "ok") & (own_label == "TEF")]
     if own.empty:
         print(f"{name}: no TEF mode in the sweep")

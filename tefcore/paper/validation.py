@@ -79,8 +79,7 @@ def sweep_values(name: str, claims) -> list:
 
 
 def validate_all(n_jobs: int = 1, progress: bool = False, *, claims=None, cfg=None,
-                 results=None, include_examples: bool = False,
-                 identify: str = "track") -> pd.DataFrame:
+                 results=None, include_examples: bool = False) -> pd.DataFrame:
     """Run every figure that has a checkable claim and check all claims.
 
     Parameters
@@ -98,8 +97,6 @@ def validate_all(n_jobs: int = 1, progress: bool = False, *, claims=None, cfg=No
         Figure name -> precomputed result, used instead of running it.
     include_examples : bool
         Also check the synthetic example curves.
-    identify : {"track", "label"}
-        How modes are found (:func:`validate_figure`).
 
     Returns
     -------
@@ -130,7 +127,7 @@ def validate_all(n_jobs: int = 1, progress: bool = False, *, claims=None, cfg=No
     for name in dict.fromkeys(c.figure for c in claims):
         mine = [c for c in claims if c.figure == name]
         tables.append(validate_figure(
-            name, results.get(name), mine, cfg=cfg, others=results, identify=identify,
+            name, results.get(name), mine, cfg=cfg, others=results,
             variants={k: v for (f, k), v in variants.items() if f == name}))
     order = {c.id: i for i, c in enumerate(claims)}
     table = pd.concat(tables, ignore_index=True)

@@ -26,7 +26,6 @@ Examples
 from __future__ import annotations
 
 import numbers
-import warnings
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from typing import Any
@@ -217,25 +216,13 @@ def _scan_values(base, parameter, lo, hi, scan) -> list[float]:
 
 
 def _followed_curve(t, res, mode):
-    """The scan's rows of the mode whose boundary is wanted, by parameter."""
-    if mode == "TEF" and res.anchor.get("method", "label") != "label":
-        # the TEF branch (tefcore.sweeps.sweep): the flap mode followed from the scan
-        # start, anchored physically (zero coupling or participation); a
-        # point function that only labels its modes is followed by its labels
-        return t[t["tef_branch"].astype(bool)].sort_values("value_si")
-    sizes = t[t["label"] == mode].groupby("track").size()
-    if sizes.empty:
+    """The scan's rows of the mode whose boundary is wanted: the root of that name
+    at each point (``"TEF"``: the root the uncoupled flap continues into)."""
+    curve = t[t["label"].astype(str) == mode]
+    if curve.empty:
         raise ValueError(f"mode {mode!r} not found at any scan point of {res.parameter}; "
-                         f"labels present: {sorted(set(t['label_here'].astype(str)))}")
-    candidates = sizes.index[sizes.to_numpy() == sizes.max()].tolist()
-    crossing = [k for k in candidates
-                if np.ptp(np.sign(t.loc[t["track"] == k, "real_part"].to_numpy())) > 0]
-    track = (crossing or candidates)[0]
-    if len(sizes) > 1:
-        warnings.warn(f"{len(sizes)} tracks are labelled {mode!r}; following track {track} "
-                      "(present at the most scan points, preferring one whose real part "
-                      "changes sign)", UserWarning, stacklevel=3)
-    return t[t["track"] == track].sort_values("value_si")
+                         f"names present: {sorted(set(t['label'].astype(str)))}")
+    return curve.drop_duplicates("point").sort_values("value_si")
 
 
 class _Follower:
@@ -263,9 +250,13 @@ class _Follower:
             except Exception as err:
                 raise RuntimeError(f"{parameter} = {x!r}: point failed while locating the "
                                    f"{mode!r} boundary: {type(err).__name__}: {err}") from err
-            near = min(self.cache, key=lambda y: abs(y - x))
-            rm, rv, rj = self.cache[near]
-            j = match_modes((rm, rv), (m, v))[rj]
+            named = np.flatnonzero(m["label"].astype(str).to_numpy() == mode)
+            if "real_part_uncoupled" in m and named.size:
+                j = int(named[0])           # the root of that name (continued identity)
+            else:
+                near = min(self.cache, key=lambda y: abs(y - x))
+                rm, rv, rj = self.cache[near]
+                j = match_modes((rm, rv), (m, v))[rj]
             if j < 0:
                 raise RuntimeError(f"{parameter} = {x!r}: mode {mode!r} lost (fewer modes)")
             self.cache[x] = (m, v, int(j))

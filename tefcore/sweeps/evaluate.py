@@ -21,7 +21,6 @@ import numpy as np
 import pandas as pd
 
 from ..errors import error_text
-from ..modes.roles import anchor_root
 from ..runtime import worker_init
 from .store import jsonable
 
@@ -140,12 +139,11 @@ def failed_record(key, value, err) -> dict:
             "error": error_text(err), "trim": {}, "modes": None}
 
 
-def evaluate_point(index, point, cfg, parameter, value, key, anchor=False, depth=0, warm=None):
+def evaluate_point(index, point, cfg, parameter, value, key, depth=0, warm=None):
     """Evaluate one sweep point; never raises an ``Exception`` (it is recorded).
 
-    ``anchor``: also identify the flap mode by continuation from zero
-    coupling (the start of the TEF branch). ``depth``: 0 for a point the
-    caller asked for, k for a point added by the k-th refinement.  ``warm``:
+    ``depth``: 0 for a point the caller asked for, k for a point added by the
+    k-th refinement.  ``warm``:
     the previous point's trim, passed as ``warm_start`` (a point function that
     takes it); should that fail, the point is computed cold.
 
@@ -163,9 +161,6 @@ def evaluate_point(index, point, cfg, parameter, value, key, anchor=False, depth
         Its value at this point, as given.
     key : str
         The point's key.
-    anchor : bool, optional
-        Also identify the flap mode by continuation
-        (:func:`tefcore.modes.roles.anchor_root`).
     depth : int, optional
         Refinement depth.
     warm : tefcore.trimming.trim.TrimResult, optional
@@ -200,8 +195,6 @@ def evaluate_point(index, point, cfg, parameter, value, key, anchor=False, depth
                    periodic=bool(getattr(result, "periodic", False)))
         if shapes is not None:
             rec["vectors"] = encode_complex(shapes)
-        if anchor:
-            rec["anchor"] = anchor_root(result)
     except Exception as err:  # recorded, the sweep goes on
         rec["error"] = error_text(err)
         vecs = result = None

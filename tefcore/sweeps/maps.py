@@ -9,11 +9,11 @@ growth rate changes sign along a row (:func:`scipy.optimize.brentq`), so the
 flutter boundary is located beyond the grid's resolution.
 
 The mapped quantity is the **flutter root** of each point: the least stable
-root in which the flap participates by at least
-:data:`tefcore.modes.roles.FLUTTER_PARTICIPATION` (a property of the point alone, no
-tracking needed), with its frequency and flap participation; the **TEF
-branch** of each row (the flap mode followed from the row's start) is kept
-too.  Results come as a tidy table and an :class:`xarray.Dataset`.
+flap-induced root (:func:`tefcore.modes.roles.flutter_root`: unstable, or much
+less stable, with the flap held at its trimmed motion; a property of the point
+alone, no tracking needed), with its frequency, flap participation and the
+mode it continues from; the **TEF branch** (the root the uncoupled flap
+continues into) is kept too.  Results come as a tidy table and an :class:`xarray.Dataset`.
 
 Examples
 --------
@@ -47,7 +47,7 @@ import pandas as pd
 from scipy.optimize import brentq
 
 from ..config.configuration import Config
-from ..modes.roles import FLUTTER_PARTICIPATION, flutter_root
+from ..modes.roles import flutter_root
 from ..runtime import worker_init
 from .evaluate import check_result, default_point, takes_warm_start
 from .sweep import SweepResult, sweep
@@ -100,8 +100,8 @@ class MapResult:
             variables[col] = (("y", "x"), grid)
         ds = xr.Dataset(variables, coords={"x": xs, "y": ys})
         ds.attrs.update(x_field=self.x_field, y_field=self.y_field,
-                        description="flutter root: least stable root with flap "
-                                    f"participation >= {FLUTTER_PARTICIPATION}; growth in 1/rev")
+                        description="flutter root: least stable flap-induced root "
+                                    "(tefcore.modes.roles.flutter_root); growth in 1/rev")
         return ds
 
     def plot(self, ax=None, levels=None, x_unit: str | None = None,
@@ -193,7 +193,7 @@ def _row_frame(res: SweepResult, y_index: int, y_si: float, y_value) -> pd.DataF
                 r = fr.iloc[0]
                 rec.update(flutter_growth=r["real_part"], flutter_frequency=r["frequency_per_rev"],
                            flutter_share_TEF=r.get("share_TEF", np.nan),
-                           flutter_label=str(r["label_here"]))
+                           flutter_label=str(r["label"]))
             br = g[g["tef_branch"].fillna(False).astype(bool)]
             if not br.empty:
                 r = br.iloc[0]
@@ -228,7 +228,7 @@ def _row_in_worker(cfg, x_field, x_values, point, out, resume):
     """One row of the map as a serial sweep in a worker process."""
     worker_init()
     return sweep(cfg, x_field, x_values, point=point, n_jobs=1, out=out, resume=resume,
-                 refine=False, anchor=False, progress=False)
+                 refine=False, progress=False)
 
 
 def _refine_in_worker(*args):
@@ -314,7 +314,7 @@ def stability_map(cfg: Config, x_field: str, x_values, y_field: str, y_values, *
     else:
         results = [sweep(cfg_y, x_field, x_values, point=point, n_jobs=n_jobs, backend=backend,
                          client=client, out=outs[k], resume=resume, refine=False,
-                         anchor=False, progress=progress) for k, _, _, cfg_y in row_cfgs]
+                         progress=progress) for k, _, _, cfg_y in row_cfgs]
     for (k, yv, y_si, _), res in zip(row_cfgs, results, strict=True):
         rows.append(res)
         frames.append(_row_frame(res, k, y_si, yv))

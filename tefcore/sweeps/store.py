@@ -346,12 +346,6 @@ def _tracking_problem(rec, n_modes: int) -> str | None:
     depth = rec.get("refinement", 0)
     if isinstance(depth, bool) or not isinstance(depth, int) or depth < 0:
         return "'refinement' must be a count >= 0"
-    anchor = rec.get("anchor")
-    if anchor is not None and not (
-            isinstance(anchor, dict) and isinstance(anchor.get("clear"), bool)
-            and isinstance(anchor.get("row"), int) and not isinstance(anchor["row"], bool)
-            and 0 <= anchor["row"] < n_modes):
-        return "'anchor' must be null or a table with a mode 'row' and 'clear'"
     return None
 
 

@@ -51,7 +51,7 @@ import pandas as pd
 from tqdm import tqdm
 
 from ..config.configuration import SECTIONS, Config, resolve_field
-from ..modes.tracking import label_changes
+from ..modes.roles import exceptional_points
 from ..safe_io import atomic_output
 from .evaluate import (
     WARM_CHAIN,
@@ -145,18 +145,21 @@ class SweepResult:
         ``parameter``, ``value`` (as given), ``value_si`` (validated field
         value, SI), ``refinement`` (0 for the points asked for, k for a
         point added by the k-th bisection of an ambiguous step), ``status``
-        ("ok"/"failed"), ``error`` (None when ok), ``track``, ``label`` (the
-        track's label where it starts), ``label_here`` (the point's own
-        label), ``identity`` (how the row continues its track:
-        :mod:`tefcore.modes.tracking`), the mode columns (``mode_id``,
-        ``frequency_per_rev``, ``real_part``, ``damping_ratio``, ...), the
-        named roles ``tef_branch`` (the row is on the TEF branch: the flap
-        mode at the sweep start, followed along its track and past the
-        track's end by :func:`tefcore.modes.tracking.follow_branch`),
-        ``tef_branch_certain`` (no undecided match or change of track on the
-        branch between the start and this row) and
-        ``flutter_root`` (the least stable root of its point with a flap
-        participation >= 0.1), and the trim scalars as ``trim_<name>``.  A
+        ("ok"/"failed"), ``error`` (None when ok), ``track`` (the curve the
+        root lies on: roots of neighbouring points linked by eigenvalue and
+        shape, :func:`tefcore.modes.tracking.track_modes`), ``label`` (the
+        root's name at its point: the uncoupled mode it continues from,
+        :func:`tefcore.modes.continuation.continue_roots`), ``dominant`` (the
+        coordinate it carries most there), ``identity`` (how the row
+        continues its track), the mode columns (``mode_id``,
+        ``frequency_per_rev``, ``frequency_tracked`` -- continuous along each
+        name, :func:`tefcore.modes.matching.continuous_frequency` --,
+        ``real_part``, ``damping_ratio``, ``real_part_uncoupled``, ...), the
+        roles ``tef_branch`` (the root named ``TEF``), ``tef_branch_certain``
+        (and its path from zero coupling decided) and ``flutter_root`` (the
+        least stable flap-induced root of its point,
+        :func:`tefcore.modes.roles.flutter_root`), and the trim scalars as
+        ``trim_<name>``.  A
         failed point is one row with its reason; its result columns are
         NaN/NA.  A pure function of the points' results: fresh, resumed
         and parallel runs give the same table.
@@ -176,10 +179,6 @@ class SweepResult:
         Points added by refinement and evaluated in this run.
     out : Path or None
         The sweep file.
-    anchor : dict
-        Where the TEF branch starts: ``point``, ``mode_id`` and ``method``
-        (``"zero coupling"``: the root the uncoupled flap mode becomes;
-        ``"largest flap participation"``; ``"label"``), or empty.
     """
 
     parameter: str
@@ -191,7 +190,6 @@ class SweepResult:
     n_loaded: int = 0
     n_refined: int = 0
     out: Path | None = None
-    anchor: dict = field(default_factory=dict)
     vectors: dict = field(default_factory=dict, repr=False)
     _modes: dict = field(default_factory=dict, repr=False)
 
@@ -207,15 +205,17 @@ class SweepResult:
         return bool((self.table["status"] == "ok").all())
 
     @property
-    def label_changes(self) -> pd.DataFrame:
-        """Where a tracked mode's point label changes.
+    def exceptional_points(self) -> pd.DataFrame:
+        """Where along the sweep which root is which has no answer.
 
-        See :func:`tefcore.modes.tracking.label_changes`.
+        See :func:`tefcore.modes.roles.exceptional_points` (``x_low``,
+        ``x_high`` in SI values of the parameter).
         """
-        return label_changes(self.table)
+        t = self.table[self.table["status"] == "ok"]
+        return exceptional_points(t, x="value_si")
 
     def curve(self, label: str) -> pd.DataFrame:
-        """Rows of the track(s) whose label is `label`, in sweep order.
+        """Rows of the root named `label` at each point, in sweep order.
 
         ``"TEF branch"`` gives the TEF branch (the ``tef_branch`` rows) and
         ``"flutter root"`` the flutter root of each point.
@@ -237,8 +237,7 @@ class SweepResult:
 def sweep(cfg: Config, parameter: str, values, *, point: Callable | None = None,
           n_jobs: int = 1, backend: str = "joblib", progress: bool | None = None,
           out=None, resume: bool = True, extra_overrides: Mapping[str, Any] | None = None,
-          client=None, retry_failed: bool = False, refine: bool = True,
-          anchor: bool = True) -> SweepResult:
+          client=None, retry_failed: bool = False, refine: bool = True) -> SweepResult:
     """Evaluate `point` at each value of one configuration field.
 
     Parameters
@@ -293,11 +292,6 @@ def sweep(cfg: Config, parameter: str, values, *, point: Callable | None = None,
         many added points as asked for, whichever is more, for the other
         modes; the added points are rows with
         ``refinement > 0``.
-    anchor : bool
-        Identify the TEF branch at the sweep start by continuation from zero
-        coupling (:func:`tefcore.modes.continuation.tef_root`) where the point function's
-        result carries its linear system; otherwise by the largest flap
-        participation.
 
     Returns
     -------
@@ -327,13 +321,8 @@ def sweep(cfg: Config, parameter: str, values, *, point: Callable | None = None,
     chash = config_hash(cfg, exclude=[parameter])
     store, records = _open_store(out, cfg, parameter, chash, point, resume, retry_failed)
     n_loaded = sum(k in records for k in keys)
-    anchor_key = _anchor_key(cfg, parameter, values, keys) if anchor else None
-    if anchor_key in records and records[anchor_key]["status"] == "ok" and \
-            "anchor" not in records[anchor_key]:
-        del records[anchor_key]     # computed before as an ordinary point: again, as the start
-        n_loaded -= 1
     jobs = chains(cfg, parameter, values, keys, records,
-                  lambda i: (point, cfg, parameter, values[i], keys[i], keys[i] == anchor_key, 0),
+                  lambda i: (point, cfg, parameter, values[i], keys[i], 0),
                   WARM_CHAIN if takes_warm_start(point) else 1)
     if progress is None:
         progress = bool(getattr(sys.stderr, "isatty", lambda: False)())
@@ -347,19 +336,19 @@ def sweep(cfg: Config, parameter: str, values, *, point: Callable | None = None,
             run.evaluate(jobs)
             if not any(budgets.values()):
                 break
-            jobs = run.refinement_jobs(budgets, anchor, point, cfg, parameter, retry_failed)
+            jobs = run.refinement_jobs(budgets, point, cfg, parameter, retry_failed)
             if jobs is None:
                 break
     finally:
         run.close()
 
-    table, modes, start, shapes = build_table(parameter, values, keys, run.active(), anchor)
+    table, modes, shapes = build_table(parameter, values, keys, run.active())
     index_of = {k: i for i, k in enumerate(keys)}
     return SweepResult(parameter=parameter, values=values, table=table, config_hash=chash,
                        eigenvectors={index_of[k]: v for k, v in run.vectors.items()
                                      if k in index_of},
                        n_computed=run.n_computed, n_loaded=n_loaded, n_refined=run.n_refined,
-                       out=None if out is None else Path(out), anchor=start, vectors=shapes,
+                       out=None if out is None else Path(out), vectors=shapes,
                        _modes=modes)
 
 
@@ -448,14 +437,14 @@ class _Run:
         finally:
             runner.close()
 
-    def refinement_jobs(self, budgets, anchor, point, cfg, parameter, retry_failed):
+    def refinement_jobs(self, budgets, point, cfg, parameter, retry_failed):
         """The next round of midpoints of undecided steps as jobs, or None when done.
 
         A midpoint already in the file (a resumed sweep) is reused; refinement
         points start cold: their neighbours' trims may not be at hand (a
         resumed sweep), and cold is the same in every run.
         """
-        mids = [m for m in refinements(self.active(), budgets, self.main, anchor)
+        mids = [m for m in refinements(self.active(), budgets, self.main)
                 if value_key(m[0]) not in self.wanted and value_key(m[0]) not in self.main]
         if not mids:
             return None
@@ -466,7 +455,7 @@ class _Run:
             budgets[which] -= 1
             if key not in self.records or (retry_failed and self.records[key]["status"] != "ok"):
                 jobs.append([(len(self.keys) + len(self.wanted),
-                              (point, cfg, parameter, float(x), key, False, depth), True)])
+                              (point, cfg, parameter, float(x), key, depth), True)])
         self.bar.total += len(jobs)
         return jobs
 
@@ -477,16 +466,3 @@ class _Run:
         if self.cluster is not None:
             self.client_own.close()
             self.cluster.close()
-
-
-def _anchor_key(cfg, parameter, values, keys):
-    """Key of the value with the smallest SI value (the sweep start), or None."""
-    best = None
-    for v, k in zip(values, keys, strict=True):
-        try:
-            si = cfg.with_overrides({parameter: v}).get(parameter)
-        except Exception:  # a rejected value is a failed point, not the start
-            continue
-        if isinstance(si, numbers.Real) and (best is None or si < best[0]):
-            best = (float(si), k)
-    return None if best is None else best[1]

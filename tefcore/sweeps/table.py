@@ -1,9 +1,14 @@
-"""The sweep's table: its points tracked, the TEF branch and flutter roots, refinement.
+"""The sweep's table: its points' named roots, tracked, with their roles; refinement.
 
 A pure function of the points' records (:func:`build_table`): fresh, resumed,
-reversed and parallel sweeps give the same table.  Where the identity of a
-mode between two neighbouring points is not decided, :func:`refinements`
-names the midpoints to evaluate.
+reversed and parallel sweeps give the same table.  Each root carries its
+point's name for it (the uncoupled mode it continues from,
+:func:`tefcore.modes.continuation.continue_roots`); tracking along the
+parameter (:func:`tefcore.modes.tracking.track_modes`) links the roots of
+neighbouring points into curves (``track``) and unwraps Floquet frequencies
+along them.  Where a root's name changes between neighbouring points (an
+exceptional point between them) or tracking is not decided,
+:func:`refinements` names the midpoints to evaluate.
 """
 
 from __future__ import annotations
@@ -13,25 +18,25 @@ import numbers
 import numpy as np
 import pandas as pd
 
-from ..modes.roles import anchor_row, assign_roles
-from ..modes.tracking import ambiguous_steps, follow_branch, track_modes
+from ..modes.matching import continuous_frequency
+from ..modes.roles import assign_roles, switch_steps
+from ..modes.tracking import ambiguous_steps, track_modes
 from .evaluate import decode_complex
 
 __all__ = ["MAX_REFINE", "MAX_REFINE_BRANCH", "MIN_REFINE_BUDGET", "build_table", "refinements"]
 
 
-#: Bisections of an ambiguous step at most (a step of 1/8 of the original).
+#: Bisections of a step whose tracking is ambiguous, at most (1/8 of the step).
 MAX_REFINE = 3
 
 
-#: ... and of a step where the TEF branch itself is ambiguous (1/32): the
-#: branch is what the paper's claims are about, and a flap mode veering with
-#: a blade mode can turn its shape within a few per cent of a sweep's step.
+#: ... and of a step across which a root's name changes (1/32): an exceptional
+#: point lies in it, and the claims about the paper's modes need it located.
 MAX_REFINE_BRANCH = 5
 
 
-#: Points refinement may add for the TEF branch, and at least for the other
-#: modes (else twice the points asked for).
+#: Points refinement may add to locate exceptional points, and at least for the
+#: other steps (else twice the points asked for).
 MIN_REFINE_BUDGET = 24
 
 
@@ -53,26 +58,24 @@ def tracking_points(records: dict, order: list) -> list:
     return pts
 
 
-def track_records(records: dict, order: list) -> pd.DataFrame:
-    """:func:`tefcore.modes.tracking.track_modes` of the ok records in `order`."""
-    return track_modes(tracking_points(records, order),
-                       values=[float(records[k]["value_si"]) for k in order])
+def _tracked(records: dict, order: list) -> pd.DataFrame:
+    """The ok records tracked, each row with its point's name (``label``) and x."""
+    tracked = track_modes(tracking_points(records, order),
+                          values=[float(records[k]["value_si"]) for k in order])
+    tracked["label"] = tracked.pop("label_here")
+    tracked.insert(1, "value_si", [float(records[order[s]]["value_si"])
+                                   for s in tracked["step"].to_numpy(int)])
+    return tracked
 
 
-def branch_of(tracked: pd.DataFrame, records: dict, order: list, step: int, row: int):
-    """:func:`tefcore.modes.tracking.follow_branch` from mode `row` of point `step` of `order`."""
-    return follow_branch(tracked, tracking_points(records, order), (step, row),
-                         values=[float(records[k]["value_si"]) for k in order])
+def refinements(records: dict, budgets: dict, main: set) -> list[tuple[float, int, str]]:
+    """Midpoints (SI value, depth, budget) of the steps to bisect.
 
-
-def refinements(records: dict, budgets: dict, main: set,
-                 use_anchor: bool = True) -> list[tuple[float, int, str]]:
-    """Midpoints (SI value, depth, budget) of the steps whose tracking is ambiguous.
-
-    While the TEF branch itself has ambiguous steps that may still be
-    bisected (:data:`MAX_REFINE_BRANCH` times, from the ``"branch"`` budget),
-    only those are returned; then the others (:data:`MAX_REFINE` times, from
-    the ``"other"`` budget).
+    First the steps across which a root's name changes
+    (:func:`tefcore.modes.roles.switch_steps`: an exceptional point lies in
+    them), bisected up to :data:`MAX_REFINE_BRANCH` times from the
+    ``"branch"`` budget; then the steps whose tracking is ambiguous
+    (:data:`MAX_REFINE` times, from the ``"other"`` budget).
 
     Parameters
     ----------
@@ -82,9 +85,6 @@ def refinements(records: dict, budgets: dict, main: set,
         Points left to add: ``{"branch": n, "other": m}``.
     main : set
         Keys of the points asked for.
-    use_anchor : bool, optional
-        Start the TEF branch at the continuation's root
-        (:func:`tefcore.modes.roles.anchor_row`).
 
     Returns
     -------
@@ -93,15 +93,10 @@ def refinements(records: dict, budgets: dict, main: set,
     order = ok_in_order(records)
     if len(order) < 2:
         return []
-    tracked = track_records(records, order)
-    branch_steps = set()
-    first = next((i for i, k in enumerate(order) if k in main), None)
-    if first is not None:
-        start = records[order[first]]
-        row, _ = anchor_row(start.get("anchor"), pd.DataFrame(start["modes"]), use_anchor)
-        if row is not None:
-            path = branch_of(tracked, records, order, first, row)
-            branch_steps = set(path.loc[path["doubt"], "step"])
+    tracked = _tracked(records, order)
+    step_of = {float(records[k]["value_si"]): i for i, k in enumerate(order)}
+    switch = {step_of[b] for _, b in switch_steps(tracked, x="value_si")}
+
     def mids(steps, limit, which):
         out = []
         for step in sorted(steps):
@@ -111,12 +106,11 @@ def refinements(records: dict, budgets: dict, main: set,
                 out.append((0.5 * (float(a["value_si"]) + float(b["value_si"])), depth, which))
         return out
 
-    # the TEF branch's own doubts first, round after round, then the others
-    return (mids(branch_steps, MAX_REFINE_BRANCH, "branch")
+    return (mids(switch, MAX_REFINE_BRANCH, "branch")
             or mids(ambiguous_steps(tracked), MAX_REFINE, "other"))
 
 
-def build_table(parameter, values, keys, records, anchor=True):
+def build_table(parameter, values, keys, records):
     """Tidy, tracked table from the records, in parameter order.
 
     Parameters
@@ -129,8 +123,6 @@ def build_table(parameter, values, keys, records, anchor=True):
         Their keys.
     records : dict
         Key -> record of every point (asked for and refinements).
-    anchor : bool, optional
-        Start the TEF branch at the continuation's root.
 
     Returns
     -------
@@ -138,8 +130,6 @@ def build_table(parameter, values, keys, records, anchor=True):
         See :class:`tefcore.sweeps.sweep.SweepResult`.
     modes : dict
         Point index -> modes table.
-    anchor : dict
-        Where the TEF branch starts.
     shapes : dict
         Point index -> the shapes tracking compared.
     """
@@ -149,9 +139,7 @@ def build_table(parameter, values, keys, records, anchor=True):
     index_of = dict(main)
     index_of.update({k: n + r for r, k in enumerate(extra)})
     order = ok_in_order({k: records[k] for k in index_of})
-    points = tracking_points(records, order)
-    values_si = [float(records[k]["value_si"]) for k in order]
-    tracked = track_modes(points, values=values_si)
+    tracked = _tracked(records, order).drop(columns="value_si")
     tracked.insert(0, "key", np.asarray(order, dtype=object)[tracked.pop("step").to_numpy(int)])
     all_keys = list(keys) + extra
     info = pd.DataFrame({
@@ -177,10 +165,27 @@ def build_table(parameter, values, keys, records, anchor=True):
     si = pd.to_numeric(table["value_si"], errors="coerce")
     table = table.assign(_x=si.fillna(np.inf)).sort_values(
         ["_x", "point", "track"], kind="stable", ignore_index=True).drop(columns="_x")
-    first = next((k for k in order if k in main), None)
-    anchor = assign_roles(table, points, values_si, order, first,
-                          records[first].get("anchor") if first is not None else None, anchor)
+    assign_roles(table)
+    _unwrap_by_name(table, any(bool(records[k].get("periodic", False)) for k in order))
     modes = {index_of[k]: pd.DataFrame(records[k]["modes"]) for k in order}
     shapes = {index_of[k]: decode_complex(records[k]["vectors"]) for k in order
               if records[k].get("vectors") is not None}
-    return table.drop(columns="key"), modes, anchor, shapes
+    return table.drop(columns="key"), modes, shapes
+
+
+def _unwrap_by_name(table: pd.DataFrame, periodic: bool) -> None:
+    """``frequency_tracked``: each named root's frequency continuous along the sweep.
+
+    Per name (the roots of one uncoupled mode, point by point), the Floquet
+    frequency's representation (1/rev shift, sign) that makes the curve
+    smoothest and keeps nearest the points' own convention
+    (:func:`tefcore.modes.matching.continuous_frequency`); the flutter root's
+    rows are a name's rows too.  Constant coefficients: the frequency itself.
+    """
+    if "frequency_tracked" not in table or not periodic:
+        return
+    ok = (table["status"] == "ok") & table["label"].notna()
+    for _, g in table[ok].groupby(table.loc[ok, "label"].astype(str), sort=False):
+        x = pd.to_numeric(g["value_si"]).to_numpy(float)
+        table.loc[g.index, "frequency_tracked"] = continuous_frequency(
+            x, g["frequency_per_rev"].to_numpy(float))
