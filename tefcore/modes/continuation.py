@@ -213,7 +213,7 @@ def tef_root(system: SecondOrderSystem, *, basis=None, n_steps: int = 72):
 FLAP_ACTIVE = 1e-2
 
 
-def path_shapes(basis, res, n, periodic):
+def path_shapes(basis, res, n, periodic, samples=72):
     """The shapes paths are matched by.
 
     Floquet roots: their motion over the revolution
@@ -231,13 +231,23 @@ def path_shapes(basis, res, n, periodic):
         Number of coordinates.
     periodic : bool
         Floquet exponents.
+    samples : int, optional
+        Azimuths sampled (Floquet): the path's grid, which must divide the
+        grid of every result compared.
 
     Returns
     -------
     numpy.ndarray
         One column per root.
     """
-    return trajectory_shapes(basis, res, n) if periodic else tracking_shapes(basis, res, n)
+    if not periodic:
+        return tracking_shapes(basis, res, n)
+    # every azimuth of the path's grid (72 by default; a grid refined by
+    # step doubling is sampled at the same azimuths): the motion of a root at
+    # 16 /rev sampled at 8 azimuths aliased to that of one at 3 /rev (MAC 0.93
+    # between MDART's TEF and first torsion roots at Fig. 14's 0.08 span,
+    # measured), at 72 it is resolved up to 36 /rev
+    return trajectory_shapes(basis, res, n, samples=samples)
 
 
 def _flap_share(vecs, n_phys):
@@ -383,7 +393,7 @@ def continue_roots(system: SecondOrderSystem, labels, final=None, *, basis=None,
     if system.n_first:
         return _by_participation(res0, n, labels, basis, final, final_labels)
     frac0 = coordinate_shares(res0.participation, n)
-    vec0 = path_shapes(basis, res0, n, per)
+    vec0 = path_shapes(basis, res0, n, per, n_steps)
     names0 = label_modes(frac0, labels, res0.frequencies, res0.damping_rates, vec0,
                          periodic=per)
     march = _March(res0.exponents, vec0, names0, basis.shape[0], per)
@@ -396,7 +406,7 @@ def continue_roots(system: SecondOrderSystem, labels, final=None, *, basis=None,
         else:
             res = _solve(system, n, eps + h, per, n_steps)
         n_solves += 1
-        if march.step(eps + h, res.exponents, path_shapes(basis, res, n, per),
+        if march.step(eps + h, res.exponents, path_shapes(basis, res, n, per, n_steps),
                       final_step=h <= min_step * (1 + 1e-9)):
             eps += h
             streak = streak + 1 if march.last_clear else 0
@@ -668,7 +678,10 @@ class _March:
             if len(pair) < 2 or other is None:
                 continue
             a, b = col_of[r], col_of[other]
-            gap = float(relative_distance(eig[a:a + 1], eig[b:b + 1], self.periodic)[0, 0])
+            # the two roots as their paths see them (Floquet frequencies
+            # unwrapped along the paths): modulo 1/rev any two roots lie
+            # within half a /rev, which says nothing about coalescing
+            gap = float(relative_distance(eig[a:a + 1], eig[b:b + 1])[0, 0])
             shape = float(max(mac(vecs[:, a], vecs[:, b])[0, 0],
                               mac(vecs[:, a].conj(), vecs[:, b])[0, 0]))
             # a meeting is an exceptional point only where the two roots

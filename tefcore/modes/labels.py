@@ -116,7 +116,8 @@ def trajectory_shapes(basis, res, n, samples: int = 8):
     n : int
         Number of coordinates.
     samples : int, optional
-        Azimuths sampled.
+        Azimuths sampled, equally spaced from 0; must divide the result's
+        grid (``ValueError`` otherwise).
 
     Returns
     -------
@@ -125,7 +126,11 @@ def trajectory_shapes(basis, res, n, samples: int = 8):
     """
     if res.shapes is None:
         return basis @ res.eigenvectors[:n]
-    idx = np.linspace(0, len(res.psi), samples, endpoint=False).astype(int)
+    if len(res.psi) % samples:
+        raise ValueError(f"trajectory_shapes: {samples} azimuths do not divide the result's "
+                         f"grid of {len(res.psi)}; shapes sampled at different azimuths "
+                         "cannot be compared")
+    idx = np.arange(0, len(res.psi), len(res.psi) // samples)
     psi = res.psi[idx]
     x = res.shapes[idx][:, :n, :] * np.exp(1j * np.outer(psi, res.exponents.imag))[:, None, :]
     return np.concatenate([basis @ x[k] for k in range(idx.size)], axis=0)

@@ -307,9 +307,10 @@ def _is_exceptional(rows: pd.DataFrame) -> bool:
     if "frequency_uncoupled" in rows:
         f = rows["frequency_uncoupled"].to_numpy(float)
         before, after = f[0] - f[1], f[2] - f[3]
-        # the uncoupled pair changed order (within half a /rev either side: a
-        # change of the Floquet convention of one of them is not a crossing)
-        if before * after < 0 and max(abs(before), abs(after)) < 0.5:
+        # the uncoupled pair changed order (their Floquet conventions, the
+        # dominant harmonic of one blade mode or of the flap alone, are
+        # continuous in the parameter: measured on every figure's sweep)
+        if before * after < 0:
             return False
     return True
 

@@ -1,0 +1,203 @@
+"""Identity by continuation in the coupling (tefcore.modes.continuation), on known answers.
+
+The coupling between the blade and the flap is scaled by ``eps`` from 0 to 1
+(:func:`coupling_homotopy`); each root of the coupled system is named by the
+uncoupled mode it continues from.  The cases:
+
+* **Coalescence flutter of a typical section with a flap** (undamped, two
+  modes, aerodynamic -- unsymmetric -- coupling ``eps a``, ``eps b`` with
+  ``a b < 0``): ``lambda = (k1 + k2)/2 +- sqrt(((k1 - k2)/2)**2 + eps**2 a b)``
+  coalesce at the exceptional point ``eps* = |k1 - k2| / (2 sqrt(-a b))``,
+  beyond which one root flutters.  Continuation must meet it there, name
+  both roots, and leave them uncertain; short of it, name them plainly.
+* **A veering pair** (symmetric coupling ``eps g``): no exceptional point on
+  real ``eps``; the flap's name goes to the lower root while its uncoupled
+  frequency is the lower, to the upper when it is the upper -- the name moves
+  across the veering gap with the uncoupled crossing, which is not an
+  exceptional point.
+* **A Floquet blade mode in a 1/2 /rev lock** (a Mathieu oscillator in its
+  first tongue) beside the flap: the lock's two real-multiplier roots keep the
+  blade's name (``X``, ``X (locked)``), the flap's root its own, decided.
+"""
+
+from types import SimpleNamespace
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from tefcore.config.io import load_config
+from tefcore.floquet.second_order import SecondOrderSystem
+from tefcore.modes.continuation import MIN_STEP, continue_roots, positive_roots
+from tefcore.modes.matching import continuous_frequency
+from tefcore.modes.roles import exceptional_points, name_roots
+from tefcore.sweeps.sweep import sweep
+
+LABELS = ["blade flap 1", "TEF"]
+
+
+def _section(k1, k2, a, b, c=0.0):
+    """``q'' + c q' + K q = 0`` with K = [[k1, a], [b, k2]] (constant coefficients)."""
+    m = np.eye(2)[None]
+    k = np.array([[[k1, a], [b, k2]]], float)
+    return SecondOrderSystem(m, c * np.eye(2)[None], k)
+
+
+# ------------------------------------------------------------------ coalescence
+
+
+@pytest.mark.parametrize("k2", [6.0, 9.0, 11.0])
+def test_typical_section_meets_its_exceptional_point_where_the_closed_form_puts_it(k2):
+    """Coalescence flutter: the paths meet at eps* = |k1 - k2| / (2 sqrt(-a b))."""
+    k1, a, b = 4.0, 4.0, -4.0                  # sqrt(-ab) = 4
+    eps_star = abs(k1 - k2) / (2 * np.sqrt(-a * b))
+    assert 0.0 < eps_star < 1.0
+    out = continue_roots(_section(k1, k2, a, b), LABELS)
+    assert len(out.meetings) == 1
+    met = out.meetings.iloc[0]
+    assert met["origins"] == "TEF / blade flap 1"
+    # the step is halved down to MIN_STEP around the meeting: the recorded eps
+    # is within two smallest steps of the exact coalescence (the undecided
+    # step may end either side of it)
+    assert abs(met["eps"] - eps_star) <= 2 * MIN_STEP
+    # the two roots that met have no certain name, and both carry them
+    assert sorted(out.origin) == ["TEF", "blade flap 1"]
+    assert not out.certain.any()
+    # a wrong model: no coupling -- nothing meets, both names certain
+    plain = continue_roots(_section(k1, k2, 0.0, 0.0), LABELS)
+    assert plain.meetings.empty and plain.certain.all()
+
+
+def test_typical_section_short_of_its_exceptional_point_is_named_plainly():
+    """eps* = 1.25 > 1: the coupled roots are still two frequencies; the flap is the upper."""
+    k1, k2, a, b = 4.0, 14.0, 4.0, -4.0         # eps* = 10 / 8
+    out = continue_roots(_section(k1, k2, a, b), LABELS)
+    assert out.meetings.empty and out.certain.all()
+    res = positive_roots(_section(k1, k2, a, b).modes())
+    # closed form: lambda = 9 +- sqrt(25 - 16); frequencies sqrt(12), sqrt(6)
+    assert np.allclose(np.sort(res.frequencies), np.sqrt([6.0, 12.0]), atol=1e-9)
+    assert out.origin[int(np.argmax(res.frequencies))] == "TEF"
+
+
+# ------------------------------------------------------------------ veering
+
+
+class Veering:
+    """Picklable point function: blade at 2 rad/rev, flap stiffness ``4 + 4 flap.cg_offset``,
+    symmetric coupling ``g`` -- a veering pair as the flap passes the blade mode."""
+
+    def __init__(self, g=0.4, c=0.04):
+        self.g, self.c = g, c
+
+    def __call__(self, cfg):
+        k2 = 4.0 + 4.0 * cfg.flap.cg_offset
+        system = _section(4.0, k2, self.g, self.g, self.c)
+        res = positive_roots(system.modes())
+        cont = continue_roots(system, LABELS, res)
+        eta = res.exponents
+        modes = pd.DataFrame({"mode_id": range(eta.size), "label": cont.origin,
+                              "frequency_per_rev": eta.imag, "real_part": eta.real,
+                              "damping_ratio": -eta.real / np.abs(eta)})
+        modes = name_roots(modes, cont)
+        return SimpleNamespace(modes=modes, vectors=res.eigenvectors[:2], periodic=False,
+                               trim={})
+
+
+def test_veering_pair_moves_the_flap_name_across_the_gap_without_an_exceptional_point():
+    # not through x = 0 itself: there the uncoupled pair is degenerate (a
+    # diabolic point at eps = 0) and no name is certain -- rightly
+    xs = [float(x) for x in np.linspace(-0.45, 0.55, 11)]
+    res = sweep(load_config("mdart"), "flap.cg_offset", xs, point=Veering(), progress=False,
+                refine=False)
+    t = res.table
+    tef = t[t["label"] == "TEF"].sort_values("value_si")
+    blade = t[t["label"] == "blade flap 1"].sort_values("value_si")
+    assert len(tef) == len(xs) == len(blade)
+    assert tef["identity_certain"].all() and blade["identity_certain"].all()
+    below = tef["value_si"] < 0          # uncoupled flap frequency below the blade's (2)
+    f_tef, f_blade = tef["frequency_per_rev"].to_numpy(), blade["frequency_per_rev"].to_numpy()
+    assert (f_tef[below.to_numpy()] < f_blade[below.to_numpy()]).all()
+    assert (f_tef[~below.to_numpy()] > f_blade[~below.to_numpy()]).all()
+    # the coupled pair never coalesces: the gap at the crossing is the
+    # veering's (2 g / (2 * 2) = 0.2 rad/rev in frequency, closed form to
+    # first order; 0.19 with the damping), not zero
+    gap = np.min(np.abs(f_tef - f_blade))
+    assert 0.15 < gap < 0.25
+    # the name moved across the gap: along the lower curve the names
+    # exchanged at the uncoupled crossing -- which is not an exceptional point
+    assert exceptional_points(t[t["status"] == "ok"], x="value_si").empty
+
+
+def test_an_exchange_away_from_an_uncoupled_crossing_is_an_exceptional_point():
+    """The same exchange with the uncoupled frequencies kept in order is reported."""
+    rows = []
+    for x, names in [(0.0, ["blade flap 1", "TEF"]), (1.0, ["TEF", "blade flap 1"])]:
+        for track, name in enumerate(names):
+            rows.append({"x": x, "track": track, "label": name, "identity_certain": True,
+                         "flap_motion": 0.5,
+                         "frequency_uncoupled": 3.0 if name == "TEF" else 2.0})
+    ep = exceptional_points(pd.DataFrame(rows))
+    assert ep["modes"].tolist() == ["TEF / blade flap 1"]
+    assert ep[["x_low", "x_high"]].to_numpy().tolist() == [[0.0, 1.0]]
+    # the uncoupled pair changing order between the points: no exceptional point
+    for r in rows:
+        if r["x"] == 1.0:
+            r["frequency_uncoupled"] = 5.0 - r["frequency_uncoupled"]
+    assert exceptional_points(pd.DataFrame(rows)).empty
+
+
+# ------------------------------------------------------------------ Floquet lock
+
+
+def _mathieu_with_flap(delta, eps_m=0.3, g=0.3, n_psi=64):
+    """Blade: Mathieu oscillator ``delta + eps_m cos psi`` (1/2 /rev lock for delta ~ 1/4);
+    flap at 3.3 /rev; coupled by ``g`` (stiffness)."""
+    psi = np.linspace(0, 2 * np.pi, n_psi, endpoint=False)
+    k = np.zeros((n_psi, 2, 2))
+    k[:, 0, 0] = delta + eps_m * np.cos(psi)
+    k[:, 1, 1] = 3.3 ** 2
+    k[:, 0, 1] = k[:, 1, 0] = g
+    m = np.broadcast_to(np.eye(2), (n_psi, 2, 2)).copy()
+    c = np.broadcast_to(np.diag([0.04, 0.3]), (n_psi, 2, 2)).copy()
+    return SecondOrderSystem(m, c, k)
+
+
+def test_floquet_lock_keeps_the_blade_name_and_the_flap_root_is_decided():
+    system = _mathieu_with_flap(0.25)
+    res = positive_roots(system.modes(shapes=True))
+    out = continue_roots(system, LABELS, res)
+    names = dict(zip(out.origin, res.exponents, strict=True))
+    assert sorted(names) == ["TEF", "blade flap 1", "blade flap 1 (locked)"]
+    # the lock: both blade roots at 1/2 /rev (modulo 1), real multipliers
+    for n in ("blade flap 1", "blade flap 1 (locked)"):
+        f = names[n].imag % 1.0
+        assert min(abs(f - 0.5), abs(f + 0.5 - 1.0)) < 1e-6
+    # the plain name to the less stable of the pair
+    assert names["blade flap 1"].real > names["blade flap 1 (locked)"].real
+    tef = out.origin.index("TEF")
+    assert out.certain[tef] and out.meetings.empty
+    # the flap root stays near its uncoupled self: 3.3 /rev (modulo 1 and sign),
+    # damping -0.15 /rev, moved by the weak coupling by less than 0.05
+    f = res.exponents[tef].imag
+    assert min(abs(((s * f) - 3.3 + 0.5) % 1.0 - 0.5) for s in (1, -1)) < 0.05
+    assert abs(res.exponents[tef].real + 0.15) < 0.05
+
+
+# ------------------------------------------------------------------ unwrapping
+
+
+def test_continuous_frequency_recovers_a_falling_curve_from_its_floquet_convention():
+    """Known answer: a frequency falling 1.3 /rev per step from 21.77 (the overhang-0.1
+    TEF of Fig. 9), written by the convention as mirror images ``k - f`` at some
+    points and shifted by 1/rev at others; in any order of the points."""
+    x = np.linspace(0.0, 0.4, 11)
+    true = 21.77 - 31.1 * x
+    seen = true.copy()
+    seen[[3, 4]] = 43.0 - seen[[3, 4]]
+    seen[6] += 1.0
+    seen[8] = 35.0 - seen[8]
+    assert np.allclose(continuous_frequency(x, seen), true)
+    order = np.random.default_rng(0).permutation(x.size)
+    assert np.allclose(continuous_frequency(x[order], seen[order]), true[order])
+    # a wrong model: the curve as seen is not monotonic, the recovered one is
+    assert np.any(np.diff(seen) > 0) and np.all(np.diff(continuous_frequency(x, seen)) < 0)
