@@ -179,10 +179,12 @@ def cmd_mechanism(args) -> int:
     return 0
 
 
-def _grid(cfg, field: str, start: str, stop: str, num: str) -> list:
+def _grid(cfg, field: str, start: str, stop: str, num: str, axis: str) -> list:
     """Evenly spaced SI values of ``field`` from ``start`` to ``stop``, ``num`` of them
-    (the units rules of ``--range``, :func:`tefcore.config.text_input.sweep_values`)."""
-    values = sweep_values(field, None, (start, stop, num))
+    (the units rules of ``--range``, :func:`tefcore.config.text_input.sweep_values`);
+    ``axis`` (``"X"``, ``"Y"``) names the arguments in messages (``X_NUM``)."""
+    names = tuple(f"{axis}_{n}" for n in ("START", "STOP", "NUM"))
+    values = sweep_values(field, None, (start, stop, num), range_names=names)
     return [float(cfg.with_overrides({field: v}).get(field)) for v in values]
 
 
@@ -190,8 +192,8 @@ def cmd_map(args) -> int:
     from .sweeps.maps import stability_map
 
     cfg = _load(args)
-    xs = _grid(cfg, args.x_field, *args.x_range)
-    ys = _grid(cfg, args.y_field, *args.y_range)
+    xs = _grid(cfg, args.x_field, args.x_start, args.x_stop, args.x_num, "X")
+    ys = _grid(cfg, args.y_field, args.y_start, args.y_stop, args.y_num, "Y")
     check_output_file(args.csv, "--csv")
     for path, what in ((args.png, "--png"), (args.netcdf, "--netcdf")):
         if path:
@@ -265,6 +267,23 @@ def cmd_c81_check(args) -> int:
     return status
 
 
+class _Parser(argparse.ArgumentParser):
+    """An argument parser whose usage errors are one line (:class:`~tefcore.errors.UsageError`).
+
+    argparse prints the whole usage and exits; the command prints one line
+    (``tefcore: error: map: the following arguments are required: Y_NUM (see
+    'tefcore map --help')``) with status 2 (:mod:`tefcore.cli_errors`).
+    Subcommands' parsers are of the same class (argparse's ``parser_class``).
+    """
+
+    def error(self, message: str):
+        from .errors import UsageError
+
+        command = self.prog.removeprefix("tefcore").strip()
+        where = f"{command}: " if command else ""
+        raise UsageError(f"{where}{message} (see '{self.prog} --help')")
+
+
 class _HelpFormatter(argparse.RawDescriptionHelpFormatter):
     """Descriptions and epilogs as written; each subcommand's help on its own line."""
 
@@ -279,13 +298,6 @@ class _HelpFormatter(argparse.RawDescriptionHelpFormatter):
             for name in action.choices:
                 self._action_max_length = max(self._action_max_length,
                                               len(name) + self._current_indent + 4)
-
-    def _format_action_invocation(self, action: argparse.Action) -> str:
-        # argparse cannot show a positional whose metavar is a tuple
-        # ("X_START X_STOP X_NUM"): it fails with a ValueError (bpo-14074)
-        if not action.option_strings and isinstance(action.metavar, tuple):
-            return " ".join(action.metavar)
-        return super()._format_action_invocation(action)
 
     def _fill_text(self, text: str, width: int, indent: str) -> str:
         # paragraphs (blank-line separated) are filled; lines indented by two
@@ -321,8 +333,8 @@ def build_parser() -> argparse.ArgumentParser:
         With one subparser per subcommand; each sets ``func``, the function
         that runs it (``func(args) -> exit status``).
     """
-    parser = argparse.ArgumentParser(prog="tefcore", description=DESCRIPTION, epilog=EPILOG,
-                                     formatter_class=_HelpFormatter)
+    parser = _Parser(prog="tefcore", description=DESCRIPTION, epilog=EPILOG,
+                     formatter_class=_HelpFormatter)
     parser.add_argument("--version", action="version", version=f"tefcore {__version__}")
     sub = parser.add_subparsers(dest="command", required=True, metavar="SUBCOMMAND",
                                 title="subcommands")
@@ -373,12 +385,16 @@ def build_parser() -> argparse.ArgumentParser:
              "(SI or fractions) or 'value unit' strings.", cmd_map,
              epilog="example:\n  tefcore map flap.cg_offset 0 0.3 7 flap.overhang 0 0.4 5 "
                     "--png map.png")
+    # one positional per item: argparse cannot format the usage of a positional
+    # with a tuple metavar (nargs=3), it failed with a TypeError (issue 24)
     p.add_argument("x_field", help="dotted field on the x axis, e.g. flap.cg_offset")
-    p.add_argument("x_range", nargs=3, metavar=("X_START", "X_STOP", "X_NUM"),
-                   help="NUM evenly spaced x values from START to STOP")
+    p.add_argument("x_start", metavar="X_START", help="first x value (a number or 'value unit')")
+    p.add_argument("x_stop", metavar="X_STOP", help="last x value")
+    p.add_argument("x_num", metavar="X_NUM", help="number of evenly spaced x values")
     p.add_argument("y_field", help="dotted field on the y axis, e.g. flap.overhang")
-    p.add_argument("y_range", nargs=3, metavar=("Y_START", "Y_STOP", "Y_NUM"),
-                   help="NUM evenly spaced y values from START to STOP")
+    p.add_argument("y_start", metavar="Y_START", help="first y value")
+    p.add_argument("y_stop", metavar="Y_STOP", help="last y value")
+    p.add_argument("y_num", metavar="Y_NUM", help="number of evenly spaced y values")
     p.add_argument("--csv", default="map.csv", help="tidy table (default: map.csv)")
     p.add_argument("--png", default=None, help="also draw the map to this image")
     p.add_argument("--netcdf", default=None, help="also write the xarray Dataset (netCDF3)")
