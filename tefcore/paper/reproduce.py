@@ -51,7 +51,7 @@ from .validation import claims_score, worse_than_recorded
 __all__ = ["KERNEL_NAME", "NotebookRun", "ReproductionError", "baseline_blade",
            "check_reference_data", "check_reproduce_folder", "check_tools", "collect_claims",
            "ensure_kernel", "execute_notebook", "finish_report", "prepare_params",
-           "regressions", "reproduce", "run_notebooks", "score"]
+           "regressions", "reproduce", "run_notebooks", "score", "source_checkout"]
 
 KERNEL_NAME = "python3"
 #: What to install when the notebook tools are missing.
@@ -369,15 +369,53 @@ def _tracked_files(paths: list[Path]) -> list[str]:
     return [f for f in listed.stdout.split("\0") if f] if listed.returncode == 0 else []
 
 
+def _names_tefcore(pyproject: Path) -> bool:
+    """Whether `pyproject` is a readable ``pyproject.toml`` whose project is tefcore."""
+    import tomllib
+
+    try:
+        name = tomllib.loads(pyproject.read_text(encoding="utf-8"))["project"]["name"]
+    except (OSError, UnicodeDecodeError, tomllib.TOMLDecodeError, KeyError, TypeError):
+        return False
+    return isinstance(name, str) and name.strip().lower().replace("_", "-") == "tefcore"
+
+
+def source_checkout(folder) -> Path | None:
+    """The tefcore source checkout (or installed package's folder) `folder` is in, or None.
+
+    Walks up from `folder` (resolved) to the filesystem root: a folder is a
+    checkout when its ``pyproject.toml`` names the project ``tefcore``, or
+    when it holds the package (``tefcore/__init__.py`` beside
+    ``tefcore/paper/``, as in a checkout or an installation).
+
+    Parameters
+    ----------
+    folder : path
+        A folder (it need not exist).
+
+    Returns
+    -------
+    pathlib.Path or None
+    """
+    folder = Path(folder).resolve()
+    for above in (folder, *folder.parents):
+        package = above / "tefcore"
+        if _names_tefcore(above / "pyproject.toml") or (
+                (package / "__init__.py").is_file() and (package / "paper").is_dir()):
+            return above
+    return None
+
+
 def check_reproduce_folder(out, names=NOTEBOOKS, nb_dir: Path | None = None) -> Path:
     """Refuse an output folder whose files would overwrite sources; return it resolved.
 
     ``reproduce`` writes ``OUT/notebooks/<name>.ipynb`` (and ``.html``),
     ``OUT/<name>/`` and the report files.  Refused
-    (:class:`~tefcore.errors.OutputError`, before anything runs):
-    ``OUT/notebooks`` is the folder of the source notebooks, or any file
-    that would be written is tracked by git, or a destination is a link or a
-    folder.
+    (:class:`~tefcore.errors.OutputError`, before anything runs): the
+    filesystem root; any folder inside a tefcore source checkout or the
+    installed package (:func:`source_checkout`); ``OUT/notebooks`` is the
+    folder of the source notebooks; any file that would be written is
+    tracked by git; a destination is a link or a folder.
 
     Parameters
     ----------
@@ -388,7 +426,16 @@ def check_reproduce_folder(out, names=NOTEBOOKS, nb_dir: Path | None = None) -> 
     nb_dir : path, optional
         The source notebooks' folder.
     """
+    given = out
     out = Path(out).resolve()
+    if out == Path(out.anchor):
+        raise OutputError(f"reproduce --out {given}: refusing to write into the filesystem "
+                          "root; choose an output folder (default: output)")
+    checkout = source_checkout(out)
+    if checkout is not None:
+        raise OutputError(f"reproduce --out {given}: {out} is inside the tefcore source "
+                          f"checkout {checkout}; write the reproduction outside it (e.g. "
+                          f"--out {checkout.parent / 'tefcore-output'})")
     if out.exists() or out.is_symlink():
         check_output_folder(out, "reproduce --out")
     nb_dir = (nb_dir or notebooks_dir()).resolve()
