@@ -256,8 +256,12 @@ def cmd_c81_check(args) -> int:
     for f in args.files:
         try:
             deck = read_c81(f)
-        except (C81FormatError, OSError) as exc:
+        except C81FormatError as exc:       # names the file, line and column
             print(exc, file=sys.stderr)
+            status = 1
+            continue
+        except OSError as exc:              # a folder, a dangling link, no permission
+            print(f"{f}: cannot read the C81 deck ({exc.strerror or exc})", file=sys.stderr)
             status = 1
             continue
         kind = f"flap deck, {deck.delta.size} deltas" if deck.is_flap else "blade deck"

@@ -73,7 +73,7 @@ import numpy as np
 from ..config.configuration import SECTIONS, Config
 from ..errors import SweepFileError
 from ..provenance import describe_digest, input_digests, model_stamp
-from ..safe_io import FileLock, atomic_write_text, check_output_file, open_append
+from ..safe_io import FileLock, atomic_write_text, check_output_file, open_append, write_error
 
 __all__ = ["FORMAT", "FORMAT_VERSION", "RECORD_MODE_COLUMNS", "JsonLinesStore", "SweepFile",
            "check_provenance", "config_hash", "jsonable", "sweep_header", "value_key"]
@@ -496,9 +496,13 @@ class JsonLinesStore:
         """
         data = (json.dumps(rec, separators=(",", ":"), allow_nan=True) + "\n").encode()
         view = memoryview(data)
-        while view:
-            view = view[os.write(self.fd, view):]
-        os.fsync(self.fd)
+        try:
+            while view:
+                view = view[os.write(self.fd, view):]
+            os.fsync(self.fd)
+        except OSError as err:   # a full disk: name the file (a cut-short line is dropped
+            # when the file is resumed)
+            raise write_error(err, self.what, self.path, "cannot append a record") from None
 
     def close(self) -> None:
         """Close the file and release its lock."""
