@@ -23,6 +23,7 @@ from __future__ import annotations
 import argparse
 import sys
 import textwrap
+import warnings
 from pathlib import Path
 
 import numpy as np
@@ -117,6 +118,28 @@ def cmd_fanplot(args) -> int:
     return 0
 
 
+def _real_part_text(value: float, neutral: bool) -> str:
+    """A real part as printed: "neutral" below the solver's resolution, never "-0.0000"."""
+    if neutral:
+        return "neutral"
+    return f"{value:.4f}" if abs(value) >= 5e-5 else f"{value:.2e}"
+
+
+def _modes_text(table) -> str:
+    """The modes table as ``tefcore stability`` prints it.
+
+    A root whose real part is within its error estimate (``neutral``) reads
+    "neutral" (its sign means nothing); a resolved real part too small for
+    four decimals is printed with its exponent.  The resolution columns are
+    in the CSV (``--csv``), not printed.
+    """
+    shown = table.drop(columns=["real_part_error", "neutral"], errors="ignore")
+    if "neutral" in table:
+        shown = shown.assign(real_part=[_real_part_text(v, bool(n)) for v, n in
+                                        zip(table["real_part"], table["neutral"], strict=True)])
+    return shown.to_string(index=False, float_format=lambda v: f"{v:.4f}")
+
+
 def cmd_stability(args) -> int:
     from .linear.stability import stability
 
@@ -127,7 +150,7 @@ def cmd_stability(args) -> int:
     table = res.modes
     if args.csv:
         _write_csv(table, args.csv)
-    print(table.to_string(index=False, float_format=lambda v: f"{v:.4f}"))
+    print(_modes_text(table))
     print("trim: " + ", ".join(f"{k}={v:.4g}" for k, v in res.trim.items()))
     if res.aero_modes is not None:
         am = res.aero_modes
@@ -503,9 +526,17 @@ def main(argv: list[str] | None = None) -> int:
         from .runtime import apply_defaults
 
         apply_defaults()  # the command owns its process (tefcore.runtime)
-        return args.func(args)
+        with warnings.catch_warnings():
+            warnings.showwarning = _show_warning
+            return args.func(args)
 
     return run_command(body, prog="tefcore")
+
+
+def _show_warning(message, category, filename, lineno, file=None, line=None) -> None:
+    """A warning as one line, ``tefcore: warning: <Category>: <message>``."""
+    text = " ".join(str(message).split())
+    print(f"tefcore: warning: {category.__name__}: {text}", file=file or sys.stderr)
 
 
 if __name__ == "__main__":

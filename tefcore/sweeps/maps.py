@@ -44,10 +44,11 @@ import numpy as np
 import pandas as pd
 from scipy.optimize import brentq
 
+from ..aero.c81.range_summary import merge_clipped
 from ..config.configuration import Config
 from ..modes.roles import FLUTTER_PARTICIPATION, flutter_root
 from ..runtime import worker_init
-from .evaluate import check_result, default_point, point_name, takes_warm_start
+from .evaluate import check_result, default_point, point_name, takes_warm_start, warn_clipped
 from .map_store import BoundaryFile, boundary_header, crossing_key
 from .sweep import SweepResult, sweep
 
@@ -63,7 +64,8 @@ class MapResult:
     x_field, y_field : str
     table : DataFrame
         One row per grid point (``x_index, y_index, x, y`` in SI,
-        ``x_value, y_value`` as given, ``status``, ``error``) with the flutter
+        ``x_value, y_value`` as given, ``status``, ``error``, ``warning``:
+        C81 table inputs clipped at the point, or None) with the flutter
         root's ``flutter_growth`` (real part, /rev), ``flutter_frequency``,
         ``flutter_share_TEF`` and ``flutter_label``, and the row's TEF branch
         ``tef_growth``, ``tef_frequency``, ``tef_certain``.  Failed points
@@ -183,7 +185,8 @@ def _row_frame(res: SweepResult, y_index: int, y_si: float, y_value) -> pd.DataF
         first = g.iloc[0]
         rec = {"x_index": int(point), "y_index": y_index, "x": first["value_si"], "y": y_si,
                "x_value": first["value"], "y_value": y_value, "status": first["status"],
-               "error": first["error"], "flutter_growth": np.nan, "flutter_frequency": np.nan,
+               "error": first["error"], "warning": first.get("warning"),
+               "flutter_growth": np.nan, "flutter_frequency": np.nan,
                "flutter_share_TEF": np.nan, "flutter_label": "", "tef_growth": np.nan,
                "tef_frequency": np.nan, "tef_certain": False}
         if first["status"] == "ok":
@@ -227,7 +230,7 @@ def _row_in_worker(cfg, x_field, x_values, point, out, resume):
     """One row of the map as a serial sweep in a worker process."""
     worker_init()
     return sweep(cfg, x_field, x_values, point=point, n_jobs=1, out=out, resume=resume,
-                 refine=False, anchor=False, progress=False)
+                 refine=False, anchor=False, progress=False, warn=False)
 
 
 def _refine_in_worker(*args):
@@ -344,11 +347,15 @@ def _run_map(cfg, x_field, x_values, y_field, y_values, point, n_jobs, backend, 
     else:
         results = [sweep(cfg_y, x_field, x_values, point=point, n_jobs=n_jobs, backend=backend,
                          client=client, out=outs[k], resume=resume, refine=False,
-                         anchor=False, progress=progress) for k, _, _, cfg_y in row_cfgs]
+                         anchor=False, progress=progress, warn=False)
+                   for k, _, _, cfg_y in row_cfgs]
     for (k, yv, y_si, _), res in zip(row_cfgs, results, strict=True):
         rows.append(res)
         frames.append(_row_frame(res, k, y_si, yv))
     table = pd.concat(frames, ignore_index=True)
+    # one warning for the map (the rows keep theirs in the 'warning' column)
+    warn_clipped(f"map of {x_field} x {y_field}", sum(r.n_clipped for r in rows), len(table),
+                 merge_clipped(r.clipped for r in rows), stacklevel=4)
     boundary = pd.DataFrame(columns=["y", "x", "direction", "x_lo", "x_hi", "converged",
                                      "error"])
     if refine_boundary:

@@ -36,6 +36,10 @@ UTF-8 JSON lines, one object per line, each line written by a single
                "damping_ratio": [...]},
      "elapsed_s": 1.23}
 
+  A point whose C81 table inputs were clipped also has ``"warning"`` (one
+  line: the evaluations clipped and the extreme inputs) and ``"clipped"``
+  (the same as data, :mod:`tefcore.aero.c81.range_summary`).
+
   ``key`` identifies the value: ``repr(float(v))`` for numbers, the
   whitespace-normalised string for ``"value unit"`` strings.  ``value`` is
   the value as given, ``value_si`` the validated field value in SI (null
@@ -331,6 +335,10 @@ def _record_problem(rec) -> str | None:
         return "'value_si' must be a number, a string or null"
     if not isinstance(rec["trim"], dict):
         return "'trim' must be a table"
+    if not isinstance(rec.get("warning", ""), str):
+        return "'warning' must be a string"
+    if not isinstance(rec.get("clipped", {}), dict):
+        return "'clipped' must be a table"
     modes = rec["modes"]
     if rec["status"] == "failed":
         return None if modes is None else "a failed point must have 'modes': null"
