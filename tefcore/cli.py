@@ -23,6 +23,7 @@ from __future__ import annotations
 import argparse
 import sys
 import textwrap
+import warnings
 from pathlib import Path
 
 import numpy as np
@@ -117,6 +118,28 @@ def cmd_fanplot(args) -> int:
     return 0
 
 
+def _real_part_text(value: float, neutral: bool) -> str:
+    """A real part as printed: "neutral" below the solver's resolution, never "-0.0000"."""
+    if neutral:
+        return "neutral"
+    return f"{value:.4f}" if abs(value) >= 5e-5 else f"{value:.2e}"
+
+
+def _modes_text(table) -> str:
+    """The modes table as ``tefcore stability`` prints it.
+
+    A root whose real part is within its error estimate (``neutral``) reads
+    "neutral" (its sign means nothing); a resolved real part too small for
+    four decimals is printed with its exponent.  The resolution columns are
+    in the CSV (``--csv``), not printed.
+    """
+    shown = table.drop(columns=["real_part_error", "neutral"], errors="ignore")
+    if "neutral" in table:
+        shown = shown.assign(real_part=[_real_part_text(v, bool(n)) for v, n in
+                                        zip(table["real_part"], table["neutral"], strict=True)])
+    return shown.to_string(index=False, float_format=lambda v: f"{v:.4f}")
+
+
 def cmd_stability(args) -> int:
     from .linear.stability import stability
 
@@ -127,7 +150,7 @@ def cmd_stability(args) -> int:
     table = res.modes
     if args.csv:
         _write_csv(table, args.csv)
-    print(table.to_string(index=False, float_format=lambda v: f"{v:.4f}"))
+    print(_modes_text(table))
     print("trim: " + ", ".join(f"{k}={v:.4g}" for k, v in res.trim.items()))
     if res.aero_modes is not None:
         am = res.aero_modes
@@ -179,60 +202,105 @@ def cmd_mechanism(args) -> int:
     return 0
 
 
-def _grid(cfg, field: str, start: str, stop: str, num: str) -> list:
+def _grid(cfg, field: str, start: str, stop: str, num: str, axis: str) -> list:
     """Evenly spaced SI values of ``field`` from ``start`` to ``stop``, ``num`` of them
-    (the units rules of ``--range``, :func:`tefcore.config.text_input.sweep_values`)."""
-    values = sweep_values(field, None, (start, stop, num))
+    (the units rules of ``--range``, :func:`tefcore.config.text_input.sweep_values`);
+    ``axis`` (``"X"``, ``"Y"``) names the arguments in messages (``X_NUM``)."""
+    names = tuple(f"{axis}_{n}" for n in ("START", "STOP", "NUM"))
+    values = sweep_values(field, None, (start, stop, num), range_names=names)
     return [float(cfg.with_overrides({field: v}).get(field)) for v in values]
 
 
+#: A map whose estimated time exceeds this [s] prints the estimate before it starts.
+ESTIMATE_ABOVE_S = 120.0
+#: Maps of fewer points are not timed (timing costs one point; ~1 s at the defaults).
+TIMED_FROM_POINTS = 20
+
+
+def _map_estimate(cfg, args, xs, ys) -> str | None:
+    """The map's expected time from one point timed, when it exceeds :data:`ESTIMATE_ABOVE_S`."""
+    import os
+    import time
+
+    from .sweeps.evaluate import default_point
+
+    n = len(xs) * len(ys)
+    if n < TIMED_FROM_POINTS:
+        return None
+    start = time.perf_counter()
+    try:
+        default_point()(cfg.with_overrides({args.x_field: xs[0], args.y_field: ys[0]}))
+    except Exception:  # a failing point costs little and the map records it
+        return None
+    each = time.perf_counter() - start
+    workers = min(n, (os.cpu_count() or 1) if args.jobs < 0 else args.jobs)
+    seconds = each * n / max(1, workers)
+    if seconds <= ESTIMATE_ABOVE_S:
+        return None
+    span = (f"{seconds / 3600:.1f} h" if seconds >= 5400 else f"{seconds / 60:.0f} min")
+    return (f"tefcore map: {len(xs)} x {len(ys)} = {n} points at about {each:.2g} s each (one "
+            f"point timed, cold) on {workers} process{'es' if workers > 1 else ''}: about "
+            f"{span} before the boundary is refined; Ctrl-C stops it (with --out it resumes)")
+
+
+def _map_plot(res, cfg, path) -> None:
+    """The map's PNG, axes labelled as in the notebooks (``paper.plotting.field_axis``)."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from .paper.plotting import field_axis
+
+    (x_label, x_unit), (y_label, y_unit) = field_axis(res.x_field), field_axis(res.y_field)
+    ax = res.plot(x_unit=x_unit, x_label=x_label, y_unit=y_unit, y_label=y_label)
+    ax.set_title(f"{cfg.name}: flutter root growth", fontsize="medium")
+    with atomic_output(path, "wb", what="--png") as f:
+        ax.figure.savefig(f, format="png", dpi=110, bbox_inches="tight",
+                          metadata={"Software": None})
+
+
 def cmd_map(args) -> int:
-    from .sweeps.maps import stability_map
+    from .sweeps import maps
 
     cfg = _load(args)
-    xs = _grid(cfg, args.x_field, *args.x_range)
-    ys = _grid(cfg, args.y_field, *args.y_range)
-    check_output_file(args.csv, "--csv")
-    for path, what in ((args.png, "--png"), (args.netcdf, "--netcdf")):
-        if path:
-            check_output_file(path, what)
+    xs = _grid(cfg, args.x_field, args.x_start, args.x_stop, args.x_num, "X")
+    ys = _grid(cfg, args.y_field, args.y_start, args.y_stop, args.y_num, "Y")
+    # the table is written when asked for, or when no other output is
+    csv = args.csv or (None if args.png or args.netcdf else "map.csv")
+    outputs = [(p, w) for p, w in ((csv, "--csv"), (args.netcdf, "--netcdf"),
+                                   (args.png, "--png")) if p]
+    for path, what in outputs:
+        check_output_file(path, what)
     if args.out:
         from .safe_io import check_output_folder
 
         check_output_folder(args.out, "--out", create=True)
+    if not args.scheduler and (estimate := _map_estimate(cfg, args, xs, ys)):
+        print(estimate, file=sys.stderr, flush=True)
     client = None
     if args.scheduler:
         from distributed import Client
 
         client = Client(args.scheduler)
     try:
-        res = stability_map(cfg, args.x_field, xs, args.y_field, ys, n_jobs=args.jobs,
-                            backend="dask" if client is not None else "joblib", client=client,
-                            out=args.out, refine_boundary=not args.no_refine,
-                            progress=False if args.quiet else None)
+        res = maps.stability_map(cfg, args.x_field, xs, args.y_field, ys, n_jobs=args.jobs,
+                                 backend="dask" if client is not None else "joblib",
+                                 client=client, out=args.out,
+                                 refine_boundary=not args.no_refine,
+                                 progress=False if args.quiet else None)
     finally:
         if client is not None:
             client.close()
-    with atomic_output(args.csv, newline="", what="--csv") as f:
-        res.table.to_csv(f, index=False, float_format="%.10g")
-    written = [args.csv]
+    if csv:
+        with atomic_output(csv, newline="", what="--csv") as f:
+            res.table.to_csv(f, index=False, float_format="%.10g")
     if args.netcdf:
         with atomic_output(args.netcdf, "wb", what="--netcdf") as f:
             f.write(res.dataset.to_netcdf(engine="scipy"))
-        written.append(args.netcdf)
     if args.png:
-        import matplotlib
-
-        matplotlib.use("Agg")
-        ax = res.plot()
-        ax.set_title(f"{cfg.name}: flutter root growth", fontsize="medium")
-        with atomic_output(args.png, "wb", what="--png") as f:
-            ax.figure.savefig(f, format="png", dpi=110, bbox_inches="tight",
-                              metadata={"Software": None})
-        written.append(args.png)
+        _map_plot(res, cfg, args.png)
     n_bad = int((res.table["status"] != "ok").sum())
-    print(f"wrote {', '.join(written)}: {len(xs)} x {len(ys)} points, {n_bad} failed, "
-          f"{len(res.boundary)} boundary points")
+    print(f"wrote {', '.join(p for p, _ in outputs)}: {len(xs)} x {len(ys)} points, "
+          f"{n_bad} failed, {len(res.boundary)} boundary points")
     return 1 if n_bad else 0
 
 
@@ -254,8 +322,12 @@ def cmd_c81_check(args) -> int:
     for f in args.files:
         try:
             deck = read_c81(f)
-        except (C81FormatError, OSError) as exc:
+        except C81FormatError as exc:       # names the file, line and column
             print(exc, file=sys.stderr)
+            status = 1
+            continue
+        except OSError as exc:              # a folder, a dangling link, no permission
+            print(f"{f}: cannot read the C81 deck ({exc.strerror or exc})", file=sys.stderr)
             status = 1
             continue
         kind = f"flap deck, {deck.delta.size} deltas" if deck.is_flap else "blade deck"
@@ -263,6 +335,23 @@ def cmd_c81_check(args) -> int:
                           for c in deck.coefficients)
         print(f"{f}: {deck.name!r} ({kind}; alpha x Mach: {sizes})")
     return status
+
+
+class _Parser(argparse.ArgumentParser):
+    """An argument parser whose usage errors are one line (:class:`~tefcore.errors.UsageError`).
+
+    argparse prints the whole usage and exits; the command prints one line
+    (``tefcore: error: map: the following arguments are required: Y_NUM (see
+    'tefcore map --help')``) with status 2 (:mod:`tefcore.cli_errors`).
+    Subcommands' parsers are of the same class (argparse's ``parser_class``).
+    """
+
+    def error(self, message: str):
+        from .errors import UsageError
+
+        command = self.prog.removeprefix("tefcore").strip()
+        where = f"{command}: " if command else ""
+        raise UsageError(f"{where}{message} (see '{self.prog} --help')")
 
 
 class _HelpFormatter(argparse.RawDescriptionHelpFormatter):
@@ -279,13 +368,6 @@ class _HelpFormatter(argparse.RawDescriptionHelpFormatter):
             for name in action.choices:
                 self._action_max_length = max(self._action_max_length,
                                               len(name) + self._current_indent + 4)
-
-    def _format_action_invocation(self, action: argparse.Action) -> str:
-        # argparse cannot show a positional whose metavar is a tuple
-        # ("X_START X_STOP X_NUM"): it fails with a ValueError (bpo-14074)
-        if not action.option_strings and isinstance(action.metavar, tuple):
-            return " ".join(action.metavar)
-        return super()._format_action_invocation(action)
 
     def _fill_text(self, text: str, width: int, indent: str) -> str:
         # paragraphs (blank-line separated) are filled; lines indented by two
@@ -321,8 +403,8 @@ def build_parser() -> argparse.ArgumentParser:
         With one subparser per subcommand; each sets ``func``, the function
         that runs it (``func(args) -> exit status``).
     """
-    parser = argparse.ArgumentParser(prog="tefcore", description=DESCRIPTION, epilog=EPILOG,
-                                     formatter_class=_HelpFormatter)
+    parser = _Parser(prog="tefcore", description=DESCRIPTION, epilog=EPILOG,
+                     formatter_class=_HelpFormatter)
     parser.add_argument("--version", action="version", version=f"tefcore {__version__}")
     sub = parser.add_subparsers(dest="command", required=True, metavar="SUBCOMMAND",
                                 title="subcommands")
@@ -373,15 +455,20 @@ def build_parser() -> argparse.ArgumentParser:
              "(SI or fractions) or 'value unit' strings.", cmd_map,
              epilog="example:\n  tefcore map flap.cg_offset 0 0.3 7 flap.overhang 0 0.4 5 "
                     "--png map.png")
+    # one positional per item: argparse cannot format the usage of a positional
+    # with a tuple metavar (nargs=3), it failed with a TypeError (issue 24)
     p.add_argument("x_field", help="dotted field on the x axis, e.g. flap.cg_offset")
-    p.add_argument("x_range", nargs=3, metavar=("X_START", "X_STOP", "X_NUM"),
-                   help="NUM evenly spaced x values from START to STOP")
+    p.add_argument("x_start", metavar="X_START", help="first x value (a number or 'value unit')")
+    p.add_argument("x_stop", metavar="X_STOP", help="last x value")
+    p.add_argument("x_num", metavar="X_NUM", help="number of evenly spaced x values")
     p.add_argument("y_field", help="dotted field on the y axis, e.g. flap.overhang")
-    p.add_argument("y_range", nargs=3, metavar=("Y_START", "Y_STOP", "Y_NUM"),
-                   help="NUM evenly spaced y values from START to STOP")
-    p.add_argument("--csv", default="map.csv", help="tidy table (default: map.csv)")
-    p.add_argument("--png", default=None, help="also draw the map to this image")
-    p.add_argument("--netcdf", default=None, help="also write the xarray Dataset (netCDF3)")
+    p.add_argument("y_start", metavar="Y_START", help="first y value")
+    p.add_argument("y_stop", metavar="Y_STOP", help="last y value")
+    p.add_argument("y_num", metavar="Y_NUM", help="number of evenly spaced y values")
+    p.add_argument("--csv", default=None,
+                   help="tidy table (default: map.csv when neither --png nor --netcdf is given)")
+    p.add_argument("--png", default=None, help="draw the map to this image")
+    p.add_argument("--netcdf", default=None, help="write the xarray Dataset (netCDF3)")
     p.add_argument("--out", default=None, help="folder for resumable sweep files")
     p.add_argument("--jobs", type=int, default=1, help="parallel processes (joblib)")
     p.add_argument("--scheduler", default=None, metavar="ADDRESS",
@@ -439,9 +526,17 @@ def main(argv: list[str] | None = None) -> int:
         from .runtime import apply_defaults
 
         apply_defaults()  # the command owns its process (tefcore.runtime)
-        return args.func(args)
+        with warnings.catch_warnings():
+            warnings.showwarning = _show_warning
+            return args.func(args)
 
     return run_command(body, prog="tefcore")
+
+
+def _show_warning(message, category, filename, lineno, file=None, line=None) -> None:
+    """A warning as one line, ``tefcore: warning: <Category>: <message>``."""
+    text = " ".join(str(message).split())
+    print(f"tefcore: warning: {category.__name__}: {text}", file=file or sys.stderr)
 
 
 if __name__ == "__main__":

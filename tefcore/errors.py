@@ -15,6 +15,8 @@ Every error tefcore raises on purpose is one of
   could not be computed to the requested accuracy; its subclass
   ``FloquetOverflowError`` is also a ``ValueError``) and
   :class:`OutputError` (an output destination is unusable or locked);
+* :class:`UsageError` (a ``ValueError``) -- the command line's arguments do not
+  parse (a missing or extra argument), with the subcommand and its help;
 * ``OSError`` from the file system (a missing configuration file, a full
   disk), with the file name.
 
@@ -31,7 +33,8 @@ Examples
 
 from __future__ import annotations
 
-__all__ = ["EXPECTED_ERRORS", "OutputError", "SweepFileError", "TefcoreError", "error_text"]
+__all__ = ["EXPECTED_ERRORS", "OutputError", "SweepFileError", "TefcoreError", "UsageError",
+           "error_text"]
 
 #: Longest error message stored with a failed result (a longer one is cut, saying so).
 MAX_ERROR_TEXT = 500
@@ -47,6 +50,10 @@ class SweepFileError(TefcoreError, ValueError):
 
 class OutputError(TefcoreError, OSError):
     """An output destination that cannot be written safely (checked before computing)."""
+
+
+class UsageError(TefcoreError, ValueError):
+    """Command-line arguments that do not parse: missing, extra or malformed."""
 
 
 #: The exception types a caller of tefcore's parsers and validators should expect.

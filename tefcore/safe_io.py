@@ -64,6 +64,7 @@ __all__ = [
     "check_output_file",
     "check_output_folder",
     "open_append",
+    "write_error",
 ]
 
 
@@ -143,6 +144,40 @@ def check_output_file(path, what: str = "output file", *, create_folder: bool = 
     return path
 
 
+def write_error(err: OSError, what: str, path, doing: str) -> OutputError:
+    """An :class:`~tefcore.errors.OutputError` naming the file and what failed.
+
+    For the OS errors of writing that carry no file name (a full disk,
+    ``[Errno 28] No space left on device``, a quota, a file size limit).
+
+    Parameters
+    ----------
+    err : OSError
+        The error.
+    what : str
+        What the file is (e.g. ``"--csv"``, ``"sweep file"``).
+    path : path-like
+        The file.
+    doing : str
+        What was being done (``"cannot write it"``).
+
+    Returns
+    -------
+    OutputError
+
+    Examples
+    --------
+    >>> import errno
+    >>> print(write_error(OSError(errno.ENOSPC, "No space left on device"), "--csv", "t.csv",
+    ...                   "cannot write it"))
+    --csv t.csv: cannot write it (No space left on device); the file as it was before is unchanged
+    """
+    reason = err.strerror or str(err) or type(err).__name__
+    kept = ("the records written before are kept" if "append" in doing
+            else "the file as it was before is unchanged")
+    return OutputError(f"{what} {path}: {doing} ({reason}); {kept}")
+
+
 def _file_mode(path: Path) -> int:
     """Permissions for the new file: those of the file replaced, else 0o666 & ~umask."""
     try:
@@ -203,7 +238,11 @@ def atomic_output(path, mode: str = "w", *, encoding: str | None = "utf-8",
     """
     path = check_output_file(path, what)
     binary = "b" in mode
-    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
+    try:
+        fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
+    except OSError as err:
+        raise write_error(err, what, path, "cannot create a temporary file beside it") \
+            from None
     try:
         with os.fdopen(fd, mode, encoding=None if binary else encoding,
                        newline=None if binary else newline) as f:
@@ -212,9 +251,13 @@ def atomic_output(path, mode: str = "w", *, encoding: str | None = "utf-8",
             os.fsync(f.fileno())
         os.chmod(tmp, _file_mode(path))
         os.replace(tmp, path)
-    except BaseException:
+    except BaseException as err:
         with contextlib.suppress(OSError):
             os.unlink(tmp)
+        if isinstance(err, OSError) and not isinstance(err, OutputError) \
+                and err.filename is None:
+            # a full disk (ENOSPC), a quota, a file size limit: errors without a path
+            raise write_error(err, what, path, "cannot write it") from None
         raise
     _fsync_folder(path.parent)
 

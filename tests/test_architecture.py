@@ -105,9 +105,6 @@ LONG_FUNCTIONS: dict[str, str] = {
     "tefcore.structure.blade.multiple_load_path_model":
         "declarative: the hub's components, joints and couplings listed in the order of "
         "docs/theory.md 2.5a",
-    "tefcore.sweeps.maps._boundary":
-        "the flutter boundary between two grid points: bracket, brentq with warm "
-        "starts, and each way the bracket can fail, recorded",
     "tefcore.sweeps.store._record_problem":
         "one check per field of a stored record, each naming the field",
     "tefcore.trimming.trim._jacobian":

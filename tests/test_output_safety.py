@@ -98,15 +98,8 @@ def test_output_destinations_are_checked(tmp_path, make, match):
 # ------------------------------------------------------------------ reproduce (finding 3)
 
 
-@pytest.fixture
-def fake_repo(tmp_path, monkeypatch):
-    """A folder with a source notebook, and reproduce's computing replaced by fakes."""
-    repo = tmp_path / "repo"
-    nb = repo / "notebooks"
-    nb.mkdir(parents=True)
-    src = nb / "04_cg_offset.ipynb"
-    src.write_text("SOURCE NOTEBOOK")
-
+def _fake_reproduce(monkeypatch):
+    """reproduce's computing replaced by fakes that write what it would write."""
     def fake_run(out, params, names, progress=True, nb_dir=None, kernel_name="python3",
                  jobs=None):
         (out / "notebooks").mkdir(parents=True, exist_ok=True)
@@ -116,18 +109,82 @@ def fake_repo(tmp_path, monkeypatch):
 
     monkeypatch.setattr(rp, "run_notebooks", fake_run)
     monkeypatch.setattr(rp, "baseline_blade", lambda out, cfg=None: None)
+
+
+@pytest.fixture
+def fake_repo(tmp_path, monkeypatch):
+    """A tefcore source checkout as it is laid out (pyproject.toml naming the project,
+    the package, the notebooks in tefcore/paper/notebooks/), as the working folder;
+    reproduce's computing replaced by fakes."""
+    repo = tmp_path / "repo"
+    nb = repo / "tefcore" / "paper" / "notebooks"
+    nb.mkdir(parents=True)
+    (repo / "tefcore" / "__init__.py").write_text("")
+    (repo / "pyproject.toml").write_text('[project]\nname = "tefcore"\nversion = "0.1.0"\n')
+    src = nb / "04_cg_offset.ipynb"
+    src.write_text("SOURCE NOTEBOOK")
+    _fake_reproduce(monkeypatch)
     monkeypatch.setenv("TEFCORE_NOTEBOOKS", str(nb))
     monkeypatch.chdir(repo)
     return repo, src
 
 
-def test_reproduce_out_dot_does_not_overwrite_the_source_notebooks(fake_repo):
-    """Finding 3: ``tefcore reproduce --out .`` from the repository root rewrote notebooks/."""
+def _tree(folder: Path) -> list[str]:
+    return sorted(str(p.relative_to(folder)) for p in folder.rglob("*"))
+
+
+@pytest.mark.parametrize("out", [".", "output", "tefcore/paper/notebooks", "tefcore",
+                                 "tefcore/paper/notebooks/.."])
+def test_reproduce_refuses_any_folder_in_a_source_checkout(fake_repo, out):
+    """Issue 24, item 2: ``--out .`` in the repository root was accepted (8 entries written):
+    the check looked for tracked files, and none of the output names are tracked since the
+    notebooks moved to tefcore/paper/notebooks/."""
     repo, src = fake_repo
-    with pytest.raises(OSError, match="overwrite the source notebooks"):
-        rp.reproduce(Path("."), notebooks=["04"], progress=False)
+    before = _tree(repo)
+    with pytest.raises(OSError, match=r"inside the tefcore source checkout .*repo"):
+        rp.reproduce(Path(out), notebooks=["04"], progress=False)
     assert src.read_text() == "SOURCE NOTEBOOK"
-    assert not (repo / "report.md").exists()           # refused before doing anything
+    assert _tree(repo) == before                        # refused before writing anything
+
+
+def test_a_checkout_is_found_by_its_package_without_a_pyproject(fake_repo):
+    repo, _ = fake_repo
+    (repo / "pyproject.toml").unlink()
+    with pytest.raises(OSError, match="inside the tefcore source checkout"):
+        rp.check_reproduce_folder(repo / "output", ["04_cg_offset"])
+
+
+def test_another_project_is_not_a_tefcore_checkout(tmp_path, monkeypatch):
+    _fake_reproduce(monkeypatch)
+    other = tmp_path / "other"
+    other.mkdir()
+    (other / "pyproject.toml").write_text('[project]\nname = "not-tefcore"\n')
+    assert rp.check_reproduce_folder(other / "out", ["04_cg_offset"]) == other / "out"
+    (other / "pyproject.toml").write_text("[project\n")     # unreadable: not tefcore's either
+    assert rp.check_reproduce_folder(other / "out", ["04_cg_offset"]) == other / "out"
+
+
+def test_reproduce_never_writes_over_copied_source_notebooks(tmp_path, monkeypatch):
+    # notebooks copied for editing (tefcore notebooks --copy), outside any checkout
+    _fake_reproduce(monkeypatch)
+    nb = tmp_path / "mine" / "notebooks"
+    nb.mkdir(parents=True)
+    (nb / "04_cg_offset.ipynb").write_text("MY NOTEBOOK")
+    monkeypatch.setenv("TEFCORE_NOTEBOOKS", str(nb))
+    with pytest.raises(OSError, match="overwrite the source notebooks"):
+        rp.reproduce(tmp_path / "mine", notebooks=["04"], progress=False)
+    assert (nb / "04_cg_offset.ipynb").read_text() == "MY NOTEBOOK"
+
+
+def test_reproduce_refuses_the_filesystem_root(capsys):
+    """Issue 24, item 2: ``--out /`` was accepted."""
+    from tefcore.cli import main
+
+    with pytest.raises(OSError, match="filesystem root"):
+        rp.check_reproduce_folder(Path("/"), ["04_cg_offset"])
+    assert main(["reproduce", "--out", "/", "--only", "04"]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("tefcore: error: reproduce --out /: ") and err.count("\n") == 1
 
 
 @pytest.mark.skipif(shutil.which("git") is None, reason="needs git")

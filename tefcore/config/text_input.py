@@ -44,7 +44,8 @@ import numpy as np
 from .configuration import SECTIONS, resolve_field
 from .settings import Param, coerce_value
 
-__all__ = ["MAX_SWEEP_POINTS", "field_param", "parse_overrides", "require_unit", "sweep_values"]
+__all__ = ["MAX_SWEEP_POINTS", "RANGE_NAMES", "field_param", "parse_overrides", "require_unit",
+           "sweep_values"]
 
 #: Most points ``--range`` may ask for.
 MAX_SWEEP_POINTS = 100_000
@@ -192,8 +193,13 @@ def _split_quantity(text: str, p: Param, dotted: str) -> tuple[float, str]:
     return number, unit
 
 
+#: How ``tefcore sweep`` names the items of ``--range`` in messages.
+RANGE_NAMES = ("--range START", "--range STOP", "--range NUM")
+
+
 def sweep_values(parameter: str, values: Sequence[str] | None = None,
-                 range_: Sequence[str] | None = None) -> list:
+                 range_: Sequence[str] | None = None,
+                 range_names: Sequence[str] = RANGE_NAMES) -> list:
     """The values of ``tefcore sweep`` from ``--values`` or ``--range START STOP NUM``.
 
     ``--values`` items are numbers (dimensionless fields), ``"value unit"``
@@ -209,6 +215,9 @@ def sweep_values(parameter: str, values: Sequence[str] | None = None,
         The ``--values`` items.
     range_ : sequence of str, optional
         ``(START, STOP, NUM)`` of ``--range``.
+    range_names : sequence of str, optional
+        What the messages call START, STOP and NUM (``tefcore map``:
+        ``X_START``, ...); default :data:`RANGE_NAMES`.
 
     Returns
     -------
@@ -224,14 +233,15 @@ def sweep_values(parameter: str, values: Sequence[str] | None = None,
     p = field_param(parameter)
     if range_ is not None:
         if p is None or p.kind not in ("float", "int"):
-            raise ValueError(f"--range needs a numeric parameter; {parameter} is not one")
+            raise ValueError(f"{', '.join(range_names)}: a range needs a numeric parameter; "
+                             f"{parameter} is not one")
         start, stop, num = range_
         try:
             n = int(str(num).strip())
         except ValueError:
             n = 0
         if not 1 <= n <= MAX_SWEEP_POINTS:
-            raise ValueError(f"--range NUM must be an integer in [1, {MAX_SWEEP_POINTS}], "
+            raise ValueError(f"{range_names[2]} must be an integer in [1, {MAX_SWEEP_POINTS}], "
                              f"got {num!r}")
         (a, ua), (b, ub) = (_split_quantity(x, p, parameter) for x in (start, stop))
         if ua and ua == ub:

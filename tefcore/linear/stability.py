@@ -21,6 +21,7 @@ import numpy as np
 import pandas as pd
 import scipy.optimize
 
+from ..aero.c81.range_summary import summarised_range_warnings
 from ..floquet.second_order import STATE_MIN_RATE, SecondOrderSystem
 from ..floquet.second_order import state_matrix as state_matrix
 from ..model.coupled import coupled_model
@@ -169,7 +170,20 @@ def stability(cfg, *, trim_result: TrimResult | None = None, n_steps: int | None
         ``share_flap, share_lag, share_torsion, share_axial, share_TEF``
         (participation by kind of coordinate, summing to 1) --
         ``real_part`` is the damping rate per radian of azimuth (negative:
-        stable).
+        stable) -- and ``real_part_error``, the solver's resolution of the
+        real part: the Floquet error estimate of the exponent
+        (:func:`tefcore.floquet.floquet_modes`: step doubling plus the
+        round-off bound of the lift; in hover the eigenvalue's round-off bound
+        from its condition number), and ``neutral``, True where
+        ``|real_part| <= real_part_error``: a sign below the resolution that
+        means nothing (e.g. a lightly coupled axial root).
+
+    Warns
+    -----
+    tefcore.aero.c81.C81RangeWarning
+        Once for the point when C81 table inputs were clipped, with the
+        number of evaluations clipped and the extreme inputs
+        (:mod:`tefcore.aero.c81.range_summary`).
 
     Raises
     ------
@@ -199,6 +213,13 @@ def stability(cfg, *, trim_result: TrimResult | None = None, n_steps: int | None
     >>> bool(tef["real_part"] < 0), bool(tef["frequency_per_rev"] > 12)
     (True, True)
     """
+    # one C81 range warning for the point, not one per airload evaluation
+    with summarised_range_warnings(stacklevel=4):
+        return _trimmed_stability(cfg, trim_result, n_steps, remode, model, warm_start)
+
+
+def _trimmed_stability(cfg, trim_result, n_steps, remode, model, warm_start):
+    """:func:`stability`'s trim (from the warm start or the model given) and modes."""
     if model is not None:
         if model.cfg != cfg:
             raise ValueError("model was built for another configuration than cfg")
@@ -352,6 +373,11 @@ def _modes_table(model, keep, periodic):
     for kind in SHARE_KINDS:
         rows = [i for i, k in enumerate(kinds) if k == kind]
         columns[f"share_{kind}"] = frac[rows].sum(axis=0) if rows else np.zeros(len(labels))
+    # the resolution of each real part: its error estimate (per rad of psi, as real_part)
+    err = (np.full(len(labels), np.nan) if keep.error_estimates is None
+           else np.asarray(keep.error_estimates).real)
+    columns["real_part_error"] = err
+    columns["neutral"] = np.abs(keep.damping_rates) <= err
     table = pd.DataFrame(columns)          # one construction, not column by column
     table.insert(2, "dominant", table["label"])
     return table, shapes, frac

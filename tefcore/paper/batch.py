@@ -53,8 +53,10 @@ from ..safe_io import FileLock, check_output_file, check_output_folder
 from .batch_report import write_comparison
 from .batch_spec import RunSpec, load_batch
 from .batch_state import plan_runs, read_record, write_record
+from .kernel_guard import stop_notebooks
 from .notebook_files import NOTEBOOKS, notebooks_dir
 from .reproduce import (
+    BASELINE_NOTEBOOK,
     KERNEL_NAME,
     NotebookRun,
     baseline_blade,
@@ -210,7 +212,8 @@ def _finish_run(out: Path, spec: RunSpec, params: dict, runs: list[NotebookRun],
     folder = out / spec.name
     errors = [f"{r.name}: {r.error}" for r in runs if r.status != "ok"]
     try:
-        checks = baseline_blade(folder, _blade_config(spec, params))
+        checks = (baseline_blade(folder, _blade_config(spec, params))
+                  if BASELINE_NOTEBOOK in spec.notebooks else None)
         done = finish_report(folder, runs, spec.notebooks, checks,
                              title=f"tefcore batch run {spec.name}", up="../index.html")
         outcome.claims = {"passed": int(done["passed"]), "total": int(done["total"]),
@@ -342,8 +345,8 @@ def batch(runs_file, out, *, jobs: int | None = None, force: bool = False, only=
                     outcome.seconds = sum(r.seconds for r in runs)
                     bar.write(f"{name:40s} {outcome.status:6s} {outcome.seconds:6.1f} s "
                               f"(notebook time)  {outcome.error}")
-            except BaseException:
-                pool.shutdown(wait=False, cancel_futures=True)
+            except BaseException:   # Ctrl-C: cancel the rest, stop the running kernels
+                stop_notebooks(futures)
                 raise
         done = [outcomes[p.spec.name] for p in plans]
         paths = write_comparison(out, done)

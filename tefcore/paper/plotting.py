@@ -29,8 +29,9 @@ import pandas as pd
 from ..safe_io import atomic_output, atomic_write_text
 from ..units import from_si
 
-__all__ = ["AXES", "MEASURES", "PAPER_MODES", "STYLE", "curves", "deterministic_matplotlib",
-           "flutter_legend", "legend_below", "locus_figure",
+__all__ = ["AXES", "FIELD_AXES", "MEASURES", "PAPER_MODES", "STYLE", "curves",
+           "deterministic_matplotlib", "field_axis", "flutter_legend",
+           "legend_below", "locus_figure",
            "plot_modes", "plot_participation", "plot_root_locus", "savefig", "split_value",
            "x_values"]
 
@@ -75,22 +76,78 @@ def _degrees(v):
     return np.rad2deg(np.asarray(v, float))
 
 
+#: Axis of a configuration field in the figures and maps: (label, unit shown or None
+#: for the stored value); the notebooks' labels, reused by ``tefcore map``
+#: (:func:`field_axis`).
+FIELD_AXES = {
+    "flight.collective": ("collective pitch θ₀ [deg]", "deg"),
+    "flap.overhang": ("flap overhang c_b/c_f", None),
+    "flap.cg_offset": ("flap CG offset c_cg/c_f (positive aft)", None),
+    "hub.pitch_link_stiffness": ("pitch link stiffness [lb/in]", "lb/in"),
+    "blade.gj_scale": ("torsional stiffness GJ / baseline GJ", None),
+    "actuator.stiffness": ("actuator stiffness k_a [ft-lb/rad]", "ft-lbf/rad"),
+    "flap.midspan": ("flap midspan location r/R", None),
+    "flap.span": ("flap length / R", None),
+    "flap.chord_ratio": ("flap chord c_f/c", None),
+    "flight.advance_ratio": ("advance ratio μ", None),
+}
+
+
+def field_axis(field: str) -> tuple[str, str | None]:
+    """Axis label and display unit of a configuration field, as the notebooks show it.
+
+    The fields of the paper's figures have the notebooks' labels
+    (:data:`FIELD_AXES`); any other field is named by its description, its
+    dotted name and its SI unit.
+
+    Parameters
+    ----------
+    field : str
+        A dotted configuration field.
+
+    Returns
+    -------
+    label : str
+    unit : str or None
+        The unit to show values in (None: the stored value).
+
+    Raises
+    ------
+    ValueError
+        For an unknown field.
+
+    Examples
+    --------
+    >>> field_axis("actuator.stiffness")
+    ('actuator stiffness k_a [ft-lb/rad]', 'ft-lbf/rad')
+    >>> field_axis("rotor.radius")
+    ('Rotor radius R (rotor.radius) [m]', None)
+    """
+    if field in FIELD_AXES:
+        return FIELD_AXES[field]
+    from ..config.text_input import field_param
+
+    p = field_param(field)
+    doc = p.doc.rstrip(".") if p is not None else field
+    return f"{doc} ({field})" + (f" [{p.unit}]" if p is not None and p.unit else ""), None
+
+
 #: x axis per figure: (label, function of the table's ``value`` column or None)
 AXES = {
-    "fig3": ("collective pitch θ₀ [deg]", _degrees),
-    "fig4": ("collective pitch θ₀ [deg]", _degrees),
-    "fig8": ("flap overhang c_b/c_f", None),
-    "fig9": ("flap CG offset c_cg/c_f (positive aft)", None),
-    "fig10": ("pitch link stiffness [lb/in]", None),
-    "fig11": ("torsional stiffness GJ / baseline GJ", None),
+    "fig3": (FIELD_AXES["flight.collective"][0], _degrees),
+    "fig4": (FIELD_AXES["flight.collective"][0], _degrees),
+    "fig8": (FIELD_AXES["flap.overhang"][0], None),
+    "fig9": (FIELD_AXES["flap.cg_offset"][0], None),
+    "fig10": (FIELD_AXES["hub.pitch_link_stiffness"][0], None),
+    "fig11": (FIELD_AXES["blade.gj_scale"][0], None),
     "fig12": ("actuator stiffness / baseline (81.52 ft-lb/rad)",
               lambda v: np.array([split_value(s)[0] for s in v]) / 81.52),
-    "fig13": ("flap midspan location r/R", None),
-    "fig14": ("flap length / R", None),
-    "fig15": ("flap chord c_f/c", None),
-    "fig16a": ("collective pitch θ₀ [deg]", _degrees),
-    "fig16b": ("collective pitch θ₀ [deg]", _degrees),
-    "fig17": ("advance ratio μ", None),
+    "fig13": (FIELD_AXES["flap.midspan"][0], None),
+    "fig14": (FIELD_AXES["flap.span"][0], None),
+    "fig15": (FIELD_AXES["flap.chord_ratio"][0], None),
+    "fig16a": (FIELD_AXES["flight.collective"][0], _degrees),
+    "fig16b": (FIELD_AXES["flight.collective"][0], _degrees),
+    "fig17": (FIELD_AXES["flight.advance_ratio"][0], None),
 }
 
 #: modes shown in the paper's damping panels

@@ -12,6 +12,7 @@ Output layout (``--out OUT``)::
 
     OUT/report.md, OUT/report.html, OUT/claims.csv
     OUT/mdart_modes.csv, OUT/mdart_frequency_checks.csv, OUT/mdart_fanplot.png
+                                      with notebook 01 (the baseline blade) only
     OUT/notebooks/<name>.ipynb, OUT/notebooks/<name>.html   executed notebooks
     OUT/<name>/                       each notebook's CSVs, PNGs (+ JSON captions), claims.csv
 
@@ -33,6 +34,7 @@ import pandas as pd
 
 from ..errors import OutputError, TefcoreError
 from ..safe_io import atomic_output, atomic_write_text, check_output_file, check_output_folder
+from .kernel_guard import stop_notebooks
 from .notebook_files import (
     NOTEBOOK_FIGURES,
     NOTEBOOKS,
@@ -48,12 +50,15 @@ from .report import build_report, write_report
 from .run_params import merge_params
 from .validation import claims_score, worse_than_recorded
 
-__all__ = ["KERNEL_NAME", "NotebookRun", "ReproductionError", "baseline_blade",
+__all__ = ["BASELINE_NOTEBOOK", "KERNEL_NAME", "NotebookRun", "ReproductionError", "baseline_blade",
            "check_reference_data", "check_reproduce_folder", "check_tools", "collect_claims",
            "ensure_kernel", "execute_notebook", "finish_report", "prepare_params",
-           "regressions", "reproduce", "run_notebooks", "score"]
+           "regressions", "reproduce", "run_notebooks", "score", "source_checkout"]
 
 KERNEL_NAME = "python3"
+#: The notebook whose run also writes the baseline blade's files at the top of the
+#: output folder (:func:`baseline_blade`): the blade's correlation.
+BASELINE_NOTEBOOK = "01_baseline_mdart_correlation"
 #: What to install when the notebook tools are missing.
 INSTALL_HINT = 'python -m pip install "tefcore[notebooks]"'
 
@@ -237,15 +242,19 @@ def run_notebooks(out: Path, params: dict, names=NOTEBOOKS, progress: bool = Tru
             tqdm(total=len(names), desc="notebooks", unit="nb", disable=not progress,
                  file=sys.stderr) as bar:
         futures = {}
-        for name in names:
-            p = dict(params.get(name, {}))
-            p["output_dir"] = str((out / name).resolve())
-            futures[pool.submit(execute_notebook, name, nb_dir / f"{name}.ipynb", out, p,
-                                kernel_name)] = name
-        for fut in as_completed(futures):
-            runs[futures[fut]] = fut.result()
-            bar.set_postfix_str(futures[fut])
-            bar.update()
+        try:
+            for name in names:
+                p = dict(params.get(name, {}))
+                p["output_dir"] = str((out / name).resolve())
+                futures[pool.submit(execute_notebook, name, nb_dir / f"{name}.ipynb", out, p,
+                                    kernel_name)] = name
+            for fut in as_completed(futures):
+                runs[futures[fut]] = fut.result()
+                bar.set_postfix_str(futures[fut])
+                bar.update()
+        except BaseException:        # Ctrl-C: the pool would wait for the running notebooks
+            stop_notebooks(futures)
+            raise
     return [runs[n] for n in names]
 
 
@@ -369,15 +378,53 @@ def _tracked_files(paths: list[Path]) -> list[str]:
     return [f for f in listed.stdout.split("\0") if f] if listed.returncode == 0 else []
 
 
+def _names_tefcore(pyproject: Path) -> bool:
+    """Whether `pyproject` is a readable ``pyproject.toml`` whose project is tefcore."""
+    import tomllib
+
+    try:
+        name = tomllib.loads(pyproject.read_text(encoding="utf-8"))["project"]["name"]
+    except (OSError, UnicodeDecodeError, tomllib.TOMLDecodeError, KeyError, TypeError):
+        return False
+    return isinstance(name, str) and name.strip().lower().replace("_", "-") == "tefcore"
+
+
+def source_checkout(folder) -> Path | None:
+    """The tefcore source checkout (or installed package's folder) `folder` is in, or None.
+
+    Walks up from `folder` (resolved) to the filesystem root: a folder is a
+    checkout when its ``pyproject.toml`` names the project ``tefcore``, or
+    when it holds the package (``tefcore/__init__.py`` beside
+    ``tefcore/paper/``, as in a checkout or an installation).
+
+    Parameters
+    ----------
+    folder : path
+        A folder (it need not exist).
+
+    Returns
+    -------
+    pathlib.Path or None
+    """
+    folder = Path(folder).resolve()
+    for above in (folder, *folder.parents):
+        package = above / "tefcore"
+        if _names_tefcore(above / "pyproject.toml") or (
+                (package / "__init__.py").is_file() and (package / "paper").is_dir()):
+            return above
+    return None
+
+
 def check_reproduce_folder(out, names=NOTEBOOKS, nb_dir: Path | None = None) -> Path:
     """Refuse an output folder whose files would overwrite sources; return it resolved.
 
     ``reproduce`` writes ``OUT/notebooks/<name>.ipynb`` (and ``.html``),
     ``OUT/<name>/`` and the report files.  Refused
-    (:class:`~tefcore.errors.OutputError`, before anything runs):
-    ``OUT/notebooks`` is the folder of the source notebooks, or any file
-    that would be written is tracked by git, or a destination is a link or a
-    folder.
+    (:class:`~tefcore.errors.OutputError`, before anything runs): the
+    filesystem root; any folder inside a tefcore source checkout or the
+    installed package (:func:`source_checkout`); ``OUT/notebooks`` is the
+    folder of the source notebooks; any file that would be written is
+    tracked by git; a destination is a link or a folder.
 
     Parameters
     ----------
@@ -388,7 +435,16 @@ def check_reproduce_folder(out, names=NOTEBOOKS, nb_dir: Path | None = None) -> 
     nb_dir : path, optional
         The source notebooks' folder.
     """
+    given = out
     out = Path(out).resolve()
+    if out == Path(out.anchor):
+        raise OutputError(f"reproduce --out {given}: refusing to write into the filesystem "
+                          "root; choose an output folder (default: output)")
+    checkout = source_checkout(out)
+    if checkout is not None:
+        raise OutputError(f"reproduce --out {given}: {out} is inside the tefcore source "
+                          f"checkout {checkout}; write the reproduction outside it (e.g. "
+                          f"--out {checkout.parent / 'tefcore-output'})")
     if out.exists() or out.is_symlink():
         check_output_folder(out, "reproduce --out")
     nb_dir = (nb_dir or notebooks_dir()).resolve()
@@ -547,7 +603,9 @@ def reproduce(out, params=None, notebooks=None, progress: bool = True,
     merged = prepare_params(params, names, nb_dir)
     out.mkdir(parents=True, exist_ok=True)
     start = time.perf_counter()
-    checks = baseline_blade(out)
+    # the blade's files at the top belong to the baseline notebook: --only writes
+    # what the chosen notebooks make
+    checks = baseline_blade(out) if BASELINE_NOTEBOOK in names else None
     runs = run_notebooks(out, merged, names, progress=progress, nb_dir=nb_dir, jobs=jobs)
     done = finish_report(out, runs, names, checks)
     claims, worse, passed, total = (done[k] for k in ("claims", "worse", "passed", "total"))

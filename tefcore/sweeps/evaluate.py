@@ -14,19 +14,26 @@ import inspect
 import numbers
 import os
 import time
+import warnings
 from collections.abc import Callable
 from typing import Any
 
 import numpy as np
 import pandas as pd
 
+from ..aero.c81.range_summary import (
+    collected_range_warnings,
+    describe_clipped,
+    merge_clipped,
+    range_warning,
+)
 from ..errors import error_text
 from ..runtime import worker_init
 from .store import jsonable
 
-__all__ = ["REQUIRED_MODE_COLUMNS", "WARM_CHAIN", "chains", "check_result", "decode_complex",
-           "default_point", "encode_complex", "evaluate_point", "shape_vectors",
-           "takes_warm_start"]
+__all__ = ["REQUIRED_MODE_COLUMNS", "WARM_CHAIN", "chains", "check_result", "clipped_summary",
+           "decode_complex", "default_point", "encode_complex", "evaluate_point",
+           "shape_vectors", "takes_warm_start", "warn_clipped"]
 
 
 #: Columns a point function's ``modes`` table must have.
@@ -180,14 +187,12 @@ def evaluate_point(index, point, cfg, parameter, value, key, depth=0, warm=None)
     try:
         cfg_v = cfg.with_overrides({parameter: value})
         rec["value_si"] = jsonable(cfg_v.get(parameter))
-        result = None
-        if warm is not None:
-            try:
-                result = point(cfg_v, warm_start=warm)
-            except Exception:  # a warm start can send Newton astray: start cold
-                result = None
-        if result is None:
-            result = point(cfg_v)
+        # clipped C81 inputs are kept with the point (its 'warning'), not printed
+        with collected_range_warnings() as found:
+            result = _evaluate(point, cfg_v, warm)
+        if found["clipped"] is not None:
+            rec["clipped"] = found["clipped"]
+            rec["warning"] = describe_clipped(found["clipped"])
         modes, vecs, trim = check_result(result)
         shapes = shape_vectors(result, vecs)
         rec.update(status="ok", trim=trim,
@@ -200,6 +205,58 @@ def evaluate_point(index, point, cfg, parameter, value, key, depth=0, warm=None)
         vecs = result = None
     rec["elapsed_s"] = round(time.perf_counter() - start, 6)
     return index, rec, vecs, getattr(result, "trim_result", None)
+
+
+def _evaluate(point, cfg_v, warm):
+    """``point(cfg_v)``, from the warm start first when there is one."""
+    if warm is not None:
+        try:
+            return point(cfg_v, warm_start=warm)
+        except Exception:  # a warm start can send Newton astray: start cold
+            pass
+    return point(cfg_v)
+
+
+def clipped_summary(records) -> tuple[int, dict | None]:
+    """How many of the points `records` had C81 inputs clipped, and the merged summary.
+
+    Parameters
+    ----------
+    records : iterable of dict
+        Point records (:func:`evaluate_point`).
+
+    Returns
+    -------
+    n : int
+        Points with clipped inputs.
+    clipped : dict or None
+        :func:`tefcore.aero.c81.range_summary.merge_clipped` of them.
+    """
+    parts = [r.get("clipped") for r in records if r.get("clipped")]
+    return len(parts), merge_clipped(parts)
+
+
+def warn_clipped(what: str, n_clipped: int, n_points: int, clipped: dict | None,
+                 stacklevel: int = 3) -> None:
+    """One ``C81RangeWarning`` for a sweep or map: how many points, the extreme inputs.
+
+    Parameters
+    ----------
+    what : str
+        The sweep or map, for the message.
+    n_clipped, n_points : int
+        Points with clipped inputs, of all points.
+    clipped : dict or None
+        Their merged summary; nothing is emitted when None.
+    stacklevel : int, optional
+        Stack level of the warning.
+    """
+    if clipped is None:
+        return
+    warnings.warn(range_warning(
+        f"{what}: C81 table inputs clipped at {n_clipped} of {n_points} points (see the "
+        f"table's 'warning' column); {describe_clipped(clipped)}", clipped),
+        stacklevel=stacklevel)
 
 
 def evaluate_chain(chain):

@@ -35,9 +35,7 @@ Examples
 
 from __future__ import annotations
 
-import json
 import numbers
-import os
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -46,10 +44,12 @@ import numpy as np
 import pandas as pd
 from scipy.optimize import brentq
 
+from ..aero.c81.range_summary import merge_clipped
 from ..config.configuration import Config
 from ..modes.roles import flutter_root
 from ..runtime import worker_init
-from .evaluate import check_result, default_point, takes_warm_start
+from .evaluate import check_result, default_point, point_name, takes_warm_start, warn_clipped
+from .map_store import BoundaryFile, boundary_header, crossing_key
 from .sweep import SweepResult, sweep
 
 __all__ = ["MapResult", "stability_map"]
@@ -64,7 +64,8 @@ class MapResult:
     x_field, y_field : str
     table : DataFrame
         One row per grid point (``x_index, y_index, x, y`` in SI,
-        ``x_value, y_value`` as given, ``status``, ``error``) with the flutter
+        ``x_value, y_value`` as given, ``status``, ``error``, ``warning``:
+        C81 table inputs clipped at the point, or None) with the flutter
         root's ``flutter_growth`` (real part, /rev), ``flutter_frequency``,
         ``flutter_share_TEF`` and ``flutter_label``, and the row's TEF branch
         ``tef_growth``, ``tef_frequency``, ``tef_certain``.  Failed points
@@ -184,7 +185,8 @@ def _row_frame(res: SweepResult, y_index: int, y_si: float, y_value) -> pd.DataF
         first = g.iloc[0]
         rec = {"x_index": int(point), "y_index": y_index, "x": first["value_si"], "y": y_si,
                "x_value": first["value"], "y_value": y_value, "status": first["status"],
-               "error": first["error"], "flutter_growth": np.nan, "flutter_frequency": np.nan,
+               "error": first["error"], "warning": first.get("warning"),
+               "flutter_growth": np.nan, "flutter_frequency": np.nan,
                "flutter_share_TEF": np.nan, "flutter_label": "", "tef_growth": np.nan,
                "tef_frequency": np.nan, "tef_certain": False}
         if first["status"] == "ok":
@@ -228,7 +230,7 @@ def _row_in_worker(cfg, x_field, x_values, point, out, resume):
     """One row of the map as a serial sweep in a worker process."""
     worker_init()
     return sweep(cfg, x_field, x_values, point=point, n_jobs=1, out=out, resume=resume,
-                 refine=False, progress=False)
+                 refine=False, progress=False, warn=False)
 
 
 def _refine_in_worker(*args):
@@ -273,10 +275,13 @@ def stability_map(cfg: Config, x_field: str, x_values, y_field: str, y_values, *
         runs them on a cluster, and the boundary refinement too.
     out : path, optional
         Folder for the map's files: ``row_<k>.jsonl`` (one sweep file per y
-        value) and ``boundary.jsonl``; re-running resumes (stale inputs are
-        refused as for sweeps).
+        value) and ``boundary.jsonl`` (:mod:`tefcore.sweeps.map_store`), each
+        with a header of the configuration, input files and code that
+        decide it; re-running resumes, and a file whose header does not
+        match is refused before anything is computed.
     resume : bool
-        With ``out``: load the points and boundary crossings already there.
+        With ``out``: load the points and boundary crossings already there;
+        ``False`` starts every file anew.
     refine_boundary : bool
         Locate the zero of the flutter growth between grid points of a row
         where it changes sign (brentq, to ``xtol``).
@@ -288,6 +293,16 @@ def stability_map(cfg: Config, x_field: str, x_values, y_field: str, y_values, *
     Returns
     -------
     MapResult
+
+    Raises
+    ------
+    tefcore.errors.SweepFileError
+        A file in ``out`` holds work for other inputs (fields, configuration,
+        input files, tefcore version, model code) or is damaged (naming the
+        file and the line); a last line cut short by a crash is dropped
+        with a warning instead, and computed again.
+    tefcore.errors.OutputError
+        A file in ``out`` is a link or is being written by another process.
     """
     y_values = list(y_values)
     x_values = list(x_values)
@@ -298,6 +313,24 @@ def stability_map(cfg: Config, x_field: str, x_values, y_field: str, y_values, *
     outdir = None if out is None else Path(out)
     if outdir is not None:
         outdir.mkdir(parents=True, exist_ok=True)
+    store = None
+    if outdir is not None and refine_boundary:
+        # checked (and locked) before any row is computed: a stale boundary is refused
+        # first, never reused for another configuration or code (map_store)
+        store = BoundaryFile(outdir / "boundary.jsonl",
+                             boundary_header(cfg, x_field, y_field,
+                                             point_name(point or default_point())), resume)
+    try:
+        return _run_map(cfg, x_field, x_values, y_field, y_values, point, n_jobs, backend,
+                        client, outdir, resume, refine_boundary, xtol, progress, store)
+    finally:
+        if store is not None:
+            store.close()
+
+
+def _run_map(cfg, x_field, x_values, y_field, y_values, point, n_jobs, backend, client,
+             outdir, resume, refine_boundary, xtol, progress, store) -> MapResult:
+    """The rows, then the boundary (stored in `store`, or None) of :func:`stability_map`."""
     rows, frames = [], []
     row_cfgs = [(k, yv, _si(cfg, y_field, yv), cfg.with_overrides({y_field: yv}))
                 for k, yv in enumerate(y_values)]
@@ -314,41 +347,32 @@ def stability_map(cfg: Config, x_field: str, x_values, y_field: str, y_values, *
     else:
         results = [sweep(cfg_y, x_field, x_values, point=point, n_jobs=n_jobs, backend=backend,
                          client=client, out=outs[k], resume=resume, refine=False,
-                         progress=progress) for k, _, _, cfg_y in row_cfgs]
+                         progress=progress, warn=False)
+                   for k, _, _, cfg_y in row_cfgs]
     for (k, yv, y_si, _), res in zip(row_cfgs, results, strict=True):
         rows.append(res)
         frames.append(_row_frame(res, k, y_si, yv))
     table = pd.concat(frames, ignore_index=True)
+    # one warning for the map (the rows keep theirs in the 'warning' column)
+    warn_clipped(f"map of {x_field} x {y_field}", sum(r.n_clipped for r in rows), len(table),
+                 merge_clipped(r.clipped for r in rows), stacklevel=4)
     boundary = pd.DataFrame(columns=["y", "x", "direction", "x_lo", "x_hi", "converged",
                                      "error"])
     if refine_boundary:
         boundary = _boundary(table, cfg, x_field, y_field, y_values, point, n_jobs, backend,
-                             client, outdir, xtol)
+                             client, store, xtol)
     return MapResult(x_field=x_field, y_field=y_field, table=table, boundary=boundary,
                      rows=rows)
 
 
-def _append_line(path: Path, line: str) -> None:
-    """Append one line, never through a link (:mod:`tefcore.safe_io`)."""
-    from ..safe_io import check_output_file, open_append
-
-    if not path.exists():
-        check_output_file(path, "map boundary file")
-        path.touch()
-    fd = open_append(path, "map boundary file")
-    try:
-        os.write(fd, line.encode("utf-8"))
-        os.fsync(fd)
-    finally:
-        os.close(fd)
-
-
-def _boundary(table, cfg, x_field, y_field, y_values, point, n_jobs, backend, client, outdir,
+def _boundary(table, cfg, x_field, y_field, y_values, point, n_jobs, backend, client, store,
               xtol):
-    """Refined zeros of the flutter growth along each row (cached in boundary.jsonl)."""
+    """Refined zeros of the flutter growth along each row (kept in `store`, a
+    :class:`~tefcore.sweeps.map_store.BoundaryFile`, or None)."""
     point = default_point() if point is None else point
     xs_all = table["x"].to_numpy(float)
-    xtol = 1e-4 * (np.nanmax(xs_all) - np.nanmin(xs_all) or 1.0) if xtol is None else xtol
+    xtol = float(1e-4 * (np.nanmax(xs_all) - np.nanmin(xs_all) or 1.0) if xtol is None
+                 else xtol)
     jobs = []
     for k, g in table.groupby("y_index", sort=True):
         g = g.sort_values("x")
@@ -357,16 +381,11 @@ def _boundary(table, cfg, x_field, y_field, y_values, point, n_jobs, backend, cl
             if np.isfinite(y[i]) and np.isfinite(y[i + 1]) and (y[i] < 0) != (y[i + 1] < 0):
                 direction = "destabilising" if y[i + 1] >= 0 else "stabilising"
                 jobs.append((k, float(x[i]), float(x[i + 1]), direction, float(g["y"].iloc[0])))
-    cache_path = None if outdir is None else outdir / "boundary.jsonl"
-    cache = {}
-    if cache_path is not None and cache_path.exists():
-        for line in cache_path.read_text().splitlines():
-            rec = json.loads(line)
-            cache[rec["key"]] = rec
+    cache = {} if store is None else store.records
     todo = []
     results = []
     for k, a, b, direction, y_si in jobs:
-        key = f"{k}|{a!r}|{b!r}|{xtol!r}"
+        key = crossing_key(y_si, a, b, xtol)
         if key in cache:
             results.append(cache[key])
         else:
@@ -387,8 +406,8 @@ def _boundary(table, cfg, x_field, y_field, y_values, point, n_jobs, backend, cl
         for (key, *_), rec in zip(todo, found, strict=True):
             rec = {"key": key, **rec}
             results.append(rec)
-            if cache_path is not None:
-                _append_line(cache_path, json.dumps(rec) + "\n")
+            if store is not None:
+                store.append(rec)
     cols = ["y", "x", "direction", "x_lo", "x_hi", "converged", "error"]
     out = pd.DataFrame(results, columns=["key", *cols]).drop(columns="key")
     return out.sort_values(["y", "x"], ignore_index=True)

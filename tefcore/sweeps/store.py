@@ -36,6 +36,10 @@ UTF-8 JSON lines, one object per line, each line written by a single
                "damping_ratio": [...]},
      "elapsed_s": 1.23}
 
+  A point whose C81 table inputs were clipped also has ``"warning"`` (one
+  line: the evaluations clipped and the extreme inputs) and ``"clipped"``
+  (the same as data, :mod:`tefcore.aero.c81.range_summary`).
+
   ``key`` identifies the value: ``repr(float(v))`` for numbers, the
   whitespace-normalised string for ``"value unit"`` strings.  ``value`` is
   the value as given, ``value_si`` the validated field value in SI (null
@@ -73,10 +77,10 @@ import numpy as np
 from ..config.configuration import SECTIONS, Config
 from ..errors import SweepFileError
 from ..provenance import describe_digest, input_digests, model_stamp
-from ..safe_io import FileLock, atomic_write_text, check_output_file, open_append
+from ..safe_io import FileLock, atomic_write_text, check_output_file, open_append, write_error
 
-__all__ = ["FORMAT", "FORMAT_VERSION", "RECORD_MODE_COLUMNS", "SweepFile", "config_hash",
-           "jsonable", "sweep_header", "value_key"]
+__all__ = ["FORMAT", "FORMAT_VERSION", "RECORD_MODE_COLUMNS", "JsonLinesStore", "SweepFile",
+           "check_provenance", "config_hash", "jsonable", "sweep_header", "value_key"]
 
 FORMAT = "tefcore.sweep"
 FORMAT_VERSION = 3
@@ -244,6 +248,45 @@ _RESTART = ("use another out path, or resume=False to overwrite it (command line
             "the file or choose another --out)")
 
 
+def check_provenance(path, head: dict, header: dict, restart: str) -> None:
+    """Refuse a stored file whose input files or code differ from this run's.
+
+    Parameters
+    ----------
+    path : path-like
+        The file (for messages).
+    head : dict
+        Its header.
+    header : dict
+        This run's header (``inputs``, ``tefcore_version``, ``model_stamp``).
+    restart : str
+        What the user can do, appended to the message.
+
+    Raises
+    ------
+    SweepFileError
+        Naming the input file, the tefcore version or the model code that
+        changed, with its value then and now.
+    """
+    then, now = head.get("inputs"), header["inputs"]
+    if not isinstance(then, dict):
+        raise SweepFileError(f"{path}: the header's 'inputs' is not a table; the file is "
+                             "damaged")
+    for dotted in sorted(set(then) | set(now)):
+        if then.get(dotted) != now.get(dotted):
+            raise SweepFileError(
+                f"cannot resume {path}: the file {dotted} has changed since its points were "
+                f"computed ({describe_digest(then.get(dotted))} then, "
+                f"{describe_digest(now.get(dotted))} now), so they would be stale; {restart}")
+    for what, name in (("tefcore_version", "tefcore version"),
+                       ("model_stamp", "model code (model_stamp)")):
+        if head.get(what) != header[what]:
+            raise SweepFileError(
+                f"cannot resume {path}: its points were computed by another {name} "
+                f"({head.get(what)!r} then, {header[what]!r} now) and may be stale; "
+                f"{restart}")
+
+
 def _check_header(path, head, header: dict) -> None:
     """Refuse to resume `path` (header `head`) for a sweep with `header`."""
     if not isinstance(head, dict) or head.get("format") != FORMAT:
@@ -263,23 +306,7 @@ def _check_header(path, head, header: dict) -> None:
                 f"on configuration {head.get('config_hash')}, not of "
                 f"{header['parameter']!r} on configuration {header['config_hash']} "
                 f"({what} differs); {_RESTART}")
-    then, now = head.get("inputs"), header["inputs"]
-    if not isinstance(then, dict):
-        raise SweepFileError(f"{path}: the header's 'inputs' is not a table; the file is "
-                             "damaged")
-    for dotted in sorted(set(then) | set(now)):
-        if then.get(dotted) != now.get(dotted):
-            raise SweepFileError(
-                f"cannot resume {path}: the file {dotted} has changed since its points were "
-                f"computed ({describe_digest(then.get(dotted))} then, "
-                f"{describe_digest(now.get(dotted))} now), so they would be stale; {_RESTART}")
-    for what, name in (("tefcore_version", "tefcore version"),
-                       ("model_stamp", "model code (model_stamp)")):
-        if head.get(what) != header[what]:
-            raise SweepFileError(
-                f"cannot resume {path}: its points were computed by another {name} "
-                f"({head.get(what)!r} then, {header[what]!r} now) and may be stale; "
-                f"{_RESTART}")
+    check_provenance(path, head, header, _RESTART)
     if head.get("point") != header["point"]:
         warnings.warn(f"resuming {path}, written by point function {head.get('point')}, "
                       f"with {header['point']}", UserWarning, stacklevel=5)
@@ -308,6 +335,10 @@ def _record_problem(rec) -> str | None:
         return "'value_si' must be a number, a string or null"
     if not isinstance(rec["trim"], dict):
         return "'trim' must be a table"
+    if not isinstance(rec.get("warning", ""), str):
+        return "'warning' must be a string"
+    if not isinstance(rec.get("clipped", {}), dict):
+        return "'clipped' must be a table"
     modes = rec["modes"]
     if rec["status"] == "failed":
         return None if modes is None else "a failed point must have 'modes': null"
@@ -357,37 +388,73 @@ def _decode(line: bytes):
         raise ValueError(str(err)) from None
 
 
-class SweepFile:
-    """Append-only JSON-lines store of finished sweep points (format above).
+class JsonLinesStore:
+    """Append-only JSON-lines file: a header line, then one record per line.
 
-    Opening takes the file's lock (:class:`tefcore.safe_io.FileLock`) until
-    :meth:`close`; with ``resume`` an existing file is checked against
-    ``header`` (a stale file is refused) and its records loaded into
-    :attr:`records`, an incomplete last line (an interrupted write) dropped.
+    The store of sweep points (:class:`SweepFile`) and of a map's boundary
+    crossings (:class:`tefcore.sweeps.map_store.BoundaryFile`).  Opening takes
+    the file's lock (:class:`tefcore.safe_io.FileLock`) until :meth:`close`;
+    with ``resume`` an existing file is checked against ``header`` (a stale
+    file is refused) and its records loaded into :attr:`records` (key ->
+    record, the last of a key wins), an incomplete last line (an interrupted
+    write) dropped with a warning and the file truncated to its last complete
+    line; any other bad line is a :class:`~tefcore.errors.SweepFileError`
+    naming the file and the line.  Subclasses say what the file is
+    (:attr:`what`), how its header is checked (:meth:`check_header`) and what
+    a record is (:meth:`record_problem`).
 
     Parameters
     ----------
     path : str or os.PathLike
         The JSON-lines file (its folder is created).
     header : dict
-        First line of the file (:func:`sweep_header`).
+        First line of the file.
     resume : bool
         Keep and load an existing file; otherwise start it anew.
     """
 
+    #: What the file is, for messages.
+    what = "JSON-lines file"
+
     def __init__(self, path, header: dict, resume: bool):
-        self.path = check_output_file(path, "sweep file", create_folder=True)
+        self.path = check_output_file(path, self.what, create_folder=True)
         self.records: dict[str, dict] = {}
-        self.lock = FileLock(self.path, "sweep file").acquire()
+        self.lock = FileLock(self.path, self.what).acquire()
         try:
             if resume and self.path.exists() and self.path.stat().st_size > 0:
                 self._load(header)
             else:
-                atomic_write_text(self.path, json.dumps(header) + "\n", what="sweep file")
-            self.fd = open_append(self.path, "sweep file")
+                atomic_write_text(self.path, json.dumps(header) + "\n", what=self.what)
+            self.fd = open_append(self.path, self.what)
         except BaseException:
             self.lock.release()
             raise
+
+    def check_header(self, head, header: dict) -> None:
+        """Raise :class:`~tefcore.errors.SweepFileError` if `head` does not match `header`.
+
+        Parameters
+        ----------
+        head : object
+            The decoded first line of the file (None when it is not JSON).
+        header : dict
+            This run's header.
+        """
+        raise NotImplementedError
+
+    def record_problem(self, rec) -> str | None:
+        """Why `rec` (a decoded line) is not a record of this file, or None.
+
+        Parameters
+        ----------
+        rec : object
+            A decoded line.
+
+        Returns
+        -------
+        str or None
+        """
+        raise NotImplementedError
 
     def _load(self, header: dict) -> None:
         raw = self.path.read_bytes()
@@ -396,7 +463,7 @@ class SweepFile:
             head = _decode(lines[0])
         except ValueError:
             head = None
-        _check_header(self.path, head, header)
+        self.check_header(head, header)
         good = len(lines[0]) + 1
         body = lines[1:]
         for n, line in enumerate(body, start=2):
@@ -415,7 +482,7 @@ class SweepFile:
                               "write)", UserWarning, stacklevel=4)
                 os.truncate(self.path, good)
                 break
-            if (problem := _record_problem(rec)) is not None:
+            if (problem := self.record_problem(rec)) is not None:
                 raise SweepFileError(f"{self.path}, line {n}: {problem}; the file is damaged "
                                      "(remove the line or the file)")
             self.records[rec["key"]] = rec
@@ -431,11 +498,62 @@ class SweepFile:
         """
         data = (json.dumps(rec, separators=(",", ":"), allow_nan=True) + "\n").encode()
         view = memoryview(data)
-        while view:
-            view = view[os.write(self.fd, view):]
-        os.fsync(self.fd)
+        try:
+            while view:
+                view = view[os.write(self.fd, view):]
+            os.fsync(self.fd)
+        except OSError as err:   # a full disk: name the file (a cut-short line is dropped
+            # when the file is resumed)
+            raise write_error(err, self.what, self.path, "cannot append a record") from None
 
     def close(self) -> None:
         """Close the file and release its lock."""
         os.close(self.fd)
         self.lock.release()
+
+
+class SweepFile(JsonLinesStore):
+    """Append-only JSON-lines store of finished sweep points (format above).
+
+    Opening takes the file's lock until :meth:`close`; with ``resume`` an
+    existing file is checked against ``header`` (a stale file is refused)
+    and its records loaded into :attr:`records`, an incomplete last line (an
+    interrupted write) dropped (:class:`JsonLinesStore`).
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The JSON-lines file (its folder is created).
+    header : dict
+        First line of the file (:func:`sweep_header`).
+    resume : bool
+        Keep and load an existing file; otherwise start it anew.
+    """
+
+    what = "sweep file"
+
+    def check_header(self, head, header: dict) -> None:
+        """Refuse a file of another format, version, parameter, configuration or code.
+
+        Parameters
+        ----------
+        head : object
+            The decoded first line of the file.
+        header : dict
+            This sweep's header (:func:`sweep_header`).
+        """
+        _check_header(self.path, head, header)
+
+    def record_problem(self, rec) -> str | None:
+        """Why `rec` is not a point record (module docstring), or None.
+
+        Parameters
+        ----------
+        rec : object
+            A decoded line.
+
+        Returns
+        -------
+        str or None
+        """
+        return _record_problem(rec)

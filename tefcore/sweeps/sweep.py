@@ -56,6 +56,7 @@ from ..safe_io import atomic_output
 from .evaluate import (
     WARM_CHAIN,
     chains,
+    clipped_summary,
     dask_client,
     default_point,
     point_name,
@@ -63,6 +64,7 @@ from .evaluate import (
     run_joblib,
     run_serial,
     takes_warm_start,
+    warn_clipped,
 )
 from .store import SweepFile, config_hash, sweep_header, value_key
 from .table import MIN_REFINE_BUDGET, build_table, refinements
@@ -145,7 +147,9 @@ class SweepResult:
         ``parameter``, ``value`` (as given), ``value_si`` (validated field
         value, SI), ``refinement`` (0 for the points asked for, k for a
         point added by the k-th bisection of an ambiguous step), ``status``
-        ("ok"/"failed"), ``error`` (None when ok), ``track`` (the curve the
+        ("ok"/"failed"), ``error`` (None when ok), ``warning`` (None, or
+        what a point's result carries a doubt about: C81 table inputs clipped,
+        how often and how far), ``track`` (the curve the
         root lies on: roots of neighbouring points linked by eigenvalue and
         shape, :func:`tefcore.modes.tracking.track_modes`), ``label`` (the
         root's name at its point: the uncoupled mode it continues from,
@@ -179,6 +183,11 @@ class SweepResult:
         Points added by refinement and evaluated in this run.
     out : Path or None
         The sweep file.
+    clipped : dict or None
+        The C81 table inputs clipped over the sweep: evaluations, decks and
+        extreme inputs (:func:`tefcore.aero.c81.range_summary.merge_clipped`).
+    n_clipped : int
+        Points with clipped inputs (their ``warning`` column says so).
     """
 
     parameter: str
@@ -191,6 +200,8 @@ class SweepResult:
     n_refined: int = 0
     out: Path | None = None
     vectors: dict = field(default_factory=dict, repr=False)
+    clipped: dict | None = None
+    n_clipped: int = 0
     _modes: dict = field(default_factory=dict, repr=False)
 
     @property
@@ -237,7 +248,8 @@ class SweepResult:
 def sweep(cfg: Config, parameter: str, values, *, point: Callable | None = None,
           n_jobs: int = 1, backend: str = "joblib", progress: bool | None = None,
           out=None, resume: bool = True, extra_overrides: Mapping[str, Any] | None = None,
-          client=None, retry_failed: bool = False, refine: bool = True) -> SweepResult:
+          client=None, retry_failed: bool = False, refine: bool = True,
+          warn: bool = True) -> SweepResult:
     """Evaluate `point` at each value of one configuration field.
 
     Parameters
@@ -292,6 +304,10 @@ def sweep(cfg: Config, parameter: str, values, *, point: Callable | None = None,
         many added points as asked for, whichever is more, for the other
         modes; the added points are rows with
         ``refinement > 0``.
+    warn : bool
+        Emit one ``C81RangeWarning`` for the sweep when points had C81
+        table inputs clipped (how many points, the extreme inputs); each
+        such point says so in the table's ``warning`` column either way.
 
     Returns
     -------
@@ -342,14 +358,18 @@ def sweep(cfg: Config, parameter: str, values, *, point: Callable | None = None,
     finally:
         run.close()
 
-    table, modes, shapes = build_table(parameter, values, keys, run.active())
+    active = run.active()
+    table, modes, shapes = build_table(parameter, values, keys, active)
     index_of = {k: i for i, k in enumerate(keys)}
+    n_clipped, clipped = clipped_summary(active.values())
+    if warn:
+        warn_clipped(f"sweep of {parameter}", n_clipped, len(active), clipped)
     return SweepResult(parameter=parameter, values=values, table=table, config_hash=chash,
                        eigenvectors={index_of[k]: v for k, v in run.vectors.items()
                                      if k in index_of},
                        n_computed=run.n_computed, n_loaded=n_loaded, n_refined=run.n_refined,
                        out=None if out is None else Path(out), vectors=shapes,
-                       _modes=modes)
+                       clipped=clipped, n_clipped=n_clipped, _modes=modes)
 
 
 def _checked_arguments(cfg, parameter, point, n_jobs, backend, extra_overrides):

@@ -151,6 +151,8 @@ def build_table(parameter, values, keys, records):
         "refinement": [int(records[k].get("refinement", 0)) for k in all_keys],
         "status": [records[k]["status"] for k in all_keys],
         "error": pd.Series([records[k]["error"] for k in all_keys], dtype=object),
+        # what the point's result carries a doubt about (C81 inputs clipped), or None
+        "warning": pd.Series([records[k].get("warning") for k in all_keys], dtype=object),
     })
     for col in ("value", "value_si"):  # numbers -> float column, else keep objects
         try:

@@ -231,8 +231,13 @@ class C81Airfoil:
         where = f"C81 deck {self.deck.name!r}"
         if self.out_of_range == "raise":
             raise C81RangeError(f"{where}: input outside the table: " + "; ".join(parts))
-        warnings.warn(f"{where}: input outside the table, clipped to the table edges: "
-                      + "; ".join(parts), C81RangeWarning, stacklevel=3)
+        w = C81RangeWarning(f"{where}: input outside the table, clipped to the table edges: "
+                            + "; ".join(parts))
+        # the same as data, for one summary per point (tefcore.aero.c81.range_summary)
+        w.clipped = {"calls": 1, "decks": [self.deck.name],
+                     "extremes": {var: [worst, lo, hi]
+                                  for (var, lo, hi), (_, worst) in problems.items()}}
+        warnings.warn(w, stacklevel=3)
 
 
 class C81FlapTable(C81Airfoil):

@@ -1,0 +1,41 @@
+"""The command's warnings are one line each, and what a user reads is not noise
+(issue 24, item 6)."""
+
+import pandas as pd
+
+import tefcore.linear.stability
+from tefcore.cli import main
+from tests.linear.test_stability_signal import XFOIL
+
+
+def test_clipped_c81_inputs_are_one_warning_line(capsys):
+    """The issue: ~80 raw C81RangeWarning blocks (two lines each) per point."""
+    deck = XFOIL.model.c81_deck
+    assert main(["stability", "-s", "model.aero_model=c81", "-s",
+                 f"model.c81_deck={deck}"]) == 0
+    err = capsys.readouterr().err.splitlines()
+    assert len(err) == 1, err
+    assert err[0].startswith("tefcore: warning: C81RangeWarning: C81 deck "
+                             "'NACA0012 35%TEF XFOIL': inputs outside the table clipped")
+    assert "alpha reached" in err[0] and "mach reached" in err[0]
+
+
+def test_a_real_part_below_the_resolution_is_printed_neutral(monkeypatch, capsys, tmp_path):
+    """The issue: a sign that means nothing (-0.0000), unflagged."""
+    res = tefcore.linear.stability.stability(XFOIL.with_overrides(
+        {"model.aero_model": "thin_airfoil"}))
+    modes = res.modes.copy()
+    modes.loc[0, ["real_part", "real_part_error"]] = [-3e-8, 1e-7]      # unresolved
+    modes.loc[1, ["real_part", "real_part_error"]] = [-3.09e-5, 4e-11]  # resolved, tiny
+    modes["neutral"] = modes["real_part"].abs() <= modes["real_part_error"]
+    res.modes = modes
+    monkeypatch.setattr(tefcore.linear.stability, "stability", lambda cfg: res)
+    csv = tmp_path / "m.csv"
+    assert main(["stability", "--csv", str(csv)]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    assert "-0.0000" not in "\n".join(lines)
+    assert " neutral " in lines[1] and "-3.09e-05" in lines[2]
+    # the stored numbers are unchanged; the flag is its own column
+    stored = pd.read_csv(csv)
+    assert stored.loc[0, "real_part"] == -3e-8 and bool(stored.loc[0, "neutral"])
+    assert stored.loc[1, "real_part"] == -3.09e-5 and not bool(stored.loc[1, "neutral"])

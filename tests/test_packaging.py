@@ -1,0 +1,31 @@
+"""Packaging metadata in the current fields (issue 24, item 7).
+
+``python -m build`` warned that the TOML-table ``project.license`` and the
+license classifiers are deprecated (setuptools >= 77, PEP 639): the license
+is an SPDX expression with its file named in ``license-files``.
+"""
+
+import tomllib
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+PYPROJECT = tomllib.loads((ROOT / "pyproject.toml").read_text(encoding="utf-8"))
+
+
+def test_the_license_is_an_spdx_expression_with_its_file():
+    project = PYPROJECT["project"]
+    assert project["license"] == "BSD-3-Clause"
+    files = project["license-files"]
+    assert files and all(list(ROOT.glob(pattern)) for pattern in files)
+    assert (ROOT / "LICENSE").read_text(encoding="utf-8").startswith("BSD 3-Clause License")
+
+
+def test_no_license_classifier():
+    assert not [c for c in PYPROJECT["project"]["classifiers"] if c.startswith("License ::")]
+
+
+def test_the_build_backend_reads_the_license_fields():
+    # setuptools reads PEP 639's license / license-files from version 77 on
+    requires = PYPROJECT["build-system"]["requires"]
+    assert any(r.replace(" ", "").startswith("setuptools>=") and
+               int(r.replace(" ", "").split(">=")[1].split(".")[0]) >= 77 for r in requires)
