@@ -30,7 +30,8 @@ from scipy.optimize import linear_sum_assignment
 
 from ..floquet.second_order import SecondOrderSystem
 from .labels import coordinate_shares, label_modes, tracking_shapes, trajectory_shapes
-from .matching import COALESCED_DISTANCE, COALESCED_MAC, decide, mac, relative_distance
+from .matching import (COALESCED_DISTANCE, COALESCED_MAC, LOCK_TOL, decide, mac,
+                       relative_distance)
 from .tracking import follow_root
 
 __all__ = ["FIRST_STEPS", "FLAP_ACTIVE", "MIN_STEP", "ContinuedRoots", "continue_roots",
@@ -44,7 +45,7 @@ FIRST_STEPS = 2
 #: Smallest step of ``eps``: 1/256 (7 halvings of the first 1/2).  A match still
 #: undecided at this step is a coalescence on the path (an exceptional point
 #: within ~1/256 of the coupling), reported rather than refined further.
-MIN_STEP = 1.0 / 256
+MIN_STEP = 1.0 / 4096
 
 
 def positive_roots(res):
@@ -415,22 +416,18 @@ def continue_roots(system: SecondOrderSystem, labels, final=None, *, basis=None,
         else:
             h *= 0.5
             streak = 0
-    origin, uncoupled = list(march.origin), march.start.copy()
-    if final_labels is not None:
-        # roots that passed a lock of the blade: the names of each group that met
-        # there shared among its roots by the coordinate each carries, and each
-        # compared with the uncoupled root of its name
+    origin, uncoupled, certain = list(march.origin), march.start.copy(), ~march.doubt
+    motion = _flap_share(march.vecs, basis.shape[0])
+    if final_labels is not None and per:
+        origin, changed = _flap_free_by_participation(origin, motion, final_labels)
+        certain = certain & ~changed
         held = dict(zip(names0, res0.exponents, strict=True))
-        for idx in _lock_groups(march):
-            names = _share_names([origin[i] for i in idx], [str(final_labels[i]) for i in idx])
-            for i, name in zip(idx, names, strict=True):
-                origin[i] = name
-                uncoupled[i] = held.get(name, held.get(_base_name(name), np.nan))
+        uncoupled = np.array([held.get(o, held.get(_base_name(o), np.nan)) for o in origin],
+                             complex)
     meetings = pd.DataFrame(march.meetings, columns=["eps", "origins", "gap", "mac"]).drop_duplicates(
         "origins", keep="first").reset_index(drop=True)
-    return ContinuedRoots(origin=origin, certain=~march.doubt, uncoupled=uncoupled,
-                          meetings=meetings, n_solves=n_solves,
-                          flap_motion=_flap_share(march.vecs, basis.shape[0]))
+    return ContinuedRoots(origin=origin, certain=certain, uncoupled=uncoupled,
+                          meetings=meetings, n_solves=n_solves, flap_motion=motion)
 
 
 #: Least share of a root's participation in the blade and flap states for it to
@@ -444,41 +441,54 @@ def _base_name(name: str) -> str:
     return name.removesuffix(" (locked)")
 
 
-def _lock_groups(march) -> list[list[int]]:
-    """The roots whose paths met in a lock of the blade, grouped by the locks they shared."""
-    groups: dict = {}
-    for i, (g, locked) in enumerate(zip(march.group, march.lock, strict=True)):
-        if locked:
-            groups.setdefault(int(g), []).append(i)
-    return [idx for idx in groups.values() if len(idx) > 1]
+def _flap_free_by_participation(origin, motion, carried):
+    """Floquet roots that do not move the flap named by their coordinate; the rest by path.
 
-
-def _share_names(names, carried) -> list[str]:
-    """Give a group's names to its roots, each to the root that carries that coordinate.
+    The coupling moves a root in proportion to its motion of the flap: a root
+    of the coupled system that does not move it (``motion <``
+    :data:`FLAP_ACTIVE`) is the blade's own root of the coordinate it carries
+    (its participation label), whatever path the march took among the
+    blade's locks and near-degenerate roots, where the Floquet frequencies of
+    roots far apart in /rev coincide modulo 1/rev.  The roots that move the
+    flap keep the names their paths brought; one whose name a flap-free root
+    took gets, of the names left, its own coordinate's or the first.
 
     Parameters
     ----------
-    names : list of str
-        The uncoupled names the group's paths brought (one per root).
+    origin : list of str
+        Each root's name by its path.
+    motion : numpy.ndarray
+        Each root's kinematic share of the flap.
     carried : list of str
-        The coordinate each root carries most (its participation label).
+        Each root's participation label.
 
     Returns
     -------
-    list of str
-        `names` reordered: the assignment matching most roots to the name of
-        the coordinate they carry; a root that carries none of them keeps its
-        path's name.
+    names : list of str
+    changed : numpy.ndarray of bool
+        The roots that move the flap whose path's name was taken.
     """
-    # a root takes the name of the coordinate it carries; one that carries none
-    # of the group's coordinates keeps the name its own path brought
-    score = np.array([[0.0 if _base_name(n) == _base_name(c) else 0.5 if i == j else 1.0
-                       for j, n in enumerate(names)] for i, c in enumerate(carried)])
-    rows, cols = linear_sum_assignment(score)
-    out = list(names)
+    free = np.asarray(motion) < FLAP_ACTIVE
+    names = [str(c) if f else o for o, c, f in zip(origin, carried, free, strict=True)]
+    # the names left for the moving roots: not a mode a flap-free root already
+    # is (nor its lock partner's name: the pair that left its lock is one root)
+    taken = {_base_name(names[i]) for i in np.flatnonzero(free)}
+    left = [o for o in origin if o and _base_name(o) not in taken]   # "": unexplained
+    changed = np.zeros(len(origin), bool)
+    active = np.flatnonzero(~free)
+    if not active.size:
+        return names, changed
+    # names of the moving roots: its own path's (0), its own coordinate's (1),
+    # any other left (2) -- the assignment of least total cost
+    pool = left + [str(carried[i]) for i in active]       # never short of names
+    cost = np.array([[0.0 if n and n == origin[i] else 1.0 if _base_name(n) == _base_name(
+        str(carried[i])) else 2.0 for n in pool] for i in active])
+    rows, cols = linear_sum_assignment(cost)
     for r, c in zip(rows, cols, strict=True):
-        out[r] = names[c]
-    return out
+        i = active[r]
+        names[i] = pool[c]
+        changed[i] = pool[c] != origin[i]
+    return names, changed
 
 
 def _by_participation(res0, n, labels, basis, final, final_labels) -> ContinuedRoots:
@@ -506,13 +516,6 @@ def _by_participation(res0, n, labels, basis, final, final_labels) -> ContinuedR
                                                   basis.shape[0]))
 
 
-#: A root within this of a multiple of 1/2 /rev may be entering or leaving a
-#: frequency lock (a pair of real multipliers), where the number of positive
-#: roots changes by one: 0.05 /rev, the largest change of a blade root's
-#: frequency over one step of the coupling seen on the paper's cases near a lock
-#: (the lock's own roots sit within :data:`tefcore.modes.matching.LOCK_TOL`).
-LOCK_BAND = 0.05
-
 #: An eigenvalue match is clear by distance alone when the predicted root is at
 #: most this fraction of the way to the next nearest (and the root nearest to no
 #: other path by the same ratio): the linear predictor's error would have to be
@@ -525,12 +528,29 @@ NEAR_RATIO = 1.0 / 3.0
 _UNEXPLAINED = 5.0
 
 
+def _fold(eig) -> np.ndarray:
+    """Floquet frequencies folded into [0, 1/2] (modulo 1/rev and sign)."""
+    f = np.abs(np.asarray(eig, complex).imag) % 1.0
+    return np.minimum(f, 1.0 - f)
+
+
 def _near_lock(eig, periodic) -> np.ndarray:
-    """Which roots lie within :data:`LOCK_BAND` of a multiple of 1/2 /rev (Floquet only)."""
-    f = np.asarray(eig, complex).imag
+    """Which roots are one of a locked pair: at a multiple of 1/2 /rev, with another
+    root at the same frequency (both within :data:`tefcore.modes.matching.LOCK_TOL`
+    ten times over; Floquet only).
+
+    Only such a pair can merge into one complex root (a path ends) or split
+    from one (a root appears).
+    """
+    eig = np.asarray(eig, complex)
     if not periodic:
-        return np.zeros(f.size, bool)
-    return np.abs(f - 0.5 * np.round(2 * f)) <= LOCK_BAND
+        return np.zeros(eig.size, bool)
+    fold = _fold(eig)
+    tol = 10 * LOCK_TOL
+    at_half = np.minimum(fold, 0.5 - fold) <= tol
+    pair = np.abs(fold[:, None] - fold[None, :]) <= tol
+    np.fill_diagonal(pair, False)
+    return at_half & pair.any(axis=1)
 
 
 def _assign(cost, path_lock, root_lock):
@@ -569,6 +589,26 @@ def _nearest_clear(dist, rows, cols):
     return out
 
 
+def _lock_partner(eig, c, assigned, periodic):
+    """The assigned root whose second root ``c`` is, or None.
+
+    Floquet: a root at the same frequency folded into ``[0, 1/2]`` (within
+    ten times :data:`tefcore.modes.matching.LOCK_TOL`: the two of a lock share
+    ``k/2`` to round-off), the
+    nearest in real part.  Constant coefficients: two real roots of one
+    overdamped pair, the nearest real root.
+    """
+    eig = np.asarray(eig, complex)
+    fold = _fold(eig)
+    if periodic:
+        ok = assigned & (np.abs(fold - fold[c]) <= 10 * LOCK_TOL)
+    else:
+        ok = assigned & (np.abs(eig.imag) <= 1e-9) & (abs(eig[c].imag) <= 1e-9)
+    if not ok.any():
+        return None
+    return int(np.argmin(np.where(ok, np.abs(eig.real - eig[c].real), np.inf)))
+
+
 class _March:
     """The paths of all roots along ``eps``: their origins, last roots and doubts.
 
@@ -586,7 +626,6 @@ class _March:
         self.eps = 0.0
         self.doubt = np.zeros(self.eig.size, bool)
         self.lock = np.zeros(self.eig.size, bool)
-        self.group = np.arange(self.eig.size)     # paths that met in a lock share a group
         self.meetings: list[dict] = []
         self.last_clear = True
 
@@ -650,10 +689,10 @@ class _March:
         self.last_clear = not meet
         if meet and not final_step:
             return False
-        self._accept(eps, seen, vecs, rows, cols, meet, lock)
+        self._accept(eps, seen, vecs, rows, cols, meet, lock, eig)
         return True
 
-    def _accept(self, eps, seen, vecs, rows, cols, meet, lock):
+    def _accept(self, eps, seen, vecs, rows, cols, meet, lock, raw):
         # each root as the path it continues sees it (its frequency unwrapped)
         eig = seen[0].copy()
         for r, c in zip(rows, cols, strict=True):
@@ -663,25 +702,21 @@ class _March:
         last = np.full(eig.size, np.nan, complex)     # each path's eigenvalue a step back
         doubt = np.zeros(eig.size, bool)
         locked = np.zeros(eig.size, bool)
-        group = np.full(eig.size, -1)
         for r, c in zip(rows, cols, strict=True):
             origin[c], start[c], last[c] = self.origin[r], self.start[r], self.eig[r]
-            doubt[c], locked[c], group[c] = self.doubt[r], self.lock[r], self.group[r]
+            doubt[c], locked[c] = self.doubt[r], self.lock[r]
         col_of = dict(zip(rows, cols, strict=True))
         for r, other in lock:
-            both = [col_of[x] for x in (r, other) if x is not None]
-            locked[both] = True
-            group[np.isin(group, group[both])] = group[both].min()
+            locked[[col_of[x] for x in (r, other) if x is not None]] = True
         for r, other in meet:
             doubt[[col_of[x] for x in (r, other) if x is not None]] = True
             pair = sorted({self._base(r), self._base(other) if other is not None else "?"})
             if len(pair) < 2 or other is None:
                 continue
             a, b = col_of[r], col_of[other]
-            # the two roots as their paths see them (Floquet frequencies
-            # unwrapped along the paths): modulo 1/rev any two roots lie
-            # within half a /rev, which says nothing about coalescing
-            gap = float(relative_distance(eig[a:a + 1], eig[b:b + 1])[0, 0])
+            # Floquet: the multipliers coalesce (frequencies modulo 1/rev and
+            # up to the sign, a combination resonance among them)
+            gap = float(relative_distance(eig[a:a + 1], eig[b:b + 1], self.periodic)[0, 0])
             shape = float(max(mac(vecs[:, a], vecs[:, b])[0, 0],
                               mac(vecs[:, a].conj(), vecs[:, b])[0, 0]))
             # a meeting is an exceptional point only where the two roots
@@ -695,14 +730,16 @@ class _March:
                                       "gap": gap, "mac": shape})
         assigned = np.isin(np.arange(eig.size), cols)
         for c in np.flatnonzero(~assigned):
-            # a root that appears: a pair became two real roots (a lock, overdamped)
-            gap = relative_distance(eig[c:c + 1], eig, self.periodic)[0]
-            near = int(np.argmin(np.where(assigned, gap, np.inf)))
+            # a root that appears: a pair became two real roots (a lock at k/2,
+            # or an overdamped pair): it is the second root of its partner,
+            # the assigned root at its frequency (folded into [0, 1/2])
+            near = _lock_partner(raw, c, assigned, self.periodic)
+            if near is None:
+                origin[c], doubt[c], last[c] = "", True, eig[c]     # unexplained
+                continue
             origin[c] = _base_name(origin[near]) + " (locked)"
             start[c], doubt[c], last[c] = start[near], doubt[near], eig[c]
             locked[[c, near]] = True
-            group[c] = group[near]
         self.before = (self.eps, last)
         self.eps, self.eig, self.vecs = eps, eig, vecs
         self.origin, self.start, self.doubt, self.lock = origin, start, doubt, locked
-        self.group = group

@@ -420,8 +420,13 @@ def mode_rows(frame: pd.DataFrame, mode: str) -> pd.DataFrame:
         if rows.empty:
             raise ModeNotFound("no flap-induced root in the sweep")
         return rows
-    rows = frame[frame["label"].astype(str) == mode]
+    names = frame["label"].astype(str)
+    rows = frame[names.map(base_name) == mode]
     if rows.empty:
         raise ModeNotFound(f"no mode {mode!r} in the result; names: "
                            f"{sorted(set(frame['label'].dropna().astype(str)))}")
-    return rows.drop_duplicates("x")
+    # of a locked pair the plain name (the less stable root); a root alone
+    # with the suffix is the only one of its name there
+    plain = (rows["label"].astype(str) == mode).to_numpy()
+    return rows.assign(_p=~plain).sort_values(["x", "_p"], kind="stable").drop_duplicates(
+        "x").drop(columns="_p")

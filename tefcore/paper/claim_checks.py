@@ -74,7 +74,16 @@ def _g(v) -> str:
 
 
 class _Ambiguous(Exception):
-    """The claim's mode cannot be identified over its range (status ``ambiguous``)."""
+    """The claim's mode cannot be identified over its range (status ``ambiguous``).
+
+    ``points``: the exceptional points behind it, each ``(frame key, row of
+    :func:`tefcore.modes.roles.exceptional_points`)`` -- the claim is checked
+    with the names on either side of each before it is left undecided.
+    """
+
+    def __init__(self, message, points=()):
+        super().__init__(message)
+        self.points = list(points)
 
 
 def _select(frame, mode) -> pd.DataFrame:
@@ -85,34 +94,56 @@ def _select(frame, mode) -> pd.DataFrame:
         raise _Fail(str(err)) from None
 
 
-def _exceptional(frame, mode, lo, hi) -> None:
-    """Raise :class:`_Ambiguous` when an exceptional point of `mode` lies in [lo, hi].
+def _exceptional(frame, mode, lo, hi):
+    """The exceptional points of `mode` in [lo, hi] (rows of :func:`exceptional_points`).
 
     There the names of two roots exchange (or two paths from zero coupling
-    meet): which root is `mode` has no answer, and a claim over that range
-    gets no verdict.  The flutter root is a role decided at every point.
+    meet): which root is `mode` has no answer.  The flutter root is a role
+    decided at every point.
     """
     if not mode or mode == FLUTTER_ROOT or "track" not in frame:
-        return
+        return []
     eps = exceptional_points(frame)
     if eps.empty:
-        return
+        return []
     x = frame["x"].to_numpy(float)
     a = np.nanmin(x) if lo is None else lo
     b = np.nanmax(x) if hi is None else hi
     tol = X_SLACK * max(abs(a), abs(b), 1e-300)
     named = np.array([base_name(mode) in m.split(" / ") for m in eps["modes"]], bool)
-    mine = eps[named & (eps["x_high"] >= a - tol).to_numpy()
-               & (eps["x_low"] <= b + tol).to_numpy()]
-    if mine.empty:
-        return
-    e = mine.iloc[0]
-    where = (f"at x = {e['x_low']:.4g}" if e["x_low"] == e["x_high"]
-             else f"between x = {e['x_low']:.4g} and {e['x_high']:.4g}")
-    raise _Ambiguous(f"an exceptional point of {e['modes']} lies {where}, inside the claim's "
-                     f"range ({e['kind']}): which root is {mode!r} has no answer there")
+    # names exchange strictly between two points (an open bracket); paths
+    # meet at a point (closed, to the x slack)
+    at = (eps["kind"] == "paths meet").to_numpy()
+    lo_, hi_ = eps["x_low"].to_numpy(float), eps["x_high"].to_numpy(float)
+    inside = np.where(at, (hi_ >= a - tol) & (lo_ <= b + tol), (hi_ > a + tol) & (lo_ < b - tol))
+    return [r for _, r in eps[named & inside].iterrows()]
 
 
+def _where(e) -> str:
+    return (f"at x = {e['x_low']:.4g}" if e["x_low"] == e["x_high"]
+            else f"between x = {e['x_low']:.4g} and {e['x_high']:.4g}")
+
+
+def _swapped(frame, points) -> pd.DataFrame:
+    """`frame` with the names of each exceptional point's pair exchanged beyond it.
+
+    A names exchange: on the far side of the bracket (``x >= x_high``); paths
+    that meet: at that point.  The other choice of which root carries each
+    name there.
+    """
+    frame = frame.copy()
+    labels = frame["label"].astype(object).to_numpy().copy()
+    x = frame["x"].to_numpy(float)
+    for e in points:
+        a, b = e["modes"].split(" / ")
+        where = x == e["x_low"] if e["kind"] == "paths meet" else x >= e["x_high"]
+        for i in np.flatnonzero(where):
+            name = str(labels[i])
+            base, suffix = base_name(name), name[len(base_name(name)):]
+            if base in (a, b):
+                labels[i] = (b if base == a else a) + suffix
+    frame["label"] = labels
+    return frame
 def _series(frame, mode, quantity, lo=None, hi=None, until=None, identity=True):
     """(x, y) of one mode and quantity, sorted by x, within [lo, hi].
 
@@ -126,7 +157,12 @@ def _series(frame, mode, quantity, lo=None, hi=None, until=None, identity=True):
         raise _Fail(f"the result has no {quantity!r} column")
     t = _select(frame, mode) if mode else frame
     if identity:
-        _exceptional(frame, mode, lo, hi if until is None else until)
+        points = _exceptional(frame, mode, lo, hi if until is None else until)
+        if points:
+            e = points[0]
+            raise _Ambiguous(f"an exceptional point of {e['modes']} lies {_where(e)}, inside "
+                             f"the claim's range ({e['kind']}): which root is {mode!r} has "
+                             "no answer there", [(None, p) for p in points])
     if "refinement" in t:
         t = t[t["refinement"] == 0]
     t = t[np.isfinite(t[quantity].to_numpy(float))].sort_values("x")
@@ -149,6 +185,8 @@ class _Context:
         for fig, res in (others or {}).items():
             self.results.setdefault((fig, ""), res)
         self.frames: dict = {}
+        self.swaps: dict = {}        # frame key -> exceptional points taken the other way
+        self.strict = True           # an exceptional point in a claim's range stops it
 
     def frame(self, fig, overrides=None, quantity=""):
         key = (fig, variant_key(overrides or {}))
@@ -176,8 +214,15 @@ class _Context:
         lo = hi = None
         if interval is not None:
             lo, hi = (float(v) for v in x_to_si(fig, np.asarray(interval, float), c.x_unit))
-        x, y = _series(self.frame(fig, overrides, quantity), mode, quantity, lo, hi, until,
-                       identity)
+        key = (fig, variant_key(overrides or {}))
+        frame = self.frame(fig, overrides, quantity)
+        if self.swaps.get(key):
+            frame = _swapped(frame, self.swaps[key])
+        try:
+            x, y = _series(frame, mode, quantity, lo, hi, until, identity and self.strict)
+        except _Ambiguous as err:
+            err.points = [(key, p) for _, p in err.points]
+            raise
         if len(x) == 0:
             raise _Fail(f"no {mode or quantity} points" + (f" in {interval}" if lo else ""))
         return x, y
@@ -402,6 +447,12 @@ def _knockouts(c, res, found, wanted, reasons):
         rival, rshare = best_cut(c.rival_terms)
         found.append(f"knocking out {rival} removes {rshare:.0%}: the "
                      f"{'claimed' if share > rshare else 'rival'} path dominates")
+        # and the work each path's terms do on the root (the energy balance)
+        work = res.table.set_index("term")["contribution_real"]
+        mine = float(sum(work.get(t, 0.0) for t in c.knockout_terms))
+        theirs = float(sum(work.get(t, 0.0) for t in c.rival_terms))
+        found.append(f"work of the claimed path's terms {mine:+.3g} /rev, of the rival's "
+                     f"{theirs:+.3g} /rev")
         wanted.append(f"more than a knockout of {' or '.join(c.rival_terms)} removes")
         if not share > rshare:
             reasons.append(f"the rival path dominates: knocking out {rival} removes "
@@ -468,8 +519,67 @@ def validate_figure(name: str, result, claims=None, *, cfg=None, variants=None, 
             rows.append(_row(c, status="not reproducible", reason=str(err)))
             continue
         except _Ambiguous as err:
-            rows.append(_row(c, status="ambiguous", reason=str(err)))
+            rows.append(_across_exceptional_points(c, ctx, err))
             continue
         status = "not reproducible" if ok is None else ("pass" if ok else "fail")
         rows.append(_row(c, expected, computed, value, status, why))
     return pd.DataFrame(rows, columns=COLUMNS)
+
+
+#: Exceptional points in one claim's range whose every choice of names is tried
+#: (2**3 checks); with more the claim is left undecided.
+MAX_CHOICES = 3
+
+
+def _checked(c: Claim, ctx: _Context) -> dict:
+    """One claim's row (a dict of :func:`_row`) under the context's choice of names."""
+    try:
+        expected, computed, value, ok, why = _CHECKS[c.kind](c, ctx)
+    except _Fail as err:
+        return _row(c, status="fail", reason=str(err))
+    except _NotEvaluated as err:
+        return _row(c, status="not reproducible", reason=str(err))
+    except _Ambiguous as err:
+        return _row(c, status="ambiguous", reason=str(err))
+    status = "not reproducible" if ok is None else ("pass" if ok else "fail")
+    return _row(c, expected, computed, value, status, why)
+
+
+def _across_exceptional_points(c: Claim, ctx: _Context, err: _Ambiguous) -> dict:
+    """A claim whose range holds exceptional points: decided when no choice matters.
+
+    At an exceptional point which root carries a name has no answer.  The
+    claim is checked with the names as continuation gives them and with the
+    pair's names exchanged beyond each point (every combination, up to
+    :data:`MAX_CHOICES` points); when every choice gives the same verdict it
+    stands (its reason says so), otherwise the claim is ``ambiguous`` and the
+    reason names the point and what each choice gives.
+    """
+    points = err.points
+    if not points or len(points) > MAX_CHOICES:
+        why = str(err) + (f" ({len(points)} exceptional points)" if points else "")
+        return _row(c, status="ambiguous", reason=why)
+    outcomes = []
+    for mask in np.ndindex(*(2,) * len(points)):
+        alt = _Context.__new__(_Context)
+        alt.__dict__.update(ctx.__dict__)
+        alt.strict = False
+        alt.swaps = {}
+        for (key, p), take in zip(points, mask, strict=True):
+            if take:
+                alt.swaps.setdefault(key, []).append(p)
+        outcomes.append(_checked(c, alt))
+    statuses = [o["status"] for o in outcomes]
+    where = "; ".join(f"{p['modes']} {_where(p)} ({p['kind']})" for _, p in points)
+    if len(set(statuses)) == 1 and statuses[0] != "ambiguous":
+        row = outcomes[0]
+        note = (f"decided whichever root carries {c.mode!r} at the exceptional point(s) "
+                f"inside its range ({where}): every choice gives {statuses[0]}")
+        row["reason"] = f"{row['reason']}; {note}" if row["reason"] else note
+        return row
+    other = next(s for s in statuses if s != statuses[0])
+    seen = f"{statuses[0]} with the names as continued, {other} with them exchanged"
+    return _row(c, status="ambiguous",
+                reason=f"an exceptional point lies inside the claim's range ({where}): which "
+                       f"root is {c.mode!r} has no answer there, and the verdict depends on "
+                       f"it ({seen})")

@@ -222,7 +222,13 @@ def _followed_curve(t, res, mode):
     if curve.empty:
         raise ValueError(f"mode {mode!r} not found at any scan point of {res.parameter}; "
                          f"names present: {sorted(set(t['label'].astype(str)))}")
-    return curve.drop_duplicates("point").sort_values("value_si")
+    twice = curve[curve.duplicated("point", keep=False)]
+    if not twice.empty:
+        x = twice["value_si"].iloc[0]
+        raise ValueError(f"{len(twice[twice['value_si'] == x])} roots are named {mode!r} at "
+                         f"{res.parameter} = {x:g}: a name must be one root (the point "
+                         "function names its roots twice)")
+    return curve.sort_values("value_si")
 
 
 class _Follower:

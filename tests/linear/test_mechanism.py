@@ -195,18 +195,26 @@ def test_tef_root_of_an_uncoupled_flap_is_the_flap_itself(hover_imbalanced):
 
 def test_imbalanced_flap_root_is_found_and_classified(hover_imbalanced):
     cfg, res = hover_imbalanced
+    # no mode asked for: the flutter root when the point has an unstable one
     out = mechanism(cfg, stability_result=res, knockouts=False)
-    assert out.identification.startswith("continuation")
-    assert out.kind in ("flutter", "stable oscillatory", "divergence", "stable real")
-    assert out.kind == ("flutter" if out.eigenvalue.real > 0 and out.eigenvalue.imag > 0
-                        else out.kind)
-    assert out.participation["TEF"] == max(out.participation.values()) or \
-        out.participation["TEF"] > 0.1
+    fr = res.modes[res.modes["flutter_root"]].iloc[0]
+    assert fr["real_part"] > 0                 # the imbalanced flap flutters in hover
+    assert out.identification.startswith("the flutter root (no mode asked for)")
+    assert out.eigenvalue.real == pytest.approx(fr["real_part"], abs=1e-9)
+    assert out.kind == "flutter"
+    # freeing the flap is what makes it unstable: held, its root is stable
+    assert fr["real_part_uncoupled"] < 0 and fr["flap_induced"]
+    # asked for the TEF: the root the uncoupled flap mode continues into
+    tef = mechanism(cfg, mode="TEF", stability_result=res, knockouts=False)
+    assert tef.identification == "the root the uncoupled flap mode continues into"
+    row = res.modes[res.modes["label"] == "TEF"].iloc[0]
+    assert tef.eigenvalue.real == pytest.approx(row["real_part"], abs=1e-9)
+    assert tef.kind in ("flutter", "stable oscillatory", "divergence", "stable real")
 
 
 def test_unknown_mode_and_no_flap_are_clear_errors(hover_imbalanced):
     cfg, res = hover_imbalanced
-    with pytest.raises(ValueError, match="no mode labelled 'blade flap 9'"):
+    with pytest.raises(ValueError, match="no mode named 'blade flap 9'"):
         mechanism(cfg, mode="blade flap 9", stability_result=res)
     with pytest.raises(ValueError, match="needs the flap"):
         mechanism(cfg.with_overrides({"model.tef": "none"}), mode="TEF")

@@ -62,9 +62,10 @@ def test_veering_followed_as_continuous_branches_after_refinement():
     x = lower["value_si"].to_numpy()
     exact = [np.linalg.eigvalsh([[1 + 2 * xi, 0.05], [0.05, 2 - xi]])[0] for xi in x]
     np.testing.assert_allclose(w, exact, rtol=1e-12)          # always the lower root
-    # its character changes at the veering: first -> second
-    assert lower["label_here"].iloc[0] == "first" and lower["label_here"].iloc[-1] == "second"
-    assert len(res.label_changes) == 2
+    # its character changes at the veering, once: first -> second
+    names = lower["label"].tolist()
+    assert names[0] == "first" and names[-1] == "second"
+    assert sum(a != b for a, b in zip(names, names[1:])) == 1
 
 
 def test_without_refinement_the_coarse_veering_is_flagged_ambiguous():
@@ -79,8 +80,8 @@ def test_crossing_without_coupling_keeps_shapes():
     t = res.table
     assert t["identity"].isin(["start", "clear"]).all()
     for track, g in t.groupby("track"):
-        assert g["label_here"].nunique() == 1, track        # shape (label) kept
-    first = t[t["label_here"] == "first"].sort_values("value_si")
+        assert g["label"].nunique() == 1, track        # shape (label) kept
+    first = t[t["label"] == "first"].sort_values("value_si")
     np.testing.assert_allclose(first["frequency_per_rev"], 1 + 2 * first["value_si"])
 
 
@@ -135,26 +136,36 @@ def test_resumed_and_parallel_sweeps_write_identical_csv(tmp_path):
     assert all(p.read_bytes() == ref for p in paths[1:])
 
 
-@pytest.mark.parametrize("start", [0.0, 0.4])
-def test_tef_branch_anchored_at_the_sweep_start(start):
-    # the toy labels mark which root is "TEF"; without a linear system the
-    # anchor is the label (or the largest flap participation)
-    class Labelled(Veering):
-        def __call__(self, cfg):
-            r = super().__call__(cfg)
-            r.modes["label"] = ["TEF" if lab == "first" else "blade torsion 1"
-                                for lab in r.modes["label"]]
-            return r
+class Labelled(Veering):
+    """The toy with the point's names: the 'first' character is the TEF."""
 
-    xs = [x for x in XS if x >= start]
-    res = sweep(MDART, PARAM, xs, point=Labelled(), progress=False)
-    t = res.table
-    branch_rows = t[t["tef_branch"]]
-    assert branch_rows["value_si"].min() == pytest.approx(start)
-    assert branch_rows["track"].nunique() == 1
-    assert res.anchor["method"] == "label"
-    first = branch_rows.sort_values("value_si").iloc[0]
-    assert first["label_here"] == "TEF"
+    def __call__(self, cfg):
+        r = super().__call__(cfg)
+        r.modes["label"] = ["TEF" if lab == "first" else "blade torsion 1"
+                            for lab in r.modes["label"]]
+        return r
+
+
+def test_the_tef_role_is_the_root_named_tef_at_every_point_whatever_the_start():
+    # the TEF role is a point's own name for its root -- not a track followed
+    # from wherever the sweep starts: two sweeps starting on either side of
+    # the veering give the same TEF rows where they overlap
+    full = sweep(MDART, PARAM, XS, point=Labelled(), progress=False).table
+    half = sweep(MDART, PARAM, [x for x in XS if x >= 0.4], point=Labelled(),
+                 progress=False).table
+    for t in (full, half):
+        rows = t[t["tef_branch"]]
+        points = t.loc[t["status"] == "ok", "value_si"].unique()
+        assert sorted(rows["value_si"]) == sorted(points)       # one row per point
+        assert (rows["label"] == "TEF").all()
+    a = full[full["tef_branch"] & (full["value_si"] >= 0.4)].sort_values("value_si")
+    b = half[half["tef_branch"]].sort_values("value_si")
+    np.testing.assert_array_equal(a["value_si"].to_numpy(), b["value_si"].to_numpy())
+    np.testing.assert_array_equal(a["frequency_per_rev"].to_numpy(),
+                                  b["frequency_per_rev"].to_numpy())
+    # the TEF row crosses the veering from the lower root to the upper one
+    # (its character, 'first', goes with it): not one track
+    assert full[full["tef_branch"]]["track"].nunique() == 2
 
 
 def test_warm_started_sweep_is_the_same_in_every_run(tmp_path):
@@ -172,7 +183,7 @@ def test_warm_started_sweep_is_the_same_in_every_run(tmp_path):
     cfg = MDART.with_overrides({"flight.advance_ratio": 0.3})
     param, xs = "actuator.stiffness", ["70 ft-lb/rad", "90 ft-lb/rad", "110 ft-lb/rad",
                                        "130 ft-lb/rad", "150 ft-lb/rad"]
-    kw = dict(progress=False, refine=False, anchor=False)
+    kw = dict(progress=False, refine=False)
     assert sweep_module.takes_warm_start(stability)
     fresh = sweep(cfg, param, xs, **kw)
     out = tmp_path / "s.jsonl"
@@ -210,7 +221,7 @@ def test_warm_starts_take_every_trim_input_from_their_own_point(base, param, xs)
     from tefcore.linear.stability import stability
 
     cfg = MDART.with_overrides(base)
-    kw = dict(progress=False, refine=False, anchor=False)
+    kw = dict(progress=False, refine=False)
     warm = sweep(cfg, param, xs, **kw).table
     cold = sweep(cfg, param, xs, point=lambda c: stability(c), **kw).table
     assert len(warm) == len(cold)

@@ -315,92 +315,88 @@ def test_validate_figure_on_a_real_fig8_sweep():
     assert ((checked["computed"] != "") | (checked["reason"] != "")).all()
 
 
-def test_identify_by_point_label_and_label_agreement():
-    """The track labelled TEF loses the TEF mode at x >= 0.2; the point labels follow it."""
-    t = sweep_table(**{"TEF": (-1.0, 10.0), "blade torsion 2": (np.where(X < 0.2, -2.0, 1.0),
-                                                                 8.0)})
-    t["label_here"] = t["label"]
-    swap = t["value_si"] >= 0.2
-    t.loc[swap, "label_here"] = np.where(t.loc[swap, "label"] == "TEF", "blade torsion 2", "TEF")
-    c = claim(kind="threshold", mode="TEF", direction="destabilising")
-    by_track = validate_figure("fig9", t, [c]).iloc[0]
-    # the track stays stable (a fail on it), but it is labelled TEF at only 4 of
-    # its 9 points: no verdict on a root that is not the mode by its own label
-    assert by_track["status"] == "ambiguous"
-    assert "44%" in by_track["reason"] and "the fail on it" in by_track["reason"]
-    assert by_track["label_agreement"] == pytest.approx(4 / 9)
-    by_label = validate_figure("fig9", t, [c], identify="label").iloc[0]
-    assert by_label["status"] == "pass" and by_label["computed_value"] == pytest.approx(0.175)
-    with pytest.raises(ValueError, match="identify"):
-        validate_figure("fig9", t, [c], identify="kind")
-
-
 # ------------------------------------------------------------------ identity and roles
 
 
-def branch_table(certain_until=np.inf):
-    """BASE with a TEF branch: the TEF track, certain up to ``certain_until``."""
+def named_table():
+    """BASE with the roles a sweep gives: the TEF role is the row named TEF."""
     t = BASE.copy()
-    t["label_here"] = t["label"]
     t["identity"] = "clear"
+    t["identity_certain"] = True
+    t["flap_motion"] = np.where(t["label"].isin(["TEF", "blade torsion 1"]), 0.5, 1e-4)
+    t["frequency_uncoupled"] = t["frequency_per_rev"]
     t["tef_branch"] = t["label"] == "TEF"
-    t["tef_branch_certain"] = t["tef_branch"] & (t["value_si"] < certain_until)
-    t.loc[t["tef_branch"] & (t["value_si"] >= certain_until), "identity"] = "ambiguous"
+    t["tef_branch_certain"] = t["tef_branch"]
     return t
 
 
-def test_tef_claims_are_decided_on_the_tef_branch():
-    # the TEF branch is another track than the one labelled TEF where it starts:
-    # the claim follows the branch (here: torsion 1's numbers, stable throughout)
-    t = branch_table()
-    t["tef_branch"] = t["label"] == "blade torsion 1"
-    t["tef_branch_certain"] = t["tef_branch"]
-    c = claim(kind="threshold", mode="TEF", direction="destabilising")
-    # by its own eigenvector that root is torsion 1 everywhere: no verdict
-    status, row = check(c, t)
-    assert status == "ambiguous" and "crossings: none" in row["computed"]
-    assert "0%" in row["reason"]
-    # where the branch is the TEF by its own label too, its numbers decide: a fail
-    t["label_here"] = np.where(t["tef_branch"], "TEF",
-                               np.where(t["label"] == "TEF", "blade torsion 1", t["label"]))
-    status, row = check(c, t)
-    assert status == "fail" and "no destabilising crossing" in row["reason"]
-    status, _ = check(c, branch_table())
-    assert status == "pass"
+def exchanged(t, at=0.2):
+    """The names TEF and blade torsion 1 exchanged on their tracks from x = `at` on
+    (the uncoupled pair keeping its order): an exceptional point between."""
+    t = t.copy()
+    swap = (t["value_si"] >= at) & t["label"].isin(["TEF", "blade torsion 1"])
+    t.loc[swap, "label"] = np.where(t.loc[swap, "label"] == "TEF", "blade torsion 1", "TEF")
+    t.loc[swap, "frequency_uncoupled"] = np.where(t.loc[swap, "label"] == "TEF", 10.0, 3.0)
+    t.loc[~swap & (t["label"] == "TEF"), "frequency_uncoupled"] = 10.0
+    t.loc[~swap & (t["label"] == "blade torsion 1"), "frequency_uncoupled"] = 3.0
+    t["tef_branch"] = t["label"] == "TEF"
+    return t
 
 
-def test_undecided_identity_makes_a_claim_ambiguous():
+def test_claims_are_decided_on_the_points_own_names():
+    # the TEF role is the row each point names TEF, whichever track it lies on:
+    # after the exchange the TEF rows are torsion's numbers (stable), so the
+    # claim that the TEF destabilises is decided on them -- but the exchange is
+    # an exceptional point inside the claim's range: no verdict, and the reason
+    # names it
     c = claim(kind="threshold", mode="TEF", direction="destabilising")
-    # uncertain only beyond the claim's points of interest still counts: the
-    # claim is about the whole range (the end state must be the claimed one)
-    status, row = check(c, branch_table(certain_until=0.3))
-    assert status == "ambiguous" and "undecided" in row["reason"]
-    # a trend limited to an interval before the doubt is decided
+    assert check(c, named_table())[0] == "pass"
+    status, row = check(c, exchanged(named_table()))
+    assert status == "ambiguous"
+    assert "TEF / blade torsion 1" in row["reason"] and "0.15 and 0.2" in row["reason"]
+
+
+def test_an_exceptional_point_outside_the_range_or_of_another_mode_decides():
+    t = exchanged(named_table())
+    # a trend before the exceptional point is decided
     trend = claim(kind="trend", mode="TEF", quantity="real_part", direction="increasing",
-                  interval=[0.0, 0.25])
-    assert check(trend, branch_table(certain_until=0.3))[0] == "pass"
-    # blade modes: an ambiguous match on their own track
-    t = branch_table()
-    t.loc[(t["label"] == "blade torsion 1") & (t["value_si"] > 0.2), "identity"] = "ambiguous"
-    tors = claim(kind="trend", mode="blade torsion 1", quantity="damping",
-                 direction="increasing")
-    assert check(tors, t)[0] == "ambiguous"
+                  interval=[0.0, 0.15])
+    assert check(trend, t)[0] == "pass"
+    # a lag claim is never withheld for the TEF's identity (its scale is the
+    # TEF panel's range, whichever root carries the name)
+    lag = claim(kind="trend", mode="blade lag 1", quantity="damping", direction="constant",
+                tolerance=0.1, tolerance_type="relative_to_mode", reference_mode="TEF", **TOL)
+    assert check(lag, t)[0] == "pass"
+    # the uncoupled pair changing order at the exchange: the names moved with
+    # the uncoupled crossing, not an exceptional point -- decided
+    crossing = t.copy()
+    late = crossing["value_si"] >= 0.2
+    crossing.loc[late & (crossing["label"] == "TEF"), "frequency_uncoupled"] = 2.0
+    c = claim(kind="threshold", mode="TEF", direction="destabilising")
+    assert check(c, crossing)[0] != "ambiguous"
 
 
-def test_a_tef_branch_that_ends_inside_the_range_is_ambiguous_not_failed():
-    """Found with the branched hub (Fig. 12): the TEF branch ended in a coalescence after
-    one requested point and a trend claim failed "for want of points"; which root is the
-    TEF beyond that point is undecided, so the claim is ambiguous."""
-    t = branch_table()
-    ends = t["tef_branch"] & (t["value_si"] > 0.05)
-    t.loc[ends, "tef_branch"] = False
-    trend = claim(kind="trend", mode="TEF", quantity="real_part", direction="increasing")
-    status, row = check(trend, t)
-    assert status == "ambiguous" and "branch ends at x" in row["reason"]
-    # a claim limited to where the branch exists is still decided
+def test_paths_that_meet_inside_the_range_make_the_claim_ambiguous_when_it_matters():
+    # the TEF's path met blade flap 1's at the last point: taking flap 1's root
+    # there (stable) the TEF does not stay unstable -- the verdict depends on
+    # the choice, so no verdict, and the reason names the point and both
+    t = named_table()
+    t["meets"] = np.where((t["value_si"] == 0.4) & (t["label"] == "TEF"), "blade flap 1", "")
+    c = claim(kind="threshold", mode="TEF", direction="destabilising")
+    status, row = check(c, t)
+    assert status == "ambiguous" and "TEF / blade flap 1" in row["reason"]
+    assert "at x = 0.4" in row["reason"] and "paths meet" in row["reason"]
+    assert "pass with the names as continued, fail with them exchanged" in row["reason"]
+    # met at 0.3 instead: the crossing at 0.25 is there either way -- decided,
+    # and the reason says why
+    t["meets"] = np.where((t["value_si"] == 0.3) & (t["label"] == "TEF"), "blade flap 1", "")
+    status, row = check(c, t)
+    assert status == "pass" and "every choice gives pass" in row["reason"]
+    # the same meeting outside a claim's interval does not enter
     early = claim(kind="trend", mode="TEF", quantity="real_part", direction="increasing",
-                  interval=[0.0, 0.05])
-    assert check(early, branch_table())[0] == check(early, t)[0] != "ambiguous"
+                  interval=[0.0, 0.2])
+    status, row = check(early, t)
+    assert status == "pass" and "exceptional" not in row["reason"]
 
 
 def test_mechanism_claim_fields_are_checked():
@@ -429,19 +425,16 @@ def test_mechanism_claim_on_a_real_hover_sweep():
     assert "participation" in row["computed"]
 
 
-def test_flutter_root_claims_and_the_note_on_tef_claims():
-    # the TEF branch (label TEF) is stable; the flutter root of each point is
-    # the torsion track, unstable above 0.2: a TEF claim fails on the branch
-    # and reports what the flutter root gives; a flutter-root claim passes
-    t = branch_table()
+def test_flutter_root_claims():
+    # the TEF row is stable; the flutter root of each point is the torsion
+    # root, unstable above 0.2: a TEF claim fails, a flutter-root claim passes
+    t = named_table()
     t["real_part"] = np.where(t["label"] == "TEF", -1.0, t["real_part"])
     t.loc[t["label"] == "blade torsion 1", "real_part"] = 2 * (t["value_si"] - 0.2)
     t["flutter_root"] = t["label"] == "blade torsion 1"
     c = claim(kind="threshold", mode="TEF", direction="destabilising")
     status, row = check(c, t)
-    assert status == "fail"
-    assert "flutter root: crossings: destabilising at 0.2" in row["computed"]
-    assert "(would pass)" in row["computed"]
+    assert status == "fail" and "would" not in row["computed"]
     fr = claim(kind="threshold", mode="flutter root", direction="destabilising",
                expected=0.2, tolerance=0.01, tolerance_reason="test")
     status, row = check(fr, t)

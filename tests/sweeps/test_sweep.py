@@ -109,7 +109,7 @@ def test_table_is_tidy_one_row_per_value_and_mode():
     assert t["point"].tolist() == np.repeat(np.arange(len(XS)), 3).tolist()
     np.testing.assert_array_equal(t["value"], np.repeat(XS, 3))
     np.testing.assert_array_equal(t["value_si"], np.repeat(XS, 3))
-    for col in ("track", "label", "label_here", "mode_id", "frequency_per_rev", "real_part",
+    for col in ("track", "label", "mode_id", "frequency_per_rev", "real_part",
                 "damping_ratio", "trim_collective_deg", "trim_ct_sigma", "trim_converged"):
         assert col in t.columns
     np.testing.assert_allclose(t["trim_collective_deg"], 8.0 + t["value_si"])
@@ -126,16 +126,15 @@ def test_curves_are_continuous_modes_through_frequency_crossings():
         # each curve is one mode: its own frequency law on both sides of the crossings
         np.testing.assert_allclose(c["frequency_per_rev"], [freq(x) for x in c["value_si"]])
         np.testing.assert_allclose(c["real_part"], [real(x) for x in c["value_si"]])
-        assert (c["label_here"] == label).all()  # the point function agrees
     # ... although the solver's mode numbering changes along the TEF curve
     tef = t[t["label"] == "TEF"]
     assert tef["mode_id"].nunique() == 3
-    assert run().label_changes.empty
+    assert run().exceptional_points.empty
 
 
 def test_curve_helper_and_to_csv(tmp_path):
     res = run()
-    assert res.curve("TEF")["label_here"].eq("TEF").all()
+    assert res.curve("TEF")["label"].eq("TEF").all()
     path = res.to_csv(tmp_path / "s.csv")
     back = pd.read_csv(path)
     assert back.shape == res.table.shape
@@ -172,7 +171,7 @@ def test_failed_points_are_recorded_and_the_sweep_goes_on():
     # one row per failed point, NaN/NA only in result columns, and only there
     failed = t[t["status"] == "failed"]
     assert len(failed) == 4 and failed["error"].notna().all()
-    result_cols = ["track", "label", "label_here", "mode_id", "frequency_per_rev",
+    result_cols = ["track", "label", "mode_id", "frequency_per_rev",
                    "real_part", "damping_ratio", "trim_collective_deg"]
     assert failed[result_cols].isna().all().all()
     ok = t[t["status"] == "ok"]
@@ -411,17 +410,17 @@ def test_boundary_of_a_stabilising_crossing():
     assert b.direction == "stabilising" and abs(b.value - X0) < 1e-8
 
 
-def test_boundary_with_an_ambiguous_label_warns():
+def test_boundary_refuses_a_name_given_to_two_roots():
     class TwoTef(ToyPoint):
         def __call__(self, cfg):
             res = super().__call__(cfg)
             res.modes["label"] = res.modes["label"].replace("blade flap 1", "TEF")
             return res
 
-    # tracks 0 (the flap mode, stable) and 2 (the TEF mode) carry "TEF" at all points
-    with pytest.warns(UserWarning, match="2 tracks are labelled 'TEF'; following track 2"):
-        b = stability_boundary(MDART, PARAM, (0.0, 1.0), point=TwoTef(), xtol=1e-9)
-    assert abs(b.value - X0) < 1e-8
+    # two roots named "TEF" at every point: which one's boundary is wanted has no
+    # answer -- refused, never guessed
+    with pytest.raises(ValueError, match="2 roots are named 'TEF' at flap.cg_offset = 0"):
+        stability_boundary(MDART, PARAM, (0.0, 1.0), point=TwoTef(), xtol=1e-9)
 
 
 def test_boundary_errors():
