@@ -215,10 +215,11 @@ def stability(cfg, *, trim_result: TrimResult | None = None, n_steps: int | None
     """
     # one C81 range warning for the point, not one per airload evaluation
     with summarised_range_warnings(stacklevel=4):
-        return _trimmed_stability(cfg, trim_result, n_steps, remode, model, warm_start)
+        return _trimmed_stability(cfg, trim_result, n_steps, remode, model, warm_start,
+                                  identity)
 
 
-def _trimmed_stability(cfg, trim_result, n_steps, remode, model, warm_start):
+def _trimmed_stability(cfg, trim_result, n_steps, remode, model, warm_start, identity):
     """:func:`stability`'s trim (from the warm start or the model given) and modes."""
     if model is not None:
         if model.cfg != cfg:
