@@ -118,29 +118,8 @@ def cmd_fanplot(args) -> int:
     return 0
 
 
-def _real_part_text(value: float, neutral: bool) -> str:
-    """A real part as printed: "neutral" below the solver's resolution, never "-0.0000"."""
-    if neutral:
-        return "neutral"
-    return f"{value:.4f}" if abs(value) >= 5e-5 else f"{value:.2e}"
-
-
-def _modes_text(table) -> str:
-    """The modes table as ``tefcore stability`` prints it.
-
-    A root whose real part is within its error estimate (``neutral``) reads
-    "neutral" (its sign means nothing); a resolved real part too small for
-    four decimals is printed with its exponent.  The resolution columns are
-    in the CSV (``--csv``), not printed.
-    """
-    shown = table.drop(columns=["real_part_error", "neutral"], errors="ignore")
-    if "neutral" in table:
-        shown = shown.assign(real_part=[_real_part_text(v, bool(n)) for v, n in
-                                        zip(table["real_part"], table["neutral"], strict=True)])
-    return shown.to_string(index=False, float_format=lambda v: f"{v:.4f}")
-
-
 def cmd_stability(args) -> int:
+    from .cli_text import flutter_text, legend, modes_text, trim_lines, wrap
     from .linear.stability import stability
 
     cfg = _load(args)
@@ -150,19 +129,23 @@ def cmd_stability(args) -> int:
     table = res.modes
     if args.csv:
         _write_csv(table, args.csv)
-    print(_modes_text(table))
-    print("trim: " + ", ".join(f"{k}={v:.4g}" for k, v in res.trim.items()))
+    print(modes_text(table))
+    print("\n".join(legend(table)))
+    if (sentence := flutter_text(table)) is not None:
+        print(sentence)
+    print("\n".join(trim_lines(res.trim)))
     if res.aero_modes is not None:
         am = res.aero_modes
         kinds = ", ".join(f"{(am['kind'] == k).sum()} {k}" for k in ("wake", "inflow")
                           if (am["kind"] == k).any())
-        print(f"aerodynamic-state roots (no mode label): {kinds}; least stable "
-              f"{am['real_part'].max():+.4f} /rev" if len(am) else
+        print(wrap(f"aerodynamic-state roots (no mode label): {kinds}; least stable "
+                   f"{am['real_part'].max():+.4f} /rev") if len(am) else
               "aerodynamic-state roots: none")
     return 0
 
 
 def cmd_sweep(args) -> int:
+    from .cli_text import sweep_summary
     from .sweeps.sweep import sweep
 
     cfg = _load(args)
@@ -175,6 +158,8 @@ def cmd_sweep(args) -> int:
     path = result.to_csv(args.csv)
     n_bad = len(result.failed)
     print(f"wrote {path}: {len(values)} points, {n_bad} failed")
+    for line in sweep_summary(result):
+        print(line)
     if n_bad:
         print(result.failed.to_string(index=False))
         print(f"tefcore sweep: {n_bad} of {len(values)} point(s) failed (see {path}, column "
@@ -184,19 +169,28 @@ def cmd_sweep(args) -> int:
 
 
 def cmd_mechanism(args) -> int:
+    from .cli_text import mechanism_choice, wrap
     from .linear.mechanism import mechanism
+    from .linear.stability import stability
 
     cfg = _load(args)
     if args.csv:
         check_output_file(args.csv, "--csv")
-    res = mechanism(cfg, mode=args.mode, knockouts=not args.no_knockouts)
+    point = stability(cfg)
+    # no --mode: mechanism's default, the flutter root when unstable, else the TEF mode
+    res = mechanism(cfg, mode=args.mode, knockouts=not args.no_knockouts,
+                    stability_result=point)
     if args.csv:
         with atomic_output(args.csv, newline="", what="--csv") as f:
             res.table.to_csv(f, index=False, float_format="%.10g")
-    print(res.summary())
+    if args.mode is None:
+        print(mechanism_choice(res, point.modes))
+    for line in res.summary().splitlines():
+        print(wrap(line, indent="    "))
     doubtful = [t for t, f in res.knockouts.items() if not f.clear]
     if doubtful:
-        print("knockouts through a coalescence (identity not certain): " + ", ".join(doubtful))
+        print(wrap("knockouts through a coalescence (identity not certain): "
+                   + ", ".join(doubtful)))
     if args.csv:
         print(f"wrote {args.csv}: {len(res.table)} rows")
     return 0
@@ -483,9 +477,10 @@ def build_parser() -> argparse.ArgumentParser:
              "contribution_imag; rows: one per term, 'total' (the root's eigenvalue, /rev) "
              "and 'knockout <term>' (the root's eigenvalue with that term removed).",
              cmd_mechanism)
-    p.add_argument("--mode", default="TEF",
-                   help="'TEF' (the root the flap mode becomes), 'flutter' (least stable "
-                        "root the flap takes part in) or a label, e.g. 'blade torsion 1'")
+    p.add_argument("--mode", default=None,
+                   help="'TEF' (the root the flap mode becomes), 'flutter' (the least stable "
+                        "flap-induced root) or a root's name, e.g. 'blade torsion 1' "
+                        "(default: the flutter root when it is unstable, else TEF)")
     p.add_argument("--csv", default=None, help="write the decomposition to this CSV file")
     p.add_argument("--no-knockouts", action="store_true", help="skip the knockouts (faster)")
     p = _add(sub, "c81", "C81 airfoil decks: check decks, regenerate the example deck",

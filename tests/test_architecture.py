@@ -54,6 +54,7 @@ LAYERS = (
     ("linear",),                          # stability of the trimmed rotor, mechanism
     ("sweeps",),                          # sweeps, boundaries, maps
     ("paper",),                           # the paper's figures, claims, notebooks
+    ("cli_text",),                        # what the command prints (100 columns)
     ("cli",),                             # the command
     ("__main__",),                        # python -m tefcore
 )

@@ -24,7 +24,7 @@ import pandas as pd
 from ..modes.roles import FLUTTER_ROOT, ModeNotFound, base_name, exceptional_points, mode_rows
 from .curve_metrics import X_SLACK, compare_curve, stability_intervals, zero_crossings
 from .figure_frames import compute_figure, figure_frame, natural_frequency_frame
-from .quantities import QUANTITIES, x_to_si
+from .quantities import QUANTITY_NAMES, quantity_unit, x_to_si
 from .reference import Claim, load_claims
 
 __all__ = ["COLUMNS", "validate_figure", "variant_key"]
@@ -229,7 +229,25 @@ class _Context:
 
 
 def _unit(c: Claim) -> str:
-    return QUANTITIES[c.quantity][1] if c.quantity else ""
+    """The unit after a value of the claim's quantity; a dimensionless one by its name."""
+    unit = quantity_unit(c.quantity)
+    return unit if unit or not c.quantity else f"({QUANTITY_NAMES[c.quantity]})"
+
+
+def _named(c: Claim, value: float, unit: str) -> str:
+    """A computed value with its quantity's name: ``"damping ratio -0.0123"``."""
+    return " ".join(t for t in (QUANTITY_NAMES.get(c.quantity, ""), _g(value), unit) if t)
+
+
+def _plotted(c: Claim, ctx: _Context, xs: float) -> str:
+    """A damping ratio's real part at the same x [1/rev]: the panels plot a rate, not a ratio."""
+    if c.quantity != "damping_ratio" or c.relative_to is not None:
+        return ""
+    try:
+        x, y = ctx.series(c, quantity="real_part", until=xs, identity=False)
+    except _Fail:
+        return ""
+    return f" (real part {_g(float(np.interp(xs, x, y)))} 1/rev)" if len(x) else ""
 
 
 def _at(c, x, y, xv):
@@ -249,20 +267,24 @@ def _check_value(c: Claim, ctx: _Context):
         computed = _at(c, x, y, c.x)
         if c.relative_to is not None:
             computed = computed / _at(c, x, y, c.relative_to) - 1
-    unit = "(relative change)" if c.relative_to is not None else _unit(c)
+    unit = "(relative change)" if c.relative_to is not None else quantity_unit(c.quantity)
     where = "" if c.x is None else f" at x = {_g(c.x)} {c.x_unit}".rstrip()
+    name = QUANTITY_NAMES.get(c.quantity, "value")
     if c.expected is not None:
         tol = c.tolerance * (abs(c.expected) if c.tolerance_type == "relative" else 1)
         ok = abs(computed - c.expected) <= tol * (1 + X_SLACK)
-        expected = f"{_g(c.expected)} ± {_g(tol)} {unit}{where}"
+        expected = f"{name} {_g(c.expected)} ± {_g(tol)} {unit}".rstrip() + where
         why = f"off by {_g(computed - c.expected)}, more than {_g(tol)}"
     else:
         lo = -np.inf if c.lower is None else c.lower
         hi = np.inf if c.upper is None else c.upper
         ok = lo <= computed <= hi
-        expected = f"{_g(lo)} <= value <= {_g(hi)} {unit}{where}"
+        expected = f"{_g(lo)} <= {name} <= {_g(hi)} {unit}".rstrip() + where
         why = "outside the bounds"
-    return expected, f"{_g(computed)} {unit}", computed, ok, "" if ok else why
+    plotted = ("" if c.figure == "fig6" or c.x is None
+               else _plotted(c, ctx, float(x_to_si(c.figure, c.x, c.x_unit))))
+    return (expected, _named(c, computed, unit) + plotted, computed, ok,
+            "" if ok else why)
 
 
 def _fmt_x(c, xs, factor):

@@ -22,7 +22,8 @@ from ..config.configuration import SECTIONS, resolve_field
 from ..units import to_si
 from .figures import FIGURES
 
-__all__ = ["QUANTITIES", "swept_dimension", "x_to_si", "y_to_canonical"]
+__all__ = ["QUANTITIES", "QUANTITY_NAMES", "quantity_unit", "swept_dimension", "x_to_si",
+           "y_to_canonical"]
 
 
 _FT_LBF = 1.3558179483314004  # N m per ft-lbf
@@ -47,6 +48,40 @@ QUANTITIES = {
     "peak_power": (("fig6", "fig7"), "W", _POWER),
     "mean_power": (("fig6", "fig7"), "W", _POWER),
 }
+
+#: quantity -> its name in printed claims (``"damping ratio -0.0123"``), as the panels
+#: label their axes
+QUANTITY_NAMES = {
+    "real_part": "real part", "damping": "damping −Re(s)/Ω",
+    "damping_ratio": "damping ratio", "frequency_per_rev": "frequency",
+    "natural_frequency_per_rev": "natural frequency", "hinge_moment": "hinge moment",
+    "half_peak_to_peak_deg": "flap response (half peak-to-peak)", "peak_power": "peak power",
+    "mean_power": "mean power",
+}
+
+
+def quantity_unit(quantity: str) -> str:
+    """The unit printed after a value of `quantity`: its canonical unit, none when dimensionless.
+
+    Parameters
+    ----------
+    quantity : str
+        A key of :data:`QUANTITIES`, or ``""`` (none).
+
+    Returns
+    -------
+    str
+        ``"1/rev"``, ``"N m"``, ...; ``""`` for a dimensionless quantity
+        (the damping ratio: its name says what it is, a unit "1" says nothing).
+
+    Examples
+    --------
+    >>> quantity_unit("real_part"), quantity_unit("damping_ratio")
+    ('1/rev', '')
+    """
+    unit = QUANTITIES[quantity][1] if quantity else ""
+    return "" if unit == "1" else unit
+
 
 #: x of the response figures (fig6 has none): {unit: factor to the table's unit}
 _RESPONSE_X = {"fig5": {"": 1.0, "deg": 1.0, "rad": 180 / math.pi},

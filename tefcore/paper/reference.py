@@ -37,9 +37,11 @@ __all__ = ["KINDS", "ROOT_KINDS", "STATUSES", "Claim", "load_claims", "parse_cla
 KINDS = ("value", "threshold", "range", "trend", "comparison", "mechanism", "curve",
          "not_reproducible")
 TAGS = ("calibration", "validation")
-#: best first; a status later in the tuple is "worse".  ``ambiguous``: the
-#: model has a result, but which of its roots is the claim's mode cannot be
-#: decided over the claim's range (a coalescence or an unresolved veering)
+#: best first; a status later in the tuple is "worse".  ``ambiguous``: an
+#: exceptional point of the claim's mode (two roots coalescing in the plane of
+#: the swept parameter and the blade-flap coupling) lies inside the claim's
+#: range, where which root carries the name has no answer
+#: (:data:`tefcore.paper.report.STATUS_MEANINGS` words each status)
 STATUSES = ("pass", "ambiguous", "not reproducible", "fail")
 #: kinds of root a mechanism claim can expect (:func:`tefcore.linear.mechanism.mechanism`)
 ROOT_KINDS = ("flutter", "divergence")

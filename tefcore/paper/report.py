@@ -31,9 +31,10 @@ import pandas as pd
 
 from ..safe_io import atomic_write_text
 from .departures import departures_text, load_departures
+from .reference import STATUSES, TAGS
 
-__all__ = ["FIGURE_TITLES", "Image", "Report", "Section", "build_report", "render",
-           "template_environment", "write_report"]
+__all__ = ["FIGURE_TITLES", "Image", "Report", "STATUS_MEANINGS", "Section", "TAG_MEANINGS",
+           "WORSE_MEANING", "build_report", "render", "template_environment", "write_report"]
 
 #: The paper's figure captions (its own words), by tefcore figure name.
 FIGURE_TITLES = {
@@ -71,6 +72,35 @@ FIGURE_TITLES = {
 }
 _STATUS_CLASS = {"pass": "pass", "fail": "fail", "ambiguous": "ambig",
                  "not reproducible": "notrep"}
+
+#: What each claim status means, one sentence each (the report's header;
+#: :data:`tefcore.paper.reference.STATUSES` lists them best first).
+STATUS_MEANINGS = {
+    "pass": "the computation agrees with the paper's statement within the claim's stated "
+            "tolerance (each tolerance gives its reason in the reference data).",
+    "fail": "the computation contradicts the statement beyond its tolerance, or lacks what "
+            "the statement is about (no such root, no crossing); the reason says which.",
+    "ambiguous": "which root carries the claim's mode has no answer, and that only where a "
+                 "located exceptional point — a coalescence of two roots in the plane of the "
+                 "swept parameter and the blade-flap coupling — lies inside the claim's "
+                 "range; the reason names it (its two modes and where).",
+    "not reproducible": "tefcore cannot check the statement: it compares with data tefcore "
+                        "does not have (wind-tunnel tests, other analyses, the paper's "
+                        "tables), its digitised points all lie outside the computed range, "
+                        "or a result it needs was not computed; the reason says which.",
+}
+
+#: What each claim tag means, one sentence each.
+TAG_MEANINGS = {
+    "validation": "a statement of the paper never used to tune the model; the score counts "
+                  "these.",
+    "calibration": "a stated value used to set the assumed blade properties (the stated "
+                   "torsion frequencies); listed, not scored.",
+}
+
+#: What "worse than recorded" means.
+WORSE_MEANING = ("a claim whose status is worse than the one recorded in the reference data "
+                 "(best first: " + ", ".join(STATUSES) + "): a regression.")
 
 
 @dataclass
@@ -154,8 +184,8 @@ class Report:
     title : str
         Page title.
     intro : str
-        Opening paragraph (markdown): what is replicated and what the
-        statuses mean.
+        Opening paragraph (markdown): what is replicated (the statuses are
+        explained by ``statuses``).
     passed : int
         Validation claims that pass (the score; calibration targets are
         listed, not scored).
@@ -177,6 +207,14 @@ class Report:
         (:func:`tefcore.paper.calibration.frequency_checks`), rounded.
     version : str
         The version of tefcore, shown in the summary.
+    statuses : list of dict
+        The header's legend of the claim statuses: ``name`` and ``meaning``
+        (one sentence), every status of
+        :data:`tefcore.paper.reference.STATUSES` (:data:`STATUS_MEANINGS`).
+    tags : list of dict
+        The same for the claim tags (:data:`TAG_MEANINGS`).
+    worse_meaning : str
+        What "worse than recorded" means (:data:`WORSE_MEANING`).
     fanplot : Image or None
         Fan plot of the (assumed) MDART blade's coupled modes, if written.
     departures : str
@@ -197,9 +235,20 @@ class Report:
     sections: list
     checks: list
     version: str
+    statuses: list = field(default_factory=lambda: _legend(STATUS_MEANINGS, STATUSES))
+    tags: list = field(default_factory=lambda: _legend(TAG_MEANINGS, TAGS))
+    worse_meaning: str = WORSE_MEANING
     fanplot: Image | None = None
     departures: str = ""
     up: str = ""
+
+
+def _legend(meanings: dict, names) -> list[dict]:
+    """``[{"name", "meaning"}]`` in the order of `names`; a name without a meaning is an error."""
+    missing = [n for n in names if n not in meanings]
+    if missing:
+        raise KeyError(f"no meaning written for {missing} (tefcore.paper.report)")
+    return [{"name": n, "meaning": meanings[n]} for n in names]
 
 
 def _slug(text: str) -> str:
@@ -331,13 +380,9 @@ def build_report(out, runs, claims: pd.DataFrame, worse: pd.DataFrame, *, figure
         intro=("Replication of *Aeroelastic Stability of Trailing-Edge Flap Helicopter "
                "Rotors* with the compact tefcore model. Each section shows one figure of the "
                "paper as tefcore computes it, the paper's statements about it checked against "
-               "the computation, and where the model departs from the paper's. A claim "
-               "*passes* when the computation agrees with the statement within its stated "
-               "tolerance, *fails* when it does not, is *ambiguous* when which computed root "
-               "the statement is about cannot be decided (a coalescence or an unresolved "
-               "veering of roots), and *not reproducible* when it needs data tefcore does "
-               "not have (test data, the paper's tables). The score counts the validation "
-               "claims; calibration targets are listed, not scored."),
+               "the computation, and where the model departs from the paper's. A root is "
+               "named by the uncoupled mode it continues from as the blade-flap coupling is "
+               "switched on (docs/theory.md 9.1)."),
         passed=passed, total=len(validation), counts=counts,
         worse=worse.fillna("").astype(str).to_dict("records") if not worse.empty else [],
         notebooks=[{"name": r.name, "status": r.status, "error": r.error,

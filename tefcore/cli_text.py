@@ -1,0 +1,457 @@
+"""What the ``tefcore`` command prints: tables and summaries that fit :data:`WIDTH` columns.
+
+:mod:`tefcore.cli` computes; this module words the results for a terminal:
+
+* the modes table of ``tefcore stability`` (:func:`modes_text`): one row
+  per root -- its name, frequency, real part and damping ratio, the
+  coordinate it carries most, and a note that marks the unstable roots and
+  the flutter root -- with a one-line legend (:data:`LEGEND`) and a
+  sentence naming the flutter root (:func:`flutter_text`);
+* the trim and other long ``name=value`` lists, wrapped (:func:`wrap`);
+* the root ``tefcore mechanism`` decomposes when no ``--mode`` is given
+  (:func:`mechanism_choice`);
+* after ``tefcore sweep``, one summary per role -- the TEF mode and the
+  flutter root: where it becomes unstable, its largest growth, the
+  exceptional points of its names (:func:`sweep_summary`).
+
+The flutter root of a point is its least stable flap-induced root
+(docs/theory.md 9.2); the command calls it so only when it is unstable:
+a real part above zero and not ``neutral`` (within the solver's error
+estimate, where its sign means nothing).
+
+Examples
+--------
+>>> import pandas as pd
+>>> t = pd.DataFrame({"label": ["blade lag 1", "TEF", "blade flap 5"],
+...                   "dominant": ["blade lag 1", "TEF", "blade flap 4"],
+...                   "frequency_per_rev": [0.59, 6.42, 9.79],
+...                   "real_part": [-0.0116, -4.74, 2.98],
+...                   "damping_ratio": [0.0196, 0.594, -0.291],
+...                   "neutral": [False, False, False],
+...                   "flutter_root": [False, False, True]})
+>>> print(modes_text(t))
+root          freq /rev  real /rev  damping ratio  carries most  note
+blade lag 1      0.5900    -0.0116         0.0196
+TEF              6.4200    -4.7400         0.5940
+blade flap 5     9.7900    +2.9800        -0.2910  blade flap 4  FLUTTER ROOT
+>>> flutter_text(t)
+'flutter root: blade flap 5 at +2.980 /rev (continues from blade flap 5), frequency 9.790 /rev'
+"""
+
+from __future__ import annotations
+
+import re
+import textwrap
+
+import numpy as np
+import pandas as pd
+
+from .config.text_input import field_param
+from .modes.roles import base_name
+from .units import from_si
+
+__all__ = ["LEGEND", "UNCERTAIN", "UNCERTAIN_LEGEND", "WIDTH", "flutter_row", "flutter_text",
+           "legend", "mechanism_choice", "modes_text", "onset", "real_part_text",
+           "sweep_summary", "trim_lines", "unstable", "wrap"]
+
+#: Widest line the command prints, in characters.
+WIDTH = 100
+
+#: What the notes of ``tefcore stability``'s table mean (one line).
+LEGEND = ("UNSTABLE: real part > 0 (not 'neutral'); FLUTTER ROOT: the least stable "
+          "flap-induced root, unstable")
+
+#: The note of a root whose path from zero coupling met another's (``identity_certain``
+#: False): which name it carries is not decided there.
+UNCERTAIN = "name uncertain"
+
+#: The legend line of :data:`UNCERTAIN`, printed when a root has it.
+UNCERTAIN_LEGEND = ("name uncertain: its path from zero coupling met another root's "
+                    "(exceptional point, theory 9.1)")
+
+
+def wrap(text: str, indent: str = "  ") -> str:
+    """`text` filled to :data:`WIDTH` columns, continuation lines indented.
+
+    Parameters
+    ----------
+    text : str
+        One paragraph; words are never broken, its leading spaces kept.
+    indent : str, optional
+        Prefix of the continuation lines (after the leading spaces).
+
+    Returns
+    -------
+    str
+
+    Examples
+    --------
+    >>> print(wrap("trim: " + ", ".join(f"x{i}=1.234" for i in range(12))))
+    trim: x0=1.234, x1=1.234, x2=1.234, x3=1.234, x4=1.234, x5=1.234, x6=1.234, x7=1.234, x8=1.234,
+      x9=1.234, x10=1.234, x11=1.234
+    """
+    lead = text[:len(text) - len(text.lstrip())]
+    return textwrap.fill(" ".join(text.split()), WIDTH, initial_indent=lead,
+                         subsequent_indent=lead + indent, break_long_words=False,
+                         break_on_hyphens=False)
+
+
+def real_part_text(value: float, neutral: bool) -> str:
+    """A real part as printed: ``neutral`` below the solver's resolution, else signed.
+
+    Parameters
+    ----------
+    value : float
+        The real part [1/rev].
+    neutral : bool
+        Whether ``|value|`` is within its error estimate (its sign means nothing).
+
+    Returns
+    -------
+    str
+        ``"neutral"``, 4 decimals with their sign, or a signed exponent for a
+        resolved value too small for 4 decimals (never ``-0.0000``).
+
+    Examples
+    --------
+    >>> real_part_text(2.98051, False), real_part_text(-3.09e-5, False), real_part_text(1e-9, True)
+    ('+2.9805', '-3.09e-05', 'neutral')
+    """
+    if neutral:
+        return "neutral"
+    return f"{value:+.4f}" if abs(value) >= 5e-5 else f"{value:+.2e}"
+
+
+def unstable(table: pd.DataFrame) -> np.ndarray:
+    """Which rows of a modes (or sweep) table are unstable: real part > 0 and not neutral.
+
+    Parameters
+    ----------
+    table : pandas.DataFrame
+        With ``real_part`` and, when known, ``neutral``.
+
+    Returns
+    -------
+    numpy.ndarray of bool
+    """
+    real = table["real_part"].to_numpy(float)
+    neutral = (table["neutral"].fillna(False).to_numpy(bool) if "neutral" in table
+               else np.zeros(len(table), bool))
+    with np.errstate(invalid="ignore"):
+        return (real > 0) & ~neutral
+
+
+def flutter_row(table: pd.DataFrame):
+    """Index label of the point's flutter root when it is unstable, else None.
+
+    Parameters
+    ----------
+    table : pandas.DataFrame
+        A modes table with ``flutter_root`` (:func:`tefcore.modes.roles.name_roots`).
+
+    Returns
+    -------
+    object or None
+    """
+    if "flutter_root" not in table:
+        return None
+    mask = table["flutter_root"].fillna(False).to_numpy(bool) & unstable(table)
+    return table.index[mask][0] if mask.any() else None
+
+
+def _notes(table: pd.DataFrame) -> list[str]:
+    row = flutter_row(table)
+    bad = unstable(table)
+    certain = (table["identity_certain"].fillna(True).to_numpy(bool)
+               if "identity_certain" in table else np.ones(len(table), bool))
+    out = []
+    for i, idx in enumerate(table.index):
+        marks = ["FLUTTER ROOT" if idx == row else "UNSTABLE" if bad[i] else ""]
+        marks += [] if certain[i] else [UNCERTAIN]
+        out.append(", ".join(m for m in marks if m))
+    return out
+
+
+def _layout(columns: list[tuple[str, list[str], str]]) -> list[str]:
+    """Lines of a table: ``(header, cells, align)`` columns, two spaces apart."""
+    widths = [max([len(h), *map(len, cells)]) for h, cells, _ in columns]
+    rows = zip(*([h, *cells] for h, cells, _ in columns), strict=True)
+    return ["  ".join(c.ljust(w) if a == "<" else c.rjust(w)
+                      for c, w, (_, _, a) in zip(row, widths, columns, strict=True)).rstrip()
+            for row in rows]
+
+
+def modes_text(table: pd.DataFrame) -> str:
+    """The modes table as ``tefcore stability`` prints it, at most :data:`WIDTH` wide.
+
+    One row per root: ``root`` (its name, the uncoupled mode it continues
+    from), ``freq /rev``, ``real /rev`` (:func:`real_part_text`), ``damping
+    ratio``, ``carries most`` (the coordinate it carries most, shown where it
+    is not the name; no column when it is the name everywhere) and ``note``:
+    ``FLUTTER ROOT`` (:func:`flutter_row`), ``UNSTABLE`` (:func:`unstable`),
+    ``name uncertain`` (its path met another's).  A table too wide leaves
+    out ``carries most`` (the CSV has it as ``dominant``).
+
+    Parameters
+    ----------
+    table : pandas.DataFrame
+        :attr:`tefcore.linear.stability.StabilityResult.modes`.
+
+    Returns
+    -------
+    str
+    """
+    neutral = (table["neutral"].fillna(False).to_numpy(bool) if "neutral" in table
+               else np.zeros(len(table), bool))
+    names = table["label"].astype(str).tolist()
+    carries = (["" if d == n else d for d, n in zip(table["dominant"].astype(str), names,
+                                                     strict=True)]
+               if "dominant" in table else [])
+    columns = [("root", names, "<"),
+               ("freq /rev", [f"{v:.4f}" for v in table["frequency_per_rev"]], ">"),
+               ("real /rev", [real_part_text(v, n) for v, n in
+                              zip(table["real_part"], neutral, strict=True)], ">"),
+               ("damping ratio", [f"{v:.4f}" for v in table["damping_ratio"]], ">"),
+               ("carries most", carries, "<"), ("note", _notes(table), "<")]
+    if not any(carries):
+        columns.pop(4)
+        carries = []
+    lines = _layout(columns)
+    if max(map(len, lines)) > WIDTH and carries:
+        lines = _layout(columns[:4] + columns[5:])
+    return "\n".join(lines)
+
+
+def legend(table: pd.DataFrame) -> list[str]:
+    """The legend lines under :func:`modes_text`: :data:`LEGEND`, and :data:`UNCERTAIN_LEGEND`
+    when a root's name is uncertain.
+
+    Parameters
+    ----------
+    table : pandas.DataFrame
+        The modes table.
+
+    Returns
+    -------
+    list of str
+    """
+    uncertain = ("identity_certain" in table
+                 and not table["identity_certain"].fillna(True).astype(bool).all())
+    return [LEGEND] + ([UNCERTAIN_LEGEND] if uncertain else [])
+
+
+def trim_lines(trim: dict) -> list[str]:
+    """The trim scalars, wrapped: the controls and inflow, then the flap's harmonics.
+
+    Parameters
+    ----------
+    trim : dict
+        :attr:`tefcore.linear.stability.StabilityResult.trim` (name -> scalar);
+        ``delta_<harmonic>_deg`` are the flap deflection's harmonics.
+
+    Returns
+    -------
+    list of str
+
+    Examples
+    --------
+    >>> trim_lines({"collective_deg": 6.1081, "ct_sigma": 0.075, "delta_mean_deg": 2.078,
+    ...             "delta_1c_deg": 0.85234})
+    ['trim: collective_deg=6.108, ct_sigma=0.075', 'flap deflection [deg]: mean=2.078, 1c=0.8523']
+    """
+    flap = {k: v for k, v in trim.items() if re.fullmatch(r"delta_\w+_deg", k)}
+    rest = ", ".join(f"{k}={v:.4g}" for k, v in trim.items() if k not in flap)
+    lines = [wrap(f"trim: {rest}")]
+    if flap:
+        lines.append(wrap("flap deflection [deg]: " + ", ".join(
+            f"{k.removeprefix('delta_').removesuffix('_deg')}={v:.4g}"
+            for k, v in flap.items())))
+    return lines
+
+
+def flutter_text(table: pd.DataFrame) -> str | None:
+    """One sentence on the point's flutter root, or None without a flap.
+
+    Parameters
+    ----------
+    table : pandas.DataFrame
+        A modes table with ``flutter_root``.
+
+    Returns
+    -------
+    str or None
+        ``"flutter root: <name> at +x.xxx /rev (continues from <name>), frequency f /rev"``
+        when it is unstable; else which flap-induced root is least stable and
+        that it is stable (or neutral).
+    """
+    row = flutter_row(table)
+    if row is not None:
+        r = table.loc[row]
+        return wrap(f"flutter root: {r['label']} at {r['real_part']:+.3f} /rev (continues from "
+                    f"{base_name(r['label'])}), frequency {r['frequency_per_rev']:.3f} /rev")
+    marked = table[table["flutter_root"].fillna(False).astype(bool)] \
+        if "flutter_root" in table else table.iloc[0:0]
+    if marked.empty:
+        return None
+    r = marked.iloc[0]
+    state = ("neutral (its real part within its error)" if bool(r.get("neutral", False))
+             else f"stable ({r['real_part']:+.4f} /rev)")
+    return wrap(f"no flutter root: the least stable flap-induced root, {r['label']}, is {state}")
+
+
+def mechanism_choice(result, table: pd.DataFrame) -> str:
+    """The line ``tefcore mechanism`` prints when no ``--mode`` is given: which root it took.
+
+    :func:`tefcore.linear.mechanism.mechanism` with ``mode=None`` takes the
+    flutter root when it is unstable, else the TEF mode.
+
+    Parameters
+    ----------
+    result : tefcore.linear.mechanism.MechanismResult
+        The decomposition.
+    table : pandas.DataFrame
+        The modes table it was taken from.
+
+    Returns
+    -------
+    str
+    """
+    eta = result.eigenvalue
+    marked = table["flutter_root"].fillna(False).to_numpy(bool) if "flutter_root" in table \
+        else np.zeros(len(table), bool)
+    flutter = table[marked & (table["real_part"].to_numpy(float) > 0)]
+    if not flutter.empty and result.label == str(flutter["label"].iloc[0]):
+        return wrap(f"decomposing the flutter root ({result.label}, {eta.real:+.2f} /rev); "
+                    "--mode TEF for the flap mode")
+    return wrap(f"decomposing the TEF mode ({eta.real:+.2f} /rev): no flutter root is unstable; "
+                "--mode flutter to take it anyway")
+
+
+# ------------------------------------------------------------------ sweeps
+
+
+def _x_unit(table: pd.DataFrame, parameter: str) -> tuple[str, float]:
+    """The unit the sweep's values were given in, and its factor from SI (1 and "" when bare)."""
+    given = table["value"].dropna()
+    m = re.match(r"^\s*[-+0-9.eE]+\s+(\S.*)$", str(given.iloc[0])) if len(given) else None
+    if m is None:
+        return "", 1.0
+    p = field_param(parameter)
+    try:
+        # linear units: a value in SI times from_si(1) is the value in the unit
+        return m.group(1).strip(), from_si(1.0, m.group(1).strip(), p.dimension if p else None)
+    except ValueError:
+        return "", 1.0
+
+
+def onset(x, real, neutral=None) -> tuple[str, float]:
+    """Where a role's root first becomes unstable along a sweep, in words and as a number.
+
+    Parameters
+    ----------
+    x : array_like
+        The parameter at the points, ascending.
+    real : array_like
+        The root's real part there [1/rev].
+    neutral : array_like of bool, optional
+        Real parts within their error (stable for this purpose).
+
+    Returns
+    -------
+    text : str
+        ``"stable throughout"``, ``"unstable throughout"``, ``"unstable from
+        the first point"`` or ``"onset at {x}"`` (the sign change of the real
+        part linearly interpolated between the two neighbouring points),
+        with the number of later sign changes.
+    value : float
+        The onset (the first x when unstable from the start; NaN when stable
+        throughout).
+
+    Examples
+    --------
+    >>> onset([0.0, 0.1, 0.2], [-0.2, -0.1, 0.3])
+    ('onset at 0.125', 0.125)
+    >>> onset([0.0, 0.1], [-0.2, -0.1])
+    ('stable throughout', nan)
+    """
+    x, y = np.asarray(x, float), np.asarray(real, float)
+    bad = y > 0 if neutral is None else (y > 0) & ~np.asarray(neutral, bool)
+    if not bad.any():
+        return "stable throughout", np.nan
+    if bad.all():
+        return "unstable throughout", float(x[0])
+    changes = np.flatnonzero(bad[1:] != bad[:-1]) + 1
+    if bad[0]:
+        text, value, later = "unstable from the first point", float(x[0]), len(changes)
+    else:
+        i = int(changes[0])
+        y0, y1 = min(y[i - 1], 0.0), y[i]
+        value = float(x[i - 1] + (x[i] - x[i - 1]) * (-y0) / (y1 - y0))
+        text, later = f"onset at {value:.4g}", len(changes) - 1
+    if later:
+        text += f" ({later} later sign change{'s' if later > 1 else ''})"
+    return text, value
+
+
+def _role_line(what: str, rows: pd.DataFrame, unit: tuple[str, float], names_ep) -> str:
+    """One role's summary: onset, largest growth, exceptional points of its names."""
+    rows = rows[np.isfinite(rows["real_part"].to_numpy(float))]
+    if rows.empty:
+        return wrap(f"{what}: not at any point of the sweep")
+    u, f = unit
+    x = rows["value_si"].to_numpy(float) * f
+    neutral = rows["neutral"].fillna(False).to_numpy(bool) if "neutral" in rows else None
+    text, _ = onset(x, rows["real_part"], neutral)
+    i = int(np.argmax(rows["real_part"].to_numpy(float)))
+    top = rows.iloc[i]
+    name = "" if what == "TEF mode" else f" ({top['label']})"
+    line = (f"{what}: {text}; largest real part {top['real_part']:+.3f} /rev at "
+            f"{x[i]:.4g}{(' ' + u) if u else ''}{name}")
+    eps = [e for e in names_ep if set(e[0].split(" / ")) & set(map(base_name, rows["label"]))]
+    if eps:
+        where = "; ".join(f"{m} " + (f"at {lo * f:.4g}" if lo == hi else
+                                       f"between {lo * f:.4g} and {hi * f:.4g}")
+                          for m, lo, hi in eps)
+        line += f"; exceptional points{' of its names' if name else ''}: {where}"
+    return wrap(line)
+
+
+def sweep_summary(result) -> list[str]:
+    """The lines ``tefcore sweep`` prints after a sweep: the TEF mode and the flutter root.
+
+    For each role, over the points asked for (``refinement == 0``) that
+    were computed: the onset of instability (:func:`onset`), the largest
+    real part and where (with the flutter root's name there), and the
+    exceptional points (:attr:`tefcore.sweeps.sweep.SweepResult.exceptional_points`)
+    involving its names.  Values of the parameter are in the unit the sweep
+    was given in.
+
+    Parameters
+    ----------
+    result : tefcore.sweeps.sweep.SweepResult
+        The sweep.
+
+    Returns
+    -------
+    list of str
+        Lines of at most :data:`WIDTH` characters (a long summary wraps,
+        indented).
+    """
+    t = result.table
+    ok = t[t["status"] == "ok"]
+    if ok.empty:
+        return ["no point computed"]
+    if "refinement" in ok:
+        ok = ok[ok["refinement"] == 0]
+    unit = _x_unit(t, result.parameter)
+    eps = result.exceptional_points
+    named = [(m, lo, hi) for m, lo, hi in zip(eps["modes"], eps["x_low"], eps["x_high"],
+                                              strict=True)]
+    head = f"{result.parameter}" + (f" in {unit[0]}" if unit[0] else "")
+    lines = [f"along {head}:"]
+    for what, col in (("TEF mode", "tef_branch"), ("flutter root", "flutter_root")):
+        if col in ok:
+            rows = ok[ok[col].fillna(False).astype(bool)]
+            rows = rows.sort_values("value_si", key=lambda s: s.astype(float), kind="stable")
+            lines.append(_role_line(what, rows, unit, named))
+    return "\n".join(lines).splitlines()
