@@ -61,13 +61,14 @@ WIDTH = 100
 LEGEND = ("UNSTABLE: real part > 0 (not 'neutral'); FLUTTER ROOT: the least stable "
           "flap-induced root, unstable")
 
-#: The note of a root whose path from zero coupling met another's (``identity_certain``
-#: False): which name it carries is not decided there.
+#: The note of a root whose name is not certain (``identity_certain`` False): a step
+#: of its path from zero coupling no halving decided, or the name its path brought
+#: was another root's.
 UNCERTAIN = "name uncertain"
 
 #: The legend line of :data:`UNCERTAIN`, printed when a root has it.
-UNCERTAIN_LEGEND = ("name uncertain: its path from zero coupling met another root's "
-                    "(exceptional point, theory 9.1)")
+UNCERTAIN_LEGEND = ("name uncertain: a step of its path from zero coupling was not "
+                    "decided (theory 9.1)")
 
 
 def wrap(text: str, indent: str = "  ") -> str:

@@ -30,8 +30,7 @@ from scipy.optimize import linear_sum_assignment
 
 from ..floquet.second_order import SecondOrderSystem
 from .labels import coordinate_shares, label_modes, tracking_shapes, trajectory_shapes
-from .matching import (COALESCED_DISTANCE, COALESCED_MAC, LOCK_TOL, decide, mac,
-                       relative_distance)
+from .matching import COALESCED_DISTANCE, COALESCED_MAC, LOCK_TOL, decide, mac, relative_distance
 from .tracking import follow_root
 
 __all__ = ["FIRST_STEPS", "FLAP_ACTIVE", "MIN_STEP", "ContinuedRoots", "continue_roots",
@@ -424,8 +423,8 @@ def continue_roots(system: SecondOrderSystem, labels, final=None, *, basis=None,
         held = dict(zip(names0, res0.exponents, strict=True))
         uncoupled = np.array([held.get(o, held.get(_base_name(o), np.nan)) for o in origin],
                              complex)
-    meetings = pd.DataFrame(march.meetings, columns=["eps", "origins", "gap", "mac"]).drop_duplicates(
-        "origins", keep="first").reset_index(drop=True)
+    meetings = pd.DataFrame(march.meetings, columns=["eps", "origins", "gap", "mac"])
+    meetings = meetings.drop_duplicates("origins", keep="first").reset_index(drop=True)
     return ContinuedRoots(origin=origin, certain=certain, uncoupled=uncoupled,
                           meetings=meetings, n_solves=n_solves, flap_motion=motion)
 

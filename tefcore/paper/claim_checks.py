@@ -21,7 +21,8 @@ import json
 import numpy as np
 import pandas as pd
 
-from ..modes.roles import FLUTTER_ROOT, ModeNotFound, base_name, exceptional_points, mode_rows
+from ..modes.roles import ModeNotFound, mode_rows
+from .claim_exceptional import exceptional_in_range, swapped, where
 from .curve_metrics import X_SLACK, compare_curve, stability_intervals, zero_crossings
 from .figure_frames import compute_figure, figure_frame, natural_frequency_frame
 from .quantities import QUANTITY_NAMES, quantity_unit, x_to_si
@@ -94,56 +95,6 @@ def _select(frame, mode) -> pd.DataFrame:
         raise _Fail(str(err)) from None
 
 
-def _exceptional(frame, mode, lo, hi):
-    """The exceptional points of `mode` in [lo, hi] (rows of :func:`exceptional_points`).
-
-    There the names of two roots exchange (or two paths from zero coupling
-    meet): which root is `mode` has no answer.  The flutter root is a role
-    decided at every point.
-    """
-    if not mode or mode == FLUTTER_ROOT or "track" not in frame:
-        return []
-    eps = exceptional_points(frame)
-    if eps.empty:
-        return []
-    x = frame["x"].to_numpy(float)
-    a = np.nanmin(x) if lo is None else lo
-    b = np.nanmax(x) if hi is None else hi
-    tol = X_SLACK * max(abs(a), abs(b), 1e-300)
-    named = np.array([base_name(mode) in m.split(" / ") for m in eps["modes"]], bool)
-    # names exchange strictly between two points (an open bracket); paths
-    # meet at a point (closed, to the x slack)
-    at = (eps["kind"] == "paths meet").to_numpy()
-    lo_, hi_ = eps["x_low"].to_numpy(float), eps["x_high"].to_numpy(float)
-    inside = np.where(at, (hi_ >= a - tol) & (lo_ <= b + tol), (hi_ > a + tol) & (lo_ < b - tol))
-    return [r for _, r in eps[named & inside].iterrows()]
-
-
-def _where(e) -> str:
-    return (f"at x = {e['x_low']:.4g}" if e["x_low"] == e["x_high"]
-            else f"between x = {e['x_low']:.4g} and {e['x_high']:.4g}")
-
-
-def _swapped(frame, points) -> pd.DataFrame:
-    """`frame` with the names of each exceptional point's pair exchanged beyond it.
-
-    A names exchange: on the far side of the bracket (``x >= x_high``); paths
-    that meet: at that point.  The other choice of which root carries each
-    name there.
-    """
-    frame = frame.copy()
-    labels = frame["label"].astype(object).to_numpy().copy()
-    x = frame["x"].to_numpy(float)
-    for e in points:
-        a, b = e["modes"].split(" / ")
-        where = x == e["x_low"] if e["kind"] == "paths meet" else x >= e["x_high"]
-        for i in np.flatnonzero(where):
-            name = str(labels[i])
-            base, suffix = base_name(name), name[len(base_name(name)):]
-            if base in (a, b):
-                labels[i] = (b if base == a else a) + suffix
-    frame["label"] = labels
-    return frame
 def _series(frame, mode, quantity, lo=None, hi=None, until=None, identity=True):
     """(x, y) of one mode and quantity, sorted by x, within [lo, hi].
 
@@ -157,10 +108,10 @@ def _series(frame, mode, quantity, lo=None, hi=None, until=None, identity=True):
         raise _Fail(f"the result has no {quantity!r} column")
     t = _select(frame, mode) if mode else frame
     if identity:
-        points = _exceptional(frame, mode, lo, hi if until is None else until)
+        points = exceptional_in_range(frame, mode, lo, hi if until is None else until)
         if points:
             e = points[0]
-            raise _Ambiguous(f"an exceptional point of {e['modes']} lies {_where(e)}, inside "
+            raise _Ambiguous(f"an exceptional point of {e['modes']} lies {where(e)}, inside "
                              f"the claim's range ({e['kind']}): which root is {mode!r} has "
                              "no answer there", [(None, p) for p in points])
     if "refinement" in t:
@@ -217,7 +168,7 @@ class _Context:
         key = (fig, variant_key(overrides or {}))
         frame = self.frame(fig, overrides, quantity)
         if self.swaps.get(key):
-            frame = _swapped(frame, self.swaps[key])
+            frame = swapped(frame, self.swaps[key])
         try:
             x, y = _series(frame, mode, quantity, lo, hi, until, identity and self.strict)
         except _Ambiguous as err:
@@ -412,7 +363,11 @@ def _check_mechanism(c: Claim, ctx: _Context):
     frame = ctx.frame(c.figure, c.overrides)
     xs = float(x_to_si(c.figure, c.x, c.x_unit))
     rows = _select(frame, c.mode)
-    _exceptional(frame, c.mode, xs, xs)
+    points = exceptional_in_range(frame, c.mode, xs, xs)
+    if points:           # the root decomposed would be a choice: no verdict
+        e = points[0]
+        raise _Ambiguous(f"an exceptional point of {e['modes']} lies {where(e)}: which root "
+                         f"is {c.mode!r} at the claim's x has no answer")
     at = rows[np.abs(rows["x"].to_numpy(float) - xs) <= X_SLACK * max(abs(xs), 1.0)]
     if at.empty:
         raise _Fail(f"no {c.mode} root at x = {_g(c.x)} {c.x_unit}".rstrip()
@@ -592,16 +547,16 @@ def _across_exceptional_points(c: Claim, ctx: _Context, err: _Ambiguous) -> dict
                 alt.swaps.setdefault(key, []).append(p)
         outcomes.append(_checked(c, alt))
     statuses = [o["status"] for o in outcomes]
-    where = "; ".join(f"{p['modes']} {_where(p)} ({p['kind']})" for _, p in points)
+    places = "; ".join(f"{p['modes']} {where(p)} ({p['kind']})" for _, p in points)
     if len(set(statuses)) == 1 and statuses[0] != "ambiguous":
         row = outcomes[0]
         note = (f"decided whichever root carries {c.mode!r} at the exceptional point(s) "
-                f"inside its range ({where}): every choice gives {statuses[0]}")
+                f"inside its range ({places}): every choice gives {statuses[0]}")
         row["reason"] = f"{row['reason']}; {note}" if row["reason"] else note
         return row
     other = next(s for s in statuses if s != statuses[0])
     seen = f"{statuses[0]} with the names as continued, {other} with them exchanged"
     return _row(c, status="ambiguous",
-                reason=f"an exceptional point lies inside the claim's range ({where}): which "
+                reason=f"an exceptional point lies inside the claim's range ({places}): which "
                        f"root is {c.mode!r} has no answer there, and the verdict depends on "
                        f"it ({seen})")

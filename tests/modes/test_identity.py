@@ -65,7 +65,7 @@ def test_veering_followed_as_continuous_branches_after_refinement():
     # its character changes at the veering, once: first -> second
     names = lower["label"].tolist()
     assert names[0] == "first" and names[-1] == "second"
-    assert sum(a != b for a, b in zip(names, names[1:])) == 1
+    assert sum(a != b for a, b in zip(names, names[1:], strict=False)) == 1
 
 
 def test_without_refinement_the_coarse_veering_is_flagged_ambiguous():
