@@ -423,8 +423,7 @@ def continue_roots(system: SecondOrderSystem, labels, final=None, *, basis=None,
         held = dict(zip(names0, res0.exponents, strict=True))
         uncoupled = np.array([held.get(o, held.get(_base_name(o), np.nan)) for o in origin],
                              complex)
-    meetings = pd.DataFrame(march.meetings, columns=["eps", "origins", "gap", "mac"])
-    meetings = meetings.drop_duplicates("origins", keep="first").reset_index(drop=True)
+    meetings = _renamed_meetings(march, origin)
     return ContinuedRoots(origin=origin, certain=certain, uncoupled=uncoupled,
                           meetings=meetings, n_solves=n_solves, flap_motion=motion)
 
@@ -438,6 +437,26 @@ _STRUCTURAL = 0.5
 def _base_name(name: str) -> str:
     """A name without its locked-partner suffix."""
     return name.removesuffix(" (locked)")
+
+
+def _renamed_meetings(march, names) -> pd.DataFrame:
+    """The march's meetings between the roots the two paths end on, by their final names.
+
+    A path that passed a flap-free root (not refined, put right by
+    :func:`_flap_free_by_participation`) carries another name than its root
+    gets; the meeting is between the roots, so it takes their names.  Two
+    roots that end as one mode's pair (``X``, ``X (locked)``: a lock entered
+    there) did not meet another mode.
+    """
+    final = {int(p): _base_name(n) for p, n in zip(march.pid, names, strict=True)}
+    rows = []
+    for m in march.meetings:
+        a, b = (final.get(p, n) for n, p in m["paths"].items())
+        if a != b:
+            rows.append({"eps": m["eps"], "origins": " / ".join(sorted((a, b))),
+                         "gap": m["gap"], "mac": m["mac"]})
+    meetings = pd.DataFrame(rows, columns=["eps", "origins", "gap", "mac"])
+    return meetings.drop_duplicates("origins", keep="first").reset_index(drop=True)
 
 
 def _flap_free_by_participation(origin, motion, carried):
@@ -625,6 +644,8 @@ class _March:
         self.eps = 0.0
         self.doubt = np.zeros(self.eig.size, bool)
         self.lock = np.zeros(self.eig.size, bool)
+        self.pid = np.arange(self.eig.size)       # each path's id, carried along
+        self.next_pid = self.eig.size
         self.meetings: list[dict] = []
         self.last_clear = True
 
@@ -707,9 +728,10 @@ class _March:
         last = np.full(eig.size, np.nan, complex)     # each path's eigenvalue a step back
         doubt = np.zeros(eig.size, bool)
         locked = np.zeros(eig.size, bool)
+        pid = np.full(eig.size, -1)
         for r, c in zip(rows, cols, strict=True):
             origin[c], start[c], last[c] = self.origin[r], self.start[r], self.eig[r]
-            doubt[c], locked[c] = self.doubt[r], self.lock[r]
+            doubt[c], locked[c], pid[c] = self.doubt[r], self.lock[r], self.pid[r]
         col_of = dict(zip(rows, cols, strict=True))
         for r, other in lock:
             locked[[col_of[x] for x in (r, other) if x is not None]] = True
@@ -732,9 +754,12 @@ class _March:
             # coalescing pairs at MAC 0.97, 0.03 apart)
             if shape >= COALESCED_MAC and gap <= COALESCED_DISTANCE:
                 self.meetings.append({"eps": eps, "origins": " / ".join(pair),
-                                      "gap": gap, "mac": shape})
+                                      "gap": gap, "mac": shape,
+                                      "paths": {self._base(r): int(self.pid[r]),
+                                                self._base(other): int(self.pid[other])}})
         assigned = np.isin(np.arange(eig.size), cols)
         for c in np.flatnonzero(~assigned):
+            pid[c], self.next_pid = self.next_pid, self.next_pid + 1
             # a root that appears: a pair became two real roots (a lock at k/2,
             # or an overdamped pair): it is the second root of its partner,
             # the assigned root at its frequency (folded into [0, 1/2])
@@ -748,3 +773,4 @@ class _March:
         self.before = (self.eps, last)
         self.eps, self.eig, self.vecs = eps, eig, vecs
         self.origin, self.start, self.doubt, self.lock = origin, start, doubt, locked
+        self.pid = pid
