@@ -201,3 +201,26 @@ def test_continuous_frequency_recovers_a_falling_curve_from_its_floquet_conventi
     assert np.allclose(continuous_frequency(x[order], seen[order]), true[order])
     # a wrong model: the curve as seen is not monotonic, the recovered one is
     assert np.any(np.diff(seen) > 0) and np.all(np.diff(continuous_frequency(x, seen)) < 0)
+
+
+def test_the_tef_frequency_of_a_real_sweep_falls_without_shifts_or_mirrors():
+    """The issue's case: Fig. 9 at overhang 0.1 (mu 0.3).  The flap's uncoupled
+    frequency falls with the CG offset, so the TEF's does too: 21.77 -> 9.32 /rev
+    (measured).  Before continuation the tracked frequency *rose* to 33.68 (the
+    mirror of the root, shifted) and the point values jumped by 1 /rev; a wrong
+    unwrapping or a TEF name on another root breaks the monotonic fall."""
+    from tefcore.paper.figures import figure_config
+
+    cfg = figure_config("fig9").with_overrides({"flap.overhang": 0.1})
+    xs = [float(x) for x in np.round(np.linspace(0.0, 0.4, 11), 2)]
+    t = sweep(cfg, "flap.cg_offset", xs, progress=False, refine=False).table
+    tef = t[t["tef_branch"]].sort_values("value_si")
+    assert len(tef) == len(xs)
+    f = tef["frequency_tracked"].to_numpy()
+    assert np.all(np.diff(f) < 0)
+    # the ends, where the flap alone decides (0.05 /rev: the Floquet exponents'
+    # tolerance is 1e-3; the configuration's, not the unwrapping's, numbers)
+    assert abs(f[0] - 21.77) < 0.05 and abs(f[-1] - 9.32) < 0.05
+    # the point values keep the Floquet convention: within 1/2 /rev of the
+    # continuous curve at a k/2 lock's mirror image, never a whole /rev off
+    assert np.all(np.abs(tef["frequency_per_rev"].to_numpy() - f) < 0.5)
