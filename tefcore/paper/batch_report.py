@@ -10,11 +10,11 @@ curves overlaid.
 Headline results (:func:`headlines`), for two roots of each figure's sweep:
 
 * the **flutter root** (the sweep tables' ``flutter_root`` rows: at each
-  point the least stable root in which the flap participates, the root that
-  goes unstable whichever mode it started as), and
+  point the least stable flap-induced root, the root that goes unstable
+  whichever mode it comes from), and
 * the **TEF branch** (``tef_branch`` rows where ``tef_branch_certain``: the
-  flap's own mode followed along the sweep, as far as its identity is
-  decided -- a curve labelled TEF is the TEF mode at every point);
+  root each point names TEF, the flap's own mode continued from zero
+  coupling, where that name is certain);
 
 each gives ``onset``, the x of its first stable-to-unstable crossing
 (:func:`tefcore.paper.curve_metrics.zero_crossings`, linear between the
@@ -400,9 +400,9 @@ def comparison(out, outcomes, title: str = "tefcore batch comparison") -> tuple:
             image=base64.b64encode(png.read_bytes()).decode("ascii"),
             src=png.relative_to(out).as_posix(),
             caption=(f"Damping −Re(s)/Ω [1/rev] of the flutter root (left: at each point the "
-                     f"least stable root the flap takes part in, so the curve jumps where "
-                     f"another root becomes the least stable) and of the TEF branch (right: "
-                     f"the flap's own mode, as far as its identity is decided) against "
+                     f"least stable flap-induced root, so the curve jumps where another root "
+                     f"becomes the least stable) and of the TEF mode (right: the root the "
+                     f"flap's own mode continues into, where that name is certain) against "
                      f"{AXES.get(fig, (fig,))[0]}, one colour per run"
                      + (" (runs with identical curves drawn once, labelled with the settings "
                         "they share)" if len(groups) < len(curves) else "")

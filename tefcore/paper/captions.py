@@ -37,16 +37,18 @@ MARKERS = ("Lines join every computed point (including points added where an ide
            "to be decided); filled markers are the figure's own sweep points. A hollow "
            "marker: the mode has the character (largest participation) of another mode "
            "there -- it exchanged character in a coupling. Dotted line and grey markers: "
-           "its identity is undecided from there on (a coalescence or an unresolved "
-           "veering). Black crosses: the paper's curves, where digitised data were added. "
-           "\"TEF\" is the TEF branch: the root the flap's own mode becomes when the "
-           "coupling is switched on, followed along the sweep.")
+           "its name is not certain there (a step of its continuation from zero coupling "
+           "was not decided). Black crosses: the paper's curves, where digitised data were "
+           "added. Each curve is the root of that name at every point: the uncoupled mode it "
+           "continues from as the blade-flap coupling is switched on (\"TEF\": the flap's "
+           "own mode).")
 
 #: Caption of the root-locus and participation figures beside each stability figure.
 LOCUS_CAPTION = ("Left: root locus of the tracked modes (square: first point; arrows: increasing "
-                 "x; black dots: the flutter root of each point, the least stable root the flap "
-                 "takes part in). Right: participation of the flap, blade torsion, bending and "
-                 "lag in the TEF branch (participation factors, summing to 1)")
+                 "x; black dots: the flutter root of each point, the least stable flap-induced "
+                 "root). Middle and right: participation of the flap, blade torsion, bending "
+                 "and lag in the TEF mode and in the flutter root (participation factors, "
+                 "summing to 1)")
 
 _AERO_NAMES = {"thin_airfoil": "quasi-steady thin-airfoil aerodynamics",
                "c81": "C81 table aerodynamics"}

@@ -8,8 +8,8 @@ flap (``model.aero = "unsteady"``) and Pitt-Peters dynamic inflow
 results of the paper under each option:
 
 * the **Fig. 9 onset**: the flap CG offset ``c_cg/c_f`` at which the flutter
-  root -- the least stable root with a flap participation of at least 0.1
-  (:func:`tefcore.linear.mechanism.flutter_root`) -- turns unstable at ``mu = 0.3``,
+  root -- the least stable flap-induced root
+  (:func:`tefcore.modes.roles.flutter_root`) -- turns unstable at ``mu = 0.3``,
   ``c_b/c_f = 0.29`` (paper: 0.26);
 * the **growth rate** of that root at the imbalanced baseline
   (``c_cg/c_f = 0.33``, ``c_b/c_f = 0.29``) in hover and at ``mu = 0.3``;

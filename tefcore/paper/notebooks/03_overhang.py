@@ -142,17 +142,26 @@ nt.savefig(fig, out, "fig08", figure="fig8",
 # %% [markdown]
 # ### Which root is which
 #
-# "The TEF mode" is the *TEF branch*: the root that the
-# flap's own mode (the flap on its actuator spring, uncoupled from the blade)
-# becomes when the coupling is switched on, at the start of the sweep, followed
-# continuously along the sweep (by eigenvalue and shape; where a step is too
-# coarse to tell, tefcore bisects it). Its character can change along the way
-# -- it can turn into a torsion-like root, while another root becomes
-# flap-dominated -- so the plots also show the *flutter root* at each point
-# (the least stable root in which the flap participates by at least 10 %) and
-# the participation of flap, torsion, bending and lag in the TEF branch. Two
-# roots approaching in frequency while one turns towards the unstable side is
-# the classic picture of coalescence flutter.
+# A root's name is where it comes from. Switch the blade-flap coupling off
+# (every mass, damping and stiffness term between the blade and the flap
+# scaled by a factor eps = 0): the blade with its flap held has its own modes,
+# named by their structure (blade flap 1, blade torsion 1, ...), and the flap
+# on its actuator spring has its own mode, "TEF". Turn the coupling back on
+# step by step (eps from 0 to 1) and follow every root: each root of the real
+# rotor is named by the uncoupled mode it continues from
+# (`tefcore.modes.continuation`). "The TEF mode" is the root the flap's own
+# mode becomes, at every point on its own -- no sweep order or participation
+# share enters. Its character can change along a sweep: where the flap's
+# frequency passes a blade mode, the name moves across the pair's veering gap
+# with it.
+#
+# The *flutter root* of a point is its least stable **flap-induced** root: one
+# that freeing the flap makes unstable (or much less stable) than it is with
+# the flap held. The legends say where it comes from, e.g. "flutter root (from
+# blade torsion 2)". Which root carries a name has no answer only at an
+# *exceptional point*, where two roots coalesce in the plane of the swept
+# parameter and the coupling; tefcore locates them (listed below) and a claim
+# whose verdict depends on one is left without a verdict.
 
 # %%
 nt.report_identity("fig8", res_fig8)

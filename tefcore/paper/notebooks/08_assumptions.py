@@ -38,14 +38,12 @@
 # * `fig8_onset`: the overhang c_b/c_f at which the TEF flutter root turns
 #   unstable in hover with the mass-balanced flap (paper: "larger than 50 %").
 #
-# **Which root is the TEF.** Where the flap frequency meets a blade mode the two
-# roots *coalesce*: they share the flap's motion, one is destabilised and the
-# other stabilised, and a name attached to one root is ambiguous. The *flutter
-# root* here is the least stable root in which the flap takes part materially:
-# its flap participation factor (`share_TEF`) is at least 0.1 -- the same rule
-# as the sweeps' `flutter_root` column (`tefcore.linear.mechanism.flutter_root`). Every
-# function takes an `identify` argument, so another rule (e.g. the TEF branch of
-# `tefcore.modes.tracking`) can replace it.
+# **Which root flutters.** The *flutter root* here is each configuration's
+# least stable flap-induced root: one that freeing the flap makes unstable (or
+# much less stable) than it is with the flap held -- the same rule as the
+# sweeps' `flutter_root` column (`tefcore.modes.roles.flutter_root`; roots
+# named by continuation in the coupling, notebook 03). Every function takes an
+# `identify` argument, so another rule can replace it.
 
 # %% tags=["parameters"]
 # Parameters (papermill: `tefcore reproduce -p NAME VALUE`, `papermill -p NAME VALUE`).

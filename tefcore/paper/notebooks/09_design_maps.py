@@ -19,9 +19,9 @@
 # The paper varies one parameter at a time (Figs. 8-17). A flap designer needs
 # the other view: for a pair of design parameters, which combinations are
 # stable? A **stability map** answers it: over a grid of two configuration
-# fields, the growth rate of the **flutter root** -- the least stable root in
-# which the flap takes part (flap participation at least 10 %), whichever mode it
-# is -- as a colour map (red: growing, unstable; blue: decaying), with the
+# fields, the growth rate of the **flutter root** -- the least stable
+# flap-induced root (unstable, or much less stable, with the flap held than
+# free), whichever mode it comes from -- as a colour map (red: growing, unstable; blue: decaying), with the
 # **flutter boundary** where it crosses zero: the black contour, and black dots
 # where tefcore located the zero between grid points (Brent's method on the
 # growth rate along each row).
@@ -137,7 +137,7 @@ title1 = "Design map: flap CG offset and overhang (" + nt.conditions(
 ax.set_title("\n".join(textwrap.wrap(title1, 80)), fontsize="medium")
 nt.savefig(fig, out, "map_cg_overhang",
            caption=title1 + ". Colour: growth rate of the flutter root (the least stable "
-                   "root with at least 10 % flap participation; red unstable). Black line: "
+                   "flap-induced root; red unstable). Black line: "
                    "the zero contour of the grid; black dots: the boundary located between "
                    "grid points. Blank cells: configurations without a result (see the "
                    "notebook).");
