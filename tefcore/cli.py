@@ -21,18 +21,16 @@ output pipe closed.
 from __future__ import annotations
 
 import argparse
+import math
 import sys
 import textwrap
 from pathlib import Path
 
-import numpy as np
-
 from ._version import __version__
 from .cli_errors import run_command
-from .config.text_input import sweep_values
 from .safe_io import atomic_output, check_output_file
 
-__all__ = ["build_parser", "main"]
+__all__ = ["build_parser", "main", "table_text"]
 
 #: ``tefcore --help``: what the command is, and where the details are.
 DESCRIPTION = """\
@@ -74,6 +72,42 @@ def _write_csv(table, path) -> None:
         table.to_csv(f, index=False)
 
 
+def table_text(columns: dict, digits: int = 4) -> str:
+    """A table of columns as ``DataFrame(columns).to_string(index=False)`` prints it.
+
+    Floats with ``digits`` decimals, integers and strings as they are, each
+    column right-aligned under its name; without importing pandas (0.18 s of a
+    ``tefcore stability`` command's start-up). tests/test_startup.py checks it
+    against pandas character for character.
+
+    Parameters
+    ----------
+    columns : dict
+        Column name -> values (floats, integers or strings), all of one length.
+    digits : int, optional
+        Decimals of the floats.
+
+    Returns
+    -------
+    str
+    """
+    import numpy as np  # loaded already wherever there are results to print
+
+    cells = []
+    for name, values in columns.items():
+        values = list(values)
+        if all(isinstance(v, str) for v in values):
+            text, head = [str(v) for v in values], str(name)
+        elif all(isinstance(v, (int, np.integer)) and not isinstance(v, bool) for v in values):
+            text, head = [str(int(v)) for v in values], " " + str(name)
+        else:
+            text = ["NaN" if v != v else f"{float(v):.{digits}f}" for v in values]
+            head = " " + str(name)
+        width = max([len(head)] + [len(t) for t in text])
+        cells.append([head.rjust(width)] + [t.rjust(width) for t in text])
+    return "\n".join(" ".join(row) for row in zip(*cells, strict=True))
+
+
 def _common(p):
     p.add_argument("--config", default="mdart",
                    help="configuration TOML file or packaged name (default: mdart)")
@@ -89,7 +123,7 @@ def cmd_modes(args) -> int:
     if args.csv:
         check_output_file(args.csv, "--csv")
     table = blade_modes(cfg, n_modes=args.n_modes,
-                        collective=np.deg2rad(args.collective)).table()
+                        collective=math.radians(args.collective)).table()
     if args.csv:
         _write_csv(table, args.csv)
     print(table.to_string(index=False, float_format=lambda v: f"{v:.4f}"))
@@ -124,10 +158,9 @@ def cmd_stability(args) -> int:
     if args.csv:
         check_output_file(args.csv, "--csv")
     res = stability(cfg)
-    table = res.modes
     if args.csv:
-        _write_csv(table, args.csv)
-    print(table.to_string(index=False, float_format=lambda v: f"{v:.4f}"))
+        _write_csv(res.modes, args.csv)
+    print(table_text(res.columns))
     print("trim: " + ", ".join(f"{k}={v:.4g}" for k, v in res.trim.items()))
     if res.aero_modes is not None:
         am = res.aero_modes
@@ -140,6 +173,7 @@ def cmd_stability(args) -> int:
 
 
 def cmd_sweep(args) -> int:
+    from .config.text_input import sweep_values
     from .sweeps.sweep import sweep
 
     cfg = _load(args)
@@ -182,6 +216,8 @@ def cmd_mechanism(args) -> int:
 def _grid(cfg, field: str, start: str, stop: str, num: str) -> list:
     """Evenly spaced SI values of ``field`` from ``start`` to ``stop``, ``num`` of them
     (the units rules of ``--range``, :func:`tefcore.config.text_input.sweep_values`)."""
+    from .config.text_input import sweep_values
+
     values = sweep_values(field, None, (start, stop, num))
     return [float(cfg.with_overrides({field: v}).get(field)) for v in values]
 

@@ -15,12 +15,11 @@ modes can be followed along sweeps (:mod:`tefcore.modes.tracking`).
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
-import pandas as pd
-import scipy.optimize
 
+from ..assignment import linear_sum_assignment
 from ..floquet.second_order import STATE_MIN_RATE, SecondOrderSystem
 from ..floquet.second_order import state_matrix as state_matrix
 from ..model.coupled import coupled_model
@@ -79,8 +78,11 @@ class StabilityResult:
 
     Attributes
     ----------
-    modes : DataFrame
-        One row per mode, see :func:`stability`.
+    modes : pandas.DataFrame
+        One row per mode, see :func:`stability` (built from ``columns`` on
+        first read: pandas is imported only where a table is used).
+    columns : dict
+        The columns of ``modes``: name -> one value per mode.
     eigenvectors : ndarray, shape (2 n, n_modes)
         State eigenvectors ``[q; q*]`` at psi = 0 (columns as the rows of
         ``modes``).
@@ -107,14 +109,24 @@ class StabilityResult:
         share_TEF``.  They take no mode label and are not in ``modes``.
     """
 
-    modes: pd.DataFrame
+    columns: dict
     eigenvectors: np.ndarray
     trim: dict
     trim_result: TrimResult
     vectors: np.ndarray | None = None
     periodic: bool = False
     system: SecondOrderSystem | None = None
-    aero_modes: pd.DataFrame | None = None
+    aero_modes: object = None               # pandas.DataFrame or None
+    _modes: object = field(default=None, init=False, repr=False, compare=False)
+
+    @property
+    def modes(self):
+        """One row per mode (a pandas DataFrame of :attr:`columns`), see :func:`stability`."""
+        if self._modes is None:
+            import pandas as pd  # 0.18 s of import: only where the table is read
+
+            self._modes = pd.DataFrame(self.columns)      # one construction
+        return self._modes
 
 
 @blas_limit()
@@ -316,13 +328,12 @@ def _stability_of(model, tr: TrimResult, n_steps: int | None) -> StabilityResult
     for kind in SHARE_KINDS:
         rows = [i for i, k in enumerate(kinds) if k == kind]
         columns[f"share_{kind}"] = frac[rows].sum(axis=0) if rows else np.zeros(len(labels))
-    table = pd.DataFrame(columns)          # one construction, not column by column
     summary = tr.summary()
     summary["reverse_flow_fraction"] = _reverse_flow_fraction(tr)
     if aero_modes is not None:
         summary["aero_state_growth"] = (float(aero_modes["real_part"].max())
                                         if len(aero_modes) else float("nan"))
-    return StabilityResult(modes=table, eigenvectors=vec, trim=summary, trim_result=tr,
+    return StabilityResult(columns=columns, eigenvectors=vec, trim=summary, trim_result=tr,
                            vectors=shapes, periodic=system.periodic, system=system,
                            aero_modes=aero_modes)
 
@@ -351,7 +362,7 @@ def _split_aero_roots(res, model, periodic):
     # the mean inflow root in hover, 58 % in the collective flap motion (measured)
     cand = np.flatnonzero(~aero)
     frac = coordinate_shares(res.participation[:, cand], n)
-    _, cols = scipy.optimize.linear_sum_assignment(-np.log(frac + 1e-300))
+    _, cols = linear_sum_assignment(-np.log(frac + 1e-300))
     named = res.frequencies[cand[cols]]
     for j in np.setdiff1d(np.arange(cand.size), cols):
         # below STATE_MIN_RATE a periodic root is not resolved (its participation
@@ -361,6 +372,8 @@ def _split_aero_roots(res, model, periodic):
             aero[cand[j]] = True
     wake, inflow = mag[2 * n:2 * n + nw].sum(axis=0), mag[2 * n + nw:].sum(axis=0)
     flap = (mag[n - 1] + mag[2 * n - 1]) / total if model.has_flap else np.zeros(total.size)
+    import pandas as pd  # a table of the aerodynamic-state roots: only with those states
+
     table = pd.DataFrame({
         "kind": np.where(wake >= inflow, "wake", "inflow")[aero],
         "frequency_per_rev": res.frequencies[aero], "real_part": res.damping_rates[aero],
