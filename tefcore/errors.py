@@ -20,8 +20,8 @@ Every error tefcore raises on purpose is one of
 
 The command line (:mod:`tefcore.cli_errors`) turns each of these into one
 line on stderr and exit status 2; anything else is a bug and keeps its
-traceback.  The fuzz tests (``tests/*/test_fuzz_*.py`, `tests/test_fuzz_units.py``) check that parsers and
-validators raise nothing else.
+traceback.  The fuzz tests (``tests/*/test_fuzz_*.py``, ``tests/test_fuzz_units.py``)
+check that parsers and validators raise nothing else.
 
 Examples
 --------

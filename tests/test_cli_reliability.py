@@ -6,13 +6,13 @@ import sys
 
 import pandas as pd
 import pytest
-from tests.sweeps.test_sweep import ToyPoint
 
 import tefcore.linear.stability
 import tefcore.sweeps.sweep
 from tefcore.aero.c81 import example_deck_path
 from tefcore.cli import main
 from tefcore.trimming.trim import TrimError
+from tests.sweeps.test_sweep import ToyPoint
 
 
 def one_error_line(capsys):

@@ -13,10 +13,10 @@ import time
 from pathlib import Path
 
 import pytest
-from tests.sweeps.test_sweep import MDART, PARAM, XS, ToyPoint, run
 
 from tefcore.paper import reproduce as rp
 from tefcore.sweeps.sweep import sweep
+from tests.sweeps.test_sweep import MDART, PARAM, XS, ToyPoint, run
 
 REPO = Path(__file__).resolve().parents[1]   # for `import tests...` in subprocesses
 

@@ -1,8 +1,8 @@
-"""TOML reading and writing of :class:`tefcore.config.sections.Config`, and settings docs.
+"""TOML reading and writing of :class:`tefcore.config.configuration.Config`, and settings docs.
 
 File layout: optional top-level ``name`` and ``description``, an optional
 ``[reference]`` table of stated values (see
-:data:`tefcore.config.sections.REFERENCE_PARAMS`), and one table per section.  A
+:data:`tefcore.config.configuration.REFERENCE_PARAMS`), and one table per section.  A
 scalar field is a ``"value unit"`` string or an inline table
 ``{value = 17.0, unit = "ft", source = "Table 1"}``; a blade array is
 ``{values = [...], unit = "lb/ft", source = "..."}`` (often written as a
@@ -195,7 +195,7 @@ def config_to_dict(cfg: Config) -> dict[str, Any]:
 
     Parameters
     ----------
-    cfg : tefcore.config.sections.Config
+    cfg : tefcore.config.configuration.Config
         The rotor configuration.
 
     Returns
@@ -243,7 +243,7 @@ def dumps_config(cfg: Config) -> str:
 
     Parameters
     ----------
-    cfg : tefcore.config.sections.Config
+    cfg : tefcore.config.configuration.Config
         The rotor configuration.
 
     Returns
@@ -286,7 +286,7 @@ def loads_config(text: str, *, origin: str = "<string>", base_dir=None) -> Confi
 
     Returns
     -------
-    tefcore.config.sections.Config
+    tefcore.config.configuration.Config
 
     Raises
     ------
@@ -367,7 +367,7 @@ def save_config(cfg: Config, path: str | os.PathLike) -> Path:
 
     Parameters
     ----------
-    cfg : tefcore.config.sections.Config
+    cfg : tefcore.config.configuration.Config
         The rotor configuration.
     path : str or os.PathLike
         The TOML file (written atomically).

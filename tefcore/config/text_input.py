@@ -12,7 +12,7 @@ The units rules (README, "Units"):
   ``radius = {value = 17.0, unit = "ft"}``, or SI with the SI unit written
   out (``"140101 N/m"``).  A bare number is refused there, because it would
   silently be read as SI (``800`` N/m instead of 800 lb/in).
-* The **Python API** (``Config(...)``, :meth:`~tefcore.config.sections.Config.with_overrides`,
+* The **Python API** (``Config(...)``, :meth:`~tefcore.config.configuration.Config.with_overrides`,
   :func:`~tefcore.config.io.config_from_dict`) keeps plain numbers in SI
   units, and takes the same ``"value unit"`` strings.
 

@@ -3,8 +3,9 @@
 :func:`run_config` is the configuration a notebook analyses for a figure (the
 MDART baseline, the figure's caption, then the user's overrides);
 :func:`figure_values` its sweep values (the paper's, evenly spaced, or
-explicit); :func:`run_stability_figure` runs the sweep with numerical
-warnings counted, not printed; :func:`natural_frequencies` gives the blade
+explicit); the notebooks' sweeps are ``tefcore.sweep(cfg, field, values,
+point=quiet_stability)``, with numerical warnings counted, not printed
+(:func:`quiet_stability`); :func:`natural_frequencies` gives the blade
 frequencies of the "blade frequency" panels.
 
 Examples
@@ -35,7 +36,7 @@ from .reference_files import ReferenceDataError
 from .validation import sweep_values
 
 __all__ = ["AERO_MODELS", "base_config", "figure_values", "natural_frequencies",
-           "quiet_stability", "run_config", "run_stability_figure", "section_aero",
+           "quiet_stability", "run_config", "section_aero",
            "variant_key"]
 
 #: Section aerodynamics a notebook can choose (``aero_model`` parameter).
@@ -181,47 +182,6 @@ def quiet_stability(cfg):
     return SimpleNamespace(modes=res.modes, eigenvectors=res.eigenvectors, trim=trim,
                            vectors=res.vectors, periodic=res.periodic, system=res.system,
                            trim_result=res.trim_result)
-
-
-def run_stability_figure(name: str, base=None, overrides: dict | None = None,
-                         values=None, n_jobs: int = 1, cg_offset=None):
-    """A stability figure's sweep with the caption's fixed parameters, then ``overrides``.
-
-    Same as :func:`tefcore.paper.figures.run_figure` except that
-    ``overrides`` (e.g. another advance ratio) win over the caption, and
-    warnings are counted instead of printed.
-
-    Parameters
-    ----------
-    name : str
-        Paper figure.
-    base : tefcore.config.configuration.Config, optional
-        Base configuration.
-    overrides : dict, optional
-        Dotted fields applied over the caption.
-    values : sequence, optional
-        Sweep values (default: the paper's).
-    n_jobs : int
-        Processes for the sweep.
-    cg_offset : float, optional
-        Flap CG offset applied last (the balanced/imbalanced variants).
-
-    Returns
-    -------
-    tefcore.sweeps.sweep.SweepResult
-        One Floquet analysis per value (trim warnings counted into the
-        table's ``trim_numerical_warnings``), with tracked modes, the TEF
-        branch and the flutter root.
-    """
-    from ..sweeps.sweep import sweep
-
-    cfg = run_config(name, base, overrides)
-    if cg_offset is not None:
-        cfg = cfg.with_overrides({"flap.cg_offset": cg_offset})
-    fig = FIGURES[name]
-    vals = list(fig.values) if values is None else list(values)
-    return sweep(cfg, fig.parameter, vals, point=quiet_stability, n_jobs=n_jobs,
-                 progress=False)
 
 
 def natural_frequencies(name: str, values, base=None, overrides: dict | None = None,

@@ -18,7 +18,7 @@ results of the paper under each option:
   with the aerodynamic states' own terms (the lift deficiency ``1 - C``, the
   inflow) where they exist.
 
-The onsets and growth rates are :func:`tefcore.sensitivity.headline_results`,
+The onsets and growth rates are :func:`tefcore.paper.sensitivity.headline_results`,
 so they are the same numbers as the sensitivity study's baseline row.
 
 Examples

@@ -5,7 +5,8 @@ this module as ``nt`` so that a reader sees one vocabulary; the functions live
 where they belong and are re-exported here:
 
 * running a figure -- :mod:`tefcore.paper.figure_runs` (:func:`base_config`,
-  :func:`run_config`, :func:`figure_values`, :func:`run_stability_figure`,
+  :func:`run_config`, :func:`figure_values`, :func:`quiet_stability` -- the point
+  function the notebooks' sweeps use --,
   :func:`natural_frequencies`, :func:`section_aero`);
 * plotting -- :mod:`tefcore.paper.plotting` (:func:`plot_modes`,
   :func:`plot_root_locus`, :func:`plot_participation`, :func:`legend_below`,
@@ -17,7 +18,9 @@ where they belong and are re-exported here:
 * the shared departures text -- :func:`show_departures`;
 * the interactive root map -- :func:`explore`.
 
-Only :func:`setup_notebook` and :func:`save_csv` are defined here.
+Only the notebook's own frame is defined here: :func:`setup_notebook` (its
+first cell), :func:`save_csv` and :func:`check_and_save` (its last: the
+paper's claims checked, printed and saved with the notebook's tables).
 
 Examples
 --------
@@ -50,7 +53,6 @@ from .figure_runs import (
     natural_frequencies,
     quiet_stability,
     run_config,
-    run_stability_figure,
     section_aero,
     variant_key,
 )
@@ -86,13 +88,13 @@ from .summaries import (
 )
 
 __all__ = ["AXES", "LOCUS_CAPTION", "MARKERS", "MEASURES", "PAPER_MODES", "STYLE", "base_config",
-           "claims_table", "clean", "conditions", "counted_warnings", "curves",
+           "check_and_save", "claims_table", "clean", "conditions", "counted_warnings", "curves",
            "departures_text", "deterministic_matplotlib", "explain", "explore",
            "figure_caption", "figure_title", "figure_values", "flight_condition",
            "format_value", "legend_below", "locus_figure",
            "mechanism_summary", "mode_summary", "natural_frequencies", "plot_modes",
            "plot_participation", "plot_root_locus", "quiet_stability", "reference_curves",
-           "report_identity", "report_sweep", "run_config", "run_stability_figure",
+           "report_identity", "report_sweep", "run_config",
            "save_csv", "savefig", "section_aero", "setup_notebook", "show_claims",
            "show_departures", "sign_changes", "unsteadiness", "variant_key", "x_values"]
 
@@ -150,3 +152,42 @@ def save_csv(df: pd.DataFrame, output_dir, stem: str) -> Path:
     with atomic_output(path, newline="") as f:
         df.to_csv(f, index=False, float_format="%.10g")
     return path
+
+
+def check_and_save(out, results: dict, *, cfg=None, variants=None, tables=None) -> pd.DataFrame:
+    """A notebook's tail: the paper's claims about its figures checked, printed, saved.
+
+    Checks the claims of every figure in `results` (:func:`claims_table`,
+    each with the others' results for claims that compare figures), prints
+    them (:func:`show_claims`), writes ``claims.csv`` and each of `tables`
+    into `out` (:func:`save_csv`), and prints the names of the files the
+    notebook wrote there (those and its figures).
+
+    Parameters
+    ----------
+    out : pathlib.Path
+        The notebook's output folder (:func:`setup_notebook`).
+    results : dict
+        Paper figure -> its result, in the notebook's order.
+    cfg : tefcore.config.configuration.Config, optional
+        Base configuration of runs the validation adds.
+    variants : dict, optional
+        Figure -> ``{variant_key(overrides): result}`` of runs already made.
+    tables : dict, optional
+        File stem -> DataFrame: the notebook's result tables.
+
+    Returns
+    -------
+    pandas.DataFrame
+        The claims, as saved.
+    """
+    variants = variants or {}
+    claims = pd.concat([claims_table(name, result, cfg=cfg, others=results,
+                                     variants=variants.get(name))
+                        for name, result in results.items()], ignore_index=True)
+    show_claims(claims)
+    written = [save_csv(claims, out, "claims")]
+    written += [save_csv(df, out, stem) for stem, df in (tables or {}).items()]
+    print(sorted(p.name for p in written + sorted(Path(out).glob("*.png"))))
+    return claims
+

@@ -155,7 +155,7 @@ def evaluate_point(index, point, cfg, parameter, value, key, anchor=False, depth
         The point's index in the sweep (returned as is).
     point : callable
         The point function.
-    cfg : tefcore.config.sections.Config
+    cfg : tefcore.config.configuration.Config
         The base configuration.
     parameter : str
         The swept field.
@@ -370,7 +370,7 @@ def chains(cfg, parameter, values, keys, records, args_of, length=WARM_CHAIN):
 
     Parameters
     ----------
-    cfg : tefcore.config.sections.Config
+    cfg : tefcore.config.configuration.Config
         The base configuration.
     parameter : str
         The swept field.

@@ -160,7 +160,7 @@ def config_hash(cfg: Config, exclude: Iterable[str] = ()) -> str:
 
     Parameters
     ----------
-    cfg : tefcore.config.sections.Config
+    cfg : tefcore.config.configuration.Config
         The configuration.
     exclude : iterable of str, optional
         Dotted fields left out (the swept parameter).
@@ -200,7 +200,7 @@ def sweep_header(cfg: Config, parameter: str, chash: str, point_name: str) -> di
 
     Parameters
     ----------
-    cfg : tefcore.config.sections.Config
+    cfg : tefcore.config.configuration.Config
         The rotor configuration.
     parameter : str
         The swept dotted field.

@@ -3,7 +3,7 @@
 Issue 13, finding 9 (a 400-digit integer in TOML raised OverflowError) and
 finding 7 (units): the command-line overrides (``--set name=value``) and TOML
 documents -- mutations of the shipped MDART file and arbitrary TOML tables --
-must end in a validated :class:`~tefcore.config.sections.Config` or a ``ValueError``.
+must end in a validated :class:`~tefcore.config.configuration.Config` or a ``ValueError``.
 """
 
 import re

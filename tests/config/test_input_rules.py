@@ -8,13 +8,13 @@ import shutil
 import numpy as np
 import pytest
 from scipy import constants as sc
-from tests.sweeps.test_sweep import ToyPoint
 
 from tefcore.aero.c81 import example_deck_path
 from tefcore.aero.thin_airfoil import prandtl_glauert
 from tefcore.config.io import config_from_dict, config_to_dict, dumps_config, load_config
 from tefcore.sweeps.sweep import sweep
 from tefcore.units import parse_quantity, parse_unit, to_si
+from tests.sweeps.test_sweep import ToyPoint
 
 MDART = load_config("mdart")
 TOML = dumps_config(MDART)

@@ -16,7 +16,6 @@ import nbformat
 import numpy as np
 import pandas as pd
 import pytest
-from tests.paper.test_report_html import check_page
 
 from tefcore.cli import main
 from tefcore.errors import OutputError
@@ -25,6 +24,7 @@ from tefcore.paper.batch_report import headlines
 from tefcore.paper.batch_state import RECORD, StaleRunError, read_record
 from tefcore.paper.reproduce import NotebookRun
 from tefcore.safe_io import FileLock
+from tests.paper.test_report_html import check_page
 
 pytest.importorskip("papermill")
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"

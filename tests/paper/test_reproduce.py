@@ -7,12 +7,12 @@ from pathlib import Path
 
 import pandas as pd
 import pytest
-from tests.paper.test_report_html import check_page
 
 from tefcore.cli import main
 from tefcore.paper import notebook_files as nbf
 from tefcore.paper import reproduce as rp
 from tefcore.paper import run_params
+from tests.paper.test_report_html import check_page
 
 pytest.importorskip("yaml")
 

@@ -15,9 +15,9 @@ from pathlib import Path
 
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
-from tests.sweeps.test_sweep import MDART, PARAM, ToyPoint, toy_result  # noqa: F401
 
 from tefcore.sweeps.sweep import SweepResult, sweep
+from tests.sweeps.test_sweep import MDART, PARAM, ToyPoint, toy_result  # noqa: F401
 
 VALUES = [0.0, 0.25, 0.5, 0.75]
 

@@ -11,10 +11,10 @@ import shutil
 from pathlib import Path
 
 import pytest
-from tests.sweeps.test_sweep import MDART, PARAM, XS, ToyPoint, run
 
 from tefcore.aero.c81 import example_deck_path
 from tefcore.sweeps.sweep import sweep
+from tests.sweeps.test_sweep import MDART, PARAM, XS, ToyPoint, run
 
 
 def rewrite_header(path, **changes):

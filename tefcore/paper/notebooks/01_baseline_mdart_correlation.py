@@ -55,8 +55,8 @@ damping_measure = "damping_ratio"  # "decay_rate" (-Re(s)/Omega) or "damping_rat
 # %% tags=["nbval-ignore-output"]
 # %matplotlib inline
 import matplotlib.pyplot as plt
-import pandas as pd
 
+import tefcore
 from tefcore.paper import notebook_tools as nt
 
 out = nt.setup_notebook(output_dir)
@@ -113,8 +113,9 @@ print("largest error against the stated frequencies: "
 
 # %%
 cfg_fig3 = nt.run_config("fig3", base, overrides)
-res_fig3 = nt.run_stability_figure("fig3", base, overrides,
-                                nt.figure_values("fig3", n_points, values.get("fig3")), n_jobs)
+vals_fig3 = nt.figure_values("fig3", n_points, values.get("fig3"))
+res_fig3 = tefcore.sweep(cfg_fig3, "flight.collective", vals_fig3,
+                         point=nt.quiet_stability, n_jobs=n_jobs, progress=False)
 results["fig3"] = res_fig3
 nt.report_sweep("fig3", res_fig3)
 
@@ -145,8 +146,9 @@ print(nt.mode_summary("fig3", res_fig3.table, labels=("blade lag 1",), measure=d
 
 # %%
 cfg_fig4 = nt.run_config("fig4", base, overrides)
-res_fig4 = nt.run_stability_figure("fig4", base, overrides,
-                                nt.figure_values("fig4", n_points, values.get("fig4")), n_jobs)
+vals_fig4 = nt.figure_values("fig4", n_points, values.get("fig4"))
+res_fig4 = tefcore.sweep(cfg_fig4, "flight.collective", vals_fig4,
+                         point=nt.quiet_stability, n_jobs=n_jobs, progress=False)
 results["fig4"] = res_fig4
 nt.report_sweep("fig4", res_fig4)
 
@@ -227,26 +229,19 @@ nt.savefig(fig, out, "hub_models",
 # the statement needs data we do not have). The full table, with the
 # statement, the expected and computed values and the reason, is saved to
 # `claims.csv`.
-
-# %%
-claims = pd.concat([nt.claims_table(name, results[name], cfg=claims_cfg, others=results,
-                                   variants=variants.get(name))
-                    for name in ["fig3", "fig4"]], ignore_index=True)
-nt.show_claims(claims)
-
-# %% [markdown]
+#
 # The results of this notebook are in `output_dir`: the tidy sweep tables
 # (`*_modes.csv`: one row per point and tracked mode, with the trim), the
 # figures (`*.png`) and the claims table (`claims.csv`), which
 # `tefcore reproduce` collects into its report.
 
 # %%
-written = [nt.save_csv(claims, out, "claims")]
-written.append(nt.save_csv(res_fig3.table, out, "fig03_modes"))
-written.append(nt.save_csv(res_fig4.table, out, "fig04_modes"))
-written.append(nt.save_csv(modes, out, "blade_modes"))
-written.append(nt.save_csv(checks, out, "blade_frequency_checks"))
-print(sorted(p.name for p in written + sorted(out.glob("*.png"))))
+claims = nt.check_and_save(out, results, cfg=claims_cfg, variants=variants, tables={
+    "fig03_modes": res_fig3.table,
+    "fig04_modes": res_fig4.table,
+    "blade_modes": modes,
+    "blade_frequency_checks": checks,
+})
 
 # %% [markdown]
 # ## Where the compact model departs from UMARC, and what that may shift

@@ -51,8 +51,8 @@ fig7_overhangs = [0.0, 0.1, 0.2, 0.29, 0.35, 0.4, 0.45, 0.5]  # Fig. 7 overhangs
 # %% tags=["nbval-ignore-output"]
 # %matplotlib inline
 import matplotlib.pyplot as plt
-import pandas as pd
 
+import tefcore
 from tefcore.paper import notebook_tools as nt
 
 out = nt.setup_notebook(output_dir)
@@ -124,7 +124,8 @@ nt.savefig(fig, out, "fig07", figure="fig7",
 # %%
 vals_fig8 = nt.figure_values("fig8", n_points, values.get("fig8"))
 cfg_fig8 = nt.run_config("fig8", base, overrides)
-res_fig8 = nt.run_stability_figure("fig8", base, overrides, vals_fig8, n_jobs)
+res_fig8 = tefcore.sweep(cfg_fig8, "flap.overhang", vals_fig8,
+                         point=nt.quiet_stability, n_jobs=n_jobs, progress=False)
 results["fig8"] = res_fig8
 nt.report_sweep("fig8", res_fig8)
 
@@ -139,7 +140,9 @@ nt.savefig(fig, out, "fig08", figure="fig8",
                                      "Damping of the blade modes and the TEF branch"));
 
 # %% [markdown]
-# **Which root is which.** "The TEF mode" is the *TEF branch*: the root that the
+# ### Which root is which
+#
+# "The TEF mode" is the *TEF branch*: the root that the
 # flap's own mode (the flap on its actuator spring, uncoupled from the blade)
 # becomes when the coupling is switched on, at the start of the sweep, followed
 # continuously along the sweep (by eigenvalue and shape; where a step is too
@@ -200,24 +203,17 @@ print(nt.explain("fig8", res_fig8, 0.6, base, overrides).to_string(index=False))
 # the statement needs data we do not have). The full table, with the
 # statement, the expected and computed values and the reason, is saved to
 # `claims.csv`.
-
-# %%
-claims = pd.concat([nt.claims_table(name, results[name], cfg=claims_cfg, others=results,
-                                   variants=variants.get(name))
-                    for name in ["fig7", "fig8"]], ignore_index=True)
-nt.show_claims(claims)
-
-# %% [markdown]
+#
 # The results of this notebook are in `output_dir`: the tidy sweep tables
 # (`*_modes.csv`: one row per point and tracked mode, with the trim), the
 # figures (`*.png`) and the claims table (`claims.csv`), which
 # `tefcore reproduce` collects into its report.
 
 # %%
-written = [nt.save_csv(claims, out, "claims")]
-written.append(nt.save_csv(fig7, out, "fig07_actuation"))
-written.append(nt.save_csv(res_fig8.table, out, "fig08_modes"))
-print(sorted(p.name for p in written + sorted(out.glob("*.png"))))
+claims = nt.check_and_save(out, results, cfg=claims_cfg, variants=variants, tables={
+    "fig07_actuation": fig7,
+    "fig08_modes": res_fig8.table,
+})
 
 # %% [markdown]
 # ## Where the compact model departs from UMARC, and what that may shift

@@ -54,8 +54,8 @@ interactive = True         # the explorer's sliders (ipywidgets); False: a stati
 # %% tags=["nbval-ignore-output"]
 # %matplotlib inline
 import matplotlib.pyplot as plt
-import pandas as pd
 
+import tefcore
 from tefcore.paper import notebook_tools as nt
 
 out = nt.setup_notebook(output_dir)
@@ -69,7 +69,8 @@ results, variants = {}, {}
 # %%
 vals_fig9 = nt.figure_values("fig9", n_points, values.get("fig9"))
 cfg_fig9 = nt.run_config("fig9", base, overrides)
-res_fig9 = nt.run_stability_figure("fig9", base, overrides, vals_fig9, n_jobs)
+res_fig9 = tefcore.sweep(cfg_fig9, "flap.cg_offset", vals_fig9,
+                         point=nt.quiet_stability, n_jobs=n_jobs, progress=False)
 results["fig9"] = res_fig9
 nt.report_sweep("fig9", res_fig9)
 
@@ -89,17 +90,8 @@ nt.savefig(fig, out, "fig09", figure="fig9",
                                      "TEF branch"));
 
 # %% [markdown]
-# **Which root is which.** "The TEF mode" is the *TEF branch*: the root that the
-# flap's own mode (the flap on its actuator spring, uncoupled from the blade)
-# becomes when the coupling is switched on, at the start of the sweep, followed
-# continuously along the sweep (by eigenvalue and shape; where a step is too
-# coarse to tell, tefcore bisects it). Its character can change along the way
-# -- it can turn into a torsion-like root, while another root becomes
-# flap-dominated -- so the plots also show the *flutter root* at each point
-# (the least stable root in which the flap participates by at least 10 %) and
-# the participation of flap, torsion, bending and lag in the TEF branch. Two
-# roots approaching in frequency while one turns towards the unstable side is
-# the classic picture of coalescence flutter.
+# **Which root is which**: the TEF branch and the flutter root, as defined in
+# [notebook 03, *Which root is which*](03_overhang.ipynb#Which-root-is-which).
 
 # %%
 nt.report_identity("fig9", res_fig9)
@@ -185,23 +177,16 @@ explorer = nt.explore(base, interactive=interactive, cg_offset=0.33, overhang=0.
 # the statement needs data we do not have). The full table, with the
 # statement, the expected and computed values and the reason, is saved to
 # `claims.csv`.
-
-# %%
-claims = pd.concat([nt.claims_table(name, results[name], cfg=claims_cfg, others=results,
-                                   variants=variants.get(name))
-                    for name in ["fig9"]], ignore_index=True)
-nt.show_claims(claims)
-
-# %% [markdown]
+#
 # The results of this notebook are in `output_dir`: the tidy sweep tables
 # (`*_modes.csv`: one row per point and tracked mode, with the trim), the
 # figures (`*.png`) and the claims table (`claims.csv`), which
 # `tefcore reproduce` collects into its report.
 
 # %%
-written = [nt.save_csv(claims, out, "claims")]
-written.append(nt.save_csv(res_fig9.table, out, "fig09_modes"))
-print(sorted(p.name for p in written + sorted(out.glob("*.png"))))
+claims = nt.check_and_save(out, results, cfg=claims_cfg, variants=variants, tables={
+    "fig09_modes": res_fig9.table,
+})
 
 # %% [markdown]
 # ## Where the compact model departs from UMARC, and what that may shift

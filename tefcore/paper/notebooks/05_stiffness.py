@@ -51,6 +51,7 @@ damping_measure = "decay_rate"  # "decay_rate" (-Re(s)/Omega) or "damping_ratio"
 import matplotlib.pyplot as plt
 import pandas as pd
 
+import tefcore
 from tefcore.paper import notebook_tools as nt
 
 out = nt.setup_notebook(output_dir)
@@ -71,7 +72,8 @@ modes_fig10 = ("blade flap 1", "blade lag 1", "blade torsion 1", "TEF")
 blade_modes_a = ("blade flap 1", "blade lag 1", "blade torsion 1")
 vals_fig10 = nt.figure_values("fig10", n_points, values.get("fig10"))
 cfg_fig10 = nt.run_config("fig10", base, overrides)
-res_fig10 = nt.run_stability_figure("fig10", base, overrides, vals_fig10, n_jobs)
+res_fig10 = tefcore.sweep(cfg_fig10, "hub.pitch_link_stiffness", vals_fig10,
+                          point=nt.quiet_stability, n_jobs=n_jobs, progress=False)
 nat_fig10 = nt.natural_frequencies("fig10", vals_fig10, base, overrides)
 results["fig10"] = res_fig10
 nt.report_sweep("fig10", res_fig10)
@@ -93,17 +95,8 @@ nt.savefig(fig, out, "fig10", figure="fig10",
                                      "modes and the TEF branch"));
 
 # %% [markdown]
-# **Which root is which.** "The TEF mode" is the *TEF branch*: the root that the
-# flap's own mode (the flap on its actuator spring, uncoupled from the blade)
-# becomes when the coupling is switched on, at the start of the sweep, followed
-# continuously along the sweep (by eigenvalue and shape; where a step is too
-# coarse to tell, tefcore bisects it). Its character can change along the way
-# -- it can turn into a torsion-like root, while another root becomes
-# flap-dominated -- so the plots also show the *flutter root* at each point
-# (the least stable root in which the flap participates by at least 10 %) and
-# the participation of flap, torsion, bending and lag in the TEF branch. Two
-# roots approaching in frequency while one turns towards the unstable side is
-# the classic picture of coalescence flutter.
+# **Which root is which**: the TEF branch and the flutter root, as defined in
+# [notebook 03, *Which root is which*](03_overhang.ipynb#Which-root-is-which).
 
 # %%
 nt.report_identity("fig10", res_fig10)
@@ -131,7 +124,8 @@ modes_fig11 = ("blade flap 1", "blade lag 1", "blade torsion 1", "TEF")
 blade_modes_a = ("blade flap 1", "blade lag 1", "blade torsion 1")
 vals_fig11 = nt.figure_values("fig11", n_points, values.get("fig11"))
 cfg_fig11 = nt.run_config("fig11", base, overrides)
-res_fig11 = nt.run_stability_figure("fig11", base, overrides, vals_fig11, n_jobs)
+res_fig11 = tefcore.sweep(cfg_fig11, "blade.gj_scale", vals_fig11,
+                          point=nt.quiet_stability, n_jobs=n_jobs, progress=False)
 nat_fig11 = nt.natural_frequencies("fig11", vals_fig11, base, overrides)
 results["fig11"] = res_fig11
 nt.report_sweep("fig11", res_fig11)
@@ -151,19 +145,6 @@ nt.savefig(fig, out, "fig11", figure="fig11",
            caption=nt.figure_caption("fig11", cfg_fig11,
                                      "(a) blade natural frequencies; (b) damping of the blade "
                                      "modes and the TEF branch"));
-
-# %% [markdown]
-# **Which root is which.** "The TEF mode" is the *TEF branch*: the root that the
-# flap's own mode (the flap on its actuator spring, uncoupled from the blade)
-# becomes when the coupling is switched on, at the start of the sweep, followed
-# continuously along the sweep (by eigenvalue and shape; where a step is too
-# coarse to tell, tefcore bisects it). Its character can change along the way
-# -- it can turn into a torsion-like root, while another root becomes
-# flap-dominated -- so the plots also show the *flutter root* at each point
-# (the least stable root in which the flap participates by at least 10 %) and
-# the participation of flap, torsion, bending and lag in the TEF branch. Two
-# roots approaching in frequency while one turns towards the unstable side is
-# the classic picture of coalescence flutter.
 
 # %%
 nt.report_identity("fig11", res_fig11)
@@ -208,10 +189,11 @@ for name, nat in (("fig10", nat_fig10), ("fig11", nat_fig11)):
 # %%
 vals_fig12 = nt.figure_values("fig12", n_points, values.get("fig12"))
 cfg_fig12 = nt.run_config("fig12", base, overrides)
-res_fig12 = nt.run_stability_figure("fig12", base, overrides, vals_fig12, n_jobs)
-cfg_fig12_balanced = nt.run_config("fig12", base, overrides)
-res_fig12_balanced = nt.run_stability_figure("fig12", base, overrides, vals_fig12, n_jobs,
-                                             cg_offset=0.0)
+res_fig12 = tefcore.sweep(cfg_fig12, "actuator.stiffness", vals_fig12,
+                          point=nt.quiet_stability, n_jobs=n_jobs, progress=False)
+cfg_fig12_balanced = cfg_fig12.with_overrides({"flap.cg_offset": 0.0})   # Fig. 12(a)
+res_fig12_balanced = tefcore.sweep(cfg_fig12_balanced, "actuator.stiffness", vals_fig12,
+                                   point=nt.quiet_stability, n_jobs=n_jobs, progress=False)
 results["fig12"] = res_fig12
 variants["fig12"] = {nt.variant_key({"flap.cg_offset": 0.0}): res_fig12_balanced}
 nt.report_sweep("fig12", res_fig12)
@@ -261,26 +243,19 @@ print("TEF damping changes sign at:", nt.sign_changes("fig12", res_fig12.table,
 # the statement needs data we do not have). The full table, with the
 # statement, the expected and computed values and the reason, is saved to
 # `claims.csv`.
-
-# %%
-claims = pd.concat([nt.claims_table(name, results[name], cfg=claims_cfg, others=results,
-                                   variants=variants.get(name))
-                    for name in ["fig10", "fig11", "fig12"]], ignore_index=True)
-nt.show_claims(claims)
-
-# %% [markdown]
+#
 # The results of this notebook are in `output_dir`: the tidy sweep tables
 # (`*_modes.csv`: one row per point and tracked mode, with the trim), the
 # figures (`*.png`) and the claims table (`claims.csv`), which
 # `tefcore reproduce` collects into its report.
 
 # %%
-written = [nt.save_csv(claims, out, "claims")]
-written.append(nt.save_csv(res_fig10.table, out, "fig10_modes"))
-written.append(nt.save_csv(res_fig11.table, out, "fig11_modes"))
-written.append(nt.save_csv(res_fig12.table, out, "fig12_modes"))
-written.append(nt.save_csv(res_fig12_balanced.table, out, "fig12_balanced_modes"))
-print(sorted(p.name for p in written + sorted(out.glob("*.png"))))
+claims = nt.check_and_save(out, results, cfg=claims_cfg, variants=variants, tables={
+    "fig10_modes": res_fig10.table,
+    "fig11_modes": res_fig11.table,
+    "fig12_modes": res_fig12.table,
+    "fig12_balanced_modes": res_fig12_balanced.table,
+})
 
 # %% [markdown]
 # ## Where the compact model departs from UMARC, and what that may shift

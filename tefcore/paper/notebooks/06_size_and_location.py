@@ -47,8 +47,8 @@ damping_measure = "decay_rate"  # "decay_rate" (-Re(s)/Omega) or "damping_ratio"
 # %% tags=["nbval-ignore-output"]
 # %matplotlib inline
 import matplotlib.pyplot as plt
-import pandas as pd
 
+import tefcore
 from tefcore.paper import notebook_tools as nt
 
 out = nt.setup_notebook(output_dir)
@@ -66,7 +66,8 @@ results, variants = {}, {}
 # %%
 vals_fig13 = nt.figure_values("fig13", n_points, values.get("fig13"))
 cfg_fig13 = nt.run_config("fig13", base, overrides)
-res_fig13 = nt.run_stability_figure("fig13", base, overrides, vals_fig13, n_jobs)
+res_fig13 = tefcore.sweep(cfg_fig13, "flap.midspan", vals_fig13,
+                          point=nt.quiet_stability, n_jobs=n_jobs, progress=False)
 results["fig13"] = res_fig13
 nt.report_sweep("fig13", res_fig13)
 
@@ -81,17 +82,8 @@ nt.savefig(fig, out, "fig13", figure="fig13",
                                      "Damping of the blade modes and the TEF branch"));
 
 # %% [markdown]
-# **Which root is which.** "The TEF mode" is the *TEF branch*: the root that the
-# flap's own mode (the flap on its actuator spring, uncoupled from the blade)
-# becomes when the coupling is switched on, at the start of the sweep, followed
-# continuously along the sweep (by eigenvalue and shape; where a step is too
-# coarse to tell, tefcore bisects it). Its character can change along the way
-# -- it can turn into a torsion-like root, while another root becomes
-# flap-dominated -- so the plots also show the *flutter root* at each point
-# (the least stable root in which the flap participates by at least 10 %) and
-# the participation of flap, torsion, bending and lag in the TEF branch. Two
-# roots approaching in frequency while one turns towards the unstable side is
-# the classic picture of coalescence flutter.
+# **Which root is which**: the TEF branch and the flutter root, as defined in
+# [notebook 03, *Which root is which*](03_overhang.ipynb#Which-root-is-which).
 
 # %%
 nt.report_identity("fig13", res_fig13)
@@ -117,7 +109,8 @@ print("TEF damping changes sign at:", changes or "nowhere in the range")
 # %%
 vals_fig14 = nt.figure_values("fig14", n_points, values.get("fig14"))
 cfg_fig14 = nt.run_config("fig14", base, overrides)
-res_fig14 = nt.run_stability_figure("fig14", base, overrides, vals_fig14, n_jobs)
+res_fig14 = tefcore.sweep(cfg_fig14, "flap.span", vals_fig14,
+                          point=nt.quiet_stability, n_jobs=n_jobs, progress=False)
 results["fig14"] = res_fig14
 nt.report_sweep("fig14", res_fig14)
 
@@ -130,19 +123,6 @@ nt.legend_below(ax)
 nt.savefig(fig, out, "fig14", figure="fig14",
            caption=nt.figure_caption("fig14", cfg_fig14,
                                      "Damping of the blade modes and the TEF branch"));
-
-# %% [markdown]
-# **Which root is which.** "The TEF mode" is the *TEF branch*: the root that the
-# flap's own mode (the flap on its actuator spring, uncoupled from the blade)
-# becomes when the coupling is switched on, at the start of the sweep, followed
-# continuously along the sweep (by eigenvalue and shape; where a step is too
-# coarse to tell, tefcore bisects it). Its character can change along the way
-# -- it can turn into a torsion-like root, while another root becomes
-# flap-dominated -- so the plots also show the *flutter root* at each point
-# (the least stable root in which the flap participates by at least 10 %) and
-# the participation of flap, torsion, bending and lag in the TEF branch. Two
-# roots approaching in frequency while one turns towards the unstable side is
-# the classic picture of coalescence flutter.
 
 # %%
 nt.report_identity("fig14", res_fig14)
@@ -169,7 +149,8 @@ print("TEF damping changes sign at:", changes or "nowhere in the range")
 # %%
 vals_fig15 = nt.figure_values("fig15", n_points, values.get("fig15"))
 cfg_fig15 = nt.run_config("fig15", base, overrides)
-res_fig15 = nt.run_stability_figure("fig15", base, overrides, vals_fig15, n_jobs)
+res_fig15 = tefcore.sweep(cfg_fig15, "flap.chord_ratio", vals_fig15,
+                          point=nt.quiet_stability, n_jobs=n_jobs, progress=False)
 results["fig15"] = res_fig15
 nt.report_sweep("fig15", res_fig15)
 
@@ -182,19 +163,6 @@ nt.legend_below(ax)
 nt.savefig(fig, out, "fig15", figure="fig15",
            caption=nt.figure_caption("fig15", cfg_fig15,
                                      "Damping of the blade modes and the TEF branch"));
-
-# %% [markdown]
-# **Which root is which.** "The TEF mode" is the *TEF branch*: the root that the
-# flap's own mode (the flap on its actuator spring, uncoupled from the blade)
-# becomes when the coupling is switched on, at the start of the sweep, followed
-# continuously along the sweep (by eigenvalue and shape; where a step is too
-# coarse to tell, tefcore bisects it). Its character can change along the way
-# -- it can turn into a torsion-like root, while another root becomes
-# flap-dominated -- so the plots also show the *flutter root* at each point
-# (the least stable root in which the flap participates by at least 10 %) and
-# the participation of flap, torsion, bending and lag in the TEF branch. Two
-# roots approaching in frequency while one turns towards the unstable side is
-# the classic picture of coalescence flutter.
 
 # %%
 nt.report_identity("fig15", res_fig15)
@@ -227,25 +195,18 @@ print("TEF damping changes sign at:", changes or "nowhere in the range")
 # the statement needs data we do not have). The full table, with the
 # statement, the expected and computed values and the reason, is saved to
 # `claims.csv`.
-
-# %%
-claims = pd.concat([nt.claims_table(name, results[name], cfg=claims_cfg, others=results,
-                                   variants=variants.get(name))
-                    for name in ["fig13", "fig14", "fig15"]], ignore_index=True)
-nt.show_claims(claims)
-
-# %% [markdown]
+#
 # The results of this notebook are in `output_dir`: the tidy sweep tables
 # (`*_modes.csv`: one row per point and tracked mode, with the trim), the
 # figures (`*.png`) and the claims table (`claims.csv`), which
 # `tefcore reproduce` collects into its report.
 
 # %%
-written = [nt.save_csv(claims, out, "claims")]
-written.append(nt.save_csv(res_fig13.table, out, "fig13_modes"))
-written.append(nt.save_csv(res_fig14.table, out, "fig14_modes"))
-written.append(nt.save_csv(res_fig15.table, out, "fig15_modes"))
-print(sorted(p.name for p in written + sorted(out.glob("*.png"))))
+claims = nt.check_and_save(out, results, cfg=claims_cfg, variants=variants, tables={
+    "fig13_modes": res_fig13.table,
+    "fig14_modes": res_fig14.table,
+    "fig15_modes": res_fig15.table,
+})
 
 # %% [markdown]
 # ## Where the compact model departs from UMARC, and what that may shift

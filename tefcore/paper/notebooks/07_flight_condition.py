@@ -47,8 +47,8 @@ damping_measure = "decay_rate"  # "decay_rate" (-Re(s)/Omega) or "damping_ratio"
 # %% tags=["nbval-ignore-output"]
 # %matplotlib inline
 import matplotlib.pyplot as plt
-import pandas as pd
 
+import tefcore
 from tefcore.paper import notebook_tools as nt
 
 out = nt.setup_notebook(output_dir)
@@ -65,13 +65,13 @@ results, variants = {}, {}
 
 # %%
 cfg_fig16a = nt.run_config("fig16a", base, overrides)
-res_fig16a = nt.run_stability_figure("fig16a", base, overrides,
-                                     nt.figure_values("fig16a", n_points, values.get("fig16a")),
-                                     n_jobs)
+vals_fig16a = nt.figure_values("fig16a", n_points, values.get("fig16a"))
+res_fig16a = tefcore.sweep(cfg_fig16a, "flight.collective", vals_fig16a,
+                           point=nt.quiet_stability, n_jobs=n_jobs, progress=False)
 cfg_fig16b = nt.run_config("fig16b", base, overrides)
-res_fig16b = nt.run_stability_figure("fig16b", base, overrides,
-                                     nt.figure_values("fig16b", n_points, values.get("fig16b")),
-                                     n_jobs)
+vals_fig16b = nt.figure_values("fig16b", n_points, values.get("fig16b"))
+res_fig16b = tefcore.sweep(cfg_fig16b, "flight.collective", vals_fig16b,
+                           point=nt.quiet_stability, n_jobs=n_jobs, progress=False)
 results.update(fig16a=res_fig16a, fig16b=res_fig16b)
 nt.report_sweep("fig16a", res_fig16a)
 nt.report_sweep("fig16b", res_fig16b)
@@ -110,7 +110,8 @@ for name in ("fig16a", "fig16b"):
 # %%
 vals_fig17 = nt.figure_values("fig17", n_points, values.get("fig17"))
 cfg_fig17 = nt.run_config("fig17", base, overrides)
-res_fig17 = nt.run_stability_figure("fig17", base, overrides, vals_fig17, n_jobs)
+res_fig17 = tefcore.sweep(cfg_fig17, "flight.advance_ratio", vals_fig17,
+                          point=nt.quiet_stability, n_jobs=n_jobs, progress=False)
 results["fig17"] = res_fig17
 nt.report_sweep("fig17", res_fig17)
 
@@ -125,17 +126,8 @@ nt.savefig(fig, out, "fig17", figure="fig17",
                                      "Damping of the blade modes and the TEF branch"));
 
 # %% [markdown]
-# **Which root is which.** "The TEF mode" is the *TEF branch*: the root that the
-# flap's own mode (the flap on its actuator spring, uncoupled from the blade)
-# becomes when the coupling is switched on, at the start of the sweep, followed
-# continuously along the sweep (by eigenvalue and shape; where a step is too
-# coarse to tell, tefcore bisects it). Its character can change along the way
-# -- it can turn into a torsion-like root, while another root becomes
-# flap-dominated -- so the plots also show the *flutter root* at each point
-# (the least stable root in which the flap participates by at least 10 %) and
-# the participation of flap, torsion, bending and lag in the TEF branch. Two
-# roots approaching in frequency while one turns towards the unstable side is
-# the classic picture of coalescence flutter.
+# **Which root is which**: the TEF branch and the flutter root, as defined in
+# [notebook 03, *Which root is which*](03_overhang.ipynb#Which-root-is-which).
 
 # %%
 nt.report_identity("fig17", res_fig17)
@@ -166,25 +158,18 @@ print("TEF damping changes sign at:", changes or "nowhere in the range")
 # the statement needs data we do not have). The full table, with the
 # statement, the expected and computed values and the reason, is saved to
 # `claims.csv`.
-
-# %%
-claims = pd.concat([nt.claims_table(name, results[name], cfg=claims_cfg, others=results,
-                                   variants=variants.get(name))
-                    for name in ["fig16a", "fig16b", "fig17"]], ignore_index=True)
-nt.show_claims(claims)
-
-# %% [markdown]
+#
 # The results of this notebook are in `output_dir`: the tidy sweep tables
 # (`*_modes.csv`: one row per point and tracked mode, with the trim), the
 # figures (`*.png`) and the claims table (`claims.csv`), which
 # `tefcore reproduce` collects into its report.
 
 # %%
-written = [nt.save_csv(claims, out, "claims")]
-written.append(nt.save_csv(res_fig16a.table, out, "fig16a_modes"))
-written.append(nt.save_csv(res_fig16b.table, out, "fig16b_modes"))
-written.append(nt.save_csv(res_fig17.table, out, "fig17_modes"))
-print(sorted(p.name for p in written + sorted(out.glob("*.png"))))
+claims = nt.check_and_save(out, results, cfg=claims_cfg, variants=variants, tables={
+    "fig16a_modes": res_fig16a.table,
+    "fig16b_modes": res_fig16b.table,
+    "fig17_modes": res_fig17.table,
+})
 
 # %% [markdown]
 # ## Where the compact model departs from UMARC, and what that may shift

@@ -56,6 +56,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 import pandas as pd
 
+import tefcore
 from tefcore.paper import notebook_tools as nt
 from tefcore.paper.model_comparison import OPTIONS, compare_models
 from tefcore.aero.unsteady import fitted_wake, theodorsen_function
@@ -133,8 +134,10 @@ print(nt.clean(mech.round(3)).to_string())
 vals = nt.figure_values("fig9", n_points)
 runs = {}
 for name in ("quasi-steady", "unsteady"):
+    cfg_fig9 = nt.run_config("fig9", base, OPTIONS[name])   # Fig. 9's caption, this model
     with nt.counted_warnings(f"{name}: numerical warnings"):
-        runs[name] = nt.run_stability_figure("fig9", base, OPTIONS[name], vals, n_jobs)
+        runs[name] = tefcore.sweep(cfg_fig9, "flap.cg_offset", vals, point=nt.quiet_stability,
+                                   n_jobs=n_jobs, progress=False)
     nt.report_sweep("fig9", runs[name])
     fr = runs[name].table
     fr = fr[(fr["status"] == "ok") & fr["flutter_root"].fillna(False).astype(bool)
