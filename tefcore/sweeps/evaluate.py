@@ -25,9 +25,10 @@ from ..modes.roles import anchor_root
 from ..runtime import worker_init
 from .store import jsonable
 
-__all__ = ["REQUIRED_MODE_COLUMNS", "WARM_CHAIN", "chains", "check_result", "decode_complex",
-           "default_point", "encode_complex", "evaluate_point", "shape_vectors",
-           "takes_warm_start"]
+__all__ = ["MIN_COLD_CHAINS", "POOL_IDLE_SECONDS", "REQUIRED_MODE_COLUMNS", "WARM_CHAIN",
+           "chains", "check_result", "decode_complex", "default_point", "encode_complex",
+           "evaluate_point", "pool_started",
+           "run_joblib", "shape_vectors", "takes_warm_start", "worker_pool"]
 
 
 #: Columns a point function's ``modes`` table must have.
@@ -258,12 +259,109 @@ def run_serial(jobs):
         yield from evaluate_chain(chain)
 
 
-def run_joblib(jobs, n_jobs):
-    from joblib import Parallel, delayed
+#: Fewest chains of a cold pool worth worker processes: a worker's start and
+#: imports (~1 s of CPU, measured) cost more than two chains of 8 points (~0.4 s
+#: at mu = 0.3); a pool already started takes any two chains.
+MIN_COLD_CHAINS = 3
 
-    par = Parallel(n_jobs=n_jobs, backend="loky", return_as="generator_unordered")
-    for done in par(delayed(evaluate_in_worker)(chain) for chain in jobs):
-        yield from done
+#: Seconds an idle worker of the pool lives (loky reusable executor): long enough
+#: for the next sweep of a script or notebook, not forever.
+POOL_IDLE_SECONDS = 300
+
+
+def _warm_worker():
+    """A pool worker's start: the process settings and the solver imported, once."""
+    worker_init()
+    import tefcore.linear.stability  # noqa: F401  (the default point function's imports)
+
+
+_pool_size = 0
+
+
+def worker_pool(n_workers: int):
+    """The persistent pool of worker processes (loky's reusable executor), started now.
+
+    The workers apply the process settings and import the solver when they
+    start (:func:`_warm_worker`), so a worker pays its start-up once, not per
+    sweep; calling it early (the command does, before it loads its
+    configuration) overlaps their start with the caller's own.
+
+    Parameters
+    ----------
+    n_workers : int
+        Worker processes.
+
+    Returns
+    -------
+    concurrent.futures.Executor
+        The executor (the same one while ``n_workers`` stays the same).
+    """
+    from joblib.externals.loky import get_reusable_executor
+
+    global _pool_size
+    pool = get_reusable_executor(max_workers=n_workers, initializer=_warm_worker,
+                                 timeout=POOL_IDLE_SECONDS)
+    _pool_size = n_workers
+    return pool
+
+
+def pool_started() -> bool:
+    """Whether this process has started the worker pool (:func:`worker_pool`).
+
+    Returns
+    -------
+    bool
+    """
+    return _pool_size > 0
+
+
+def run_joblib(jobs, n_jobs):
+    """Chains in the caller and in ``n_jobs - 1`` pool workers, unordered as they finish.
+
+    The caller computes chains too (it has the solver imported already): with
+    ``n_jobs = 2`` one worker process is started, not two, and the caller
+    works while it starts.  Each worker has at most one chain queued, so the
+    chains go to whoever is free.  A worker that dies fails its chain's points
+    (recorded), not the sweep.
+
+    Parameters
+    ----------
+    jobs : list of list of tuple
+        The chains (:func:`chains`).
+    n_jobs : int
+        Processes at work, the caller included (negative: all the cores).
+
+    Yields
+    ------
+    tuple
+        ``(index, record, vectors)`` of each kept point, as it finishes.
+    """
+    import concurrent.futures as cf
+
+    n_workers = (os.cpu_count() or 1) - 1 if n_jobs < 0 else n_jobs - 1
+    pending = list(jobs)
+    pool = worker_pool(max(1, n_workers))
+    running: dict = {}
+    try:
+        while pending or running:
+            while pending and len(running) < max(1, n_workers):
+                chain = pending.pop(0)
+                running[pool.submit(evaluate_in_worker, chain)] = chain
+            if pending:                          # the caller's share: one chain at a time
+                yield from evaluate_chain(pending.pop())
+            done = [f for f in running if f.done()] if pending else \
+                cf.wait(list(running), return_when=cf.FIRST_COMPLETED).done
+            for fut in done:
+                chain = running.pop(fut)
+                try:
+                    yield from fut.result()
+                except Exception as err:  # e.g. a worker died: record it, go on
+                    for i, args, keep in chain:
+                        if keep:
+                            yield i, failed_record(args[4], args[3], err), None
+    finally:
+        for fut in running:
+            fut.cancel()
 
 
 def dask_client(n_jobs, client):

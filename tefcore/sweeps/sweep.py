@@ -54,11 +54,13 @@ from ..config.configuration import SECTIONS, Config, resolve_field
 from ..modes.tracking import label_changes
 from ..safe_io import atomic_output
 from .evaluate import (
+    MIN_COLD_CHAINS,
     WARM_CHAIN,
     chains,
     dask_client,
     default_point,
     point_name,
+    pool_started,
     run_dask,
     run_joblib,
     run_serial,
@@ -420,7 +422,8 @@ class _Run:
             if self.client_own is None:
                 self.client_own, self.cluster = dask_client(self.n_jobs, self.client)
             return run_dask(jobs, self.client_own)
-        if self.n_jobs == 1 or len(jobs) <= 1:
+        # small jobs stay serial: a cold pool's start costs more than they take
+        if self.n_jobs == 1 or len(jobs) < (2 if pool_started() else MIN_COLD_CHAINS):
             return run_serial(jobs)
         return run_joblib(jobs, self.n_jobs)
 
