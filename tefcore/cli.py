@@ -22,6 +22,7 @@ from __future__ import annotations
 
 import argparse
 import math
+import os
 import sys
 import textwrap
 from pathlib import Path
@@ -174,10 +175,17 @@ def cmd_stability(args) -> int:
 
 def cmd_sweep(args) -> int:
     from .config.text_input import sweep_values
+
+    values = sweep_values(args.parameter, args.values, args.range)
+    if args.jobs != 1:
+        from .sweeps.evaluate import MIN_COLD_CHAINS, WARM_CHAIN, worker_pool
+
+        if len(values) >= MIN_COLD_CHAINS * WARM_CHAIN:
+            # the workers start and import while this process loads and checks
+            worker_pool(args.jobs - 1 if args.jobs > 1 else max(1, (os.cpu_count() or 2) - 1))
     from .sweeps.sweep import sweep
 
     cfg = _load(args)
-    values = sweep_values(args.parameter, args.values, args.range)
     check_output_file(args.csv, "--csv")
     if args.out:
         check_output_file(args.out, "--out", create_folder=True)
@@ -186,6 +194,10 @@ def cmd_sweep(args) -> int:
     path = result.to_csv(args.csv)
     n_bad = len(result.failed)
     print(f"wrote {path}: {len(values)} points, {n_bad} failed")
+    t = result.timing
+    if t.get("wall_s"):
+        print(f"computed in {t['wall_s']:.2f} s on {t['processes']} process(es): "
+              f"{t['point_s']:.2f} s of point time, speed-up {t['speedup']:.2f}x")
     if n_bad:
         print(result.failed.to_string(index=False))
         print(f"tefcore sweep: {n_bad} of {len(values)} point(s) failed (see {path}, column "
