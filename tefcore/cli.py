@@ -189,8 +189,13 @@ def cmd_sweep(args) -> int:
     check_output_file(args.csv, "--csv")
     if args.out:
         check_output_file(args.out, "--out", create_folder=True)
-    result = sweep(cfg, args.parameter, values, n_jobs=args.jobs, out=args.out,
-                   progress=False if args.quiet else None)
+    try:
+        result = sweep(cfg, args.parameter, values, n_jobs=args.jobs, out=args.out,
+                       progress=False if args.quiet else None)
+    finally:
+        from .sweeps.evaluate import close_pool
+
+        close_pool()      # the command exits now: no idle worker to wait for
     path = result.to_csv(args.csv)
     n_bad = len(result.failed)
     print(f"wrote {path}: {len(values)} points, {n_bad} failed")

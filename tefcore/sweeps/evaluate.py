@@ -27,7 +27,7 @@ from .store import jsonable
 
 __all__ = ["MIN_COLD_CHAINS", "POOL_IDLE_SECONDS", "REQUIRED_MODE_COLUMNS", "WARM_CHAIN",
            "chains", "check_result", "decode_complex", "default_point", "encode_complex",
-           "evaluate_point", "pool_started",
+           "evaluate_point", "close_pool", "pool_ready", "pool_started",
            "run_joblib", "shape_vectors", "takes_warm_start", "worker_pool"]
 
 
@@ -275,16 +275,18 @@ def _warm_worker():
     import tefcore.linear.stability  # noqa: F401  (the default point function's imports)
 
 
-_pool_size = 0
+_pool = None          # (workers, executor) of this process
 
 
 def worker_pool(n_workers: int):
-    """The persistent pool of worker processes (loky's reusable executor), started now.
+    """The persistent pool of worker processes (a loky executor of tefcore's own), started now.
 
     The workers apply the process settings and import the solver when they
     start (:func:`_warm_worker`), so a worker pays its start-up once, not per
-    sweep; calling it early (the command does, before it loads its
-    configuration) overlaps their start with the caller's own.
+    sweep, and an idle one exits after :data:`POOL_IDLE_SECONDS`; calling it
+    early (the command does, before it loads its configuration) overlaps their
+    start with the caller's own.  The pool is not joblib's reusable executor,
+    which ``joblib.Parallel`` recreates whenever its arguments differ.
 
     Parameters
     ----------
@@ -294,15 +296,40 @@ def worker_pool(n_workers: int):
     Returns
     -------
     concurrent.futures.Executor
-        The executor (the same one while ``n_workers`` stays the same).
+        The executor (the same one while ``n_workers`` stays the same and it works).
     """
-    from joblib.externals.loky import get_reusable_executor
+    from joblib.externals.loky import ProcessPoolExecutor
 
-    global _pool_size
-    pool = get_reusable_executor(max_workers=n_workers, initializer=_warm_worker,
-                                 timeout=POOL_IDLE_SECONDS)
-    _pool_size = n_workers
-    return pool
+    global _pool
+    if _pool is not None and (_pool[0] != n_workers or getattr(_pool[1], "_broken", False)):
+        _pool[1].shutdown(wait=False, kill_workers=True)
+        _pool = None
+    if _pool is None:
+        pool = ProcessPoolExecutor(max_workers=n_workers, initializer=_warm_worker,
+                                   timeout=POOL_IDLE_SECONDS)
+        # done once a worker has started and imported: until then the caller
+        # keeps the chains (a chain queued behind a worker's start could
+        # finish after all the others)
+        _pool = (n_workers, pool, pool.submit(int))
+    return _pool[1]
+
+
+def pool_ready() -> bool:
+    """Whether a worker of the pool has started and imported the solver.
+
+    Returns
+    -------
+    bool
+    """
+    return _pool is not None and _pool[2].done() and _pool[2].exception() is None
+
+
+def close_pool() -> None:
+    """Stop the worker pool now (its workers killed), e.g. before the command exits."""
+    global _pool
+    if _pool is not None:
+        _pool[1].shutdown(wait=False, kill_workers=True)
+        _pool = None
 
 
 def pool_started() -> bool:
@@ -312,7 +339,7 @@ def pool_started() -> bool:
     -------
     bool
     """
-    return _pool_size > 0
+    return _pool is not None
 
 
 def run_joblib(jobs, n_jobs):
@@ -344,12 +371,12 @@ def run_joblib(jobs, n_jobs):
     running: dict = {}
     try:
         while pending or running:
-            while pending and len(running) < max(1, n_workers):
+            while pending and len(running) < (max(1, n_workers) if pool_ready() else 0):
                 chain = pending.pop(0)
                 running[pool.submit(evaluate_in_worker, chain)] = chain
             if pending:                          # the caller's share: one chain at a time
                 yield from evaluate_chain(pending.pop())
-            done = [f for f in running if f.done()] if pending else \
+            done = [f for f in running if f.done()] if pending or not running else \
                 cf.wait(list(running), return_when=cf.FIRST_COMPLETED).done
             for fut in done:
                 chain = running.pop(fut)
