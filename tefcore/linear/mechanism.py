@@ -194,9 +194,13 @@ def _term_matrices(parts, psi, periodic):
     """``(term, (M, C, K), their psi-derivatives or None)`` one term at a time: the
     matrices of all terms at once held 0.55 GiB with the shed wake (72 azimuths,
     82 coordinates and states, 20 terms, measured), the largest process of the
-    reproduction."""
+    reproduction.  A term's matrices are computed once the caller has dropped
+    the previous term's (it holds only what it yields)."""
     for t, p in parts.items():
-        yield t, p.matrices(psi), (p.matrices(psi, 1) if periodic else None)
+        mats = p.matrices(psi)
+        dmats = p.matrices(psi, 1) if periodic else None
+        yield t, mats, dmats
+        del mats, dmats
 
 
 def energy_decomposition(parts: dict, exponent: complex, shape, psi):
@@ -248,6 +252,7 @@ def energy_decomposition(parts: dict, exponent: complex, shape, psi):
                 work = work + 0.5 * np.real(_quad(pv, _herm(dm), pv) + _quad(pq, _herm(dk), pq))
             stored = np.real(_quad(pv, _herm(mt), pv) + _quad(pq, _herm(kt), pq))
             out[t] = complex(np.mean(work) / denom, omega * np.mean(stored) / denom)
+            del mt, ct, kt, dmat        # before the next term's matrices are made
         return out
     # real root: sigma (sigma <p M p> + <2 p M p' + p C p>) = -<p (M p'' + C p' + K p)>
     if periodic:
@@ -302,6 +307,7 @@ def _energy_with_states(parts, exponent, shape, psi):
                                             + _quad(pq, _herm(dk[:, q, q]), pq))
             stored = np.real(_quad(pv, _herm(mtq), pv) + _quad(pq, _herm(ktq), pq))
             out[t] = complex(np.mean(work) / denom, omega * np.mean(stored) / denom)
+            del mt, ct, kt, dmat        # before the next term's matrices are made
         return out
     # real root: the static balance with the state forces on the right
     if periodic:
@@ -317,6 +323,7 @@ def _energy_with_states(parts, exponent, shape, psi):
                  + np.einsum("pij,pj->pi", ct[:, q, q], dp)
                  + np.einsum("pij,pj->pi", kt[:, q, q], pq) + state_force(ct, kt))
         out[t] = complex(np.real(-np.mean(np.einsum("pi,pi->p", pq.conj(), force)) / denom), 0.0)
+        del mt, ct, kt
     return out
 
 

@@ -16,7 +16,10 @@ first, :data:`RESET` gives the notebook the state a fresh kernel would:
   for the next);
 * the warnings filters, numpy's print options and floating-point error
   handling back to the warm-up's, numpy's global random state re-seeded from
-  the operating system as in a new process.
+  the operating system as in a new process;
+* the previous notebook's garbage collected and the freed heap handed back
+  to the operating system (glibc's ``malloc_trim``): the next notebook does
+  not start on the previous one's peak memory.
 
 What stays are the imported modules and the caches of the solver that are
 keyed by the structure they hold (e.g. the blade modes): a cache hit returns
@@ -65,6 +68,14 @@ def _tefcore_fresh():
     np.set_printoptions(**printing)
     np.seterr(**errors)
     np.random.seed()
+    import gc
+    gc.collect()
+    import ctypes, sys
+    if sys.platform.startswith("linux"):
+        try:
+            ctypes.CDLL("libc.so.6").malloc_trim(0)
+        except (OSError, AttributeError):
+            pass
 _tefcore_fresh()
 del _tefcore_fresh
 %reset -f

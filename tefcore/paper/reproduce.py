@@ -295,7 +295,8 @@ def run_notebooks(out: Path, params: dict, names=NOTEBOOKS, progress: bool = Tru
             t.start()
         for t in threads:
             t.join()
-    return [runs[n] for n in names]
+    # a slot that stopped early (its thread raised) leaves its notebooks not run
+    return [runs.get(n) or NotebookRun(n, status="failed", error="not run") for n in names]
 
 
 class _Slot:
