@@ -259,10 +259,13 @@ def run_serial(jobs):
         yield from evaluate_chain(chain)
 
 
-#: Fewest chains of a cold pool worth worker processes: a worker's start and
-#: imports (~1 s of CPU, measured) cost more than two chains of 8 points (~0.4 s
-#: at mu = 0.3); a pool already started takes any two chains.
-MIN_COLD_CHAINS = 3
+#: Fewest chains of a cold pool worth worker processes.  A worker is ready
+#: (spawned, the solver imported) 0.7-1 s after it is started, while a chain of
+#: 8 points takes ~0.15 s at mu = 0.3: below ~10 chains the caller has done them
+#: all before a cold worker could take one (measured: a 40-point sweep, 0.7 s of
+#: points, ran wholly in the caller and the command took 0.27 s longer for
+#: starting the pool).  A pool already started takes any two chains.
+MIN_COLD_CHAINS = 10
 
 #: Seconds an idle worker of the pool lives (loky reusable executor): long enough
 #: for the next sweep of a script or notebook, not forever.
