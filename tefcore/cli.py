@@ -21,16 +21,15 @@ output pipe closed.
 from __future__ import annotations
 
 import argparse
+import math
+import os
 import sys
 import textwrap
 import warnings
 from pathlib import Path
 
-import numpy as np
-
 from ._version import __version__
 from .cli_errors import run_command
-from .config.text_input import sweep_values
 from .safe_io import atomic_output, check_output_file
 
 __all__ = ["build_parser", "main"]
@@ -90,7 +89,7 @@ def cmd_modes(args) -> int:
     if args.csv:
         check_output_file(args.csv, "--csv")
     table = blade_modes(cfg, n_modes=args.n_modes,
-                        collective=np.deg2rad(args.collective)).table()
+                        collective=math.radians(args.collective)).table()
     if args.csv:
         _write_csv(table, args.csv)
     print(table.to_string(index=False, float_format=lambda v: f"{v:.4f}"))
@@ -145,20 +144,28 @@ def cmd_stability(args) -> int:
 
 
 def cmd_sweep(args) -> int:
-    from .cli_text import sweep_summary
+    from .config.text_input import sweep_values
+    from .sweeps.evaluate import close_pool, start_pool_for
+
+    values = sweep_values(args.parameter, args.values, args.range)
+    # the workers start and import while this process loads and checks
+    start_pool_for(len(values), args.jobs)
+    from .cli_text import sweep_summary, timing_lines
     from .sweeps.sweep import sweep
 
     cfg = _load(args)
-    values = sweep_values(args.parameter, args.values, args.range)
     check_output_file(args.csv, "--csv")
     if args.out:
         check_output_file(args.out, "--out", create_folder=True)
-    result = sweep(cfg, args.parameter, values, n_jobs=args.jobs, out=args.out,
-                   progress=False if args.quiet else None)
+    try:
+        result = sweep(cfg, args.parameter, values, n_jobs=args.jobs, out=args.out,
+                       progress=False if args.quiet else None)
+    finally:
+        close_pool()      # the command exits now: no idle worker to wait for
     path = result.to_csv(args.csv)
     n_bad = len(result.failed)
     print(f"wrote {path}: {len(values)} points, {n_bad} failed")
-    for line in sweep_summary(result):
+    for line in timing_lines(result.timing) + sweep_summary(result):
         print(line)
     if n_bad:
         print(result.failed.to_string(index=False))
@@ -200,6 +207,8 @@ def _grid(cfg, field: str, start: str, stop: str, num: str, axis: str) -> list:
     """Evenly spaced SI values of ``field`` from ``start`` to ``stop``, ``num`` of them
     (the units rules of ``--range``, :func:`tefcore.config.text_input.sweep_values`);
     ``axis`` (``"X"``, ``"Y"``) names the arguments in messages (``X_NUM``)."""
+    from .config.text_input import sweep_values
+
     names = tuple(f"{axis}_{n}" for n in ("START", "STOP", "NUM"))
     values = sweep_values(field, None, (start, stop, num), range_names=names)
     return [float(cfg.with_overrides({field: v}).get(field)) for v in values]
@@ -213,7 +222,6 @@ TIMED_FROM_POINTS = 20
 
 def _map_estimate(cfg, args, xs, ys) -> str | None:
     """The map's expected time from one point timed, when it exceeds :data:`ESTIMATE_ABOVE_S`."""
-    import os
     import time
 
     from .sweeps.evaluate import default_point

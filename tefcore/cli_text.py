@@ -52,7 +52,7 @@ from .units import from_si
 
 __all__ = ["LEGEND", "UNCERTAIN", "UNCERTAIN_LEGEND", "WIDTH", "flutter_row", "flutter_text",
            "legend", "mechanism_choice", "modes_text", "onset", "real_part_text",
-           "sweep_summary", "trim_lines", "unstable", "wrap"]
+           "sweep_summary", "timing_lines", "trim_lines", "unstable", "wrap"]
 
 #: Widest line the command prints, in characters.
 WIDTH = 100
@@ -415,6 +415,25 @@ def _role_line(what: str, rows: pd.DataFrame, unit: tuple[str, float], names_ep)
                           for m, lo, hi in eps)
         line += f"; exceptional points{' of its names' if name else ''}: {where}"
     return wrap(line)
+
+
+def timing_lines(timing: dict) -> list[str]:
+    """How a sweep's points were computed (:attr:`tefcore.sweeps.sweep.SweepResult.timing`).
+
+    Parameters
+    ----------
+    timing : dict
+        ``wall_s``, ``point_s``, ``processes``, ``speedup``.
+
+    Returns
+    -------
+    list of str
+        One line; none when no point was computed (all loaded from the sweep file).
+    """
+    if not timing.get("wall_s"):
+        return []
+    return [f"computed in {timing['wall_s']:.2f} s on {timing['processes']} process(es): "
+            f"{timing['point_s']:.2f} s of point time, speed-up {timing['speedup']:.2f}x"]
 
 
 def sweep_summary(result) -> list[str]:

@@ -56,7 +56,24 @@ import sys
 from collections.abc import Sequence
 
 import numpy as np
-from scipy import constants as sc
+
+# SI factors of the imperial and named units, as exact definitions (NIST SP 811;
+# the international foot and pound of 1959, standard gravity), computed by the
+# same expressions as ``scipy.constants`` so that every factor is bit for bit the
+# same (tests/test_units.py checks it) without importing scipy.constants (0.1 s).
+_DEGREE = math.pi / 180
+_MINUTE = 60.0
+_HOUR = 60 * _MINUTE
+_INCH = 0.0254
+_FOOT = 12 * _INCH
+_MILE = 1760 * (3 * _FOOT)
+_GRAVITY = 9.80665                           # standard acceleration of gravity
+_POUND = 7000 * 64.79891e-6                  # 7000 grains
+_SLUG = _POUND * _GRAVITY / 0.0254 / 12      # lbf s^2 / ft
+_POUND_FORCE = _POUND * _GRAVITY
+_PSI = _POUND * _GRAVITY / (_INCH * _INCH)
+_KNOT = 1852.0 / _HOUR
+_MPH = _MILE / _HOUR
 
 __all__ = [
     "DIMENSIONS",
@@ -143,38 +160,38 @@ _UNITS: dict[str, tuple[float, Dims]] = {
     "percent": (0.01, _NONE),
     "%": (0.01, _NONE),
     "rad": (1.0, _NONE),
-    "deg": (sc.degree, _NONE),
-    "degree": (sc.degree, _NONE),
-    "degrees": (sc.degree, _NONE),
+    "deg": (_DEGREE, _NONE),
+    "degree": (_DEGREE, _NONE),
+    "degrees": (_DEGREE, _NONE),
     "rev": (2.0 * math.pi, _NONE),
-    "rpm": (2.0 * math.pi / sc.minute, (0, 0, -1)),
+    "rpm": (2.0 * math.pi / _MINUTE, (0, 0, -1)),
     "m": (1.0, _LENGTH),
-    "cm": (sc.centi, _LENGTH),
-    "mm": (sc.milli, _LENGTH),
-    "km": (sc.kilo, _LENGTH),
-    "ft": (sc.foot, _LENGTH),
-    "foot": (sc.foot, _LENGTH),
-    "feet": (sc.foot, _LENGTH),
-    "in": (sc.inch, _LENGTH),
-    "inch": (sc.inch, _LENGTH),
-    "inches": (sc.inch, _LENGTH),
+    "cm": (1e-2, _LENGTH),
+    "mm": (1e-3, _LENGTH),
+    "km": (1e3, _LENGTH),
+    "ft": (_FOOT, _LENGTH),
+    "foot": (_FOOT, _LENGTH),
+    "feet": (_FOOT, _LENGTH),
+    "in": (_INCH, _LENGTH),
+    "inch": (_INCH, _LENGTH),
+    "inches": (_INCH, _LENGTH),
     "kg": (1.0, _MASS),
-    "g": (sc.gram, _MASS),
-    "lbm": (sc.pound, _MASS),
-    "slug": (sc.slug, _MASS),
+    "g": (1e-3, _MASS),
+    "lbm": (_POUND, _MASS),
+    "slug": (_SLUG, _MASS),
     "s": (1.0, _TIME),
     "sec": (1.0, _TIME),
-    "min": (sc.minute, _TIME),
-    "h": (sc.hour, _TIME),
+    "min": (_MINUTE, _TIME),
+    "h": (_HOUR, _TIME),
     "N": (1.0, _FORCE),
-    "kN": (sc.kilo, _FORCE),
-    "lbf": (sc.pound_force, _FORCE),
+    "kN": (1e3, _FORCE),
+    "lbf": (_POUND_FORCE, _FORCE),
     "Pa": (1.0, (1, -1, -2)),
-    "psi": (sc.psi, (1, -1, -2)),
+    "psi": (_PSI, (1, -1, -2)),
     "J": (1.0, (1, 2, -2)),
-    "kt": (sc.knot, (0, 1, -1)),
-    "knot": (sc.knot, (0, 1, -1)),
-    "mph": (sc.mph, (0, 1, -1)),
+    "kt": (_KNOT, (0, 1, -1)),
+    "knot": (_KNOT, (0, 1, -1)),
+    "mph": (_MPH, (0, 1, -1)),
 }
 # Imperial and named units are matched case-insensitively ("RPM", "Deg");
 # SI symbols are not ("m" is not "M", "s" is not "S").
@@ -465,8 +482,8 @@ def _parse_unit(text: str, unit: str, dimension: str | Sequence[int] | None) -> 
     if n_lb:
         # Try both readings of the bare "lb"; keep the one that fits.
         readings = {
-            "lbm": (factor * sc.pound**n_lb, _add(dims, _MASS, n_lb)),
-            "lbf": (factor * sc.pound_force**n_lb, _add(dims, _FORCE, n_lb)),
+            "lbm": (factor * _POUND**n_lb, _add(dims, _MASS, n_lb)),
+            "lbf": (factor * _POUND_FORCE**n_lb, _add(dims, _FORCE, n_lb)),
         }
         if expected is None:
             raise ValueError(

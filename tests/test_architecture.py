@@ -45,7 +45,7 @@ PACKAGE_DIR = Path(tefcore.__file__).resolve().parent
 #: not import each other.  The package's face (``tefcore/__init__.py``) lazily
 #: exports names from every layer (PEP 562) and is exempt.
 LAYERS = (
-    ("_version", "units", "errors", "runtime", "fourier"),   # no tefcore imports
+    ("_version", "units", "errors", "runtime", "fourier", "assignment"),  # no tefcore imports
     ("provenance", "safe_io", "cli_errors"),      # files, fingerprints, the CLI's errors
     ("config",),                          # the configuration: data, no physics
     ("structure", "aero", "floquet"),     # blade and hub; section airloads; Floquet theory

@@ -101,7 +101,7 @@ def test_output_destinations_are_checked(tmp_path, make, match):
 def _fake_reproduce(monkeypatch):
     """reproduce's computing replaced by fakes that write what it would write."""
     def fake_run(out, params, names, progress=True, nb_dir=None, kernel_name="python3",
-                 jobs=None):
+                 jobs=None, stop=None):
         (out / "notebooks").mkdir(parents=True, exist_ok=True)
         for name in names:             # what papermill does: write the executed notebook
             (out / "notebooks" / f"{name}.ipynb").write_text("EXECUTED")

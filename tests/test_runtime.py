@@ -6,7 +6,6 @@ import platform
 import subprocess
 import sys
 import textwrap
-from types import SimpleNamespace
 
 import pytest
 from hypothesis import given
@@ -111,25 +110,17 @@ def test_blas_thread_setting_is_validated():
             runtime.limit_blas_threads(bad)
 
 
-def _settings_point(cfg):
-    """A sweep point that reports whether its process has tefcore's settings."""
-    from tefcore.runtime import defaults_applied
-
-    modes = __import__("pandas").DataFrame({"mode_id": [0], "label": ["TEF"],
-                                            "frequency_per_rev": [3.0], "real_part": [-0.1],
-                                            "damping_ratio": [0.03]})
-    return SimpleNamespace(modes=modes, trim={"applied": float(defaults_applied())})
-
-
 def test_sweep_workers_apply_the_settings():
     # (loky limits BLAS threads in its workers by itself, so the BLAS count
-    # would not tell whether tefcore's worker entry ran)
-    from tefcore.config.io import load_config
-    from tefcore.sweeps.sweep import sweep
+    # would not tell whether tefcore's worker entry ran); the pool's worker,
+    # asked directly: a two-point sweep stays in the caller
+    from tefcore.runtime import defaults_applied
+    from tefcore.sweeps.evaluate import close_pool, worker_pool
 
-    res = sweep(load_config("mdart"), "flap.cg_offset", [0.0, 0.1], point=_settings_point,
-                n_jobs=2, progress=False)
-    assert set(res.table["trim_applied"]) == {1.0}
+    try:
+        assert worker_pool(1).submit(defaults_applied).result() is True
+    finally:
+        close_pool()
 
 
 @pytest.mark.skipif(not GLIBC, reason="mallopt is glibc's")

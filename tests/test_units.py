@@ -169,3 +169,20 @@ def test_round_trip(value, unit):
     # x * f / f may be off by one rounding in each operation: 4 eps relative.
     back = from_si(to_si(value, unit), unit)
     assert math.isclose(back, value, rel_tol=EPS4, abs_tol=1e-300)
+
+
+def test_unit_factors_are_scipys_bit_for_bit():
+    # tefcore.units writes the definitions out (importing scipy.constants costs
+    # 0.1 s of every command's start-up); the factors must be the very same
+    # floats as scipy's, so no converted input changes in its last bit
+    from tefcore import units
+
+    expected = {"deg": sc.degree, "rpm": 2.0 * math.pi / sc.minute, "cm": sc.centi,
+                "mm": sc.milli, "km": sc.kilo, "ft": sc.foot, "in": sc.inch, "g": sc.gram,
+                "lbm": sc.pound, "slug": sc.slug, "min": sc.minute, "h": sc.hour,
+                "kN": sc.kilo, "lbf": sc.pound_force, "psi": sc.psi, "kt": sc.knot,
+                "mph": sc.mph}
+    for unit, factor in expected.items():
+        assert units._UNITS[unit][0] == factor, unit
+    assert to_si(1, "lb", "mass") == sc.pound
+    assert to_si(1, "lb", "force") == sc.pound_force

@@ -14,7 +14,6 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-import scipy.optimize
 
 __all__ = ["Inflow", "drees_gradients", "momentum_inflow", "rotor_inflow"]
 
@@ -92,6 +91,8 @@ def momentum_inflow(ct: float, advance_ratio: float, shaft_angle: float = 0.0) -
 
     hover = np.sqrt(abs(ct) / 2.0)
     lo, hi = (1e-12, 2 * hover) if ct > 0 else (-2 * hover, -1e-12)
+    import scipy.optimize  # 0.12 s of import: only where a root is sought (not in hover)
+
     return float(scipy.optimize.brentq(f, lo, hi, xtol=1e-14))
 
 

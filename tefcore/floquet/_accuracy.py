@@ -10,8 +10,8 @@ import warnings
 
 import numpy as np
 import scipy.linalg
-import scipy.optimize
 
+from ..assignment import linear_sum_assignment
 from ._multipliers import lift, log_roots, root_cut, select_roots
 from ._propagators import (
     TWO_PI,
@@ -101,7 +101,7 @@ def error_estimates(res, coarse, znorm, atol):
     unit = TWO_PI / res.period
     d = eta[:, None] - np.asarray(coarse)[None, :]
     d = np.abs(d.real) + 1j * np.abs(np.mod(d.imag + unit / 2, unit) - unit / 2)
-    rows, cols = scipy.optimize.linear_sum_assignment(np.abs(d))
+    rows, cols = linear_sum_assignment(np.abs(d))
     est = np.empty(eta.shape, complex)
     est[rows] = d[rows, cols] / (2**_ORDER - 1)
     k_sub = res.n_sub

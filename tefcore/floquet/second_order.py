@@ -105,8 +105,9 @@ class SecondOrderSystem:
         c_part, s_part = ((cos_c, sin_c), (sin_c * k[:, None], -cos_c * k[:, None]),
                           (-cos_c * k[:, None]**2, -sin_c * k[:, None]**2))[derivative % 3] \
             if derivative < 3 else _derivative_coefficients(cos_c, sin_c, k, derivative)
-        out = (np.cos(kp) @ c_part + np.sin(kp) @ s_part).reshape(
-            (psi.size, 3) + self.m.shape[1:])
+        out = np.cos(kp) @ c_part
+        out += np.sin(kp) @ s_part          # in place: one (n_psi, 3 n^2) array less
+        out = out.reshape((psi.size, 3) + self.m.shape[1:])
         return out[:, 0], out[:, 1], out[:, 2]
 
     @functools.cached_property

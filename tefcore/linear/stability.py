@@ -19,9 +19,9 @@ from dataclasses import dataclass
 
 import numpy as np
 import pandas as pd
-import scipy.optimize
 
 from ..aero.c81.range_summary import summarised_range_warnings
+from ..assignment import linear_sum_assignment
 from ..floquet.second_order import STATE_MIN_RATE, SecondOrderSystem
 from ..floquet.second_order import state_matrix as state_matrix
 from ..model.coupled import coupled_model
@@ -408,7 +408,7 @@ def _split_aero_roots(res, model, periodic):
     # the mean inflow root in hover, 58 % in the collective flap motion (measured)
     cand = np.flatnonzero(~aero)
     frac = coordinate_shares(res.participation[:, cand], n)
-    _, cols = scipy.optimize.linear_sum_assignment(-np.log(frac + 1e-300))
+    _, cols = linear_sum_assignment(-np.log(frac + 1e-300))
     named = res.frequencies[cand[cols]]
     for j in np.setdiff1d(np.arange(cand.size), cols):
         # below STATE_MIN_RATE a periodic root is not resolved (its participation

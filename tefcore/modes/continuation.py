@@ -26,8 +26,8 @@ from dataclasses import dataclass
 
 import numpy as np
 import pandas as pd
-from scipy.optimize import linear_sum_assignment
 
+from ..assignment import linear_sum_assignment
 from ..floquet.second_order import SecondOrderSystem
 from .labels import coordinate_shares, label_modes, tracking_shapes, trajectory_shapes
 from .matching import COALESCED_DISTANCE, COALESCED_MAC, LOCK_TOL, decide, mac, relative_distance

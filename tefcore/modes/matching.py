@@ -54,7 +54,8 @@ from collections.abc import Mapping
 
 import numpy as np
 import pandas as pd
-from scipy.optimize import linear_sum_assignment
+
+from ..assignment import linear_sum_assignment
 
 __all__ = ["CLEAR_COST", "COALESCED_DISTANCE", "COALESCED_MAC", "LOCK_TOL", "MARGIN",
            "MODE_COLUMNS", "as_point", "continuous_frequency", "decide", "eigen_distance",

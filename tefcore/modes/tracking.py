@@ -95,8 +95,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 import pandas as pd
-from scipy.optimize import linear_sum_assignment
 
+from ..assignment import linear_sum_assignment
 from .matching import (
     LOCK_TOL,
     as_point,

@@ -8,7 +8,10 @@ longest running notebook, its kernels busy.  :func:`stop_notebooks` cancels
 the notebooks not yet started and stops the kernels of this process (each
 started in its own session, with the sweep workers it started: the process
 group is signalled, ``SIGTERM`` then ``SIGKILL``), so every running notebook
-fails at once and its thread returns.
+fails at once and its thread returns.  The reproduction's warm kernels
+(:mod:`tefcore.paper.kernels`, one per notebook slot) are such kernels too: a
+slot told to stop takes no further notebook and starts no kernel, and a warm
+kernel stopped while it warms up or resets ends its wait within a second.
 
 A process killed outright (``kill -9``) cannot stop anything: its kernels
 exit by themselves within about a second, when ipykernel's parent poller sees

@@ -23,7 +23,8 @@ from pathlib import Path
 from ..errors import OutputError
 from ..safe_io import atomic_output, check_output_file, check_output_folder
 
-__all__ = ["NOTEBOOKS", "NOTEBOOK_FIGURES", "check_parameters", "copy_notebooks",
+__all__ = ["NOTEBOOKS", "NOTEBOOK_FIGURES", "NOTEBOOK_SECONDS", "check_parameters",
+           "copy_notebooks",
            "notebook_parameters", "notebooks_dir", "resolve_notebook"]
 
 #: The notebooks, in order.
@@ -39,6 +40,22 @@ NOTEBOOKS = (
     "09_design_maps",
     "10_unsteady",
 )
+#: Wall seconds of each notebook in ``tefcore reproduce`` (kernel start, imports, HTML
+#: export included; measured on 2 shared cores at load 3-4, issue 25): the
+#: reproduction starts the longest first, so the last to finish is a short one.
+NOTEBOOK_SECONDS = {
+    "01_baseline_mdart_correlation": 9.8,
+    "02_hinge_moments_and_flap_response": 5.3,
+    "03_overhang": 10.4,
+    "04_cg_offset": 16.1,
+    "05_stiffness": 25.5,
+    "06_size_and_location": 40.8,
+    "07_flight_condition": 16.6,
+    "08_assumptions": 40.2,
+    "09_design_maps": 13.8,
+    "10_unsteady": 64.8,
+}
+
 #: Which paper figures each notebook reproduces.
 NOTEBOOK_FIGURES = {
     "01_baseline_mdart_correlation": ("fig3", "fig4"),

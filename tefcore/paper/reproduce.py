@@ -24,9 +24,11 @@ before anything runs (never "0 claims passed of 0").
 from __future__ import annotations
 
 import os
+import queue
 import sys
+import threading
 import time
-from concurrent.futures import ThreadPoolExecutor, as_completed
+from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -37,6 +39,7 @@ from ..safe_io import atomic_output, atomic_write_text, check_output_file, check
 from .kernel_guard import stop_notebooks
 from .notebook_files import (
     NOTEBOOK_FIGURES,
+    NOTEBOOK_SECONDS,
     NOTEBOOKS,
     check_parameters,
     notebook_parameters,
@@ -50,10 +53,11 @@ from .report import build_report, write_report
 from .run_params import merge_params
 from .validation import claims_score, worse_than_recorded
 
-__all__ = ["BASELINE_NOTEBOOK", "KERNEL_NAME", "NotebookRun", "ReproductionError", "baseline_blade",
-           "check_reference_data", "check_reproduce_folder", "check_tools", "collect_claims",
-           "ensure_kernel", "execute_notebook", "finish_report", "prepare_params",
-           "regressions", "reproduce", "run_notebooks", "score", "source_checkout"]
+__all__ = ["BASELINE_NOTEBOOK", "KERNEL_NAME", "NotebookRun", "ReproductionError",
+           "baseline_blade", "check_reference_data", "check_reproduce_folder", "check_tools",
+           "collect_claims", "ensure_kernel", "execute_notebook", "export_html", "finish_report",
+           "prepare_params", "regressions", "reproduce", "run_notebooks", "score",
+           "source_checkout"]
 
 KERNEL_NAME = "python3"
 #: The notebook whose run also writes the baseline blade's files at the top of the
@@ -144,13 +148,15 @@ def _export_html(executed: Path) -> None:
 
 
 def execute_notebook(name: str, src: Path, out: Path, params: dict,
-                     kernel_name: str = KERNEL_NAME) -> NotebookRun:
+                     kernel_name: str = KERNEL_NAME, *, kernel=None,
+                     export: bool = True) -> NotebookRun:
     """Execute one notebook with papermill into ``out/notebooks``; never raises for its failure.
 
     The kernel runs in the caller's working folder (papermill's own ``cwd``
     would change the folder of the whole process, which races between
     threads); the notebook writes its results into ``params["output_dir"]``.
-    The executed notebook is exported to HTML beside it, also when it failed.
+    The executed notebook is exported to HTML beside it, also when it failed
+    (unless ``export`` is False: the caller exports it, :func:`export_html`).
 
     Parameters
     ----------
@@ -165,6 +171,11 @@ def execute_notebook(name: str, src: Path, out: Path, params: dict,
         Papermill parameters, including ``output_dir``.
     kernel_name : str
         Jupyter kernel (:func:`ensure_kernel`).
+    kernel : tefcore.paper.kernels.WarmKernel, optional
+        A warm kernel to execute it in (its namespace made fresh first); by
+        default papermill starts a kernel of its own.
+    export : bool, optional
+        Export the HTML page here.
 
     Returns
     -------
@@ -179,32 +190,66 @@ def execute_notebook(name: str, src: Path, out: Path, params: dict,
     target.parent.mkdir(parents=True, exist_ok=True)
     start = time.perf_counter()
     try:
+        warm = {} if kernel is None else {"km": kernel.prepare()}
         papermill.execute_notebook(
             str(src), str(target), parameters=params, kernel_name=kernel_name,
             progress_bar=False, log_output=False,
             # cwd None: the kernel runs in the caller's folder; papermill's cwd would
             # os.chdir the whole process, which races between the threads
-            cwd=None, extra_arguments=["--IPKernelApp.log_level=ERROR"])
+            cwd=None, extra_arguments=["--IPKernelApp.log_level=ERROR"], **warm)
         run.status = "ok"
     except Exception as exc:      # recorded, the other notebooks still run
         run.status = "failed"
         text = str(exc).strip()
         run.error = (f"{type(exc).__name__}: {text.splitlines()[-1][:300]}" if text
                      else type(exc).__name__)
+    run.seconds = time.perf_counter() - start
+    if export:
+        export_html(run, target)
+    return run
+
+
+def export_html(run: NotebookRun, target: Path) -> NotebookRun:
+    """Export an executed notebook to HTML beside it; a failure is noted in ``run.error``.
+
+    Parameters
+    ----------
+    run : NotebookRun
+        Its execution (``seconds`` grows by the export's time).
+    target : pathlib.Path
+        The executed ``.ipynb``.
+
+    Returns
+    -------
+    NotebookRun
+        ``run``.
+    """
+    start = time.perf_counter()
     if target.exists():
         try:
             _export_html(target)
         except Exception as exc:  # the report links a missing page; say why
             run.error = (run.error + "; " if run.error else "") + \
                 f"HTML export failed: {type(exc).__name__}"
-    run.seconds = time.perf_counter() - start
+    run.seconds += time.perf_counter() - start
     return run
 
 
 def run_notebooks(out: Path, params: dict, names=NOTEBOOKS, progress: bool = True,
                   nb_dir: Path | None = None, kernel_name: str = KERNEL_NAME,
-                  jobs: int | None = None) -> list[NotebookRun]:
+                  jobs: int | None = None, warm: bool = True,
+                  stop: threading.Event | None = None) -> list[NotebookRun]:
     """Execute the notebooks with papermill into ``out``; never raises for a failing one.
+
+    ``jobs`` notebooks run at once, the longest first
+    (:data:`~tefcore.paper.notebook_files.NOTEBOOK_SECONDS`), so that the last
+    to finish is a short one; each slot keeps one warm kernel
+    (:class:`~tefcore.paper.kernels.WarmKernel`: started at once, its imports
+    paid once, a fresh namespace for every notebook) and the HTML pages are
+    exported in a thread of their own while the next notebooks run.  On
+    Ctrl-C (in this thread, or ``stop`` set by the thread that got it) the
+    slots take no further notebook and start no kernel, and the kernels are
+    stopped (:mod:`tefcore.paper.kernel_guard`), warm ones included.
 
     Parameters
     ----------
@@ -222,8 +267,13 @@ def run_notebooks(out: Path, params: dict, names=NOTEBOOKS, progress: bool = Tru
         Jupyter kernel.
     jobs : int, optional
         Notebooks executed at once (default: the number of cores, at most the
-        number of notebooks).  Each runs in its own kernel process; kernel
-        start-up, imports and plotting, most of a notebook's time, overlap.
+        number of notebooks).
+    warm : bool, optional
+        Warm kernels, one per slot (False: a fresh kernel per notebook).
+    stop : threading.Event, optional
+        Set by another thread to stop the run (its caller then stops the
+        kernels: :func:`tefcore.paper.kernel_guard.stop_notebooks`); the
+        notebooks not run are failed (``not run``).
 
     Returns
     -------
@@ -237,25 +287,99 @@ def run_notebooks(out: Path, params: dict, names=NOTEBOOKS, progress: bool = Tru
     ensure_kernel(kernel_name)
     (out / "notebooks").mkdir(parents=True, exist_ok=True)
     jobs = max(1, min(len(names), jobs or os.cpu_count() or 1))
-    runs = {}
-    with ThreadPoolExecutor(max_workers=jobs) as pool, \
+    todo: queue.SimpleQueue = queue.SimpleQueue()
+    for name in sorted(names, key=lambda n: -NOTEBOOK_SECONDS.get(n, 0.0)):
+        todo.put(name)
+    runs: dict = {}
+    stop = threading.Event() if stop is None else stop   # set on Ctrl-C: the slots stop
+    with ThreadPoolExecutor(max_workers=1) as exporter, \
             tqdm(total=len(names), desc="notebooks", unit="nb", disable=not progress,
                  file=sys.stderr) as bar:
-        futures = {}
+        def exported(fut):
+            run = fut.result()
+            runs[run.name] = run
+            bar.set_postfix_str(run.name)
+            bar.update()
+
+        def slot():
+            _Slot(kernel_name, warm, stop).run(todo, out, params, nb_dir, exporter, exported)
+
+        threads = [threading.Thread(target=slot, name=f"notebook slot {i}", daemon=True)
+                   for i in range(jobs)]
+        for t in threads:
+            t.start()
         try:
-            for name in names:
+            for t in threads:
+                t.join()
+        except BaseException:        # Ctrl-C here: the slots would run every notebook
+            stop.set()
+            stop_notebooks([_ThreadDone(t) for t in threads])
+            raise
+    # a slot that stopped early (its thread raised) leaves its notebooks not run
+    return [runs.get(n) or NotebookRun(n, status="failed", error="not run") for n in names]
+
+
+class _ThreadDone:
+    """A thread as :func:`~tefcore.paper.kernel_guard.stop_notebooks` waits for it (a future)."""
+
+    def __init__(self, thread: threading.Thread):
+        self.thread = thread
+
+    def cancel(self) -> bool:
+        return False
+
+    def done(self) -> bool:
+        return not self.thread.is_alive()
+
+
+class _Slot:
+    """One of the notebooks executed at once: a warm kernel and the notebooks it runs.
+
+    ``stop`` set (Ctrl-C): it takes no further notebook and starts no kernel.
+    """
+
+    def __init__(self, kernel_name, warm, stop: threading.Event):
+        self.kernel_name, self.warm, self.kernel = kernel_name, warm, None
+        self.stop = stop
+
+    def _fresh_kernel(self):
+        """A new warm kernel, or None (papermill's own kernel per notebook) when it fails."""
+        self.close()
+        if self.warm and not self.stop.is_set():
+            from .kernels import WarmKernel
+
+            try:
+                self.kernel = WarmKernel(self.kernel_name, ["--IPKernelApp.log_level=ERROR"])
+            except Exception:  # the notebooks still run, each in a kernel of its own
+                self.kernel = None
+
+    def close(self):
+        if self.kernel is not None:
+            try:
+                self.kernel.shutdown()
+            except Exception:  # a kernel that died already
+                pass
+            self.kernel = None
+
+    def run(self, todo, out, params, nb_dir, exporter, exported):
+        """Execute notebooks from ``todo`` until it is empty; each run goes to the exporter."""
+        self._fresh_kernel()
+        try:
+            while not self.stop.is_set():
+                try:
+                    name = todo.get_nowait()
+                except queue.Empty:
+                    return
                 p = dict(params.get(name, {}))
                 p["output_dir"] = str((out / name).resolve())
-                futures[pool.submit(execute_notebook, name, nb_dir / f"{name}.ipynb", out, p,
-                                    kernel_name)] = name
-            for fut in as_completed(futures):
-                runs[futures[fut]] = fut.result()
-                bar.set_postfix_str(futures[fut])
-                bar.update()
-        except BaseException:        # Ctrl-C: the pool would wait for the running notebooks
-            stop_notebooks(futures)
-            raise
-    return [runs[n] for n in names]
+                run = execute_notebook(name, nb_dir / f"{name}.ipynb", out, p,
+                                       self.kernel_name, kernel=self.kernel, export=False)
+                if self.kernel is not None and (run.status != "ok" or not self.kernel.alive()):
+                    self._fresh_kernel()     # a failed notebook leaves no state behind
+                exporter.submit(export_html, run, out / "notebooks" / f"{name}.ipynb") \
+                    .add_done_callback(exported)
+        finally:
+            self.close()
 
 
 def collect_claims(out: Path, names=NOTEBOOKS) -> pd.DataFrame:
@@ -603,10 +727,20 @@ def reproduce(out, params=None, notebooks=None, progress: bool = True,
     merged = prepare_params(params, names, nb_dir)
     out.mkdir(parents=True, exist_ok=True)
     start = time.perf_counter()
-    # the blade's files at the top belong to the baseline notebook: --only writes
-    # what the chosen notebooks make
-    checks = baseline_blade(out) if BASELINE_NOTEBOOK in names else None
-    runs = run_notebooks(out, merged, names, progress=progress, nb_dir=nb_dir, jobs=jobs)
+    # the notebooks (their kernels starting and importing) run while this thread
+    # draws the blade baseline (pyplot: the main thread); the blade's files at the
+    # top belong to the baseline notebook: --only writes what the chosen notebooks make
+    stop = threading.Event()
+    with ThreadPoolExecutor(max_workers=1) as runner:
+        running = runner.submit(run_notebooks, out, merged, names, progress=progress,
+                                nb_dir=nb_dir, jobs=jobs, stop=stop)
+        try:
+            checks = baseline_blade(out) if BASELINE_NOTEBOOK in names else None
+            runs = running.result()
+        except BaseException:   # Ctrl-C: the runner would wait for every notebook
+            stop.set()                    # the slots take no further notebook, no kernel
+            stop_notebooks([running])     # the running ones' kernels stopped
+            raise
     done = finish_report(out, runs, names, checks)
     claims, worse, passed, total = (done[k] for k in ("claims", "worse", "passed", "total"))
     md, html_path = done["paths"]

@@ -14,7 +14,6 @@ from collections import OrderedDict
 from collections.abc import Mapping
 
 import numpy as np
-import pandas as pd
 
 from ..config.configuration import SECTIONS
 from ..runtime import blas_limit
@@ -501,7 +500,7 @@ def blade_modes(cfg, n_modes: int | None = None, collective: float = 0.0,
 
 
 def fan_data(cfg, speed_ratios, n_modes: int | None = None,
-             collective: float = 0.0) -> pd.DataFrame:
+             collective: float = 0.0):
     """Frequencies of the labelled modes versus rotor speed (tidy table).
 
     The beam is assembled once; only the stiffness is re-scaled with speed.
@@ -535,6 +534,8 @@ def fan_data(cfg, speed_ratios, n_modes: int | None = None,
             rows.append({"speed_ratio": float(r), "rotor_speed_rpm": omega * 30 / np.pi,
                          "mode": j + 1, "label": lab, "frequency_per_rev": float(f),
                          "frequency_hz": float(f * omega / (2 * np.pi))})
+    import pandas as pd  # only where the table is built
+
     return pd.DataFrame(rows)
 
 

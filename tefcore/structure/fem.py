@@ -18,8 +18,6 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 
 import numpy as np
-import pandas as pd
-import scipy.integrate
 import scipy.linalg
 import scipy.sparse.csgraph
 
@@ -172,6 +170,8 @@ def tension_from_mass(mass: Callable, x_root: float, n: int = 2001) -> Callable:
     callable
         ``T(x)``.
     """
+    import scipy.integrate  # only here: 0.14 s of import a blade model does not need
+
     s = np.linspace(x_root, 1.0, n)
     f = mass(s) * s
     cum = scipy.integrate.cumulative_simpson(f, x=s, initial=0.0)
@@ -425,8 +425,10 @@ class BladeModes:
             self.cache[key] = self.beam.evaluate(self.vectors, x)
         return {k: v.copy() for k, v in self.cache[key].items()}
 
-    def table(self) -> pd.DataFrame:
-        """Tidy mode table: one row per mode."""
+    def table(self):
+        """Tidy mode table (a pandas DataFrame): one row per mode."""
+        import pandas as pd  # only where a table is built (0.18 s of import)
+
         df = pd.DataFrame({"mode": np.arange(1, len(self.frequencies) + 1),
                            "label": self.labels,
                            "frequency_per_rev": self.frequencies})

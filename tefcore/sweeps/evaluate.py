@@ -31,9 +31,11 @@ from ..errors import error_text
 from ..runtime import worker_init
 from .store import jsonable
 
-__all__ = ["REQUIRED_MODE_COLUMNS", "WARM_CHAIN", "chains", "check_result", "clipped_summary",
-           "decode_complex", "default_point", "encode_complex", "evaluate_point",
-           "shape_vectors", "takes_warm_start", "warn_clipped"]
+__all__ = ["MIN_COLD_CHAINS", "POOL_IDLE_SECONDS", "REQUIRED_MODE_COLUMNS", "WARM_CHAIN",
+           "chains", "check_result", "clipped_summary", "close_pool", "decode_complex",
+           "default_point", "encode_complex", "evaluate_point", "pool_ready", "pool_started",
+           "run_joblib", "shape_vectors", "start_pool_for", "takes_warm_start", "warn_clipped",
+           "worker_pool"]
 
 
 #: Columns a point function's ``modes`` table must have.
@@ -308,12 +310,156 @@ def run_serial(jobs):
         yield from evaluate_chain(chain)
 
 
-def run_joblib(jobs, n_jobs):
-    from joblib import Parallel, delayed
+#: Fewest chains of a cold pool worth worker processes.  A worker is ready
+#: (spawned, the solver imported) 0.7-1 s after it is started, while a chain of
+#: 8 points takes ~0.15 s at mu = 0.3: below ~10 chains the caller has done them
+#: all before a cold worker could take one (measured: a 40-point sweep, 0.7 s of
+#: points, ran wholly in the caller and the command took 0.27 s longer for
+#: starting the pool).  A pool already started takes any two chains.
+MIN_COLD_CHAINS = 10
 
-    par = Parallel(n_jobs=n_jobs, backend="loky", return_as="generator_unordered")
-    for done in par(delayed(evaluate_in_worker)(chain) for chain in jobs):
-        yield from done
+#: Seconds an idle worker of the pool lives (loky reusable executor): long enough
+#: for the next sweep of a script or notebook, not forever.
+POOL_IDLE_SECONDS = 300
+
+
+def _warm_worker():
+    """A pool worker's start: the process settings and the solver imported, once."""
+    worker_init()
+    import tefcore.linear.stability  # noqa: F401  (the default point function's imports)
+
+
+_pool = None          # (workers, executor) of this process
+
+
+def worker_pool(n_workers: int):
+    """The persistent pool of worker processes (a loky executor of tefcore's own), started now.
+
+    The workers apply the process settings and import the solver when they
+    start (:func:`_warm_worker`), so a worker pays its start-up once, not per
+    sweep, and an idle one exits after :data:`POOL_IDLE_SECONDS`; calling it
+    early (the command does, before it loads its configuration) overlaps their
+    start with the caller's own.  The pool is not joblib's reusable executor,
+    which ``joblib.Parallel`` recreates whenever its arguments differ.
+
+    Parameters
+    ----------
+    n_workers : int
+        Worker processes.
+
+    Returns
+    -------
+    concurrent.futures.Executor
+        The executor (the same one while ``n_workers`` stays the same and it works).
+    """
+    from joblib.externals.loky import ProcessPoolExecutor
+
+    global _pool
+    if _pool is not None and (_pool[0] != n_workers or getattr(_pool[1], "_broken", False)):
+        _pool[1].shutdown(wait=False, kill_workers=True)
+        _pool = None
+    if _pool is None:
+        pool = ProcessPoolExecutor(max_workers=n_workers, initializer=_warm_worker,
+                                   timeout=POOL_IDLE_SECONDS)
+        # done once a worker has started and imported: until then the caller
+        # keeps the chains (a chain queued behind a worker's start could
+        # finish after all the others)
+        _pool = (n_workers, pool, pool.submit(int))
+    return _pool[1]
+
+
+def start_pool_for(n_points: int, n_jobs: int) -> None:
+    """Start the worker pool now for a sweep of `n_points` on `n_jobs` processes, if it
+    will use one (:data:`MIN_COLD_CHAINS` chains or more; `n_jobs` as in
+    :func:`run_joblib`): the workers start and import while the caller loads and
+    checks its inputs (the command does).
+
+    Parameters
+    ----------
+    n_points : int
+        Points of the sweep.
+    n_jobs : int
+        Processes at work, the caller included (negative: all the cores).
+    """
+    if n_jobs != 1 and n_points >= MIN_COLD_CHAINS * WARM_CHAIN:
+        worker_pool(n_jobs - 1 if n_jobs > 1 else max(1, (os.cpu_count() or 2) - 1))
+
+
+def pool_ready() -> bool:
+    """Whether a worker of the pool has started and imported the solver.
+
+    Returns
+    -------
+    bool
+    """
+    return _pool is not None and _pool[2].done() and _pool[2].exception() is None
+
+
+def close_pool() -> None:
+    """Stop the worker pool now (its workers killed), e.g. before the command exits."""
+    global _pool
+    if _pool is not None:
+        _pool[1].shutdown(wait=False, kill_workers=True)
+        _pool = None
+
+
+def pool_started() -> bool:
+    """Whether this process has started the worker pool (:func:`worker_pool`).
+
+    Returns
+    -------
+    bool
+    """
+    return _pool is not None
+
+
+def run_joblib(jobs, n_jobs):
+    """Chains in the caller and in ``n_jobs - 1`` pool workers, unordered as they finish.
+
+    The caller computes chains too (it has the solver imported already): with
+    ``n_jobs = 2`` one worker process is started, not two, and the caller
+    works while it starts.  Each worker has at most one chain queued, so the
+    chains go to whoever is free.  A worker that dies fails its chain's points
+    (recorded), not the sweep.
+
+    Parameters
+    ----------
+    jobs : list of list of tuple
+        The chains (:func:`chains`).
+    n_jobs : int
+        Processes at work, the caller included (negative: all the cores).
+
+    Yields
+    ------
+    tuple
+        ``(index, record, vectors)`` of each kept point, as it finishes.
+    """
+    import concurrent.futures as cf
+
+    n_workers = (os.cpu_count() or 1) - 1 if n_jobs < 0 else n_jobs - 1
+    pending = list(jobs)
+    pool = worker_pool(max(1, n_workers))
+    running: dict = {}
+    try:
+        while pending or running:
+            while pending and len(running) < (max(1, n_workers) if pool_ready() else 0):
+                chain = pending.pop(0)
+                running[pool.submit(evaluate_in_worker, chain)] = chain
+            if pending:                          # the caller's share: one chain at a time
+                yield from evaluate_chain(pending.pop())
+            done = [f for f in running if f.done()] if pending or not running else \
+                cf.wait(list(running), return_when=cf.FIRST_COMPLETED).done
+            for fut in done:
+                chain = running.pop(fut)
+                try:
+                    yield from fut.result()
+                except Exception as err:  # e.g. a worker died: record it, go on
+                    for i, args, keep in chain:
+                        if keep:
+                            yield i, failed_record(args[4], args[3], err), None
+    finally:
+        for fut in running:
+            fut.cancel()
 
 
 def dask_client(n_jobs, client):

@@ -40,7 +40,9 @@ ValueError: flap.cg_offset = 1.5 is outside the allowed range [-1, 1]
 from __future__ import annotations
 
 import numbers
+import os
 import sys
+import time
 from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -54,12 +56,14 @@ from ..config.configuration import SECTIONS, Config, resolve_field
 from ..modes.roles import exceptional_points
 from ..safe_io import atomic_output
 from .evaluate import (
+    MIN_COLD_CHAINS,
     WARM_CHAIN,
     chains,
     clipped_summary,
     dask_client,
     default_point,
     point_name,
+    pool_started,
     run_dask,
     run_joblib,
     run_serial,
@@ -188,6 +192,10 @@ class SweepResult:
         extreme inputs (:func:`tefcore.aero.c81.range_summary.merge_clipped`).
     n_clipped : int
         Points with clipped inputs (their ``warning`` column says so).
+    timing : dict
+        How the points of this run were computed: ``wall_s`` (seconds of
+        evaluation), ``point_s`` (the points' own seconds, summed),
+        ``processes`` (at most at work) and ``speedup`` (``point_s / wall_s``).
     """
 
     parameter: str
@@ -203,6 +211,7 @@ class SweepResult:
     clipped: dict | None = None
     n_clipped: int = 0
     _modes: dict = field(default_factory=dict, repr=False)
+    timing: dict = field(default_factory=dict)
 
     @property
     def failed(self) -> pd.DataFrame:
@@ -369,7 +378,8 @@ def sweep(cfg: Config, parameter: str, values, *, point: Callable | None = None,
                                      if k in index_of},
                        n_computed=run.n_computed, n_loaded=n_loaded, n_refined=run.n_refined,
                        out=None if out is None else Path(out), vectors=shapes,
-                       clipped=clipped, n_clipped=n_clipped, _modes=modes)
+                       clipped=clipped, n_clipped=n_clipped, _modes=modes,
+                       timing=run.timing())
 
 
 def _checked_arguments(cfg, parameter, point, n_jobs, backend, extra_overrides):
@@ -412,6 +422,8 @@ class _Run:
         self.client_own = self.cluster = None
         self.vectors: dict[str, np.ndarray] = {}
         self.n_computed = self.n_refined = 0
+        self.wall_s = self.point_s = 0.0
+        self.processes = 1
         self.n_failed = sum(records[k]["status"] != "ok" for k in keys if k in records)
         self.wanted: dict[str, int] = {}    # refinement key -> depth, as this run decides them
         self.bar = tqdm(total=total, initial=n_loaded, disable=not progress, file=sys.stderr,
@@ -429,7 +441,8 @@ class _Run:
             if self.client_own is None:
                 self.client_own, self.cluster = dask_client(self.n_jobs, self.client)
             return run_dask(jobs, self.client_own)
-        if self.n_jobs == 1 or len(jobs) <= 1:
+        # small jobs stay serial: a cold pool's start costs more than they take
+        if self.n_jobs == 1 or len(jobs) < (2 if pool_started() else MIN_COLD_CHAINS):
             return run_serial(jobs)
         return run_joblib(jobs, self.n_jobs)
 
@@ -438,9 +451,14 @@ class _Run:
         if not jobs:
             return
         runner = self._runner(jobs)
+        if runner.__name__ != "run_serial":
+            self.processes = max(self.processes, self.n_jobs if self.n_jobs > 0 else
+                                 os.cpu_count() or 1)
         key_of = {i: args[4] for chain in jobs for i, args, _ in chain}
+        start = time.perf_counter()
         try:
             for i, rec, vecs in runner:
+                self.point_s += rec.get("elapsed_s") or 0.0
                 key = key_of[i]
                 self.records[key] = rec
                 if vecs is not None:
@@ -456,6 +474,12 @@ class _Run:
                 self.bar.update()
         finally:
             runner.close()
+            self.wall_s += time.perf_counter() - start
+
+    def timing(self) -> dict:
+        """Seconds of evaluation, the points' own seconds, processes and speed-up."""
+        return {"wall_s": self.wall_s, "point_s": self.point_s, "processes": self.processes,
+                "speedup": self.point_s / self.wall_s if self.wall_s > 0 else float("nan")}
 
     def refinement_jobs(self, budgets, point, cfg, parameter, retry_failed):
         """The next round of midpoints of undecided steps as jobs, or None when done.

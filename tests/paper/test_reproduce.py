@@ -101,7 +101,8 @@ def test_unknown_notebook_parameter_is_rejected_before_running(tmp_path, capsys)
 
 
 def _fake_runs(claims_rows, status="ok"):
-    def run(out, params, names, progress=True, nb_dir=None, kernel_name="python3", jobs=None):
+    def run(out, params, names, progress=True, nb_dir=None, kernel_name="python3", jobs=None,
+            stop=None):
         runs = []
         for name in names:
             (out / name).mkdir(parents=True, exist_ok=True)

@@ -21,7 +21,7 @@ def fake_notebooks(monkeypatch):
     blade_calls = []
 
     def fake_run(out, params, names, progress=True, nb_dir=None, kernel_name="python3",
-                 jobs=None):
+                 jobs=None, stop=None):
         (out / "notebooks").mkdir(parents=True, exist_ok=True)
         for name in names:
             (out / "notebooks" / f"{name}.ipynb").write_text("EXECUTED")

@@ -48,7 +48,6 @@ from importlib import resources
 from pathlib import Path
 
 import numpy as np
-from scipy.interpolate import RegularGridInterpolator
 
 from ..._version import __version__
 from .format import (
@@ -110,6 +109,10 @@ class _Grid:
         self.constant = None
         self.interp = None
         if keep:
+            # scipy.interpolate (0.3 s of import, scipy.optimize with it) only where a
+            # deck is read: importing the package (its range warnings) does not need it
+            from scipy.interpolate import RegularGridInterpolator
+
             self.interp = RegularGridInterpolator([axes[k][1] for k in keep], values,
                                                   method="linear", bounds_error=False,
                                                   fill_value=None)

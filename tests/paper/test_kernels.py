@@ -1,0 +1,89 @@
+"""Warm kernels: notebooks run one after another in one kernel see nothing of each other."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+pytest.importorskip("papermill")
+nbformat = pytest.importorskip("nbformat")
+
+from tefcore.paper import reproduce as rp  # noqa: E402
+from tefcore.paper.kernels import WarmKernel  # noqa: E402
+
+
+def _notebook(path: Path, *cells: str) -> Path:
+    nb = nbformat.v4.new_notebook(cells=[nbformat.v4.new_code_cell(c) for c in cells])
+    nb.metadata["kernelspec"] = {"name": rp.KERNEL_NAME, "display_name": "Python 3",
+                                 "language": "python"}
+    nbformat.write(nb, str(path))
+    return path
+
+
+def test_a_notebook_cannot_see_anothers_state(tmp_path):
+    # the first notebook binds names, changes matplotlib's settings, the warnings
+    # filters and numpy's printing; the second, in the same kernel process, must
+    # start as in a fresh kernel (its asserts fail the notebook otherwise)
+    first = _notebook(
+        tmp_path / "first.ipynb",
+        "import os, warnings\nimport numpy as np\nimport matplotlib\n"
+        "secret = 42\nnp.set_printoptions(precision=2)\nnp.seterr(all='raise')\n"
+        "matplotlib.rcParams['lines.linewidth'] = 9.0\nwarnings.simplefilter('error')\n"
+        f"open({str(tmp_path / 'pid1')!r}, 'w').write(str(os.getpid()))")
+    second = _notebook(
+        tmp_path / "second.ipynb",
+        "assert 'secret' not in globals() and 'np' not in globals()\n"
+        "import os, warnings\nimport numpy as np\nimport matplotlib\n"
+        "assert np.get_printoptions()['precision'] == 8\n"
+        "assert np.geterr()['divide'] == 'warn'\n"
+        "assert matplotlib.rcParams['lines.linewidth'] != 9.0\n"
+        "warnings.warn('still only a warning')\n"
+        f"open({str(tmp_path / 'pid2')!r}, 'w').write(str(os.getpid()))")
+    kernel = WarmKernel(rp.KERNEL_NAME)
+    try:
+        runs = [rp.execute_notebook(nb.stem, nb, tmp_path, {}, kernel=kernel, export=False)
+                for nb in (first, second)]
+    finally:
+        kernel.shutdown()
+    assert [r.status for r in runs] == ["ok", "ok"], [r.error for r in runs]
+    # one kernel process ran both: the test exercised the reuse
+    assert (tmp_path / "pid1").read_text() == (tmp_path / "pid2").read_text()
+
+
+def test_a_failing_notebook_fails_alone(tmp_path):
+    bad = _notebook(tmp_path / "bad.ipynb", "raise ValueError('on purpose')")
+    good = _notebook(tmp_path / "good.ipynb", "x = 1")
+    kernel = WarmKernel(rp.KERNEL_NAME)
+    try:
+        runs = [rp.execute_notebook(nb.stem, nb, tmp_path, {}, kernel=kernel, export=False)
+                for nb in (bad, good)]
+    finally:
+        kernel.shutdown()
+    assert runs[0].status == "failed" and "on purpose" in runs[0].error
+    assert runs[1].status == "ok"
+
+
+def test_a_kernel_stopped_while_it_works_ends_the_wait(tmp_path):
+    # Ctrl-C stops the kernels (tefcore.paper.kernel_guard) also while a warm kernel
+    # warms up or resets: its wait for the reply must end then, not after TIMEOUT
+    import threading
+    import time
+
+    from tefcore.paper.kernel_guard import stop_kernels
+    from tefcore.paper.kernels import KernelError
+
+    kernel = WarmKernel(rp.KERNEL_NAME)
+    try:
+        stopper = threading.Timer(1.0, stop_kernels)
+        stopper.start()
+        start = time.monotonic()
+        with pytest.raises(KernelError, match="died"):
+            kernel._execute("import time\ntime.sleep(600)", "reset")
+        assert time.monotonic() - start < 30
+        stopper.join()
+    finally:
+        try:
+            kernel.shutdown()
+        except Exception:  # stopped already
+            pass

@@ -1,0 +1,67 @@
+"""The sweep's worker pool: set up once, chains shared with the caller, small jobs serial."""
+
+from __future__ import annotations
+
+import os
+import time
+from types import SimpleNamespace
+
+import pandas as pd
+import pytest
+
+from tefcore.runtime import defaults_applied
+from tefcore.sweeps import evaluate
+from tefcore.sweeps.sweep import sweep
+from tests.sweeps.test_sweep import MDART, PARAM, XS, ToyPoint, toy_result
+
+
+class PidPoint(ToyPoint):
+    """ToyPoint that records the process it ran in (trim column ``pid``) after a pause,
+    so that a ready worker takes chains while the caller works."""
+
+    def __call__(self, cfg):
+        time.sleep(0.02)
+        res = toy_result(cfg.flap.cg_offset)
+        return SimpleNamespace(modes=res.modes, eigenvectors=res.eigenvectors,
+                               trim={**res.trim, "pid": float(os.getpid())})
+
+
+@pytest.fixture
+def ready_pool():
+    pool = evaluate.worker_pool(1)
+    deadline = time.monotonic() + 120
+    while not evaluate.pool_ready():          # a worker started and imported the solver
+        assert time.monotonic() < deadline, "the pool's worker did not start"
+        time.sleep(0.05)
+    yield pool
+    evaluate.close_pool()
+
+
+def test_a_worker_applies_the_settings_and_imports_once(ready_pool):
+    assert ready_pool.submit(defaults_applied).result() is True
+    modules = ready_pool.submit(_loaded, "tefcore.linear.stability").result()
+    assert modules is True
+
+
+def _loaded(name):
+    import sys
+
+    return name in sys.modules
+
+
+def test_chains_shared_between_caller_and_worker_give_the_serial_table(ready_pool):
+    serial = sweep(MDART, PARAM, XS, point=PidPoint(), progress=False)
+    par = sweep(MDART, PARAM, XS, point=PidPoint(), progress=False, n_jobs=2)
+    pids = set(par.table["trim_pid"])
+    assert float(os.getpid()) in pids and len(pids) == 2       # both did some of the work
+    cols = [c for c in serial.table.columns if c != "trim_pid"]
+    pd.testing.assert_frame_equal(par.table[cols], serial.table[cols])
+    assert par.timing["processes"] == 2 and par.timing["point_s"] > 0
+
+
+def test_small_jobs_stay_serial_without_starting_a_pool():
+    evaluate.close_pool()
+    res = sweep(MDART, PARAM, XS[:evaluate.MIN_COLD_CHAINS - 1], point=ToyPoint(),
+                progress=False, n_jobs=2)
+    assert not evaluate.pool_started()
+    assert res.timing["processes"] == 1
