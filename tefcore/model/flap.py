@@ -10,8 +10,9 @@ rotating, bending and twisting blade (Lagrange / Hamilton), per unit span:
 + Omega^2 [I_h sin Phi cos Phi - S_f eta_h cos Theta sin Phi]
 - Omega^2 S_f r (w' cos Theta - v' sin Theta) + ... = H_aero``
 
-integrated over the flap span, plus ``I_a delta** + k_a (delta - delta_a) + c_a (delta* - delta_a*)``
-with ``I_a`` the actuator's moving parts reflected to the hinge (whole flap).
+integrated over the flap span, plus
+``I_a delta** + k_a (delta - delta_a) + c_a (delta* - delta_a*)`` with ``I_a``
+the actuator's moving parts reflected to the hinge (whole flap).
 ``Theta = theta + phi`` is the section pitch, ``Phi = Theta + delta`` the
 flap's own pitch, ``eta_h`` the hinge position ahead of the elastic axis
 (negative: the hinge is aft), ``S_f = m_f c_cg`` and ``I_h`` the flap's first
