@@ -37,11 +37,15 @@ from .figures import flap_response_figure
 from .reference import load_claims
 
 __all__ = ["CONFLICT_POINTS", "FIG6_CLAIM", "FLAP_INERTIA_SCALE", "calibrate_reflected_inertia",
-           "conflict_table", "default_conflict_configs", "fig6_ratio", "fig6_target",
+           "conflict_table", "conflict_text", "default_conflict_configs", "fig6_ratio",
+           "fig6_target",
            "flap_system", "neglected_centrifugal"]
 
 #: The claim Fig. 6 is calibrated to (``tefcore/paper/reference_data/claims.toml``).
 FIG6_CLAIM = "fig6-response-15pct-above-input"
+
+#: Column of :func:`conflict_table`: the flap system's inertia over the flap's own.
+_INERTIA = "flap-system inertia / flap's"
 
 #: Factor on the flap's own inertia that also reaches Fig. 6 (1.156 x; issue 23's measurement).
 FLAP_INERTIA_SCALE = 3.5
@@ -232,11 +236,71 @@ def conflict_table(configs: dict | None = None) -> pd.DataFrame:
         head = {"variant": name,
                 "reflected inertia [lb in^2]": round(from_si(
                     cfg.actuator.reflected_inertia, "lb*in^2", "inertia"), 3),
-                "flap-system inertia / flap's": round(system["inertia_ratio"], 2),
+                _INERTIA: round(system["inertia_ratio"], 2),
                 "Fig. 6 response / input": round(fig6_ratio(cfg), 3)}
         for point, over in CONFLICT_POINTS.items():
             rows.append({**head, "point": point, **_least_stable(cfg.with_overrides(over))})
     return pd.DataFrame(rows)
+
+
+def _point(table, variant, point) -> dict:
+    row = table[(table["variant"] == variant) & (table["point"] == point)]
+    return {} if row.empty else row.iloc[0].to_dict()
+
+
+def _growth(r) -> str:
+    real = float(r["real part /rev"])
+    return (f"{r['least stable root']} at {float(r['frequency /rev']):.2f}/rev, "
+            f"{real:+.2f}/rev ({'unstable' if real > 0 else 'stable'})")
+
+
+def conflict_text(table: pd.DataFrame) -> str:
+    """The measured conflict of :func:`conflict_table` in sentences (markdown).
+
+    Parameters
+    ----------
+    table : pandas.DataFrame
+        :func:`conflict_table` with its default configurations (values may be
+        strings, as read back from its CSV).
+
+    Returns
+    -------
+    str
+        Fig. 6 on each configuration, the imbalanced flap's flutter in hover
+        and at ``mu = 0.3`` without and with the calibration, the balanced
+        flap at overhang 0.29 in hover on each, and whether Fig. 6's 15 %
+        and Fig. 8's stable balanced flap hold together on each.
+    """
+    variants = list(dict.fromkeys(table["variant"]))
+    if len(variants) < 3:
+        return ""
+    base, fit, heavy = variants[:3]
+    hov, fwd, bal = CONFLICT_POINTS
+    rows = {(v, pt): _point(table, v, pt) for v in variants for pt in CONFLICT_POINTS}
+    ratio = {v: float(rows[(v, hov)]["Fig. 6 response / input"]) for v in variants}
+    grow = {(v, pt): float(rows[(v, pt)]["real part /rev"]) for v in variants
+            for pt in CONFLICT_POINTS}
+    both = {v: ratio[v] >= 1.10 and grow[(v, bal)] <= 0 for v in (fit, heavy)}
+    return " ".join([
+        f"Fig. 6's response is {ratio[base]:.3f} x the input on {base}, {ratio[fit]:.3f} x on "
+        f"{fit} (flap-system inertia {float(rows[(fit, hov)][_INERTIA]):.2f} x the flap's own) "
+        f"and {ratio[heavy]:.3f} x on {heavy}; the paper: 1.15 x.",
+        f"The imbalanced flap's least stable root grows {grow[(base, hov)]:+.2f}/rev in hover "
+        f"and {grow[(base, fwd)]:+.2f} at mu 0.3 on {base}, {grow[(fit, hov)]:+.2f} and "
+        f"{grow[(fit, fwd)]:+.2f} on {fit}, {grow[(heavy, hov)]:+.2f} and "
+        f"{grow[(heavy, fwd)]:+.2f} on {heavy} (the paper: weakly unstable in hover, more "
+        "unstable with speed).",
+        f"The mass-balanced flap at overhang 0.29 in hover (the paper's Fig. 8: stable up to "
+        f"an overhang of 0.5): {base} {_growth(rows[(base, bal)])}; {fit} "
+        f"{_growth(rows[(fit, bal)])}; {heavy} {_growth(rows[(heavy, bal)])}.",
+        "So Fig. 6's 15 % and Fig. 8's stable balanced flap "
+        + ("hold together" if both[fit] else "do not hold together") + f" on {fit} (the "
+        "added inertia reflected through the linkage, on the flap degree of freedom only) "
+        + ("and " if both[fit] == both[heavy] else "but ")
+        + ("hold together" if both[heavy] else "do not") + f" on {heavy} (the added inertia "
+        "turning with the flap, so that its propeller moment and its coupling to blade "
+        "torsion grow with it): where the flap system's inertia sits decides the conflict.",
+    ])
 
 
 def neglected_centrifugal(cfg) -> pd.DataFrame:
