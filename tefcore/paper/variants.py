@@ -63,7 +63,10 @@ class Variant:
         Claim id -> its status when last recorded on this variant (empty for
         the default, whose statuses are the reference data's).
     differences : dict
-        Claim id -> why its status differs from the default's (physics).
+        Claim id -> ``{"statuses": {variant: status}, "why": text}``: the
+        physics of a status that differs between this variant and the default,
+        written for that pair of statuses (:func:`compare_variants` uses it only
+        for that pair).
     """
 
     config: str
@@ -103,12 +106,15 @@ def load_variants() -> dict:
         v = Variant(config=raw["config"], summary=raw["summary"].strip(),
                     calibration=tuple(raw.get("calibration", ())),
                     recorded_status=dict(raw.get("recorded_status", {})),
-                    differences={k: " ".join(t.split())
-                                 for k, t in raw.get("differences", {}).items()})
+                    differences={k: {"why": " ".join(d["why"].split()),
+                                     "statuses": {n: s for n, s in d.items() if n != "why"}}
+                                 for k, d in raw.get("differences", {}).items()})
         if v.config not in available_configs():
             raise ValueError(f"variants.toml: no packaged configuration {v.config!r}")
         unknown = (set(v.calibration) | set(v.recorded_status) | set(v.differences)) - ids
-        bad = {s for s in v.recorded_status.values() if s not in STATUSES}
+        bad = {s for s in v.recorded_status.values() if s not in STATUSES} | {
+            s for d in v.differences.values() for s in d["statuses"].values()
+            if s not in STATUSES}
         if unknown or bad:
             raise ValueError(f"variants.toml: variant {v.config!r}: unknown claim(s) "
                              f"{sorted(unknown)} or status(es) {sorted(bad)}")
@@ -214,6 +220,20 @@ def variant_claims(name: str, figures=None, n_jobs: int = 1) -> pd.DataFrame:
     return apply_variant(table, name)
 
 
+def _why(row: dict, names) -> str:
+    """The explanation of a row's statuses, if ``variants.toml`` has one for them."""
+    live = {n: row[f"status {n}"] for n in names}
+    written = []
+    for v in load_variants().values():
+        d = v.differences.get(row["id"])
+        if d is None:
+            continue
+        if all(live.get(n) == s for n, s in d["statuses"].items()):
+            return d["why"]
+        written.append(", ".join(f"{n} {s}" for n, s in d["statuses"].items()))
+    return "not explained" + (f" (explained for {'; '.join(written)})" if written else "")
+
+
 def compare_variants(tables: dict) -> pd.DataFrame:
     """The variants' claims side by side, with the physics of every status difference.
 
@@ -228,8 +248,9 @@ def compare_variants(tables: dict) -> pd.DataFrame:
     pandas.DataFrame
         One row per claim: ``id, figure``, then per variant ``status <v>``,
         ``tag <v>`` and ``computed <v>``, ``differs`` (the statuses differ) and
-        ``why`` (from ``variants.toml``; ``"not explained"`` for a difference
-        nobody has explained, so that it shows).
+        ``why``: the explanation ``variants.toml`` gives for exactly these
+        statuses, else ``"not explained"`` (saying for which statuses an
+        explanation was written, if one was), so that a change shows.
     """
     names = list(tables)
     keep = ["id", "figure", "tag", "status", "computed"]
@@ -240,11 +261,8 @@ def compare_variants(tables: dict) -> pd.DataFrame:
         out = t if out is None else out.merge(t, on=["id", "figure"], how="outer")
     status = out[[f"status {n}" for n in names]].fillna("")
     out["differs"] = status.nunique(axis=1) > 1
-    why = {}
-    for v in load_variants().values():
-        why.update(v.differences)
-    out["why"] = [why.get(i, "not explained") if d else ""
-                  for i, d in zip(out["id"], out["differs"], strict=True)]
+    out["why"] = [_why(row, names) if row["differs"] else ""
+                  for row in out.to_dict("records")]
     order = {c: i for i, c in enumerate(tables[names[0]]["id"])}
     return out.sort_values("id", key=lambda s: s.map(order).fillna(len(order)),
                            ignore_index=True).fillna("")

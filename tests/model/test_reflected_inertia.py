@@ -16,8 +16,9 @@ FIG6 = load_config("mdart-fig6")
 I_A = FIG6.actuator.reflected_inertia
 
 
-def _blocks(cfg, q, qd, qdd, controls=Controls(), inflow=0.0):
+def _blocks(cfg, q, qd, qdd, controls=None, inflow=0.0):
     model = coupled_model(cfg)
+    controls = Controls() if controls is None else controls
     k, c, m = (b[0] for b in jacobian_blocks(
         model, np.zeros(1), q, qd, qdd, controls, lambda x, p: inflow + 0 * x * p,
         scheme="exact", n_second=model.n_dof)[0])
