@@ -95,8 +95,9 @@ STATUS_MEANINGS = {
 TAG_MEANINGS = {
     "validation": "a statement of the paper never used to tune the model; the score counts "
                   "these.",
-    "calibration": "a stated value used to set the assumed blade properties (the stated "
-                   "torsion frequencies); listed, not scored.",
+    "calibration": "a stated value used to set an assumed property (the stated torsion "
+                   "frequencies on both variants; Fig. 6's response on mdart-fig6); listed, "
+                   "not scored.",
 }
 
 #: What "worse than recorded" means.

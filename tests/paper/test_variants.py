@@ -62,6 +62,7 @@ def test_every_recorded_difference_is_explained():
     # than a phrase
     fig6 = load_variants()["mdart-fig6"]
     assert {c.id for c in load_claims()} == set(fig6.recorded_status)
+    assert set(fig6.calibration) <= set(fig6.recorded_status)
     assert fig6.differences
     for cid, d in fig6.differences.items():
         assert d["statuses"]["mdart-fig6"] == fig6.recorded_status[cid]
