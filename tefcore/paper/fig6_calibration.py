@@ -28,6 +28,7 @@ Examples
 
 from __future__ import annotations
 
+import numpy as np
 import pandas as pd
 import scipy.optimize
 
@@ -44,8 +45,8 @@ __all__ = ["CONFLICT_POINTS", "FIG6_CLAIM", "FLAP_INERTIA_SCALE", "calibrate_ref
 #: The claim Fig. 6 is calibrated to (``tefcore/paper/reference_data/claims.toml``).
 FIG6_CLAIM = "fig6-response-15pct-above-input"
 
-#: Column of :func:`conflict_table`: the flap system's inertia over the flap's own.
-_INERTIA = "flap-system inertia / flap's"
+#: Column of :func:`conflict_table`: the flap system's inertia over the built flap's (mdart).
+_INERTIA = "flap-system inertia / mdart's"
 
 #: Factor on the flap's own inertia that also reaches Fig. 6 (1.156 x; issue 23's measurement).
 FLAP_INERTIA_SCALE = 3.5
@@ -105,13 +106,15 @@ def flap_system(cfg) -> dict:
     -------
     dict
         ``flap_inertia`` (``b_f I_h`` [kg m^2]), ``reflected_inertia``
-        (``I_a``), ``inertia_ratio`` (``(b_f I_h + I_a) / (b_f I_h)``) and
+        (``I_a``), ``system_inertia`` (their sum), ``inertia_ratio``
+        (``(b_f I_h + I_a) / (b_f I_h)``) and
         ``frequency_per_rev`` (:func:`tefcore.model.flap.flap_natural_frequency`).
     """
     p = flap_properties(cfg)
     own = p.span * p.inertia_hinge
     om = cfg.rotor.rotor_speed
     return {"flap_inertia": own, "reflected_inertia": p.reflected_inertia,
+            "system_inertia": own + p.reflected_inertia,
             "inertia_ratio": (own + p.reflected_inertia) / own,
             "frequency_per_rev": float(flap_natural_frequency(p, om) / om)}
 
@@ -180,13 +183,14 @@ def _least_stable(cfg) -> dict:
     m = quiet_stability(cfg).modes
     top = m.loc[m["real_part"].idxmax()]
     induced = m[m["flap_induced"]]
-    flap_top = induced.loc[induced["real_part"].idxmax()] if len(induced) else None
+    flap = induced.loc[induced["real_part"].idxmax()] if len(induced) else None
     return {"least stable root": str(top["label"]),
             "frequency /rev": round(float(top["frequency_per_rev"]), 2),
             "real part /rev": round(float(top["real_part"]), 2),
-            "least stable flap-induced root": "none" if flap_top is None else (
-                f"{flap_top['label']} ({float(flap_top['frequency_per_rev']):.2f}/rev, "
-                f"{float(flap_top['real_part']):+.2f}/rev)")}
+            "flap-induced root": "none" if flap is None else str(flap["label"]),
+            "its frequency /rev": np.nan if flap is None else round(
+                float(flap["frequency_per_rev"]), 2),
+            "its real part /rev": np.nan if flap is None else round(float(flap["real_part"]), 2)}
 
 
 def default_conflict_configs() -> dict:
@@ -230,13 +234,14 @@ def conflict_table(configs: dict | None = None) -> pd.DataFrame:
     from ..units import from_si
 
     configs = configs or default_conflict_configs()
+    built = flap_system(load_config("mdart"))["system_inertia"]
     rows = []
     for name, cfg in configs.items():
         system = flap_system(cfg)
         head = {"variant": name,
                 "reflected inertia [lb in^2]": round(from_si(
                     cfg.actuator.reflected_inertia, "lb*in^2", "inertia"), 3),
-                _INERTIA: round(system["inertia_ratio"], 2),
+                _INERTIA: round(system["system_inertia"] / built, 2),
                 "Fig. 6 response / input": round(fig6_ratio(cfg), 3)}
         for point, over in CONFLICT_POINTS.items():
             rows.append({**head, "point": point, **_least_stable(cfg.with_overrides(over))})
@@ -249,8 +254,8 @@ def _point(table, variant, point) -> dict:
 
 
 def _growth(r) -> str:
-    real = float(r["real part /rev"])
-    return (f"{r['least stable root']} at {float(r['frequency /rev']):.2f}/rev, "
+    real = float(r["its real part /rev"])
+    return (f"{r['flap-induced root']} at {float(r['its frequency /rev']):.2f}/rev, "
             f"{real:+.2f}/rev ({'unstable' if real > 0 else 'stable'})")
 
 
@@ -278,22 +283,24 @@ def conflict_text(table: pd.DataFrame) -> str:
     hov, fwd, bal = CONFLICT_POINTS
     rows = {(v, pt): _point(table, v, pt) for v in variants for pt in CONFLICT_POINTS}
     ratio = {v: float(rows[(v, hov)]["Fig. 6 response / input"]) for v in variants}
-    grow = {(v, pt): float(rows[(v, pt)]["real part /rev"]) for v in variants
+    grow = {(v, pt): float(rows[(v, pt)]["its real part /rev"]) for v in variants
             for pt in CONFLICT_POINTS}
     both = {v: ratio[v] >= 1.10 and grow[(v, bal)] <= 0 for v in (fit, heavy)}
     return " ".join([
         f"Fig. 6's response is {ratio[base]:.3f} x the input on {base}, {ratio[fit]:.3f} x on "
-        f"{fit} (flap-system inertia {float(rows[(fit, hov)][_INERTIA]):.2f} x the flap's own) "
-        f"and {ratio[heavy]:.3f} x on {heavy}; the paper: 1.15 x.",
-        f"The imbalanced flap's least stable root grows {grow[(base, hov)]:+.2f}/rev in hover "
+        f"{fit} (its flap system {float(rows[(fit, hov)][_INERTIA]):.2f} x as heavy about the "
+        f"hinge as the flap as built) and {ratio[heavy]:.3f} x on {heavy} "
+        f"({float(rows[(heavy, hov)][_INERTIA]):.2f} x); the paper: 1.15 x.",
+        f"The imbalanced flap's flutter root grows {grow[(base, hov)]:+.2f}/rev in hover "
         f"and {grow[(base, fwd)]:+.2f} at mu 0.3 on {base}, {grow[(fit, hov)]:+.2f} and "
         f"{grow[(fit, fwd)]:+.2f} on {fit}, {grow[(heavy, hov)]:+.2f} and "
         f"{grow[(heavy, fwd)]:+.2f} on {heavy} (the paper: weakly unstable in hover, more "
         "unstable with speed).",
         f"The mass-balanced flap at overhang 0.29 in hover (the paper's Fig. 8: stable up to "
-        f"an overhang of 0.5): {base} {_growth(rows[(base, bal)])}; {fit} "
+        f"an overhang of 0.5), its least stable flap-induced root: {base} "
+        f"{_growth(rows[(base, bal)])}; {fit} "
         f"{_growth(rows[(fit, bal)])}; {heavy} {_growth(rows[(heavy, bal)])}.",
-        "So Fig. 6's 15 % and Fig. 8's stable balanced flap "
+        "So Fig. 6's 15 % and a stable balanced flap at the Table 1 overhang (Fig. 8) "
         + ("hold together" if both[fit] else "do not hold together") + f" on {fit} (the "
         "added inertia reflected through the linkage, on the flap degree of freedom only) "
         + ("and " if both[fit] == both[heavy] else "but ")

@@ -108,10 +108,11 @@ def _conflict():
                            ("heavy", 1.156, (2.21, 2.58, 0.10))):
         for point, g in zip(f6.CONFLICT_POINTS, grow, strict=True):
             rows.append({"variant": v, "reflected inertia [lb in^2]": 0,
-                         "flap-system inertia / flap's": 4.62, "Fig. 6 response / input": ratio,
-                         "point": point, "least stable root": "blade torsion 2",
-                         "frequency /rev": 11.2, "real part /rev": g,
-                         "least stable flap-induced root": "TEF"})
+                         "flap-system inertia / mdart's": 4.62,
+                         "Fig. 6 response / input": ratio, "point": point,
+                         "least stable root": "blade lag 1", "frequency /rev": 0.58,
+                         "real part /rev": -0.02, "flap-induced root": "blade torsion 2",
+                         "its frequency /rev": 11.2, "its real part /rev": g})
     return pd.DataFrame(rows).astype(str)
 
 
