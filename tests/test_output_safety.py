@@ -109,6 +109,7 @@ def _fake_reproduce(monkeypatch):
 
     monkeypatch.setattr(rp, "run_notebooks", fake_run)
     monkeypatch.setattr(rp, "baseline_blade", lambda out, cfg=None: None)
+    monkeypatch.setattr(rp, "start_variant_runs", lambda *a, **k: [])
 
 
 @pytest.fixture

@@ -29,3 +29,15 @@ def test_the_build_backend_reads_the_license_fields():
     requires = PYPROJECT["build-system"]["requires"]
     assert any(r.replace(" ", "").startswith("setuptools>=") and
                int(r.replace(" ", "").split(">=")[1].split(".")[0]) >= 77 for r in requires)
+
+
+def test_the_packaged_data_files_are_in_the_package_data():
+    """Every data file the package reads at run time is declared (a wheel would lack it)."""
+    import fnmatch
+
+    data = PYPROJECT["tool"]["setuptools"]["package-data"]
+    for package, rel in (("tefcore", "data/mdart.toml"), ("tefcore", "data/mdart-fig6.toml"),
+                         ("tefcore.paper", "variants.toml"),
+                         ("tefcore.paper", "departures.toml")):
+        assert (ROOT / package.replace(".", "/") / rel).is_file(), rel
+        assert any(fnmatch.fnmatch(rel, pat) for pat in data[package]), rel

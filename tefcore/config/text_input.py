@@ -55,7 +55,7 @@ _EXAMPLE_UNIT = {
     "length": "ft", "force_per_length": "lb/in", "moment_per_angle": "ft-lb/rad",
     "moment_damping": "ft-lb-sec/rad", "mass_per_length": "lb/ft", "angle": "deg",
     "per_angle": "1/deg", "angular_velocity": "rpm", "velocity": "ft/s",
-    "inertia_per_length": "slug*ft^2/ft", "bending_stiffness": "lb*ft^2",
+    "inertia_per_length": "slug*ft^2/ft", "inertia": "lb*in^2", "bending_stiffness": "lb*ft^2",
     "torsional_stiffness": "lb*ft^2", "force": "lbf", "density": "slug/ft^3",
 }  # fmt: skip
 _NUMBER = re.compile(r"^\s*[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?\s*$")

@@ -5,7 +5,7 @@ deflection ``delta`` (``q_F``).  For any azimuths and any motion
 ``(q, q*, q**)`` the model returns the residual of the nonlinear equations
 
 ``R = M_s q_R** + (C_s + G_s) q_R* + K_s q_R + (flap reactions) - Q_aero``
-``R_F = flap inertia/centrifugal + k_a (delta - delta_a) + c_a (...)* - H_aero``
+``R_F = flap inertia/centrifugal + I_a delta** + k_a (delta - delta_a) + c_a (...)* - H_aero``
 
 (all divided by ``m0 Omega^2 R^3``).  Trim solves ``R = 0`` for a periodic
 motion, and the linearised ``M, C, K`` of the paper's eq. (5) are the
@@ -338,7 +338,8 @@ class CoupledModel:
         res[:nm] = self.m_s @ qdd[:nm] + self.k_s @ q[:nm] + self.c_s @ qd[:nm]
         if self.has_flap:
             da, da_d = self.actuator_input(psi)
-            res[nm] = self.flap["k_a"] * (q[nm] - da) + self.flap["c_a"] * (qd[nm] - da_d)
+            res[nm] = (self.flap["k_a"] * (q[nm] - da) + self.flap["c_a"] * (qd[nm] - da_d)
+                       + self.flap["reflected_inertia"] * qdd[nm])
         pieces = {"all": res}
         for t in terms:
             self._project(pieces, [t._replace(piece="all")], self.n_dof, psi.size)
@@ -467,6 +468,8 @@ class CoupledModel:
         pieces["blade Coriolis"][:nm] = self.g_s @ qbd
         if self.has_flap:
             da, da_d = self.actuator_input(psi)
+            # the actuator's moving parts turn with the flap (docs/theory.md 4.1)
+            pieces["flap inertia"][nm] = self.flap["reflected_inertia"] * qdd[nm]
             pieces["actuator spring"][nm] = self.flap["k_a"] * (q[nm] - da)
             pieces["actuator damper"][nm] = self.flap["c_a"] * (qd[nm] - da_d)
         self._project(pieces, terms, n_rows, n_psi)
@@ -565,7 +568,8 @@ def coupled_model(cfg, collective: float = 0.0, modes=None) -> CoupledModel:
         flap = {"inertia_hinge": fp.inertia_hinge / (m0 * rad**2),
                 "first_moment": fp.first_moment / (m0 * rad),
                 "hinge_from_ea": fp.hinge_from_ea / rad, "span": fl.span,
-                "k_a": units.spring(fp.k_a), "c_a": units.damper(fp.c_a)}
+                "k_a": units.spring(fp.k_a), "c_a": units.damper(fp.c_a),
+                "reflected_inertia": units.inertia(fp.reflected_inertia)}
     aero = section_model(cfg)
     wake = None
     if cfg.model.aero == "unsteady":

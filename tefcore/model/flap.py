@@ -10,7 +10,9 @@ rotating, bending and twisting blade (Lagrange / Hamilton), per unit span:
 + Omega^2 [I_h sin Phi cos Phi - S_f eta_h cos Theta sin Phi]
 - Omega^2 S_f r (w' cos Theta - v' sin Theta) + ... = H_aero``
 
-integrated over the flap span, plus ``k_a (delta - delta_a) + c_a (delta* - delta_a*)``.
+integrated over the flap span, plus
+``I_a delta** + k_a (delta - delta_a) + c_a (delta* - delta_a*)`` with ``I_a``
+the actuator's moving parts reflected to the hinge (whole flap).
 ``Theta = theta + phi`` is the section pitch, ``Phi = Theta + delta`` the
 flap's own pitch, ``eta_h`` the hinge position ahead of the elastic axis
 (negative: the hinge is aft), ``S_f = m_f c_cg`` and ``I_h`` the flap's first
@@ -59,6 +61,10 @@ class FlapProperties:
     k_a, c_a : float
         Actuator torsional stiffness [N m/rad] and damping [N m s/rad] of the
         whole flap.
+    reflected_inertia : float
+        ``I_a``: the actuator's moving parts reflected to the hinge [kg m^2],
+        of the whole flap; adds to ``b_f I_h`` in the ``delta**`` term only
+        (docs/theory.md 4.1).  Default 0 (not modelled).
     """
 
     span: float
@@ -72,6 +78,7 @@ class FlapProperties:
     inertia_cg: float
     k_a: float
     c_a: float
+    reflected_inertia: float = 0.0
 
     @property
     def flap_chord(self) -> float:
@@ -118,7 +125,8 @@ def flap_properties(cfg) -> FlapProperties:
                           cg_offset=f.cg_offset,
                           hinge_from_ea=(r.elastic_axis - f.hinge_position) * r.chord,
                           mass=f.mass_per_span, inertia_cg=f.inertia_cg_per_span,
-                          k_a=cfg.actuator.stiffness, c_a=cfg.actuator.damping)
+                          k_a=cfg.actuator.stiffness, c_a=cfg.actuator.damping,
+                          reflected_inertia=cfg.actuator.reflected_inertia)
 
 
 def _flap_pitch(c, s, cd, sd):
@@ -289,9 +297,11 @@ def centrifugal_hinge_moment(props: FlapProperties, rotor_speed, pitch, delta):
 def flap_natural_frequency(props: FlapProperties, rotor_speed: float, pitch: float = 0.0):
     """Natural frequency of the flap on a rigid, non-moving section [rad/s].
 
-    ``omega_f^2 = [k_a + b_f Omega^2 (I_h cos 2Theta - S_f eta_h cos^2 Theta)] / (b_f I_h)``,
+    ``omega_f^2 = [k_a + b_f Omega^2 (I_h cos 2Theta - S_f eta_h cos^2 Theta)] / (b_f I_h + I_a)``,
     the linearisation of :func:`centrifugal_hinge_moment`; in vacuum
-    (no aerodynamic stiffness or apparent mass).
+    (no aerodynamic stiffness or apparent mass).  The actuator's reflected
+    inertia ``I_a`` adds to the flap's inertia only: its centrifugal moment
+    is neglected (docs/theory.md 4.1).
 
     Parameters
     ----------
@@ -317,6 +327,7 @@ def flap_natural_frequency(props: FlapProperties, rotor_speed: float, pitch: flo
     """
     k_cf = rotor_speed**2 * (props.inertia_hinge * np.cos(2 * pitch)
                              - props.first_moment * props.hinge_from_ea * np.cos(pitch) ** 2)
-    return np.sqrt((props.k_a + props.span * k_cf) / (props.span * props.inertia_hinge))
+    return np.sqrt((props.k_a + props.span * k_cf)
+                   / (props.span * props.inertia_hinge + props.reflected_inertia))
 
 

@@ -476,6 +476,7 @@ def _linear_pieces(model, jac, psi, inflow, dthrust, nu):
     add("blade structural damping", 1, blade, blade, model.d_s)
     add("blade Coriolis", 1, blade, blade, model.g_s)
     if model.has_flap:
+        add("flap inertia", 2, nm, nm, model.flap["reflected_inertia"])
         add("actuator spring", 0, nm, nm, model.flap["k_a"])
         add("actuator damper", 1, nm, nm, model.flap["c_a"])
     if nu:

@@ -204,9 +204,10 @@ def inertial_hinge_moment(props: FlapProperties, motion_at, psi, delta, delta_ac
     """Inertial and centrifugal moment of the whole flap [N m] (left-hand side).
 
     ``int [I_h (delta** + Theta**) - S_f eta_h Theta** - S_f w** cos Theta
-    + M_cf(Theta, delta) - Omega^2 S_f r w' cos Theta] dr`` for a section with
-    no lag motion (the lag and Coriolis terms of docs/theory.md section 4
-    enter through the coupled model).
+    + M_cf(Theta, delta) - Omega^2 S_f r w' cos Theta] dr + I_a delta**`` for a
+    section with no lag motion (the lag and Coriolis terms of docs/theory.md
+    section 4 enter through the coupled model; ``I_a`` is the actuator's
+    reflected inertia, :attr:`FlapProperties.reflected_inertia`).
 
     Parameters
     ----------
@@ -236,7 +237,7 @@ def inertial_hinge_moment(props: FlapProperties, motion_at, psi, delta, delta_ac
                               np.zeros_like(delta), delta_accel, slope=m.flap_slope(psi),
                               omega=rotor_speed)
         total = total + wgt * sum(row.values())
-    return total
+    return total + props.reflected_inertia * delta_accel
 
 
 def hinge_moment_history(aero, props: FlapProperties, motion_at, delta_f, *,

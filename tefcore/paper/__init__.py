@@ -14,6 +14,10 @@ package itself exports nothing)::
     claim_checks    one check per kind of claim, against one figure's result
     validation      run every figure with a claim, check all claims, compare with records
     calibration     stated first-torsion frequencies (Figs. 10a, 11a) and the fit to them
+    fig6_calibration  the actuator's reflected inertia fitted to Fig. 6 (mdart-fig6), the conflict
+    variants        the packaged variants (mdart, mdart-fig6): tags, records, differences
+    variant_runs    reproduce's check of the other variant's claims, beside the notebooks
+    modal_truncation  the imbalanced flap's flutter versus the blade modes retained
     assumptions     each assumed MDART property and the plausible range it is varied over
     sensitivity     headline results with each assumption at its range's ends (tornado)
     plotting        tracked modes, root loci, participation on the paper's axes; byte-stable PNGs

@@ -23,9 +23,18 @@ Works from an installed wheel in any folder: the notebooks and the reference
 data ship with tefcore.  Exit status 1 when a notebook fails, a claim is worse
 than its recorded status, or no claim was checked.
 
+The notebooks run on the default configuration, mdart, or on another with
+'-p config NAME' (a packaged one, e.g. mdart-fig6, the flap system's inertia
+fitted to Fig. 6; or a TOML file).  Meanwhile the claims of the same figures
+are checked on the other packaged variant (paper sweep values, no other
+notebook parameter; --no-variants skips it): OUT/claims-variants.csv and the
+report's table of both variants, with the physics of each difference and the
+conflict Fig. 6's calibration brings out.
+
 examples:
   tefcore reproduce --out out
   tefcore reproduce --only 04 --out out -p n_jobs 2
+  tefcore reproduce --out out-fig6 -p config mdart-fig6
   tefcore reproduce -p overrides "{flight.advance_ratio: 0.2}" -p 03:n_points 8
 """
 
@@ -84,7 +93,7 @@ def cmd_reproduce(args) -> int:
         The parsed ``reproduce`` options: ``out`` (output folder),
         ``params`` (YAML parameter file or None), ``param`` (``-p NAME
         VALUE`` pairs), ``only`` (notebooks to run or None), ``jobs``
-        (notebooks executed at once) and ``no_progress``.
+        (notebooks executed at once), ``no_variants`` and ``no_progress``.
 
     Returns
     -------
@@ -99,7 +108,8 @@ def cmd_reproduce(args) -> int:
     layers = [load_params_file(args.params)] if args.params else []
     layers.append(parse_cli_params([tuple(p) for p in args.param or ()]))
     return reproduce(Path(args.out), params=layers, notebooks=args.only,
-                     progress=not args.no_progress, jobs=args.jobs)
+                     progress=not args.no_progress, jobs=args.jobs,
+                     variants=not args.no_variants)
 
 
 def cmd_batch(args) -> int:
@@ -193,6 +203,8 @@ def add_commands(sub, formatter_class=argparse.RawDescriptionHelpFormatter) -> N
                    help="run only these notebooks (e.g. 03 04_cg_offset)")
     p.add_argument("--jobs", type=int, default=None,
                    help="notebooks executed at once (default: the number of cores)")
+    p.add_argument("--no-variants", action="store_true",
+                   help="do not check the claims on the other packaged variant")
     p.add_argument("--no-progress", "--quiet", action="store_true", help="no progress bar")
     p.set_defaults(func=cmd_reproduce)
     p = sub.add_parser("batch", formatter_class=fmt, description=_BATCH,

@@ -86,6 +86,7 @@ from .summaries import (
     sign_changes,
     unsteadiness,
 )
+from .variants import apply_variant
 
 __all__ = ["AXES", "LOCUS_CAPTION", "MARKERS", "MEASURES", "PAPER_MODES", "STYLE", "base_config",
            "check_and_save", "claims_table", "clean", "conditions", "counted_warnings", "curves",
@@ -170,7 +171,9 @@ def check_and_save(out, results: dict, *, cfg=None, variants=None, tables=None) 
     results : dict
         Paper figure -> its result, in the notebook's order.
     cfg : tefcore.config.configuration.Config, optional
-        Base configuration of runs the validation adds.
+        Base configuration of runs the validation adds; on a packaged variant
+        other than the default (``mdart-fig6``) its calibration claims are
+        tagged and its recorded statuses used (:func:`tefcore.paper.variants.apply_variant`).
     variants : dict, optional
         Figure -> ``{variant_key(overrides): result}`` of runs already made.
     tables : dict, optional
@@ -185,6 +188,8 @@ def check_and_save(out, results: dict, *, cfg=None, variants=None, tables=None) 
     claims = pd.concat([claims_table(name, result, cfg=cfg, others=results,
                                      variants=variants.get(name))
                         for name, result in results.items()], ignore_index=True)
+    # on a packaged variant, its calibration claims and recorded statuses
+    claims = apply_variant(claims, cfg)
     show_claims(claims)
     written = [save_csv(claims, out, "claims")]
     written += [save_csv(df, out, stem) for stem, df in (tables or {}).items()]

@@ -34,7 +34,8 @@ from .departures import departures_text, load_departures
 from .reference import STATUSES, TAGS
 
 __all__ = ["FIGURE_TITLES", "Image", "Report", "STATUS_MEANINGS", "Section", "TAG_MEANINGS",
-           "WORSE_MEANING", "build_report", "render", "template_environment", "write_report"]
+           "WORSE_MEANING", "build_report", "render", "template_environment", "variants_view",
+           "write_report"]
 
 #: The paper's figure captions (its own words), by tefcore figure name.
 FIGURE_TITLES = {
@@ -94,8 +95,9 @@ STATUS_MEANINGS = {
 TAG_MEANINGS = {
     "validation": "a statement of the paper never used to tune the model; the score counts "
                   "these.",
-    "calibration": "a stated value used to set the assumed blade properties (the stated "
-                   "torsion frequencies); listed, not scored.",
+    "calibration": "a stated value used to set an assumed property (the stated torsion "
+                   "frequencies on both variants; Fig. 6's response on mdart-fig6); listed, "
+                   "not scored.",
 }
 
 #: What "worse than recorded" means.
@@ -223,6 +225,9 @@ class Report:
     up : str
         Link to the page this report belongs to (a batch's comparison,
         ``../index.html``); ``""`` for a report of its own.
+    variants : dict or None
+        The claims on both packaged variants (:func:`variants_view`), or None
+        when the other variant was not checked.
     """
 
     title: str
@@ -241,6 +246,7 @@ class Report:
     fanplot: Image | None = None
     departures: str = ""
     up: str = ""
+    variants: dict | None = None
 
 
 def _legend(meanings: dict, names) -> list[dict]:
@@ -319,6 +325,50 @@ def _notebook_sections(out: Path, name: str, figures, claims: pd.DataFrame) -> l
     return sections
 
 
+def variants_view(v: dict | None) -> dict | None:
+    """The variants' part of the report as plain text rows (None: not checked).
+
+    Parameters
+    ----------
+    v : dict or None
+        :func:`tefcore.paper.variant_runs.finish_variant_runs`'s result.
+
+    Returns
+    -------
+    dict or None
+        ``names``, ``base``, ``reason``, ``summaries`` and ``scores`` (one row
+        per variant), ``rows`` (every claim: its statuses, a calibration tag
+        marked, and why they differ), ``differences`` (the rows that differ),
+        ``conflict`` (``columns``, ``rows``) and ``conflict_text`` (the measured
+        conflict in sentences), ``worse`` and ``errors``.
+    """
+    if not v:
+        return None
+    from .fig6_calibration import conflict_text
+
+    names = v["names"]
+    rows = []
+    for r in v["comparison"].to_dict("records"):
+        marks = [r[f"status {n}"] + (" (calibration)" if r[f"tag {n}"] == "calibration"
+                                     else "") for n in names]
+        rows.append({"id": r["id"], "figure": r["figure"], "statuses": marks,
+                     "css": [_STATUS_CLASS.get(r[f"status {n}"], "notrep") for n in names],
+                     "why": _plain(r["why"]), "differs": bool(r["differs"])})
+    conflict = v.get("conflict")
+    table = None if conflict is None else conflict.fillna("").astype(str)
+    worse = v["worse"]
+    return {"names": names, "base": v["base"], "reason": _plain(v["reason"]),
+            "summaries": [{"name": n, "summary": _plain(v["summaries"][n]),
+                           "passed": v["scores"][n][0], "total": v["scores"][n][1]}
+                          for n in names],
+            "rows": rows, "differences": [r for r in rows if r["differs"]],
+            "conflict": None if table is None else {"columns": list(table.columns),
+                                                    "rows": table.values.tolist()},
+            "conflict_text": "" if conflict is None else conflict_text(conflict),
+            "worse": [] if worse.empty else worse.fillna("").astype(str).to_dict("records"),
+            "errors": list(v["errors"])}
+
+
 def _parameters_text(params: dict) -> str:
     """A notebook's parameters as ``name = value`` pairs (its output folder left out)."""
     return ", ".join(f"{k} = {v!r}" for k, v in sorted((params or {}).items())
@@ -327,7 +377,8 @@ def _parameters_text(params: dict) -> str:
 
 def build_report(out, runs, claims: pd.DataFrame, worse: pd.DataFrame, *, figures_of,
                  checks: pd.DataFrame | None = None, version: str = "",
-                 title: str = "tefcore reproduction report", up: str = "") -> Report:
+                 title: str = "tefcore reproduction report", up: str = "",
+                 variants: dict | None = None) -> Report:
     """Collect a reproduction's outputs in ``out`` into a :class:`Report`.
 
     Parameters
@@ -352,6 +403,9 @@ def build_report(out, runs, claims: pd.DataFrame, worse: pd.DataFrame, *, figure
         The page title.
     up : str
         Link to the page the report belongs to (``""``: none).
+    variants : dict, optional
+        The other variant's claims beside these
+        (:func:`tefcore.paper.variant_runs.finish_variant_runs`).
 
     Returns
     -------
@@ -395,7 +449,7 @@ def build_report(out, runs, claims: pd.DataFrame, worse: pd.DataFrame, *, figure
         version=version,
         fanplot=_image(fan, out, "MDART blade (assumed properties): fan plot of the coupled "
                                  "modes") if fan.exists() else None,
-        departures=departures_text())
+        departures=departures_text(), variants=variants_view(variants))
 
 
 def template_environment(**filters) -> jinja2.Environment:

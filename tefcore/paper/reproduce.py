@@ -15,9 +15,15 @@ Output layout (``--out OUT``)::
                                       with notebook 01 (the baseline blade) only
     OUT/notebooks/<name>.ipynb, OUT/notebooks/<name>.html   executed notebooks
     OUT/<name>/                       each notebook's CSVs, PNGs (+ JSON captions), claims.csv
+    OUT/claims-variants.csv, OUT/variants/   the claims on the other packaged variant
+                                      (:mod:`tefcore.paper.variant_runs`)
+
+The notebooks run on their ``config`` parameter (default ``mdart``); the claims
+of the same figures are checked meanwhile on the other packaged variant
+(``mdart-fig6``, or ``mdart`` when the notebooks run on ``mdart-fig6``).
 
 The exit code is 0 when every notebook ran and no validation claim is worse
-than its recorded status, 1 otherwise; missing reference data is an error
+than its recorded status (on either variant), 1 otherwise; missing reference data is an error
 before anything runs (never "0 claims passed of 0").
 """
 
@@ -34,6 +40,7 @@ from pathlib import Path
 
 import pandas as pd
 
+from ..config.io import load_config
 from ..errors import OutputError, TefcoreError
 from ..safe_io import atomic_output, atomic_write_text, check_output_file, check_output_folder
 from .kernel_guard import stop_notebooks
@@ -52,6 +59,12 @@ from .reference_files import ReferenceDataError, reference_dir
 from .report import build_report, write_report
 from .run_params import merge_params
 from .validation import claims_score, worse_than_recorded
+from .variant_runs import (
+    base_variant,
+    finish_variant_runs,
+    start_variant_runs,
+    stop_variant_runs,
+)
 
 __all__ = ["BASELINE_NOTEBOOK", "KERNEL_NAME", "NotebookRun", "ReproductionError",
            "baseline_blade", "check_reference_data", "check_reproduce_folder", "check_tools",
@@ -459,7 +472,6 @@ def baseline_blade(out: Path, cfg=None) -> pd.DataFrame:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    from ..config.io import load_config
     from ..structure.blade import blade_modes, fan_plot
     from .calibration import frequency_checks
 
@@ -576,7 +588,8 @@ def check_reproduce_folder(out, names=NOTEBOOKS, nb_dir: Path | None = None) -> 
         raise OutputError(f"reproduce --out {out}: the executed notebooks would overwrite the "
                           f"source notebooks in {nb_dir}; choose another output folder "
                           "(default: output)")
-    files = [out / f for f in ("report.md", "report.html", "claims.csv", "mdart_modes.csv",
+    files = [out / f for f in ("report.md", "report.html", "claims.csv", "claims-variants.csv",
+                               "mdart_modes.csv",
                                "mdart_frequency_checks.csv", "mdart_fanplot.png")]
     files += [out / "notebooks" / f"{n}{ext}" for n in names for ext in (".ipynb", ".html")]
     tracked = _tracked_files(files + [out / n for n in names])
@@ -649,7 +662,8 @@ def prepare_params(params, names, nb_dir: Path | None = None) -> dict:
 
 
 def finish_report(out: Path, runs, names, checks: pd.DataFrame | None, *,
-                  title: str = "tefcore reproduction report", up: str = "") -> dict:
+                  title: str = "tefcore reproduction report", up: str = "",
+                  variant_runs=(), base=None) -> dict:
     """Collect the claims the notebooks wrote, write ``claims.csv`` and the report.
 
     Parameters
@@ -667,13 +681,18 @@ def finish_report(out: Path, runs, names, checks: pd.DataFrame | None, *,
     up : str
         Link (relative to ``out``) to a page the report belongs to (a
         batch's comparison); ``""`` for none.
+    variant_runs : sequence of tefcore.paper.variant_runs.VariantRun
+        The other variants' claims being checked (:func:`start_variant_runs`);
+        waited for here.
+    base : str or None
+        The notebooks' configuration (their ``config`` parameter).
 
     Returns
     -------
     dict
         ``claims`` (DataFrame), ``worse`` (claims worse than recorded),
         ``passed`` and ``total`` (validation claims), ``paths`` (report.md,
-        report.html).
+        report.html), ``variants`` (:func:`finish_variant_runs`, or None).
     """
     from .. import __version__
 
@@ -682,14 +701,47 @@ def finish_report(out: Path, runs, names, checks: pd.DataFrame | None, *,
         (claims if claims.empty else claims.drop(columns=["notebook"])).to_csv(f, index=False)
     worse = regressions(claims)
     passed, total = score(claims)
+    variants = finish_variant_runs(list(variant_runs), out, claims, base)
     report = build_report(out, runs, claims, worse, figures_of=NOTEBOOK_FIGURES,
-                          checks=checks, version=__version__, title=title, up=up)
+                          checks=checks, version=__version__, title=title, up=up,
+                          variants=variants)
     return {"claims": claims, "worse": worse, "passed": passed, "total": total,
-            "paths": write_report(report, out)}
+            "paths": write_report(report, out), "variants": variants}
+
+
+def _summary(runs, done, elapsed) -> bool:
+    """Print the run's summary; True when something is not clean (exit status 1)."""
+    claims, worse, passed, total = (done[k] for k in ("claims", "worse", "passed", "total"))
+    md, html_path = done["paths"]
+    for r in runs:
+        print(f"{r.name:38s} {r.status:7s} {r.seconds:6.1f} s  {r.error}")
+    print(f"claims: {passed} validation claims passed of {total} ({len(claims)} checked in "
+          f"all); worse than recorded: {len(worse)}")
+    v = done.get("variants")
+    if v:
+        print("on each variant: " + "; ".join(
+            f"{n} {a} of {b} validation claims" for n, (a, b) in v["scores"].items())
+            + f"; other variants worse than recorded: {len(v['worse'])}")
+    print(f"wrote {md} and {html_path} in {elapsed:.1f} s")
+    failed = [r.name for r in runs if r.status != "ok"]
+    if failed:
+        print(f"tefcore reproduce: notebook(s) failed: {', '.join(failed)}", file=sys.stderr)
+    if not worse.empty:
+        print("tefcore reproduce: claim(s) worse than recorded:\n"
+              + worse.to_string(index=False), file=sys.stderr)
+    bad_variants = bool(v and (v["errors"] or not v["worse"].empty))
+    if v and v["errors"]:
+        print("tefcore reproduce: " + "; ".join(v["errors"]), file=sys.stderr)
+    if v and not v["worse"].empty:
+        print("tefcore reproduce: claim(s) worse than recorded on another variant:\n"
+              + v["worse"][["variant", "id", "status", "recorded_status"]].to_string(index=False),
+              file=sys.stderr)
+    return bool(failed) or not worse.empty or bad_variants
 
 
 def reproduce(out, params=None, notebooks=None, progress: bool = True,
-              nb_dir: Path | None = None, jobs: int | None = None) -> int:
+              nb_dir: Path | None = None, jobs: int | None = None,
+              variants: bool = True) -> int:
     """Run the notebooks into ``out`` and write the report; return the exit code.
 
     Parameters
@@ -707,12 +759,16 @@ def reproduce(out, params=None, notebooks=None, progress: bool = True,
         The notebooks' folder.
     jobs : int, optional
         Notebooks executed at once (default: the cores).
+    variants : bool
+        Meanwhile check the same figures' claims on the other packaged variant
+        (:mod:`tefcore.paper.variant_runs`), when the notebooks all run on a
+        packaged variant (``config`` None, ``"mdart"`` or ``"mdart-fig6"``).
 
     Returns
     -------
     int
-        0, or 1 when a notebook failed, a claim is worse than recorded, or
-        no claim was checked.
+        0, or 1 when a notebook failed, a claim is worse than recorded (on
+        any variant), a variant's check failed, or no claim was checked.
 
     Raises
     ------
@@ -725,38 +781,33 @@ def reproduce(out, params=None, notebooks=None, progress: bool = True,
     check_tools()
     check_reference_data()
     merged = prepare_params(params, names, nb_dir)
+    same, base = base_variant(merged, names)
     out.mkdir(parents=True, exist_ok=True)
     start = time.perf_counter()
-    # the notebooks (their kernels starting and importing) run while this thread
-    # draws the blade baseline (pyplot: the main thread); the blade's files at the
-    # top belong to the baseline notebook: --only writes what the chosen notebooks make
-    stop = threading.Event()
-    with ThreadPoolExecutor(max_workers=1) as runner:
-        running = runner.submit(run_notebooks, out, merged, names, progress=progress,
-                                nb_dir=nb_dir, jobs=jobs, stop=stop)
-        try:
-            checks = baseline_blade(out) if BASELINE_NOTEBOOK in names else None
-            runs = running.result()
-        except BaseException:   # Ctrl-C: the runner would wait for every notebook
-            stop.set()                    # the slots take no further notebook, no kernel
-            stop_notebooks([running])     # the running ones' kernels stopped
-            raise
-    done = finish_report(out, runs, names, checks)
-    claims, worse, passed, total = (done[k] for k in ("claims", "worse", "passed", "total"))
-    md, html_path = done["paths"]
-    elapsed = time.perf_counter() - start
-    for r in runs:
-        print(f"{r.name:38s} {r.status:7s} {r.seconds:6.1f} s  {r.error}")
-    print(f"claims: {passed} validation claims passed of {total} ({len(claims)} checked in "
-          f"all); worse than recorded: {len(worse)}")
-    print(f"wrote {md} and {html_path} in {elapsed:.1f} s")
-    failed = [r.name for r in runs if r.status != "ok"]
-    if failed:
-        print(f"tefcore reproduce: notebook(s) failed: {', '.join(failed)}", file=sys.stderr)
-    if not worse.empty:
-        print("tefcore reproduce: claim(s) worse than recorded:\n"
-              + worse.to_string(index=False), file=sys.stderr)
-    if claims.empty and any(NOTEBOOK_FIGURES[n] for n in names):
+    # the blade's files at the top belong to the baseline notebook: --only writes
+    # what the chosen notebooks make; the other variant's claims run beside
+    figures = [f for n in names for f in NOTEBOOK_FIGURES[n]]
+    vruns = start_variant_runs(out, base, figures) if variants and same else []
+    try:
+        # the notebooks (their kernels starting and importing) run while this
+        # thread draws the blade baseline (pyplot: the main thread)
+        stop = threading.Event()
+        with ThreadPoolExecutor(max_workers=1) as runner:
+            running = runner.submit(run_notebooks, out, merged, names, progress=progress,
+                                    nb_dir=nb_dir, jobs=jobs, stop=stop)
+            try:
+                checks = (baseline_blade(out, None if base is None else load_config(base))
+                          if BASELINE_NOTEBOOK in names else None)
+                runs = running.result()
+            except BaseException:   # Ctrl-C: the runner would wait for every notebook
+                stop.set()                    # the slots take no further notebook, no kernel
+                stop_notebooks([running])     # the running ones' kernels stopped
+                raise
+        done = finish_report(out, runs, names, checks, variant_runs=vruns, base=base)
+    finally:
+        stop_variant_runs(vruns)
+    unclean = _summary(runs, done, time.perf_counter() - start)
+    if done["claims"].empty and any(NOTEBOOK_FIGURES[n] for n in names):
         print("tefcore reproduce: no claim was checked", file=sys.stderr)
         return 1
-    return 1 if failed or not worse.empty else 0
+    return 1 if unclean else 0

@@ -71,6 +71,10 @@ class RotorUnits:
     def inertia_per_length(self, value):
         return value / (self.mass_per_length * self.radius**2)
 
+    def inertia(self, value):
+        """A mass moment of inertia [kg m^2] in units of ``m0 R^3``."""
+        return value / (self.mass_per_length * self.radius**3)
+
     def spring(self, value):
         return value / self.energy
 

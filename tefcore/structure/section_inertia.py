@@ -445,7 +445,8 @@ def coupled_mass_matrix(model) -> np.ndarray:
 
     ``M_RR`` is the modal mass (the flap's share is in the sections);
     ``M_RF = M_FR^T = sum_s w_s [-S_f cos(theta) W + S_f sin(theta) V +
-    (I_h - S_f eta_h) Phi]`` over the flap stations and ``M_FF = I_h b_f``:
+    (I_h - S_f eta_h) Phi]`` over the flap stations and ``M_FF = I_h b_f + I_a``
+    (``I_a`` the actuator's reflected inertia, which moves with the flap only):
     the ``delta**`` terms of the flap reactions and the flap equation of
     :class:`tefcore.model.coupled.CoupledModel` at the pitch the modes were computed
     for (aerodynamic apparent mass excluded).
@@ -475,7 +476,7 @@ def coupled_mass_matrix(model) -> np.ndarray:
     out = np.zeros((n + 1, n + 1))
     out[:n, :n] = m_s
     out[:n, n] = out[n, :n] = coupling
-    out[n, n] = ih * wf.sum()
+    out[n, n] = ih * wf.sum() + f.get("reflected_inertia", 0.0)
     return out
 
 

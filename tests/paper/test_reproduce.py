@@ -42,8 +42,10 @@ def test_params_file_and_precedence(tmp_path, monkeypatch):
                  "04_cg_offset:\n  damping_measure: damping_ratio\n")
     seen = {}
 
-    def fake(out, params=None, notebooks=None, progress=True, nb_dir=None, jobs=None):
-        seen.update(out=out, params=params, notebooks=notebooks, progress=progress)
+    def fake(out, params=None, notebooks=None, progress=True, nb_dir=None, jobs=None,
+             variants=True):
+        seen.update(out=out, params=params, notebooks=notebooks, progress=progress,
+                    variants=variants)
         return 0
 
     monkeypatch.setattr(rp, "reproduce", fake)
@@ -57,6 +59,9 @@ def test_params_file_and_precedence(tmp_path, monkeypatch):
                                       "damping_measure": "damping_ratio"}
     assert merged["01_baseline_mdart_correlation"] == {"n_jobs": 2, "n_points": 8}
     assert seen["notebooks"] == ["03", "04"] and seen["progress"] is False
+    assert seen["variants"] is True                  # the other variant is checked too
+    main(["reproduce", "--out", str(tmp_path / "o"), "--no-variants", "--no-progress"])
+    assert seen["variants"] is False
 
 
 def test_bad_params_file_is_a_clear_error(tmp_path, capsys):
@@ -130,6 +135,7 @@ def _claim(status, recorded, tag="validation"):
 def test_exit_status(tmp_path, monkeypatch, status, recorded, run_status, code):
     pytest.importorskip("tefcore.paper.validation")
     monkeypatch.setattr(rp, "run_notebooks", _fake_runs([_claim(status, recorded)], run_status))
+    monkeypatch.setattr(rp, "start_variant_runs", lambda *a, **k: [])  # test_variants.py
     assert rp.reproduce(tmp_path, notebooks=["04"], progress=False) == code
     md = (tmp_path / "report.md").read_text()
     assert "fig9b-x" in md
@@ -147,7 +153,7 @@ def tiny_runs(tmp_path_factory):
     for k in range(2):
         out = tmp_path_factory.mktemp(f"run{k}")
         codes.append(rp.reproduce(out, params={"04_cg_offset": {"n_points": 4}},
-                                  notebooks=["04_cg_offset"], progress=False))
+                                  notebooks=["04_cg_offset"], progress=False, variants=False))
         outs.append(out)
     return outs, codes
 

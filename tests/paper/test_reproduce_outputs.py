@@ -37,6 +37,7 @@ def fake_notebooks(monkeypatch):
 
     monkeypatch.setattr(rp, "run_notebooks", fake_run)
     monkeypatch.setattr(rp, "baseline_blade", fake_blade)
+    monkeypatch.setattr(rp, "start_variant_runs", lambda *a, **k: [])
     return blade_calls
 
 

@@ -194,6 +194,68 @@ nt.savefig(fig, out, "tornado",
                    + nt.conditions(base) + ").");
 
 # %% [markdown]
+# ## 4. Modal truncation: what dropping modes hides
+#
+# The paper retains nine coupled blade modes of its own blade; tefcore retains
+# nine of the assumed one. *Which* modes a truncation keeps matters here: the
+# imbalanced flap's own frequency (10.9 /rev alone on a rigid blade in vacuum at
+# c_cg/c_f = 0.33, falling from 17.5 /rev at c_cg = 0) lies among blade flap 4,
+# flap 5 and torsion 2 (7.3-11.8 /rev). The first table keeps the lowest n modes
+# (`model.n_modes`), the second the six lowest plus one of those three at a time
+# (`tefcore.paper.modal_truncation`), at the paper's imbalanced flap
+# (c_cg/c_f = 0.33, c_b/c_f = 0.29) in hover.
+
+# %%
+from tefcore.paper import modal_truncation as mt
+
+trunc = mt.truncation_table(cfg)
+print("flutter root in hover versus the lowest modes retained:")
+print(trunc.to_string(index=False))
+adds = mt.mode_additions(cfg)
+print()
+print("the six lowest modes, and each mode between 7 and 12 /rev added alone:")
+print(adds.to_string(index=False))
+six, nine = (trunc.set_index("modes").loc[n, "real part /rev"] for n in (6, 9))
+alone = adds["real part /rev"].iloc[1:]
+print(f"\nsix modes: {six:+.2f} /rev; nine: {nine:+.2f} /rev; any one of "
+      f"{', '.join(mt.ADDED_MODES)} added to the six: {alone.min():+.2f} to {alone.max():+.2f} /rev")
+
+# %% [markdown]
+# **How to read the six-mode result.** On the default blade (`mdart`) six modes
+# -- the lowest, up to flap 3 at 4.8 /rev -- leave a weak hover instability
+# (+0.32 /rev), close to the paper's "weakly unstable". That is not a weaker
+# coupling: the truncation has removed the modes the imbalanced flap couples
+# with. Put any one of them back and the flutter is violent again (flap 4 alone
+# +2.40, flap 5 alone +1.84, torsion 2 alone +0.75 /rev); from nine modes on the
+# answer is converged (+3.04 with nine and ten, +3.08 with twelve). Dropping
+# modes hides the coupling; it does not explain the paper. What could explain it
+# is a blade whose modes sit elsewhere relative to its flap mode -- which the paper
+# does not state -- or a different flap system (section 5). With the flap
+# system's inertia fitted to Fig. 6 (`mdart`-`fig6`) the flap mode falls below
+# that band (to about 6 /rev, next to flap 4 at 7.3 /rev), and even six modes
+# give a strong instability.
+#
+# ## 5. The flap system's inertia and Fig. 6
+#
+# The paper's one number about the flap system's dynamics is Fig. 6: a response
+# 15 % above the actuator input. `mdart` gives 0.97 x with the flap's
+# construction inertia alone (the actuator's moving parts, `actuator.reflected_inertia`,
+# are not modelled). The packaged variant `mdart-fig6` fits them to Fig. 6
+# (docs/theory.md 4.1a; the plausible range and its sources are in
+# `tefcore/data/mdart-fig6.toml`); the third row reaches Fig. 6 instead with a
+# heavier flap (its own inertia x 3.5), whose added inertia turns with the flap.
+
+# %%
+import textwrap
+
+from tefcore.paper import fig6_calibration as f6
+
+conflict = f6.conflict_table()
+print(conflict.drop(columns=["reflected inertia [lb in^2]"]).to_string(index=False))
+print()
+print(textwrap.fill(f6.conflict_text(conflict), 100))
+
+# %% [markdown]
 # ## What the data can and cannot explain
 #
 # * **The flap fits in its section.** The first-draft flap (0.51 lb/ft, its polar
@@ -207,14 +269,23 @@ nt.savefig(fig, out, "tornado",
 #   coalescence of the flap mode (falling from 17.5 /rev as its CG moves aft) with
 #   blade torsion 2 and flap 5 at 10.8-11.8 /rev, which a plausible blade has
 #   somewhere in that band.
-# * **The retained modes decide it.** Keeping six modes (dropping flap 4, flap 5
-#   and torsion 2) gives the paper's picture: onset near c_cg/c_f = 0.25 and a
-#   weak hover instability that grows with forward speed; twelve modes agree with
-#   nine. The paper keeps nine modes of its own blade; which modes those are, and
-#   where the imbalanced flap's frequency lies relative to them, is exactly what
-#   it does not state. Quasi-steady aerodynamics (no lift deficiency C(k), see
-#   notebooks 03-07) are the other candidate: at the flutter frequency the
-#   reduced frequency at the flap is about 0.3.
+# * **Truncation hides the coupling; it does not explain the paper.** Keeping six
+#   modes (dropping flap 4, flap 5 and torsion 2) gives numbers like the paper's
+#   (onset near c_cg/c_f = 0.25, a weak hover instability that grows with forward
+#   speed), but only because the modes the flap couples with are gone: adding any
+#   one of them back gives violent flutter, and nine modes are converged (section
+#   4). The paper keeps nine modes of its own blade; where its imbalanced flap's
+#   frequency lies relative to them is exactly what it does not state.
+#   Quasi-steady aerodynamics (no lift deficiency C(k), see notebooks 03-07) are
+#   another candidate: at the flutter frequency the reduced frequency at the flap
+#   is about 0.3.
+# * **Fig. 6 asks for a heavier flap system.** Fitting the actuator's reflected
+#   inertia to Fig. 6 (`mdart-fig6`, four times its construction range) makes the
+#   imbalanced flutter less violent and more unstable with speed, as the paper
+#   says, and keeps the balanced flap of Fig. 8 stable at the Table 1 overhang;
+#   the same Fig. 6 reached by a heavier flap turns that balanced flap unstable
+#   (section 5). Where the flap system's inertia sits decides whether Fig. 6 and
+#   Fig. 8 can both hold.
 # * **The onsets move with the flap.** The Fig. 8 and Fig. 9 onsets depend most on
 #   the flap's own inertia and mass (they set its frequency and its inertial
 #   coupling), then on the lag-2 placement and the section CG; the root springs,
