@@ -273,7 +273,7 @@ def attribute(claims: pd.DataFrame, settings_of: dict | None = None, *, lever_li
             task_cpu += c1 + c2
             n_tasks = len(lvs) + len(pair_levers)
         rows += _finish(found, targets, why, missing)
-    table = pd.DataFrame(rows).reindex(columns=COLUMNS + EXTRA_COLUMNS).fillna("")
+    table = pd.DataFrame(rows).reindex(columns=COLUMNS + EXTRA_COLUMNS).astype(object).fillna("")
     return Attribution(table, time.process_time() - cpu + task_cpu,
                        time.perf_counter() - wall, n_tasks)
 
@@ -376,24 +376,27 @@ def summarise(table: pd.DataFrame, top: int = 5) -> dict:
     ----------
     table : pandas.DataFrame
         An attribution table (:data:`COLUMNS`, ``figure``, ``confirmed``,
-        ``conflicts``).
+        ``conflicts``, ``note``).
     top : int
         Levers listed in ``explains``.
 
     Returns
     -------
     dict
-        ``explains``: the levers that flip most failing claims within their
-        plausible range (confirmed), each ``{"assumption", "claims",
-        "conflicts"}``, most first; ``unexplained``: the claims no lever flips
-        within its range; ``figures``: figure -> one row per failing claim
-        (``claim``, ``plausible``: what flips it, ``beyond``: what flips it
-        only outside its range, ``conflicts``).
+        ``failing`` and ``explained``: the failing claims attributed and those
+        a plausible change flips; ``explains``: the levers that flip most of
+        them within their plausible range (confirmed on refined sweeps), each
+        ``{"assumption", "claims", "conflicts"}``, most first;
+        ``unexplained``: the claims no lever flips within its range;
+        ``figures``: figure -> one row per failing claim (``claim``,
+        ``plausible``: what flips it, ``beyond``: what flips it only outside
+        its range or unconfirmed, ``conflicts``); ``notes``: the levers'
+        notes (a stand-in, a missing assumption).
     """
-    t = table.fillna("")
-    flips = t[(t["flips_at"].astype(str) != "") & (t["assumption"] != "none")]
-    good = flips[flips["within_plausible"].astype(bool)
-                 & (flips.get("confirmed", True).astype(str) == "True")]
+    t = table.fillna("").astype({"flips_at": str})
+    flips = t[(t["flips_at"] != "") & (t["assumption"] != "none")]
+    good = flips[flips["within_plausible"].astype(str).isin(["True", "true"])
+                 & (flips["confirmed"].astype(str) == "True")]
     explains = [{"assumption": a, "claims": sorted(g["claim"]),
                  "conflicts": int((g["conflicts"].astype(str) != "").sum())}
                 for a, g in good.groupby("assumption", sort=False)]
@@ -401,15 +404,19 @@ def summarise(table: pd.DataFrame, top: int = 5) -> dict:
     unexplained = list(dict.fromkeys(t.loc[t["assumption"] == "none", "claim"]))
     figures: dict = {}
     for claim, g in t.groupby("claim", sort=False):
-        gf = flips[flips["claim"] == claim]
         ok = good[good["claim"] == claim]
+        rest = flips[(flips["claim"] == claim) & ~flips.index.isin(ok.index)]
         figures.setdefault(str(g["figure"].iloc[0]), []).append({
             "claim": claim,
             "plausible": "; ".join(f"{r.assumption} at {r.flips_at}" for r in ok.itertuples())
             or "none within plausible range",
-            "beyond": "; ".join(
-                f"{r.assumption} at {r.flips_at}" + ("" if str(r.confirmed) == "True"
-                                                     else " (not confirmed)")
-                for r in gf.itertuples() if r.Index not in ok.index),
+            "beyond": "; ".join(f"{r.assumption} at {r.flips_at}" + (
+                "" if str(r.confirmed) == "True" else " (not confirmed)")
+                for r in rest.itertuples()),
             "conflicts": "; ".join(c for c in ok["conflicts"].astype(str) if c)})
-    return {"explains": explains[:top], "unexplained": unexplained, "figures": figures}
+    notes = [n for n in dict.fromkeys(t.get("note", pd.Series(dtype=str)).astype(str))
+             if n.startswith("stand-in") or "cannot be tried" in n]
+    failing = t["claim"].nunique()
+    return {"failing": failing, "explained": failing - len(unexplained),
+            "explains": explains[:top], "unexplained": unexplained, "figures": figures,
+            "notes": [n.split("; ")[-1] if "cannot be tried" in n else n for n in notes]}

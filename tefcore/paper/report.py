@@ -160,6 +160,10 @@ class Section:
         it is shown with).
     tally : str
         The claims' statuses, e.g. ``"3 pass, 1 fail"``.
+    attribution : list of dict
+        Why the figure's failing claims fail: one row per claim of
+        :func:`tefcore.paper.attribution.summarise` (``claim``, ``plausible``,
+        ``beyond``, ``conflicts``); empty without an attribution.
     """
 
     key: str
@@ -173,6 +177,7 @@ class Section:
     shown_with: str = ""
     thumb: str = ""
     tally: str = ""
+    attribution: list = field(default_factory=list)
 
 
 @dataclass
@@ -223,6 +228,10 @@ class Report:
     up : str
         Link to the page this report belongs to (a batch's comparison,
         ``../index.html``); ``""`` for a report of its own.
+    why : dict or None
+        "Why we differ": :func:`tefcore.paper.attribution.summarise` of the
+        run's attribution (which few assumptions explain most failing claims,
+        which no plausible assumption explains); None without one.
     """
 
     title: str
@@ -241,6 +250,7 @@ class Report:
     fanplot: Image | None = None
     departures: str = ""
     up: str = ""
+    why: dict | None = None
 
 
 def _legend(meanings: dict, names) -> list[dict]:
@@ -327,7 +337,8 @@ def _parameters_text(params: dict) -> str:
 
 def build_report(out, runs, claims: pd.DataFrame, worse: pd.DataFrame, *, figures_of,
                  checks: pd.DataFrame | None = None, version: str = "",
-                 title: str = "tefcore reproduction report", up: str = "") -> Report:
+                 title: str = "tefcore reproduction report", up: str = "",
+                 attribution: pd.DataFrame | None = None) -> Report:
     """Collect a reproduction's outputs in ``out`` into a :class:`Report`.
 
     Parameters
@@ -352,6 +363,9 @@ def build_report(out, runs, claims: pd.DataFrame, worse: pd.DataFrame, *, figure
         The page title.
     up : str
         Link to the page the report belongs to (``""``: none).
+    attribution : DataFrame, optional
+        The run's attribution (:mod:`tefcore.paper.attribution`): "why we
+        differ" per figure and for the whole run.
 
     Returns
     -------
@@ -374,6 +388,13 @@ def build_report(out, runs, claims: pd.DataFrame, worse: pd.DataFrame, *, figure
         n = pd.Series([c["status"] for c in sec.claims], dtype=str).value_counts()
         sec.tally = ", ".join(f"{n[st]} {st}" for st in _STATUS_CLASS if st in n) \
             or "no claims checked"
+    why = None
+    if attribution is not None:
+        from .attribution import summarise
+
+        why = summarise(attribution)
+        for sec in sections:
+            sec.attribution = why["figures"].get(sec.key, [])
     fan = out / "mdart_fanplot.png"
     return Report(
         title=title, up=up,
@@ -395,7 +416,7 @@ def build_report(out, runs, claims: pd.DataFrame, worse: pd.DataFrame, *, figure
         version=version,
         fanplot=_image(fan, out, "MDART blade (assumed properties): fan plot of the coupled "
                                  "modes") if fan.exists() else None,
-        departures=departures_text())
+        departures=departures_text(), why=why)
 
 
 def template_environment(**filters) -> jinja2.Environment:

@@ -11,6 +11,9 @@ folder: the notebooks and the reference data ship with the package.
 Output layout (``--out OUT``)::
 
     OUT/report.md, OUT/report.html, OUT/claims.csv
+    OUT/attribution.csv               what would flip each failing validation claim
+                                      (tefcore.paper.attribution; skipped with
+                                      attribution=False, --no-attribution)
     OUT/mdart_modes.csv, OUT/mdart_frequency_checks.csv, OUT/mdart_fanplot.png
                                       with notebook 01 (the baseline blade) only
     OUT/notebooks/<name>.ipynb, OUT/notebooks/<name>.html   executed notebooks
@@ -50,8 +53,9 @@ from .report import build_report, write_report
 from .run_params import merge_params
 from .validation import claims_score, worse_than_recorded
 
-__all__ = ["BASELINE_NOTEBOOK", "KERNEL_NAME", "NotebookRun", "ReproductionError", "baseline_blade",
-           "check_reference_data", "check_reproduce_folder", "check_tools", "collect_claims",
+__all__ = ["BASELINE_NOTEBOOK", "KERNEL_NAME", "NotebookRun", "ReproductionError",
+           "attribute_claims", "baseline_blade", "check_reference_data",
+           "check_reproduce_folder", "check_tools", "collect_claims",
            "ensure_kernel", "execute_notebook", "finish_report", "prepare_params",
            "regressions", "reproduce", "run_notebooks", "score", "source_checkout"]
 
@@ -452,7 +456,8 @@ def check_reproduce_folder(out, names=NOTEBOOKS, nb_dir: Path | None = None) -> 
         raise OutputError(f"reproduce --out {out}: the executed notebooks would overwrite the "
                           f"source notebooks in {nb_dir}; choose another output folder "
                           "(default: output)")
-    files = [out / f for f in ("report.md", "report.html", "claims.csv", "mdart_modes.csv",
+    files = [out / f for f in ("report.md", "report.html", "claims.csv", "attribution.csv",
+                               "mdart_modes.csv",
                                "mdart_frequency_checks.csv", "mdart_fanplot.png")]
     files += [out / "notebooks" / f"{n}{ext}" for n in names for ext in (".ipynb", ".html")]
     tracked = _tracked_files(files + [out / n for n in names])
@@ -524,8 +529,36 @@ def prepare_params(params, names, nb_dir: Path | None = None) -> dict:
     return out
 
 
+def attribute_claims(out: Path, claims: pd.DataFrame, attribution: dict | None):
+    """The attribution of the run's failing claims, written to ``OUT/attribution.csv``.
+
+    The one hook of :mod:`tefcore.paper.attribution` in the reproduction: called
+    once the notebooks' claims are collected, before the report.
+
+    Parameters
+    ----------
+    out : pathlib.Path
+        The reproduction folder.
+    claims : pandas.DataFrame
+        The collected claims (:func:`collect_claims`).
+    attribution : dict or None
+        Keyword arguments of :func:`tefcore.paper.attribution.attribute_run`
+        (``params``: each notebook's parameters, ``n_jobs``, ...); None skips it.
+
+    Returns
+    -------
+    tefcore.paper.attribution.Attribution or None
+    """
+    if attribution is None:
+        return None
+    from .attribution import attribute_run
+
+    return attribute_run(out, claims, **attribution)
+
+
 def finish_report(out: Path, runs, names, checks: pd.DataFrame | None, *,
-                  title: str = "tefcore reproduction report", up: str = "") -> dict:
+                  title: str = "tefcore reproduction report", up: str = "",
+                  attribution: dict | None = None) -> dict:
     """Collect the claims the notebooks wrote, write ``claims.csv`` and the report.
 
     Parameters
@@ -543,29 +576,43 @@ def finish_report(out: Path, runs, names, checks: pd.DataFrame | None, *,
     up : str
         Link (relative to ``out``) to a page the report belongs to (a
         batch's comparison); ``""`` for none.
+    attribution : dict, optional
+        Attribute the failing claims (:func:`attribute_claims`) with these
+        arguments; None: no attribution.
 
     Returns
     -------
     dict
         ``claims`` (DataFrame), ``worse`` (claims worse than recorded),
         ``passed`` and ``total`` (validation claims), ``paths`` (report.md,
-        report.html).
+        report.html), ``attribution`` (its result or None).
     """
     from .. import __version__
 
     claims = collect_claims(out, names)
     with atomic_output(out / "claims.csv", newline="") as f:
         (claims if claims.empty else claims.drop(columns=["notebook"])).to_csv(f, index=False)
+    attributed = attribute_claims(out, claims, attribution)
     worse = regressions(claims)
     passed, total = score(claims)
     report = build_report(out, runs, claims, worse, figures_of=NOTEBOOK_FIGURES,
-                          checks=checks, version=__version__, title=title, up=up)
+                          checks=checks, version=__version__, title=title, up=up,
+                          attribution=None if attributed is None else attributed.table)
     return {"claims": claims, "worse": worse, "passed": passed, "total": total,
-            "paths": write_report(report, out)}
+            "paths": write_report(report, out), "attribution": attributed}
+
+
+def _attribution_args(attribution, params: dict, jobs) -> dict | None:
+    """:func:`attribute_claims`'s arguments from ``reproduce``'s, or None to skip it."""
+    if attribution is False or attribution is None:
+        return None
+    extra = attribution if isinstance(attribution, dict) else {}
+    return {"params": params, "n_jobs": max(1, jobs or os.cpu_count() or 1), **extra}
 
 
 def reproduce(out, params=None, notebooks=None, progress: bool = True,
-              nb_dir: Path | None = None, jobs: int | None = None) -> int:
+              nb_dir: Path | None = None, jobs: int | None = None,
+              attribution: bool | dict = True) -> int:
     """Run the notebooks into ``out`` and write the report; return the exit code.
 
     Parameters
@@ -582,7 +629,14 @@ def reproduce(out, params=None, notebooks=None, progress: bool = True,
     nb_dir : path, optional
         The notebooks' folder.
     jobs : int, optional
-        Notebooks executed at once (default: the cores).
+        Notebooks executed at once (default: the cores); also the attribution's
+        processes.
+    attribution : bool or dict
+        Attribute the failing validation claims after the notebooks
+        (:mod:`tefcore.paper.attribution`, ``OUT/attribution.csv``; its CPU
+        cost is printed): True, False, or a dict of further arguments of
+        :func:`tefcore.paper.attribution.attribute` (``lever_list``,
+        ``pairs``).
 
     Returns
     -------
@@ -607,7 +661,8 @@ def reproduce(out, params=None, notebooks=None, progress: bool = True,
     # what the chosen notebooks make
     checks = baseline_blade(out) if BASELINE_NOTEBOOK in names else None
     runs = run_notebooks(out, merged, names, progress=progress, nb_dir=nb_dir, jobs=jobs)
-    done = finish_report(out, runs, names, checks)
+    done = finish_report(out, runs, names, checks,
+                         attribution=_attribution_args(attribution, merged, jobs))
     claims, worse, passed, total = (done[k] for k in ("claims", "worse", "passed", "total"))
     md, html_path = done["paths"]
     elapsed = time.perf_counter() - start
@@ -615,6 +670,11 @@ def reproduce(out, params=None, notebooks=None, progress: bool = True,
         print(f"{r.name:38s} {r.status:7s} {r.seconds:6.1f} s  {r.error}")
     print(f"claims: {passed} validation claims passed of {total} ({len(claims)} checked in "
           f"all); worse than recorded: {len(worse)}")
+    if done["attribution"] is not None:
+        a = done["attribution"]
+        print(f"attribution: {a.table['claim'].nunique()} failing claim(s), {a.tasks} "
+              f"levers, {a.cpu_seconds:.0f} CPU s ({a.wall_seconds:.0f} s wall) -> "
+              f"{out / 'attribution.csv'}")
     print(f"wrote {md} and {html_path} in {elapsed:.1f} s")
     failed = [r.name for r in runs if r.status != "ok"]
     if failed:

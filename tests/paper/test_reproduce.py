@@ -42,8 +42,10 @@ def test_params_file_and_precedence(tmp_path, monkeypatch):
                  "04_cg_offset:\n  damping_measure: damping_ratio\n")
     seen = {}
 
-    def fake(out, params=None, notebooks=None, progress=True, nb_dir=None, jobs=None):
-        seen.update(out=out, params=params, notebooks=notebooks, progress=progress)
+    def fake(out, params=None, notebooks=None, progress=True, nb_dir=None, jobs=None,
+             attribution=True):
+        seen.update(out=out, params=params, notebooks=notebooks, progress=progress,
+                    attribution=attribution)
         return 0
 
     monkeypatch.setattr(rp, "reproduce", fake)
@@ -57,6 +59,7 @@ def test_params_file_and_precedence(tmp_path, monkeypatch):
                                       "damping_measure": "damping_ratio"}
     assert merged["01_baseline_mdart_correlation"] == {"n_jobs": 2, "n_points": 8}
     assert seen["notebooks"] == ["03", "04"] and seen["progress"] is False
+    assert seen["attribution"] is True        # on by default; --no-attribution skips it
 
 
 def test_bad_params_file_is_a_clear_error(tmp_path, capsys):
@@ -146,7 +149,8 @@ def tiny_runs(tmp_path_factory):
     for k in range(2):
         out = tmp_path_factory.mktemp(f"run{k}")
         codes.append(rp.reproduce(out, params={"04_cg_offset": {"n_points": 4}},
-                                  notebooks=["04_cg_offset"], progress=False))
+                                  notebooks=["04_cg_offset"], progress=False,
+                                  attribution=False))   # tests/paper/test_attribution.py
         outs.append(out)
     return outs, codes
 
