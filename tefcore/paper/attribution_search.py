@@ -26,6 +26,7 @@ from __future__ import annotations
 
 import math
 import time
+import warnings
 from collections.abc import Callable
 from dataclasses import dataclass, field
 
@@ -331,12 +332,14 @@ def lever_rows(lever, targets, settings_of: dict, folder) -> tuple[list[dict], f
     start = time.process_time()
     task = _Task(lever, settings_of, folder)
     rows = []
-    for tg in targets:
-        if lever is None:
-            status, value = task.check([tg.claim], tg.notebook, None)[tg.claim.id]
-            rows.append({"claim": tg.claim.id, "status": status,
-                         "side": band_side(tg.claim, status, value)})
-            continue
-        where, seen, n = _flip_of(task, tg)
-        rows.append(_row(task, tg, where, seen, n))
+    with warnings.catch_warnings():      # numerical doubts are the notebooks' to report
+        warnings.simplefilter("ignore")
+        for tg in targets:
+            if lever is None:
+                status, value = task.check([tg.claim], tg.notebook, None)[tg.claim.id]
+                rows.append({"claim": tg.claim.id, "status": status,
+                             "side": band_side(tg.claim, status, value)})
+                continue
+            where, seen, n = _flip_of(task, tg)
+            rows.append(_row(task, tg, where, seen, n))
     return rows, time.process_time() - start
