@@ -20,6 +20,10 @@ package itself exports nothing)::
     modal_truncation  the imbalanced flap's flutter versus the blade modes retained
     assumptions     each assumed MDART property and the plausible range it is varied over
     sensitivity     headline results with each assumption at its range's ends (tornado)
+    attribution     why we differ: what would flip each failing claim, within plausible ranges
+    attribution_levers  the assumptions and model options it moves, the Fig. 6 inertia hook
+    attribution_eval    a claim's own check on a moved configuration, on its deciding points
+    attribution_search  the bisection of a lever for one claim, confirmation, conflicts
     plotting        tracked modes, root loci, participation on the paper's axes; byte-stable PNGs
     captions        figure titles and captions written from the configuration run
     summaries       rounded, deterministic printed tables for cells nbval checks

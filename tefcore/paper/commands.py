@@ -19,6 +19,12 @@ the cores), check every claim of the paper they cover, and write
 OUT/report.html (self-contained, figures embedded), OUT/report.md and
 OUT/claims.csv; each executed notebook also as OUT/notebooks/NAME.html.
 
+Then it attributes every failing validation claim: each assumption and model
+option is moved within its plausible range to find what would flip the claim
+(OUT/attribution.csv, and "why we differ" in the report).  That is the
+expensive part -- about an hour of CPU for a full run, a few minutes for one
+notebook's claims; it prints its cost -- and --no-attribution skips it.
+
 Works from an installed wheel in any folder: the notebooks and the reference
 data ship with tefcore.  Exit status 1 when a notebook fails, a claim is worse
 than its recorded status, or no claim was checked.
@@ -35,6 +41,7 @@ examples:
   tefcore reproduce --out out
   tefcore reproduce --only 04 --out out -p n_jobs 2
   tefcore reproduce --out out-fig6 -p config mdart-fig6
+  tefcore reproduce --only 04 07 --out out --no-attribution
   tefcore reproduce -p overrides "{flight.advance_ratio: 0.2}" -p 03:n_points 8
 """
 
@@ -93,7 +100,8 @@ def cmd_reproduce(args) -> int:
         The parsed ``reproduce`` options: ``out`` (output folder),
         ``params`` (YAML parameter file or None), ``param`` (``-p NAME
         VALUE`` pairs), ``only`` (notebooks to run or None), ``jobs``
-        (notebooks executed at once), ``no_variants`` and ``no_progress``.
+        (notebooks executed at once), ``no_variants``, ``no_progress`` and
+        ``no_attribution``.
 
     Returns
     -------
@@ -109,7 +117,8 @@ def cmd_reproduce(args) -> int:
     layers.append(parse_cli_params([tuple(p) for p in args.param or ()]))
     return reproduce(Path(args.out), params=layers, notebooks=args.only,
                      progress=not args.no_progress, jobs=args.jobs,
-                     variants=not args.no_variants)
+                     variants=not args.no_variants,
+                     attribution=not args.no_attribution)
 
 
 def cmd_batch(args) -> int:
@@ -206,6 +215,9 @@ def add_commands(sub, formatter_class=argparse.RawDescriptionHelpFormatter) -> N
     p.add_argument("--no-variants", action="store_true",
                    help="do not check the claims on the other packaged variant")
     p.add_argument("--no-progress", "--quiet", action="store_true", help="no progress bar")
+    p.add_argument("--no-attribution", action="store_true",
+                   help="skip the attribution of the failing claims (OUT/attribution.csv): "
+                        "it costs about an hour of CPU on a full run")
     p.set_defaults(func=cmd_reproduce)
     p = sub.add_parser("batch", formatter_class=fmt, description=_BATCH,
                        help="run many parameter sets through the notebooks, compare them")

@@ -162,6 +162,10 @@ class Section:
         it is shown with).
     tally : str
         The claims' statuses, e.g. ``"3 pass, 1 fail"``.
+    attribution : list of dict
+        Why the figure's failing claims fail: one row per claim of
+        :func:`tefcore.paper.attribution.summarise` (``claim``, ``plausible``,
+        ``beyond``, ``conflicts``); empty without an attribution.
     """
 
     key: str
@@ -175,6 +179,7 @@ class Section:
     shown_with: str = ""
     thumb: str = ""
     tally: str = ""
+    attribution: list = field(default_factory=list)
 
 
 @dataclass
@@ -228,6 +233,10 @@ class Report:
     variants : dict or None
         The claims on both packaged variants (:func:`variants_view`), or None
         when the other variant was not checked.
+    why : dict or None
+        "Why we differ": :func:`tefcore.paper.attribution.summarise` of the
+        run's attribution (which few assumptions explain most failing claims,
+        which no plausible assumption explains); None without one.
     """
 
     title: str
@@ -247,6 +256,7 @@ class Report:
     departures: str = ""
     up: str = ""
     variants: dict | None = None
+    why: dict | None = None
 
 
 def _legend(meanings: dict, names) -> list[dict]:
@@ -378,7 +388,8 @@ def _parameters_text(params: dict) -> str:
 def build_report(out, runs, claims: pd.DataFrame, worse: pd.DataFrame, *, figures_of,
                  checks: pd.DataFrame | None = None, version: str = "",
                  title: str = "tefcore reproduction report", up: str = "",
-                 variants: dict | None = None) -> Report:
+                 variants: dict | None = None,
+                 attribution: pd.DataFrame | None = None) -> Report:
     """Collect a reproduction's outputs in ``out`` into a :class:`Report`.
 
     Parameters
@@ -406,6 +417,9 @@ def build_report(out, runs, claims: pd.DataFrame, worse: pd.DataFrame, *, figure
     variants : dict, optional
         The other variant's claims beside these
         (:func:`tefcore.paper.variant_runs.finish_variant_runs`).
+    attribution : DataFrame, optional
+        The run's attribution (:mod:`tefcore.paper.attribution`): "why we
+        differ" per figure and for the whole run.
 
     Returns
     -------
@@ -428,6 +442,13 @@ def build_report(out, runs, claims: pd.DataFrame, worse: pd.DataFrame, *, figure
         n = pd.Series([c["status"] for c in sec.claims], dtype=str).value_counts()
         sec.tally = ", ".join(f"{n[st]} {st}" for st in _STATUS_CLASS if st in n) \
             or "no claims checked"
+    why = None
+    if attribution is not None:
+        from .attribution import summarise
+
+        why = summarise(attribution)
+        for sec in sections:
+            sec.attribution = why["figures"].get(sec.key, [])
     fan = out / "mdart_fanplot.png"
     return Report(
         title=title, up=up,
@@ -449,7 +470,7 @@ def build_report(out, runs, claims: pd.DataFrame, worse: pd.DataFrame, *, figure
         version=version,
         fanplot=_image(fan, out, "MDART blade (assumed properties): fan plot of the coupled "
                                  "modes") if fan.exists() else None,
-        departures=departures_text(), variants=variants_view(variants))
+        departures=departures_text(), variants=variants_view(variants), why=why)
 
 
 def template_environment(**filters) -> jinja2.Environment:

@@ -11,6 +11,9 @@ folder: the notebooks and the reference data ship with the package.
 Output layout (``--out OUT``)::
 
     OUT/report.md, OUT/report.html, OUT/claims.csv
+    OUT/attribution.csv               what would flip each failing validation claim
+                                      (tefcore.paper.attribution; skipped with
+                                      attribution=False, --no-attribution)
     OUT/mdart_modes.csv, OUT/mdart_frequency_checks.csv, OUT/mdart_fanplot.png
                                       with notebook 01 (the baseline blade) only
     OUT/notebooks/<name>.ipynb, OUT/notebooks/<name>.html   executed notebooks
@@ -67,10 +70,10 @@ from .variant_runs import (
 )
 
 __all__ = ["BASELINE_NOTEBOOK", "KERNEL_NAME", "NotebookRun", "ReproductionError",
-           "baseline_blade", "check_reference_data", "check_reproduce_folder", "check_tools",
-           "collect_claims", "ensure_kernel", "execute_notebook", "export_html", "finish_report",
-           "prepare_params", "regressions", "reproduce", "run_notebooks", "score",
-           "source_checkout"]
+           "attribute_claims", "baseline_blade", "check_reference_data",
+           "check_reproduce_folder", "check_tools", "collect_claims", "ensure_kernel",
+           "execute_notebook", "export_html", "finish_report", "prepare_params",
+           "regressions", "reproduce", "run_notebooks", "score", "source_checkout"]
 
 KERNEL_NAME = "python3"
 #: The notebook whose run also writes the baseline blade's files at the top of the
@@ -589,6 +592,7 @@ def check_reproduce_folder(out, names=NOTEBOOKS, nb_dir: Path | None = None) -> 
                           f"source notebooks in {nb_dir}; choose another output folder "
                           "(default: output)")
     files = [out / f for f in ("report.md", "report.html", "claims.csv", "claims-variants.csv",
+                               "attribution.csv",
                                "mdart_modes.csv",
                                "mdart_frequency_checks.csv", "mdart_fanplot.png")]
     files += [out / "notebooks" / f"{n}{ext}" for n in names for ext in (".ipynb", ".html")]
@@ -661,9 +665,36 @@ def prepare_params(params, names, nb_dir: Path | None = None) -> dict:
     return out
 
 
+def attribute_claims(out: Path, claims: pd.DataFrame, attribution: dict | None):
+    """The attribution of the run's failing claims, written to ``OUT/attribution.csv``.
+
+    The one hook of :mod:`tefcore.paper.attribution` in the reproduction: called
+    once the notebooks' claims are collected, before the report.
+
+    Parameters
+    ----------
+    out : pathlib.Path
+        The reproduction folder.
+    claims : pandas.DataFrame
+        The collected claims (:func:`collect_claims`).
+    attribution : dict or None
+        Keyword arguments of :func:`tefcore.paper.attribution.attribute_run`
+        (``params``: each notebook's parameters, ``n_jobs``, ...); None skips it.
+
+    Returns
+    -------
+    tefcore.paper.attribution.Attribution or None
+    """
+    if attribution is None:
+        return None
+    from .attribution import attribute_run
+
+    return attribute_run(out, claims, **attribution)
+
+
 def finish_report(out: Path, runs, names, checks: pd.DataFrame | None, *,
                   title: str = "tefcore reproduction report", up: str = "",
-                  variant_runs=(), base=None) -> dict:
+                  variant_runs=(), base=None, attribution: dict | None = None) -> dict:
     """Collect the claims the notebooks wrote, write ``claims.csv`` and the report.
 
     Parameters
@@ -686,30 +717,45 @@ def finish_report(out: Path, runs, names, checks: pd.DataFrame | None, *,
         waited for here.
     base : str or None
         The notebooks' configuration (their ``config`` parameter).
+    attribution : dict, optional
+        Attribute the failing claims (:func:`attribute_claims`) with these
+        arguments; None: no attribution.
 
     Returns
     -------
     dict
         ``claims`` (DataFrame), ``worse`` (claims worse than recorded),
         ``passed`` and ``total`` (validation claims), ``paths`` (report.md,
-        report.html), ``variants`` (:func:`finish_variant_runs`, or None).
+        report.html), ``variants`` (:func:`finish_variant_runs`, or None),
+        ``attribution`` (its result or None).
     """
     from .. import __version__
 
     claims = collect_claims(out, names)
     with atomic_output(out / "claims.csv", newline="") as f:
         (claims if claims.empty else claims.drop(columns=["notebook"])).to_csv(f, index=False)
+    attributed = attribute_claims(out, claims, attribution)
     worse = regressions(claims)
     passed, total = score(claims)
     variants = finish_variant_runs(list(variant_runs), out, claims, base)
     report = build_report(out, runs, claims, worse, figures_of=NOTEBOOK_FIGURES,
                           checks=checks, version=__version__, title=title, up=up,
-                          variants=variants)
+                          variants=variants,
+                          attribution=None if attributed is None else attributed.table)
     return {"claims": claims, "worse": worse, "passed": passed, "total": total,
-            "paths": write_report(report, out), "variants": variants}
+            "paths": write_report(report, out), "variants": variants,
+            "attribution": attributed}
 
 
-def _summary(runs, done, elapsed) -> bool:
+def _attribution_args(attribution, params: dict, jobs) -> dict | None:
+    """:func:`attribute_claims`'s arguments from ``reproduce``'s, or None to skip it."""
+    if attribution is False or attribution is None:
+        return None
+    extra = attribution if isinstance(attribution, dict) else {}
+    return {"params": params, "n_jobs": max(1, jobs or os.cpu_count() or 1), **extra}
+
+
+def _summary(runs, done, elapsed, out) -> bool:
     """Print the run's summary; True when something is not clean (exit status 1)."""
     claims, worse, passed, total = (done[k] for k in ("claims", "worse", "passed", "total"))
     md, html_path = done["paths"]
@@ -722,6 +768,11 @@ def _summary(runs, done, elapsed) -> bool:
         print("on each variant: " + "; ".join(
             f"{n} {a} of {b} validation claims" for n, (a, b) in v["scores"].items())
             + f"; other variants worse than recorded: {len(v['worse'])}")
+    if done.get("attribution") is not None:
+        a = done["attribution"]
+        print(f"attribution: {a.table['claim'].nunique()} failing claim(s), {a.tasks} "
+              f"levers, {a.cpu_seconds:.0f} CPU s ({a.wall_seconds:.0f} s wall) -> "
+              f"{out / 'attribution.csv'}")
     print(f"wrote {md} and {html_path} in {elapsed:.1f} s")
     failed = [r.name for r in runs if r.status != "ok"]
     if failed:
@@ -741,7 +792,7 @@ def _summary(runs, done, elapsed) -> bool:
 
 def reproduce(out, params=None, notebooks=None, progress: bool = True,
               nb_dir: Path | None = None, jobs: int | None = None,
-              variants: bool = True) -> int:
+              variants: bool = True, attribution: bool | dict = True) -> int:
     """Run the notebooks into ``out`` and write the report; return the exit code.
 
     Parameters
@@ -758,11 +809,18 @@ def reproduce(out, params=None, notebooks=None, progress: bool = True,
     nb_dir : path, optional
         The notebooks' folder.
     jobs : int, optional
-        Notebooks executed at once (default: the cores).
+        Notebooks executed at once (default: the cores); also the attribution's
+        processes.
     variants : bool
         Meanwhile check the same figures' claims on the other packaged variant
         (:mod:`tefcore.paper.variant_runs`), when the notebooks all run on a
         packaged variant (``config`` None, ``"mdart"`` or ``"mdart-fig6"``).
+    attribution : bool or dict
+        Attribute the failing validation claims after the notebooks
+        (:mod:`tefcore.paper.attribution`, ``OUT/attribution.csv``; its CPU
+        cost is printed): True, False, or a dict of further arguments of
+        :func:`tefcore.paper.attribution.attribute` (``lever_list``,
+        ``pairs``).
 
     Returns
     -------
@@ -803,10 +861,11 @@ def reproduce(out, params=None, notebooks=None, progress: bool = True,
                 stop.set()                    # the slots take no further notebook, no kernel
                 stop_notebooks([running])     # the running ones' kernels stopped
                 raise
-        done = finish_report(out, runs, names, checks, variant_runs=vruns, base=base)
+        done = finish_report(out, runs, names, checks, variant_runs=vruns, base=base,
+                             attribution=_attribution_args(attribution, merged, jobs))
     finally:
         stop_variant_runs(vruns)
-    unclean = _summary(runs, done, time.perf_counter() - start)
+    unclean = _summary(runs, done, time.perf_counter() - start, out)
     if done["claims"].empty and any(NOTEBOOK_FIGURES[n] for n in names):
         print("tefcore reproduce: no claim was checked", file=sys.stderr)
         return 1

@@ -43,9 +43,9 @@ def test_params_file_and_precedence(tmp_path, monkeypatch):
     seen = {}
 
     def fake(out, params=None, notebooks=None, progress=True, nb_dir=None, jobs=None,
-             variants=True):
+             variants=True, attribution=True):
         seen.update(out=out, params=params, notebooks=notebooks, progress=progress,
-                    variants=variants)
+                    variants=variants, attribution=attribution)
         return 0
 
     monkeypatch.setattr(rp, "reproduce", fake)
@@ -60,8 +60,10 @@ def test_params_file_and_precedence(tmp_path, monkeypatch):
     assert merged["01_baseline_mdart_correlation"] == {"n_jobs": 2, "n_points": 8}
     assert seen["notebooks"] == ["03", "04"] and seen["progress"] is False
     assert seen["variants"] is True                  # the other variant is checked too
-    main(["reproduce", "--out", str(tmp_path / "o"), "--no-variants", "--no-progress"])
-    assert seen["variants"] is False
+    assert seen["attribution"] is True        # on by default; --no-attribution skips it
+    main(["reproduce", "--out", str(tmp_path / "o"), "--no-variants", "--no-attribution",
+          "--no-progress"])
+    assert seen["variants"] is False and seen["attribution"] is False
 
 
 def test_bad_params_file_is_a_clear_error(tmp_path, capsys):
@@ -153,7 +155,8 @@ def tiny_runs(tmp_path_factory):
     for k in range(2):
         out = tmp_path_factory.mktemp(f"run{k}")
         codes.append(rp.reproduce(out, params={"04_cg_offset": {"n_points": 4}},
-                                  notebooks=["04_cg_offset"], progress=False, variants=False))
+                                  notebooks=["04_cg_offset"], progress=False, variants=False,
+                                  attribution=False))   # tests/paper/test_attribution.py
         outs.append(out)
     return outs, codes
 
