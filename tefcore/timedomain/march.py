@@ -35,7 +35,8 @@ from dataclasses import dataclass, field
 import numpy as np
 import scipy.integrate
 
-__all__ = ["DEFAULT_RTOL", "GrowthFit", "Trajectory", "envelope", "fit_growth", "march"]
+__all__ = ["DEFAULT_RTOL", "RESOLVED_DECAY", "GrowthFit", "Trajectory", "envelope", "fit_growth",
+           "march"]
 
 #: Relative tolerance of the march: the exponents it checks are resolved to
 #: about 1e-3 /rev; 1e-10 keeps the integration error far below that.
@@ -46,6 +47,14 @@ DEFAULT_RTOL = 1e-10
 RELATIVE_ATOL = 1e-13
 
 TWO_PI = 2.0 * np.pi
+
+#: Largest decay of a marched root that is resolved, relative to its start, in
+#: forward flight: a root's periodic shape from the Floquet analysis is
+#: accurate to about 1e-6 (measured: the balanced flap's TEF mode, -3.6 /rev,
+#: levels off at 1e-6 of its start within a third of a revolution at mu = 0.3,
+#: where the other roots take over); below 1e-5 of the start the response is
+#: no longer the root's.  In hover the eigenvector is exact to round-off: 1e-12.
+RESOLVED_DECAY = {"periodic": 1e-5, "constant": 1e-12}
 
 
 @dataclass
@@ -224,7 +233,8 @@ class GrowthFit:
     scatter: float
 
 
-def fit_growth(psi, signal, *, first: int = 0, period: float = TWO_PI) -> GrowthFit:
+def fit_growth(psi, signal, *, first: int = 0, period: float = TWO_PI,
+               floor: float = 0.0) -> GrowthFit:
     """Least squares on ``ln`` of the per-revolution envelope: the growth rate.
 
     Parameters
@@ -239,6 +249,10 @@ def fit_growth(psi, signal, *, first: int = 0, period: float = TWO_PI) -> Growth
     period : float, optional
         Window [rad]: one revolution (whole revolutions, so the periodic
         coefficients' variation within a revolution averages out).
+    floor : float, optional
+        The fit ends before the first window whose envelope is below ``floor``
+        times the first window's: what is left there is the error of the
+        initial state, not the root (:data:`RESOLVED_DECAY`); 0: no limit.
 
     Returns
     -------
@@ -246,6 +260,10 @@ def fit_growth(psi, signal, *, first: int = 0, period: float = TWO_PI) -> Growth
     """
     index, values = envelope(psi, signal, period)
     keep = (index >= first) & (values > 0) & np.isfinite(values)
+    if floor > 0 and keep.any():
+        low = np.flatnonzero(keep & (values < floor * values[np.argmax(keep)]))
+        if low.size:
+            keep &= index < index[low[0]]
     k, logv = index[keep], np.log(values[keep])
     if k.size < 2:
         return GrowthFit(float("nan"), k, logv, np.array([]), float("nan"))
