@@ -196,44 +196,6 @@ def cmd_mechanism(args) -> int:
     return 0
 
 
-def cmd_simulate(args) -> int:
-    """``tefcore simulate``: march from a perturbation, fit the growth, compare with Floquet."""
-    import json
-
-    from .cli_text import wrap
-    from .timedomain.animation import check_writer, save_animation
-    from .timedomain.outputs import json_document, summary_lines
-    from .timedomain.simulate import simulate
-
-    cfg = _load(args)
-    if args.revs <= 0 or args.amplitude <= 0:
-        raise ValueError("--revs and --amplitude must be positive")
-    outputs = [(p, w) for p, w in ((args.csv, "--csv"), (args.json, "--json"),
-                                   (args.gif, "--gif"), (args.mp4, "--mp4")) if p]
-    for path, what in outputs:
-        check_output_file(path, what)
-    if args.mp4:
-        check_writer(args.mp4, "mp4")
-    res = simulate(cfg, args.mode, impulse=args.impulse, revs=args.revs,
-                   amplitude=args.amplitude, nonlinear=args.nonlinear,
-                   work=not args.no_work)
-    for line in summary_lines(res):
-        print(wrap(line, indent="    "))
-    if args.csv:
-        with atomic_output(args.csv, newline="", what="--csv") as f:
-            res.history.to_csv(f, index=False, float_format="%.10g")
-    if args.json:
-        with atomic_output(args.json, what="--json") as f:
-            json.dump(json_document(res.summary, res.work, res.floquet_work), f, indent=1)
-            f.write("\n")
-    for path, fmt in ((args.gif, "gif"), (args.mp4, "mp4")):
-        if path:
-            save_animation(res, path, fmt)
-    if outputs:
-        print(f"wrote {', '.join(p for p, _ in outputs)}")
-    return 0
-
-
 def _grid(cfg, field: str, start: str, stop: str, num: str, axis: str) -> list:
     """Evenly spaced SI values of ``field`` from ``start`` to ``stop``, ``num`` of them
     (the units rules of ``--range``, :func:`tefcore.config.text_input.sweep_values`);
@@ -521,7 +483,9 @@ def build_parser() -> argparse.ArgumentParser:
                         "(default: the flutter root when it is unstable, else TEF)")
     p.add_argument("--csv", default=None, help="write the decomposition to this CSV file")
     p.add_argument("--no-knockouts", action="store_true", help="skip the knockouts (faster)")
-    _simulate_parser(sub)
+    from .cli_watch import add_commands as add_watch_commands  # simulate, explore
+
+    add_watch_commands(sub, _add)
     p = _add(sub, "c81", "C81 airfoil decks: check decks, regenerate the example deck",
              "C81 airfoil decks (layout: docs/c81_format.md).", None, common=False)
     c81 = p.add_subparsers(dest="c81_command", required=True, metavar="C81COMMAND",
@@ -539,36 +503,6 @@ def build_parser() -> argparse.ArgumentParser:
 
     add_commands(sub, formatter_class=_HelpFormatter)
     return parser
-
-
-def _simulate_parser(sub) -> None:
-    """The ``simulate`` subcommand's options (docs/theory.md section 12)."""
-    p = _add(sub, "simulate", "march from a perturbation: growth against Floquet, animation",
-             "Integrate the linearised periodic equations (the system the Floquet analysis "
-             "uses) about the trim from a small perturbation -- the flutter root's periodic "
-             "shape when it is unstable, else the TEF mode's -- fit the growth rate of the "
-             "response (least squares on the log of its per-revolution envelope) and compare "
-             "it with the Floquet real part. Growth rates are per radian of azimuth, as the "
-             "real parts of 'tefcore stability'.", cmd_simulate,
-             epilog="example:\n  tefcore simulate -s flight.advance_ratio=0.3 -s "
-                    "flap.overhang=0.29 -s flap.cg_offset=0.33 --revs 6 --json s.json "
-                    "--gif s.gif")
-    p.add_argument("--mode", default=None,
-                   help="start from this root: 'TEF', 'flutter' or a root's name, e.g. "
-                        "'blade torsion 2' (default: the flutter root when unstable, else TEF)")
-    p.add_argument("--impulse", action="store_true",
-                   help="start from a flap impulse (an initial flap rate) instead of a shape")
-    p.add_argument("--revs", type=float, default=6, help="revolutions (default: 6)")
-    p.add_argument("--amplitude", type=float, default=1e-3,
-                   help="largest initial displacement, in chords (default: 0.001)")
-    p.add_argument("--nonlinear", action="store_true",
-                   help="also march the full nonlinear equations from the same perturbation")
-    p.add_argument("--no-work", action="store_true",
-                   help="skip the work of the named terms per revolution (faster)")
-    p.add_argument("--csv", default=None, help="time history: psi_rev, coordinates, physical")
-    p.add_argument("--json", default=None, help="summary: growths, mode, agreement, work")
-    p.add_argument("--gif", default=None, help="animation (GIF)")
-    p.add_argument("--mp4", default=None, help="animation (MP4; needs ffmpeg)")
 
 
 def main(argv: list[str] | None = None) -> int:

@@ -34,12 +34,33 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["FLAP_LIMIT_DEG", "flap_limit_event", "nonlinear_rhs"]
+__all__ = ["FLAP_LIMIT_DEG", "check_nonlinear", "flap_limit_event", "nonlinear_rhs"]
 
 #: The nonlinear march stops when the flap deflection (trim plus
 #: perturbation) reaches this [deg]: the flap at right angles to the blade, far
 #: beyond attached flow and the thin-airfoil model (the trim refuses 20 deg).
 FLAP_LIMIT_DEG = 90.0
+
+
+def check_nonlinear(cfg) -> None:
+    """Refuse, before anything is computed, a configuration the nonlinear march does not take.
+
+    Parameters
+    ----------
+    cfg : tefcore.config.configuration.Config
+        The configuration.
+
+    Raises
+    ------
+    ValueError
+        With aerodynamic states (shed wake, dynamic inflow): their nonlinear
+        equations are not marched.
+    """
+    if cfg.model.aero != "quasi_steady" or cfg.model.inflow == "dynamic":
+        raise ValueError("the nonlinear march takes quasi-steady airloads and momentum inflow "
+                         f"(here model.aero = {cfg.model.aero!r}, model.inflow = "
+                         f"{cfg.model.inflow!r}); march the linearised equations instead "
+                         "(without --nonlinear)")
 
 
 def nonlinear_rhs(tr):
@@ -62,10 +83,7 @@ def nonlinear_rhs(tr):
         equations are not marched.
     """
     model = tr.model
-    if model.n_wake or model.n_inflow:
-        raise ValueError("the nonlinear march takes quasi-steady airloads and momentum inflow "
-                         "(model.aero = 'quasi_steady', model.inflow not 'dynamic'); march the "
-                         "linearised equations instead (without --nonlinear)")
+    check_nonlinear(model.cfg)
     n = model.n_dof
     unit = np.zeros((n, n + 2))
     unit[:, 1:n + 1] = np.eye(n)

@@ -36,7 +36,7 @@ import pandas as pd
 
 from ..modes.roles import flutter_root
 from .march import DEFAULT_RTOL, RESOLVED_DECAY, GrowthFit, Trajectory, fit_growth, march
-from .nonlinear import flap_limit_event, nonlinear_rhs
+from .nonlinear import check_nonlinear, flap_limit_event, nonlinear_rhs
 
 __all__ = ["COMPONENTS", "FIT_SAMPLES", "REL_TOLERANCE", "ABS_TOLERANCE", "SimulationResult",
            "physical_map", "simulate"]
@@ -273,11 +273,13 @@ def simulate(cfg, mode: str | None = None, *, impulse: bool = False, revs: float
     """
     from ..linear.stability import stability
 
+    if nonlinear:
+        check_nonlinear(cfg)                      # before anything is computed
+    if revs <= 0 or amplitude <= 0:
+        raise ValueError(f"revs and amplitude must be positive, got {revs} and {amplitude}")
     res = stability_result or stability(cfg)
     model = res.trim_result.model
     table = res.modes
-    if nonlinear:
-        nonlinear_rhs(res.trim_result)           # refuses aerodynamic states before the march
     row, start = ((None, "flap impulse") if impulse
                   else _choose_root(table, mode, model.has_flap))
     ref_row, sigma, freq = _reference(table, row, impulse)
