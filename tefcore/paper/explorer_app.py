@@ -46,6 +46,8 @@ __all__ = ["ANIMATION_REVS", "FIGURE_DPI", "MissingExtra", "PageState", "check_v
 ANIMATION_REVS = 2
 #: Resolution of the page's figures (they scale with the page).
 FIGURE_DPI = 90
+#: JupyterLab extensions the page does not load (editors' extensions, not a page's).
+VOILA_DENIED = ("jupyterlab-jupytext",)
 #: Terms shown in the mechanism bars.
 BAR_TERMS = 7
 
@@ -105,7 +107,7 @@ def mechanism_figure(contributions: dict, total: float | None, label: str):
     """
     from matplotlib.figure import Figure
 
-    fig = Figure(figsize=(6.2, 3.6), layout="constrained")
+    fig = Figure(figsize=(11.5, 4.0), layout="constrained")
     ax = fig.subplots()
     if not contributions:
         ax.text(0.5, 0.5, "\n".join(textwrap.wrap(label, 50)), ha="center", va="center",
@@ -114,13 +116,13 @@ def mechanism_figure(contributions: dict, total: float | None, label: str):
         return fig
     names, values = mechanism_bars(contributions)
     colors = ["C3" if v > 0 else "C0" for v in values]
-    ax.barh([textwrap.fill(n, 30) for n in names][::-1], values[::-1], color=colors[::-1])
+    ax.barh([textwrap.fill(n, 34) for n in names][::-1], values[::-1], color=colors[::-1])
     ax.axvline(0, color="k", lw=0.8)
-    ax.tick_params(axis="y", labelsize="x-small")
+    ax.tick_params(axis="y", labelsize="medium")
     ax.set_xlabel("work / (2 × energy) [/rev]   (> 0 destabilising)")
     ax.set_title(f"mechanism of the {label}" + (f": real part {total:+.3f} /rev"
                                                  if total is not None else ""),
-                 fontsize="small")
+                 fontsize="medium")
     return fig
 
 
@@ -200,7 +202,7 @@ def notebook_json(config: str = "mdart", overrides: list[str] | None = None) -> 
         The notebook (nbformat 4, JSON).
     """
     source = ("from tefcore.paper.explorer_app import page\n"
-              f"page(config={config!r}, overrides={list(overrides or [])!r})")
+              f"_page = page(config={config!r}, overrides={list(overrides or [])!r})")
     nb = {"cells": [{"cell_type": "code", "execution_count": None, "id": "explorer",
                      "metadata": {}, "outputs": [], "source": source}],
           "metadata": {"kernelspec": {"display_name": "Python 3", "language": "python",
@@ -212,11 +214,19 @@ def notebook_json(config: str = "mdart", overrides: list[str] | None = None) -> 
 
 def _sliders(widgets):
     """The four sliders of the explorer, released-value updates only."""
-    return {k: widgets.FloatSlider(value=default, min=lo, max=hi, step=step, description=label,
+    return {k: widgets.FloatSlider(value=default, min=lo, max=hi, step=step,
                                    continuous_update=False, readout_format=".2f",
-                                   style={"description_width": "11em"},
                                    layout=widgets.Layout(width="100%", max_width="460px"))
-            for k, (label, lo, hi, step, default) in SLIDERS.items()}
+            for k, (_, lo, hi, step, default) in SLIDERS.items()}
+
+
+_HELP = """<p style="font-size: small; line-height: 1.35">Release a slider to recompute the
+point (a few seconds). <b>Root map</b>: every Floquet root, coloured by how much the flap takes
+part; the red circle is the TEF root, the cross the flutter root (the least stable
+flap-induced root); grey dots are the previous states. <b>Mechanism</b>: the work of each
+named term on the flutter root over twice its energy; the bars add up to its real part
+(red destabilises). <b>Animate</b>: the flutter root marched for two revolutions
+(motion normalised; growth slowed and stated).</p>"""
 
 
 def _title(values: dict) -> str:
@@ -227,7 +237,7 @@ def _title(values: dict) -> str:
 def _root_png(state: PageState, trail, title: str) -> bytes:
     from matplotlib.figure import Figure
 
-    fig = Figure(figsize=(9.5, 4.2), layout="constrained")
+    fig = Figure(figsize=(11.5, 4.6), layout="constrained")
     return figure_png(draw_root_map(fig, state.roots, trail, title))
 
 
@@ -265,10 +275,13 @@ def page(config: str = "mdart", overrides: list[str] | None = None, *, display: 
     status = widgets.HTML(value="", layout=widgets.Layout(min_height="1.6em"))
     image = {k: widgets.Image(format="png", layout=widgets.Layout(width="100%", height="auto"))
              for k in ("roots", "mechanism")}
-    animate = widgets.Button(description="animate the flutter root", icon="play",
+    # no icon: ipywidgets would fetch Font Awesome from a CDN, which an offline
+    # lecture hall does not reach (a console error, found by tools/check_explorer.py)
+    animate = widgets.Button(description="▶ animate the flutter root",
                              layout=widgets.Layout(width="auto"))
-    animation = widgets.Image(format="gif", layout=widgets.Layout(width="100%", height="auto",
-                                                                  max_width="900px"))
+    # hidden until it has a frame: an empty image shows as a broken one
+    animation = widgets.Image(format="gif", layout=widgets.Layout(
+        width="100%", height="auto", max_width="900px", display="none"))
     trail: list[RootMap] = []
     current: dict = {}
 
@@ -295,6 +308,7 @@ def page(config: str = "mdart", overrides: list[str] | None = None, *, display: 
         sim = simulate(state.stability.trim_result.model.cfg, "flutter", revs=ANIMATION_REVS,
                        stability_result=state.stability)
         animation.value = gif_bytes(sim, frames_per_rev=10, dpi=64, figsize=(10.0, 6.4))
+        animation.layout.display = "block"
         s = sim.summary
         status.value = (f"{s['mode']}: growth {s['growth_time_domain_per_rev']:+.3f} /rev "
                         f"marched, {s['growth_floquet_per_rev']:+.3f} /rev Floquet")
@@ -304,9 +318,12 @@ def page(config: str = "mdart", overrides: list[str] | None = None, *, display: 
     animate.on_click(run_animation)
     wrap = widgets.Layout(display="flex", flex_flow="row wrap", align_items="flex-start",
                           width="100%")
+    labelled = [widgets.VBox([widgets.Label(SLIDERS[k][0]), s],
+                             layout=widgets.Layout(margin="0 0 6px 0"))
+                for k, s in sliders.items()]
     controls = widgets.VBox([widgets.HTML("<h3>tefcore explorer: a rotor blade with a "
-                                          "trailing-edge flap</h3>"), *sliders.values(),
-                             animate, status],
+                                          "trailing-edge flap</h3>"), *labelled,
+                             animate, status, widgets.HTML(_HELP)],
                             layout=widgets.Layout(flex="1 1 360px", max_width="480px"))
     figures = widgets.VBox([image["roots"], image["mechanism"]],
                            layout=widgets.Layout(flex="3 1 520px", min_width="0"))
@@ -392,8 +409,11 @@ def serve(config: str = "mdart", overrides: list[str] | None = None, *, port: in
         path = os.path.join(tmp, "tefcore_explorer.ipynb")
         with open(path, "w", encoding="utf-8") as f:
             f.write(notebook_json(config, overrides))
+        # JupyterLab extensions that are not for a page (jupytext's, when installed)
+        # fail to load in voila's page and print console errors
         cmd = [sys.executable, "-m", "voila", path, f"--port={port}", "--Voila.ip=127.0.0.1",
-               "--theme=light", "--show_tracebacks=False"]
+               "--theme=light", "--show_tracebacks=False",
+               f"--VoilaConfiguration.extension_denylist={list(VOILA_DENIED)!r}"]
         if not open_browser:
             cmd.append("--no-browser")
         print(f"serving the tefcore explorer at http://127.0.0.1:{port}/ (Ctrl-C stops it)",

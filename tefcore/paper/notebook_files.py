@@ -38,6 +38,7 @@ NOTEBOOKS = (
     "08_assumptions",
     "09_design_maps",
     "10_unsteady",
+    "11_watch_it_flutter",
 )
 #: Which paper figures each notebook reproduces.
 NOTEBOOK_FIGURES = {
@@ -51,6 +52,7 @@ NOTEBOOK_FIGURES = {
     "08_assumptions": (),               # no figure: the sensitivity of the headline results
     "09_design_maps": (),               # beyond the paper: two-parameter stability maps
     "10_unsteady": (),                  # beyond the paper: shed wake and dynamic inflow
+    "11_watch_it_flutter": (),          # beyond the paper: the Floquet growth in the time domain
 }
 
 
