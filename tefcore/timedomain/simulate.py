@@ -306,10 +306,14 @@ def _summary(cfg, table, row, ref_row, start, sigma, freq, fit, dominant, amplit
     tol = REL_TOLERANCE * abs(sigma) + ABS_TOLERANCE
     name = "flap impulse" if impulse else str(table.at[row, "label"])
     resolved = bool(np.isfinite(fit.rate))
-    note = "" if resolved else (
-        "no growth fitted: fewer than two whole revolutions were marched, or the response "
-        "decayed below the resolved fraction of its start (the accuracy of the root's shape) "
-        "within the first revolution: a root this damped is gone in one revolution")
+    if resolved:
+        note = ""
+    elif revs < 2:
+        note = "no growth fitted: the fit needs two whole revolutions (--revs 2 or more)"
+    else:
+        note = ("no growth fitted: the response decayed below the resolved fraction of its "
+                "start (the accuracy of the root's shape) within the first revolution: a root "
+                "this damped is gone in one revolution")
     return {
         "configuration": cfg.name, "mode": name, "start": start,
         "compared_with": str(table.at[ref_row, "label"]),
