@@ -241,6 +241,50 @@ def _root_png(state: PageState, trail, title: str) -> bytes:
     return figure_png(draw_root_map(fig, state.roots, trail, title))
 
 
+def _controls(widgets):
+    """The page's widgets by name: sliders, figures, button, animation, status."""
+    w = {"sliders": _sliders(widgets),
+         "status": widgets.HTML(value="", layout=widgets.Layout(min_height="1.6em")),
+         # no icon: ipywidgets would fetch Font Awesome from a CDN, which an offline
+         # lecture hall does not reach (a console error, found by tools/check_explorer.py)
+         "animate": widgets.Button(description="▶ animate the flutter root",
+                                   layout=widgets.Layout(width="auto")),
+         # hidden until it has a frame: an empty image shows as a broken one
+         "animation": widgets.Image(format="gif", layout=widgets.Layout(
+             width="100%", height="auto", max_width="900px", display="none"))}
+    for k in ("roots", "mechanism"):
+        w[k] = widgets.Image(format="png", layout=widgets.Layout(width="100%", height="auto"))
+    return w
+
+
+def _layout(widgets, w):
+    """Controls beside the figures, wrapping below each other on a narrow page."""
+    labelled = [widgets.VBox([widgets.Label(SLIDERS[k][0]), s],
+                             layout=widgets.Layout(margin="0 0 6px 0"))
+                for k, s in w["sliders"].items()]
+    controls = widgets.VBox([widgets.HTML("<h3>tefcore explorer: a rotor blade with a "
+                                          "trailing-edge flap</h3>"), *labelled,
+                             w["animate"], w["status"], widgets.HTML(_HELP)],
+                            layout=widgets.Layout(flex="1 1 360px", max_width="480px"))
+    figures = widgets.VBox([w["roots"], w["mechanism"]],
+                           layout=widgets.Layout(flex="3 1 520px", min_width="0"))
+    wrap = widgets.Layout(display="flex", flex_flow="row wrap", align_items="flex-start",
+                          width="100%")
+    return widgets.VBox([widgets.Box([controls, figures], layout=wrap), w["animation"]],
+                        layout=widgets.Layout(width="100%"))
+
+
+def _page_base(config, overrides):
+    from ..config.io import load_config
+    from ..config.text_input import parse_overrides
+    from .figure_runs import base_config
+
+    if config == "mdart" and not overrides:
+        return base_config()
+    base = load_config(config)
+    return base.with_overrides(parse_overrides(overrides)) if overrides else base
+
+
 def page(config: str = "mdart", overrides: list[str] | None = None, *, display: bool = True):
     """Build the page (and display it): sliders, root map, mechanism bars, animation button.
 
@@ -258,43 +302,25 @@ def page(config: str = "mdart", overrides: list[str] | None = None, *, display: 
     ipywidgets.VBox
         The page; ``.children`` hold the controls and the figures, and
         ``page.tefcore`` the widgets by name (``sliders``, ``roots``,
-        ``mechanism``, ``animate``, ``animation``, ``status``, ``redraw``).
+        ``mechanism``, ``animate``, ``animation``, ``status``) and the
+        callbacks ``redraw`` and ``run_animation``.
     """
     import ipywidgets as widgets
 
-    from ..config.io import load_config
-    from ..config.text_input import parse_overrides
-    from .figure_runs import base_config
-
-    base = base_config()
-    if config != "mdart" or overrides:
-        base = load_config(config)
-        if overrides:
-            base = base.with_overrides(parse_overrides(overrides))
-    sliders = _sliders(widgets)
-    status = widgets.HTML(value="", layout=widgets.Layout(min_height="1.6em"))
-    image = {k: widgets.Image(format="png", layout=widgets.Layout(width="100%", height="auto"))
-             for k in ("roots", "mechanism")}
-    # no icon: ipywidgets would fetch Font Awesome from a CDN, which an offline
-    # lecture hall does not reach (a console error, found by tools/check_explorer.py)
-    animate = widgets.Button(description="▶ animate the flutter root",
-                             layout=widgets.Layout(width="auto"))
-    # hidden until it has a frame: an empty image shows as a broken one
-    animation = widgets.Image(format="gif", layout=widgets.Layout(
-        width="100%", height="auto", max_width="900px", display="none"))
-    trail: list[RootMap] = []
-    current: dict = {}
+    base = _page_base(config, overrides)
+    w = _controls(widgets)
+    status, trail, current = w["status"], [], {}
 
     def redraw(_change=None):
-        now = {k: s.value for k, s in sliders.items()}
+        now = {k: s.value for k, s in w["sliders"].items()}
         status.value = "<i>computing the roots and the flutter root's mechanism …</i>"
         state = page_state(base, **now)
-        image["roots"].value = _root_png(state, trail[-12:], _title(now))
-        image["mechanism"].value = figure_png(mechanism_figure(state.contributions, state.total,
-                                                               state.label))
+        w["roots"].value = _root_png(state, trail[-12:], _title(now))
+        w["mechanism"].value = figure_png(mechanism_figure(state.contributions, state.total,
+                                                           state.label))
         trail.append(state.roots)
         current.update(state=state, values=now)
-        animate.disabled = state.stability is None or state.roots.flutter is None
+        w["animate"].disabled = state.stability is None or state.roots.flutter is None
         status.value = "" if state.roots.error == "" else f"<b>{state.roots.error}</b>"
 
     def run_animation(_button=None):
@@ -307,31 +333,17 @@ def page(config: str = "mdart", overrides: list[str] | None = None, *, display: 
         status.value = "<i>marching the flutter root for two revolutions …</i>"
         sim = simulate(state.stability.trim_result.model.cfg, "flutter", revs=ANIMATION_REVS,
                        stability_result=state.stability)
-        animation.value = gif_bytes(sim, frames_per_rev=10, dpi=64, figsize=(10.0, 6.4))
-        animation.layout.display = "block"
+        w["animation"].value = gif_bytes(sim, frames_per_rev=10, dpi=64, figsize=(10.0, 6.4))
+        w["animation"].layout.display = "block"
         s = sim.summary
         status.value = (f"{s['mode']}: growth {s['growth_time_domain_per_rev']:+.3f} /rev "
                         f"marched, {s['growth_floquet_per_rev']:+.3f} /rev Floquet")
 
-    for s in sliders.values():
+    for s in w["sliders"].values():
         s.observe(redraw, names="value")
-    animate.on_click(run_animation)
-    wrap = widgets.Layout(display="flex", flex_flow="row wrap", align_items="flex-start",
-                          width="100%")
-    labelled = [widgets.VBox([widgets.Label(SLIDERS[k][0]), s],
-                             layout=widgets.Layout(margin="0 0 6px 0"))
-                for k, s in sliders.items()]
-    controls = widgets.VBox([widgets.HTML("<h3>tefcore explorer: a rotor blade with a "
-                                          "trailing-edge flap</h3>"), *labelled,
-                             animate, status, widgets.HTML(_HELP)],
-                            layout=widgets.Layout(flex="1 1 360px", max_width="480px"))
-    figures = widgets.VBox([image["roots"], image["mechanism"]],
-                           layout=widgets.Layout(flex="3 1 520px", min_width="0"))
-    box = widgets.VBox([widgets.Box([controls, figures], layout=wrap), animation],
-                       layout=widgets.Layout(width="100%"))
-    box.tefcore = {"sliders": sliders, "roots": image["roots"], "animation": animation,
-                   "mechanism": image["mechanism"], "animate": animate, "status": status,
-                   "redraw": redraw, "run_animation": run_animation}
+    w["animate"].on_click(run_animation)
+    box = _layout(widgets, w)
+    box.tefcore = {**w, "redraw": redraw, "run_animation": run_animation}
     redraw()
     if display:
         from IPython.display import display as show

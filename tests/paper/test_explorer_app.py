@@ -76,6 +76,13 @@ def test_moving_a_slider_redraws(built_page):
     w["sliders"]["cg_offset"].value = SLIDERS["cg_offset"][4]
 
 
+def test_animation_on_request(built_page):
+    w = built_page.tefcore
+    w["run_animation"]()
+    assert w["animation"].value[:6] == b"GIF89a" and w["animation"].layout.display == "block"
+    assert "marched" in w["status"].value and "Floquet" in w["status"].value
+
+
 def test_page_state_of_a_refused_point_says_why():
     state = app.page_state(cg_offset=0.33, overhang=0.95, actuator_scale=1.0,
                            advance_ratio=0.3)
