@@ -251,7 +251,7 @@ def _controls(widgets):
                                    layout=widgets.Layout(width="auto")),
          # hidden until it has a frame: an empty image shows as a broken one
          "animation": widgets.Image(format="gif", layout=widgets.Layout(
-             width="100%", height="auto", max_width="900px", display="none"))}
+             width="100%", height="auto", max_width="800px", display="none"))}
     for k in ("roots", "mechanism"):
         w[k] = widgets.Image(format="png", layout=widgets.Layout(width="100%", height="auto"))
     return w
@@ -333,7 +333,7 @@ def page(config: str = "mdart", overrides: list[str] | None = None, *, display: 
         status.value = "<i>marching the flutter root for two revolutions …</i>"
         sim = simulate(state.stability.trim_result.model.cfg, "flutter", revs=ANIMATION_REVS,
                        stability_result=state.stability)
-        w["animation"].value = gif_bytes(sim, frames_per_rev=10, dpi=64, figsize=(10.0, 6.4))
+        w["animation"].value = gif_bytes(sim, frames_per_rev=10, dpi=80, figsize=(10.0, 6.4))
         w["animation"].layout.display = "block"
         s = sim.summary
         status.value = (f"{s['mode']}: growth {s['growth_time_domain_per_rev']:+.3f} /rev "
