@@ -46,8 +46,8 @@ def cmd_simulate(args) -> int:
     from .timedomain.simulate import simulate
 
     cfg = _load(args)
-    if args.revs <= 0 or args.amplitude <= 0:
-        raise ValueError("--revs and --amplitude must be positive")
+    if args.revs <= 0 or args.amplitude <= 0 or args.anim_revs <= 0:
+        raise ValueError("--revs, --amplitude and --anim-revs must be positive")
     if args.nonlinear:
         from .timedomain.nonlinear import check_nonlinear
 
@@ -72,7 +72,7 @@ def cmd_simulate(args) -> int:
             f.write("\n")
     for path, fmt in ((args.gif, "gif"), (args.mp4, "mp4")):
         if path:
-            save_animation(res, path, fmt)
+            save_animation(res, path, fmt, revs=args.anim_revs)
     if outputs:
         print(f"wrote {', '.join(p for p, _ in outputs)}")
     return 0
@@ -106,6 +106,9 @@ def _simulate_parser(sub, add) -> None:
     p.add_argument("--json", default=None, help="summary: growths, mode, agreement, work")
     p.add_argument("--gif", default=None, help="animation (GIF)")
     p.add_argument("--mp4", default=None, help="animation (MP4; needs ffmpeg)")
+    p.add_argument("--anim-revs", type=float, default=2,
+                   help="revolutions animated, 8 frames per cycle of the root (default 2; "
+                        "the amplitude panel shows all)")
 
 
 def add_commands(sub, add) -> None:

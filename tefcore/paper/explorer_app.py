@@ -333,7 +333,7 @@ def page(config: str = "mdart", overrides: list[str] | None = None, *, display: 
         status.value = "<i>marching the flutter root for two revolutions …</i>"
         sim = simulate(state.stability.trim_result.model.cfg, "flutter", revs=ANIMATION_REVS,
                        stability_result=state.stability)
-        w["animation"].value = gif_bytes(sim, frames_per_rev=10, dpi=80, figsize=(10.0, 6.4))
+        w["animation"].value = gif_bytes(sim, dpi=80, figsize=(10.0, 6.4))
         w["animation"].layout.display = "block"
         s = sim.summary
         status.value = (f"{s['mode']}: growth {s['growth_time_domain_per_rev']:+.3f} /rev "

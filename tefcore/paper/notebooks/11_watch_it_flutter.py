@@ -155,7 +155,7 @@ def show(sim, name):
     """A short animation of a simulation as an embedded GIF."""
     short = tefcore.simulate(sim.stability.trim_result.model.cfg, mode="flutter", revs=2,
                              stability_result=sim.stability)
-    data = gif_bytes(short, frames_per_rev=12, dpi=64, figsize=(10.0, 6.4))
+    data = gif_bytes(short, dpi=56, figsize=(10.0, 6.4))
     (out / f"{name}.gif").write_bytes(data)
     return HTML(f'<img src="data:image/gif;base64,{base64.b64encode(data).decode()}" '
                 f'alt="{name} flap" style="max-width: 100%">')
