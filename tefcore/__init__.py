@@ -28,6 +28,8 @@ Sweeps and maps
     :func:`~tefcore.sweeps.maps.stability_map`
 Mechanism of an instability
     :func:`~tefcore.linear.mechanism.mechanism`
+Time-domain response (the Floquet growth watched)
+    :func:`~tefcore.timedomain.simulate.simulate`
 Mode tracking
     :func:`~tefcore.modes.tracking.track_modes`,
     :func:`~tefcore.modes.matching.match_modes`, :func:`~tefcore.modes.matching.mac`
@@ -68,6 +70,7 @@ API = {
     "stability_boundary": "tefcore.sweeps.boundary",
     "stability_map": "tefcore.sweeps.maps",
     "mechanism": "tefcore.linear.mechanism",
+    "simulate": "tefcore.timedomain.simulate",
     "track_modes": "tefcore.modes.tracking",
     "match_modes": "tefcore.modes.matching",
     "mac": "tefcore.modes.matching",

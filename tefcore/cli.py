@@ -1,7 +1,7 @@
 """The ``tefcore`` command.
 
 Subcommands: ``modes``, ``fanplot``, ``stability``, ``sweep``, ``map``,
-``mechanism``, ``c81 example|check``, and from the paper layer
+``mechanism``, ``simulate``, ``c81 example|check``, and from the paper layer
 (:mod:`tefcore.paper.commands`) ``reproduce`` (executes the notebooks and
 writes the claims report) and ``notebooks`` (lists them, copies them for
 editing); ``tefcore --help`` lists them and ``tefcore SUBCOMMAND --help``
@@ -491,6 +491,9 @@ def build_parser() -> argparse.ArgumentParser:
                         "(default: the flutter root when it is unstable, else TEF)")
     p.add_argument("--csv", default=None, help="write the decomposition to this CSV file")
     p.add_argument("--no-knockouts", action="store_true", help="skip the knockouts (faster)")
+    from .cli_watch import add_commands as add_watch_commands  # simulate, explore
+
+    add_watch_commands(sub, _add)
     p = _add(sub, "c81", "C81 airfoil decks: check decks, regenerate the example deck",
              "C81 airfoil decks (layout: docs/c81_format.md).", None, common=False)
     c81 = p.add_subparsers(dest="c81_command", required=True, metavar="C81COMMAND",

@@ -52,9 +52,10 @@ LAYERS = (
     ("model",),                           # the coupled blade/flap/actuator equations
     ("trimming", "modes"),                # the trim; mode identity
     ("linear",),                          # stability of the trimmed rotor, mechanism
-    ("sweeps",),                          # sweeps, boundaries, maps
+    ("sweeps", "timedomain"),             # sweeps, boundaries, maps; the marched response
     ("paper",),                           # the paper's figures, claims, notebooks
     ("cli_text",),                        # what the command prints (100 columns)
+    ("cli_watch",),                       # simulate, explore: watching a root
     ("cli",),                             # the command
     ("__main__",),                        # python -m tefcore
 )

@@ -88,7 +88,9 @@ examples:
 #: What a notebook without a paper figure is about.
 _NO_FIGURE = {"08_assumptions": "what each assumption does to the results",
               "09_design_maps": "stability maps over two parameters (beyond the paper)",
-              "10_unsteady": "unsteady airloads and dynamic inflow (beyond the paper)"}
+              "10_unsteady": "unsteady airloads and dynamic inflow (beyond the paper)",
+              "11_watch_it_flutter": "the Floquet growth watched in the time domain (beyond the "
+                                     "paper)"}
 
 
 def cmd_reproduce(args) -> int:

@@ -39,6 +39,7 @@ NOTEBOOKS = (
     "08_assumptions",
     "09_design_maps",
     "10_unsteady",
+    "11_watch_it_flutter",
 )
 #: Wall seconds of each notebook in ``tefcore reproduce`` (kernel start, imports, HTML
 #: export included; measured on 2 shared cores at load 3-4, issue 25): the
@@ -68,6 +69,7 @@ NOTEBOOK_FIGURES = {
     "08_assumptions": (),               # no figure: the sensitivity of the headline results
     "09_design_maps": (),               # beyond the paper: two-parameter stability maps
     "10_unsteady": (),                  # beyond the paper: shed wake and dynamic inflow
+    "11_watch_it_flutter": (),          # beyond the paper: the Floquet growth in the time domain
 }
 
 
