@@ -47,7 +47,7 @@ __all__ = [
 #: ``tefcore``; every other module of the solver counts.  The paper layer
 #: (``tefcore.paper``: figures, claims, notebooks, reports) never does.
 PRESENTATION_MODULES = frozenset({
-    "__main__", "cli", "cli_errors", "errors", "provenance", "safe_io", "sweeps.boundary",
+    "__main__", "cli", "errors", "provenance", "safe_io", "sweeps.boundary",
 })
 
 
@@ -125,8 +125,9 @@ def model_stamp() -> str:
     """16 hex digits of SHA-256 over the numerical modules' source (module docstring)."""
     h = hashlib.sha256()
     for name, data in _solver_sources(resources.files("tefcore"), ""):
-        if name.removesuffix(".py").replace("/", ".") in PRESENTATION_MODULES:
-            continue
+        dotted = name.removesuffix(".py").replace("/", ".").removesuffix(".__init__")
+        if any(dotted == m or dotted.startswith(m + ".") for m in PRESENTATION_MODULES):
+            continue                      # a presentation module, or one of its folder
         h.update(name.encode() + b"\0" + len(data).to_bytes(8, "little") + data)
     return h.hexdigest()[:16]
 

@@ -46,7 +46,7 @@ PACKAGE_DIR = Path(tefcore.__file__).resolve().parent
 #: exports names from every layer (PEP 562) and is exempt.
 LAYERS = (
     ("_version", "units", "errors", "runtime", "fourier", "assignment"),  # no tefcore imports
-    ("provenance", "safe_io", "cli_errors"),      # files, fingerprints, the CLI's errors
+    ("provenance", "safe_io"),            # files, fingerprints
     ("config",),                          # the configuration: data, no physics
     ("structure", "aero", "floquet"),     # blade and hub; section airloads; Floquet theory
     ("model",),                           # the coupled blade/flap/actuator equations
@@ -54,9 +54,7 @@ LAYERS = (
     ("linear",),                          # stability of the trimmed rotor, mechanism
     ("sweeps", "timedomain"),             # sweeps, boundaries, maps; the marched response
     ("paper",),                           # the paper's figures, claims, notebooks
-    ("cli_text",),                        # what the command prints (100 columns)
-    ("cli_watch",),                       # simulate, explore: watching a root
-    ("cli",),                             # the command
+    ("cli",),                             # the command (text: what it prints; watch)
     ("__main__",),                        # python -m tefcore
 )
 

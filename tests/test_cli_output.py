@@ -18,7 +18,7 @@ import pytest
 import tefcore.linear.stability
 import tefcore.sweeps.sweep
 from tefcore.cli import main
-from tefcore.cli_text import LEGEND, UNCERTAIN_LEGEND, WIDTH, onset, sweep_summary
+from tefcore.cli.text import LEGEND, UNCERTAIN_LEGEND, WIDTH, onset, sweep_summary
 from tests.sweeps.test_sweep import MODES, ToyPoint
 
 #: The issue's flutter point: MDART in forward flight with an imbalanced flap

@@ -4,7 +4,7 @@ Start-up is most of a one-point command's time: ``tefcore --version`` and
 ``--help`` import no numerics at all, and ``tefcore stability`` imports what a
 point needs (numpy, scipy.linalg, and pandas: the roots are named by
 continuation on the modes table, and the command words that table,
-tefcore.cli_text) but not scipy.constants (the unit factors are written out),
+tefcore.cli.text) but not scipy.constants (the unit factors are written out),
 scipy.integrate (only the tension integral of a tabulated mass uses it),
 scipy.interpolate (only a C81 deck read) nor, in hover, scipy.optimize (only
 the forward-flight momentum inflow's root; tefcore.assignment elsewhere).

@@ -270,6 +270,6 @@ def _main() -> int:
 
 
 if __name__ == "__main__":
-    from ..cli_errors import run_command
+    from ..errors import run_command
 
     raise SystemExit(run_command(_main, prog="python -m tefcore.paper.calibration"))

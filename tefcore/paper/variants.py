@@ -312,6 +312,6 @@ def _main(argv) -> int:
 
 
 if __name__ == "__main__":
-    from ..cli_errors import run_command
+    from ..errors import run_command
 
     raise SystemExit(run_command(_main, sys.argv[1:], prog="python -m tefcore.paper.variants"))

@@ -39,6 +39,7 @@
 # output folder for the CSV and GIF results, relative to the working directory
 output_dir = "output/11_watch_it_flutter"
 n_jobs = 1                 # unused here (no sweeps); kept for the common parameters
+n_points = 0               # unused here (no sweeps); kept for the common parameters
 aero_model = "thin_airfoil"  # "thin_airfoil" (quasi-steady) or "table" (C81, shipped deck)
 config = None              # base configuration: a TOML file; None: the shipped MDART
 overrides = {}             # dotted configuration fields applied to both flaps

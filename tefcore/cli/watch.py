@@ -10,20 +10,11 @@ explorer as a web page with voila (:mod:`tefcore.paper.explorer_app`).
 
 from __future__ import annotations
 
-from .cli_text import wrap
-from .safe_io import atomic_output, check_output_file
+from ..safe_io import atomic_output, check_output_file
+from .common import load
+from .text import wrap
 
 __all__ = ["add_commands", "cmd_explore", "cmd_simulate"]
-
-
-def _load(args):
-    from .config.io import load_config
-    from .config.text_input import parse_overrides
-
-    cfg = load_config(args.config)
-    if args.set:
-        cfg = cfg.with_overrides(parse_overrides(args.set))
-    return cfg
 
 
 def cmd_simulate(args) -> int:
@@ -41,15 +32,15 @@ def cmd_simulate(args) -> int:
     """
     import json
 
-    from .timedomain.animation import check_writer, save_animation
-    from .timedomain.outputs import json_document, summary_lines
-    from .timedomain.simulate import simulate
+    from ..timedomain.animation import check_writer, save_animation
+    from ..timedomain.outputs import json_document, summary_lines
+    from ..timedomain.simulate import simulate
 
-    cfg = _load(args)
+    cfg = load(args)
     if args.revs <= 0 or args.amplitude <= 0 or args.anim_revs <= 0:
         raise ValueError("--revs, --amplitude and --anim-revs must be positive")
     if args.nonlinear:
-        from .timedomain.nonlinear import check_nonlinear
+        from ..timedomain.nonlinear import check_nonlinear
 
         check_nonlinear(cfg)
     outputs = [(p, w) for p, w in ((args.csv, "--csv"), (args.json, "--json"),
@@ -138,10 +129,10 @@ def cmd_explore(args) -> int:
     int
         voila's exit status.
     """
-    from .paper.explorer_app import check_voila, serve
+    from ..paper.explorer_app import check_voila, serve
 
     check_voila()                      # one line, before the configuration is read
-    _load(args)                        # a wrong --set fails here, not in the page's kernel
+    load(args)                        # a wrong --set fails here, not in the page's kernel
     return serve(args.config, args.set, port=args.port, open_browser=args.open)
 
 

@@ -46,9 +46,9 @@ import textwrap
 import numpy as np
 import pandas as pd
 
-from .config.text_input import field_param
-from .modes.roles import base_name
-from .units import from_si
+from ..config.text_input import field_param
+from ..modes.roles import base_name
+from ..units import from_si
 
 __all__ = ["LEGEND", "UNCERTAIN", "UNCERTAIN_LEGEND", "WIDTH", "flutter_row", "flutter_text",
            "legend", "mechanism_choice", "modes_text", "onset", "real_part_text",

@@ -14,7 +14,7 @@ atomically (:mod:`tefcore.safe_io`).  The command applies the process
 settings of :func:`tefcore.runtime.apply_defaults` before it runs.  Exit
 status: 0 success; 1 the command ran but its result is not clean (failed
 sweep points, bad C81 decks, failing notebooks or claims); 2 an error,
-printed as one line (:mod:`tefcore.cli_errors`); 130 interrupted; 141
+printed as one line (:func:`tefcore.errors.run_command`); 130 interrupted; 141
 output pipe closed.
 """
 
@@ -22,15 +22,16 @@ from __future__ import annotations
 
 import argparse
 import math
-import os
 import sys
 import textwrap
 import warnings
 from pathlib import Path
 
-from ._version import __version__
-from .cli_errors import run_command
-from .safe_io import atomic_output, check_output_file
+from .._version import __version__
+from ..errors import run_command
+from ..safe_io import atomic_output, check_output_file
+from .common import load
+from .maps import cmd_map
 
 __all__ = ["build_parser", "main"]
 
@@ -58,16 +59,6 @@ points, bad C81 decks, failing notebooks or claims); 2 an error (one line);
 130 interrupted; 141 output pipe closed."""
 
 
-def _load(args):
-    from .config.io import load_config
-    from .config.text_input import parse_overrides
-
-    cfg = load_config(args.config)
-    if args.set:
-        cfg = cfg.with_overrides(parse_overrides(args.set))
-    return cfg
-
-
 def _write_csv(table, path) -> None:
     """Write a table atomically (the destination was checked before computing)."""
     with atomic_output(path, newline="", what="--csv") as f:
@@ -83,9 +74,9 @@ def _common(p):
 
 
 def cmd_modes(args) -> int:
-    from .structure.blade import blade_modes
+    from ..structure.blade import blade_modes
 
-    cfg = _load(args)
+    cfg = load(args)
     if args.csv:
         check_output_file(args.csv, "--csv")
     table = blade_modes(cfg, n_modes=args.n_modes,
@@ -102,9 +93,9 @@ def cmd_fanplot(args) -> int:
     matplotlib.use("Agg")
     import matplotlib.figure
 
-    from .structure.blade import fan_plot
+    from ..structure.blade import fan_plot
 
-    cfg = _load(args)
+    cfg = load(args)
     fmt = Path(args.out).suffix.lstrip(".").lower() or "png"
     if fmt not in matplotlib.figure.Figure().canvas.get_supported_filetypes():
         raise ValueError(f"--out {args.out}: unknown image format {fmt!r}")
@@ -118,10 +109,10 @@ def cmd_fanplot(args) -> int:
 
 
 def cmd_stability(args) -> int:
-    from .cli_text import flutter_text, legend, modes_text, trim_lines, wrap
-    from .linear.stability import stability
+    from ..linear.stability import stability
+    from .text import flutter_text, legend, modes_text, trim_lines, wrap
 
-    cfg = _load(args)
+    cfg = load(args)
     if args.csv:
         check_output_file(args.csv, "--csv")
     res = stability(cfg)
@@ -144,16 +135,16 @@ def cmd_stability(args) -> int:
 
 
 def cmd_sweep(args) -> int:
-    from .config.text_input import sweep_values
-    from .sweeps.evaluate import close_pool, start_pool_for
+    from ..config.text_input import sweep_values
+    from ..sweeps.evaluate import close_pool, start_pool_for
 
     values = sweep_values(args.parameter, args.values, args.range)
     # the workers start and import while this process loads and checks
     start_pool_for(len(values), args.jobs)
-    from .cli_text import sweep_summary, timing_lines
-    from .sweeps.sweep import sweep
+    from ..sweeps.sweep import sweep
+    from .text import sweep_summary, timing_lines
 
-    cfg = _load(args)
+    cfg = load(args)
     check_output_file(args.csv, "--csv")
     if args.out:
         check_output_file(args.out, "--out", create_folder=True)
@@ -176,11 +167,11 @@ def cmd_sweep(args) -> int:
 
 
 def cmd_mechanism(args) -> int:
-    from .cli_text import mechanism_choice, wrap
-    from .linear.mechanism import mechanism
-    from .linear.stability import stability
+    from ..linear.mechanism import mechanism
+    from ..linear.stability import stability
+    from .text import mechanism_choice, wrap
 
-    cfg = _load(args)
+    cfg = load(args)
     if args.csv:
         check_output_file(args.csv, "--csv")
     point = stability(cfg)
@@ -203,112 +194,9 @@ def cmd_mechanism(args) -> int:
     return 0
 
 
-def _grid(cfg, field: str, start: str, stop: str, num: str, axis: str) -> list:
-    """Evenly spaced SI values of ``field`` from ``start`` to ``stop``, ``num`` of them
-    (the units rules of ``--range``, :func:`tefcore.config.text_input.sweep_values`);
-    ``axis`` (``"X"``, ``"Y"``) names the arguments in messages (``X_NUM``)."""
-    from .config.text_input import sweep_values
-
-    names = tuple(f"{axis}_{n}" for n in ("START", "STOP", "NUM"))
-    values = sweep_values(field, None, (start, stop, num), range_names=names)
-    return [float(cfg.with_overrides({field: v}).get(field)) for v in values]
-
-
-#: A map whose estimated time exceeds this [s] prints the estimate before it starts.
-ESTIMATE_ABOVE_S = 120.0
-#: Maps of fewer points are not timed (timing costs one point; ~1 s at the defaults).
-TIMED_FROM_POINTS = 20
-
-
-def _map_estimate(cfg, args, xs, ys) -> str | None:
-    """The map's expected time from one point timed, when it exceeds :data:`ESTIMATE_ABOVE_S`."""
-    import time
-
-    from .sweeps.evaluate import default_point
-
-    n = len(xs) * len(ys)
-    if n < TIMED_FROM_POINTS:
-        return None
-    start = time.perf_counter()
-    try:
-        default_point()(cfg.with_overrides({args.x_field: xs[0], args.y_field: ys[0]}))
-    except Exception:  # a failing point costs little and the map records it
-        return None
-    each = time.perf_counter() - start
-    workers = min(n, (os.cpu_count() or 1) if args.jobs < 0 else args.jobs)
-    seconds = each * n / max(1, workers)
-    if seconds <= ESTIMATE_ABOVE_S:
-        return None
-    span = (f"{seconds / 3600:.1f} h" if seconds >= 5400 else f"{seconds / 60:.0f} min")
-    return (f"tefcore map: {len(xs)} x {len(ys)} = {n} points at about {each:.2g} s each (one "
-            f"point timed, cold) on {workers} process{'es' if workers > 1 else ''}: about "
-            f"{span} before the boundary is refined; Ctrl-C stops it (with --out it resumes)")
-
-
-def _map_plot(res, cfg, path) -> None:
-    """The map's PNG, axes labelled as in the notebooks (``paper.plotting.field_axis``)."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    from .paper.plotting import field_axis
-
-    (x_label, x_unit), (y_label, y_unit) = field_axis(res.x_field), field_axis(res.y_field)
-    ax = res.plot(x_unit=x_unit, x_label=x_label, y_unit=y_unit, y_label=y_label)
-    ax.set_title(f"{cfg.name}: flutter root growth", fontsize="medium")
-    with atomic_output(path, "wb", what="--png") as f:
-        ax.figure.savefig(f, format="png", dpi=110, bbox_inches="tight",
-                          metadata={"Software": None})
-
-
-def cmd_map(args) -> int:
-    from .sweeps import maps
-
-    cfg = _load(args)
-    xs = _grid(cfg, args.x_field, args.x_start, args.x_stop, args.x_num, "X")
-    ys = _grid(cfg, args.y_field, args.y_start, args.y_stop, args.y_num, "Y")
-    # the table is written when asked for, or when no other output is
-    csv = args.csv or (None if args.png or args.netcdf else "map.csv")
-    outputs = [(p, w) for p, w in ((csv, "--csv"), (args.netcdf, "--netcdf"),
-                                   (args.png, "--png")) if p]
-    for path, what in outputs:
-        check_output_file(path, what)
-    if args.out:
-        from .safe_io import check_output_folder
-
-        check_output_folder(args.out, "--out", create=True)
-    if not args.scheduler and (estimate := _map_estimate(cfg, args, xs, ys)):
-        print(estimate, file=sys.stderr, flush=True)
-    client = None
-    if args.scheduler:
-        from distributed import Client
-
-        client = Client(args.scheduler)
-    try:
-        res = maps.stability_map(cfg, args.x_field, xs, args.y_field, ys, n_jobs=args.jobs,
-                                 backend="dask" if client is not None else "joblib",
-                                 client=client, out=args.out,
-                                 refine_boundary=not args.no_refine,
-                                 progress=False if args.quiet else None)
-    finally:
-        if client is not None:
-            client.close()
-    if csv:
-        with atomic_output(csv, newline="", what="--csv") as f:
-            res.table.to_csv(f, index=False, float_format="%.10g")
-    if args.netcdf:
-        with atomic_output(args.netcdf, "wb", what="--netcdf") as f:
-            f.write(res.dataset.to_netcdf(engine="scipy"))
-    if args.png:
-        _map_plot(res, cfg, args.png)
-    n_bad = int((res.table["status"] != "ok").sum())
-    print(f"wrote {', '.join(p for p, _ in outputs)}: {len(xs)} x {len(ys)} points, "
-          f"{n_bad} failed, {len(res.boundary)} boundary points")
-    return 1 if n_bad else 0
-
-
 def cmd_c81_example(args) -> int:
-    from .aero.c81.format import write_c81
-    from .aero.c81.tables import example_deck_path, make_example_deck
+    from ..aero.c81.format import write_c81
+    from ..aero.c81.tables import example_deck_path, make_example_deck
 
     out = args.out or example_deck_path()
     check_output_file(out, "--out")
@@ -317,8 +205,8 @@ def cmd_c81_example(args) -> int:
 
 
 def cmd_c81_check(args) -> int:
-    from .aero.c81.format import COEFFICIENT_LABELS, C81FormatError
-    from .aero.c81.reader import read_c81
+    from ..aero.c81.format import COEFFICIENT_LABELS, C81FormatError
+    from ..aero.c81.reader import read_c81
 
     status = 0
     for f in args.files:
@@ -344,12 +232,12 @@ class _Parser(argparse.ArgumentParser):
 
     argparse prints the whole usage and exits; the command prints one line
     (``tefcore: error: map: the following arguments are required: Y_NUM (see
-    'tefcore map --help')``) with status 2 (:mod:`tefcore.cli_errors`).
+    'tefcore map --help')``) with status 2 (:func:`tefcore.errors.run_command`).
     Subcommands' parsers are of the same class (argparse's ``parser_class``).
     """
 
     def error(self, message: str):
-        from .errors import UsageError
+        from ..errors import UsageError
 
         command = self.prog.removeprefix("tefcore").strip()
         where = f"{command}: " if command else ""
@@ -491,7 +379,7 @@ def build_parser() -> argparse.ArgumentParser:
                         "(default: the flutter root when it is unstable, else TEF)")
     p.add_argument("--csv", default=None, help="write the decomposition to this CSV file")
     p.add_argument("--no-knockouts", action="store_true", help="skip the knockouts (faster)")
-    from .cli_watch import add_commands as add_watch_commands  # simulate, explore
+    from .watch import add_commands as add_watch_commands  # simulate, explore
 
     add_watch_commands(sub, _add)
     p = _add(sub, "c81", "C81 airfoil decks: check decks, regenerate the example deck",
@@ -507,7 +395,7 @@ def build_parser() -> argparse.ArgumentParser:
              "MDART flap (GENERATED data, not test data).", cmd_c81_example, common=False)
     q.add_argument("--out", default=None, help="output file (default: the packaged "
                                                 "tefcore/data/example_flap_generated.c81)")
-    from .paper.commands import add_commands  # reproduce, notebooks: the paper layer
+    from ..paper.commands import add_commands  # reproduce, notebooks: the paper layer
 
     add_commands(sub, formatter_class=_HelpFormatter)
     return parser
@@ -525,11 +413,11 @@ def main(argv: list[str] | None = None) -> int:
     -------
     int
         The exit status; errors are one line on stderr with status 2
-        (:mod:`tefcore.cli_errors`).
+        (:func:`tefcore.errors.run_command`).
     """
     def body():
         args = build_parser().parse_args(argv)
-        from .runtime import apply_defaults
+        from ..runtime import apply_defaults
 
         apply_defaults()  # the command owns its process (tefcore.runtime)
         with warnings.catch_warnings():

@@ -1,0 +1,114 @@
+"""``tefcore map``: a stability map over two fields, its estimate, its table and picture."""
+
+from __future__ import annotations
+
+import os
+import sys
+
+from ..safe_io import atomic_output, check_output_file
+from .common import load
+
+__all__ = ["ESTIMATE_ABOVE_S", "TIMED_FROM_POINTS", "cmd_map"]
+
+
+def _grid(cfg, field: str, start: str, stop: str, num: str, axis: str) -> list:
+    """Evenly spaced SI values of ``field`` from ``start`` to ``stop``, ``num`` of them
+    (the units rules of ``--range``, :func:`tefcore.config.text_input.sweep_values`);
+    ``axis`` (``"X"``, ``"Y"``) names the arguments in messages (``X_NUM``)."""
+    from ..config.text_input import sweep_values
+
+    names = tuple(f"{axis}_{n}" for n in ("START", "STOP", "NUM"))
+    values = sweep_values(field, None, (start, stop, num), range_names=names)
+    return [float(cfg.with_overrides({field: v}).get(field)) for v in values]
+
+
+#: A map whose estimated time exceeds this [s] prints the estimate before it starts.
+ESTIMATE_ABOVE_S = 120.0
+#: Maps of fewer points are not timed (timing costs one point; ~1 s at the defaults).
+TIMED_FROM_POINTS = 20
+
+
+def _map_estimate(cfg, args, xs, ys) -> str | None:
+    """The map's expected time from one point timed, when it exceeds :data:`ESTIMATE_ABOVE_S`."""
+    import time
+
+    from ..sweeps.evaluate import default_point
+
+    n = len(xs) * len(ys)
+    if n < TIMED_FROM_POINTS:
+        return None
+    start = time.perf_counter()
+    try:
+        default_point()(cfg.with_overrides({args.x_field: xs[0], args.y_field: ys[0]}))
+    except Exception:  # a failing point costs little and the map records it
+        return None
+    each = time.perf_counter() - start
+    workers = min(n, (os.cpu_count() or 1) if args.jobs < 0 else args.jobs)
+    seconds = each * n / max(1, workers)
+    if seconds <= ESTIMATE_ABOVE_S:
+        return None
+    span = (f"{seconds / 3600:.1f} h" if seconds >= 5400 else f"{seconds / 60:.0f} min")
+    return (f"tefcore map: {len(xs)} x {len(ys)} = {n} points at about {each:.2g} s each (one "
+            f"point timed, cold) on {workers} process{'es' if workers > 1 else ''}: about "
+            f"{span} before the boundary is refined; Ctrl-C stops it (with --out it resumes)")
+
+
+def _map_plot(res, cfg, path) -> None:
+    """The map's PNG, axes labelled as in the notebooks (``paper.plotting.field_axis``)."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from ..paper.plotting import field_axis
+
+    (x_label, x_unit), (y_label, y_unit) = field_axis(res.x_field), field_axis(res.y_field)
+    ax = res.plot(x_unit=x_unit, x_label=x_label, y_unit=y_unit, y_label=y_label)
+    ax.set_title(f"{cfg.name}: flutter root growth", fontsize="medium")
+    with atomic_output(path, "wb", what="--png") as f:
+        ax.figure.savefig(f, format="png", dpi=110, bbox_inches="tight",
+                          metadata={"Software": None})
+
+
+def cmd_map(args) -> int:
+    from ..sweeps import maps
+
+    cfg = load(args)
+    xs = _grid(cfg, args.x_field, args.x_start, args.x_stop, args.x_num, "X")
+    ys = _grid(cfg, args.y_field, args.y_start, args.y_stop, args.y_num, "Y")
+    # the table is written when asked for, or when no other output is
+    csv = args.csv or (None if args.png or args.netcdf else "map.csv")
+    outputs = [(p, w) for p, w in ((csv, "--csv"), (args.netcdf, "--netcdf"),
+                                   (args.png, "--png")) if p]
+    for path, what in outputs:
+        check_output_file(path, what)
+    if args.out:
+        from ..safe_io import check_output_folder
+
+        check_output_folder(args.out, "--out", create=True)
+    if not args.scheduler and (estimate := _map_estimate(cfg, args, xs, ys)):
+        print(estimate, file=sys.stderr, flush=True)
+    client = None
+    if args.scheduler:
+        from distributed import Client
+
+        client = Client(args.scheduler)
+    try:
+        res = maps.stability_map(cfg, args.x_field, xs, args.y_field, ys, n_jobs=args.jobs,
+                                 backend="dask" if client is not None else "joblib",
+                                 client=client, out=args.out,
+                                 refine_boundary=not args.no_refine,
+                                 progress=False if args.quiet else None)
+    finally:
+        if client is not None:
+            client.close()
+    if csv:
+        with atomic_output(csv, newline="", what="--csv") as f:
+            res.table.to_csv(f, index=False, float_format="%.10g")
+    if args.netcdf:
+        with atomic_output(args.netcdf, "wb", what="--netcdf") as f:
+            f.write(res.dataset.to_netcdf(engine="scipy"))
+    if args.png:
+        _map_plot(res, cfg, args.png)
+    n_bad = int((res.table["status"] != "ok").sum())
+    print(f"wrote {', '.join(p for p, _ in outputs)}: {len(xs)} x {len(ys)} points, "
+          f"{n_bad} failed, {len(res.boundary)} boundary points")
+    return 1 if n_bad else 0
