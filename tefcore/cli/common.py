@@ -6,7 +6,18 @@ __all__ = ["load"]
 
 
 def load(args):
-    """The configuration of a command: ``--config`` with its ``-s NAME=VALUE`` overrides."""
+    """The configuration of a command: ``--config`` with its ``-s NAME=VALUE`` overrides.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        The parsed options: ``config`` (a TOML file or packaged name) and
+        ``set`` (``NAME=VALUE`` strings or None).
+
+    Returns
+    -------
+    tefcore.config.configuration.Config
+    """
     from ..config.io import load_config
     from ..config.text_input import parse_overrides
 

@@ -69,6 +69,18 @@ def _map_plot(res, cfg, path) -> None:
 
 
 def cmd_map(args) -> int:
+    """``tefcore map``: outputs checked, the estimate printed, the map computed and written.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        The parsed ``map`` options (fields, grids, outputs, ``--out``, jobs).
+
+    Returns
+    -------
+    int
+        0, or 1 when a point failed.
+    """
     from ..sweeps import maps
 
     cfg = load(args)

@@ -12,7 +12,6 @@ from __future__ import annotations
 
 from ..safe_io import atomic_output, check_output_file
 from .common import load
-from .text import wrap
 
 __all__ = ["add_commands", "cmd_explore", "cmd_simulate"]
 
@@ -35,6 +34,7 @@ def cmd_simulate(args) -> int:
     from ..timedomain.animation import check_writer, save_animation
     from ..timedomain.outputs import json_document, summary_lines
     from ..timedomain.simulate import simulate
+    from .text import wrap
 
     cfg = load(args)
     if args.revs <= 0 or args.amplitude <= 0 or args.anim_revs <= 0:

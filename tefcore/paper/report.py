@@ -96,7 +96,8 @@ TAG_MEANINGS = {
     "validation": "a statement of the paper never used to tune the model; the score counts "
                   "these.",
     "calibration": "a stated value used to set an assumed property (the stated torsion "
-                   "frequencies on both variants; Fig. 6's response on mdart-fig6); listed, "
+                   "frequencies on both variants, the flap response of Figure 6 on mdart-fig6); "
+                   "listed, "
                    "not scored.",
 }
 

@@ -127,7 +127,7 @@ def test_examples_parse_and_say_what_they_run():
 
 
 @pytest.mark.parametrize("text, expected", [
-    ("notebooks: [11]", "unknown notebook 11"),
+    ("notebooks: [13]", "unknown notebook 13"),   # 01-11 exist
     ("notebooks: [4, 04_cg_offset]", "listed twice"),
     ("runs: [{name: a, notebooks: [cg_ofset]}]", "did you mean"),
     ("params: {07_flite: {n_points: 3}}", "unknown notebook '07_flite'"),

@@ -151,7 +151,8 @@ def test_reproduce_runs_the_other_variant_beside_the_notebooks(tmp_path, monkeyp
            "tag": "validation", "statement": "s", "expected": "e", "computed": "1.944",
            "status": "fail", "reason": "", "recorded_status": "fail"}
 
-    def run(out, params, names, progress=True, nb_dir=None, kernel_name="python3", jobs=None):
+    def run(out, params, names, progress=True, nb_dir=None, kernel_name="python3", jobs=None,
+            stop=None):
         for name in names:
             (out / name).mkdir(parents=True, exist_ok=True)
             pd.DataFrame([row]).to_csv(out / name / "claims.csv", index=False)
