@@ -551,9 +551,13 @@ def _across_exceptional_points(c: Claim, ctx: _Context, err: _Ambiguous) -> dict
         outcomes.append(_checked(c, alt))
     statuses = [o["status"] for o in outcomes]
     places = "; ".join(f"{p['modes']} {where(p)} ({p['kind']})" for _, p in points)
+    # the names whose roots meet there (a claim about blade flap 1 relative to
+    # the TEF depends on the TEF's name, not on blade flap 1's)
+    met = list(dict.fromkeys(m for _, p in points for m in str(p["modes"]).split(" / ")))
+    named = " or ".join(repr(m) for m in met) if met else repr(c.mode)
     if len(set(statuses)) == 1 and statuses[0] != "ambiguous":
         row = outcomes[0]
-        note = (f"decided whichever root carries {c.mode!r} at the exceptional point(s) "
+        note = (f"decided whichever root carries {named} at the exceptional point(s) "
                 f"inside its range ({places}): every choice gives {statuses[0]}")
         row["reason"] = f"{row['reason']}; {note}" if row["reason"] else note
         return row
@@ -561,5 +565,5 @@ def _across_exceptional_points(c: Claim, ctx: _Context, err: _Ambiguous) -> dict
     seen = f"{statuses[0]} with the names as continued, {other} with them exchanged"
     return _row(c, status="ambiguous",
                 reason=f"an exceptional point lies inside the claim's range ({places}): which "
-                       f"root is {c.mode!r} has no answer there, and the verdict depends on "
+                       f"root is {named} has no answer there, and the verdict depends on "
                        f"it ({seen})")
