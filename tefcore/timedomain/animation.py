@@ -260,6 +260,10 @@ def _scene(result, frames_per_rev, dpi, figsize, revs=ANIMATED_REVS):
     cfg, chord, n, nm = model.cfg, model.cfg.rotor.chord, model.n_dof, model.n_modes
     frames = _frames(result, frames_per_rev, revs)
     comp, caption, gain = _display(result, frames)
+    # about 12 characters of the title's font per inch: the caption wrapped to
+    # the figure (one line of 170 characters was cut at both sides of an
+    # 800-px page, seen in the explorer's headless check)
+    caption = textwrap.fill(caption, max(40, int(12 * figsize[0])))
     fig = Figure(figsize=figsize, dpi=dpi, layout="constrained")
     FigureCanvasAgg(fig)
     axs = fig.subplots(2, 2)
