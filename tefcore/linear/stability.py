@@ -338,7 +338,7 @@ def _stability_of(model, tr: TrimResult, n_steps: int | None,
         # the paths on the first grid of the Floquet steps, which divides the
         # grid the roots were resolved on (step doubling)
         continued = continue_roots(system, model.labels, keep, basis=model.tracking_basis(),
-                                   final_labels=table["dominant"].tolist(),
+                                   final_labels=table["dominant"].tolist(), final_shares=frac,
                                    n_steps=n_steps or cfg.model.n_floquet_steps)
         table = name_roots(table, continued, frac, model.labels)
     summary = tr.summary()

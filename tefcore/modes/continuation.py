@@ -307,7 +307,7 @@ class ContinuedRoots:
 
 
 def continue_roots(system: SecondOrderSystem, labels, final=None, *, basis=None,
-                   final_labels=None, first_steps: int = FIRST_STEPS,
+                   final_labels=None, final_shares=None, first_steps: int = FIRST_STEPS,
                    min_step: float = MIN_STEP, n_steps: int = 72) -> ContinuedRoots:
     """Name every root of the coupled system by the uncoupled mode it continues from.
 
@@ -359,6 +359,13 @@ def continue_roots(system: SecondOrderSystem, labels, final=None, *, basis=None,
     final_labels : list of str, optional
         The coordinate each root of `final` carries most (its participation
         label): the name of a root that passed through a lock of the blade.
+    final_shares : numpy.ndarray, optional
+        The coordinates' shares of participation in each root of `final`
+        (coordinates x roots, :func:`tefcore.modes.labels.coordinate_shares`).
+        Given, the roots that do not move the flap are named among themselves
+        by the blade coordinate they carry (:func:`_free_labels`), not by
+        `final_labels`' assignment over all roots, in which a root sharing a
+        coordinate with a flap root can be left the second one it carries.
     first_steps : int, optional
         ``1 / first_steps`` is the first and the longest step of ``eps``.
     min_step : float, optional
@@ -418,7 +425,10 @@ def continue_roots(system: SecondOrderSystem, labels, final=None, *, basis=None,
     origin, uncoupled, certain = list(march.origin), march.start.copy(), ~march.doubt
     motion = _flap_share(march.vecs, basis.shape[0])
     if final_labels is not None and per:
-        origin, changed = _flap_free_by_participation(origin, motion, final_labels)
+        carried = list(final_labels)
+        if final_shares is not None:
+            carried = _free_labels(carried, motion, final_shares, labels)
+        origin, changed = _flap_free_by_participation(origin, motion, carried)
         certain = certain & ~changed
         held = dict(zip(names0, res0.exponents, strict=True))
         uncoupled = np.array([held.get(o, held.get(_base_name(o), np.nan)) for o in origin],
@@ -457,6 +467,33 @@ def _renamed_meetings(march, names) -> pd.DataFrame:
                          "gap": m["gap"], "mac": m["mac"]})
     meetings = pd.DataFrame(rows, columns=["eps", "origins", "gap", "mac"])
     return meetings.drop_duplicates("origins", keep="first").reset_index(drop=True)
+
+
+def _free_labels(carried, motion, shares, labels):
+    """Participation labels in which a root that does not move the flap keeps its own coordinate.
+
+    The one-to-one assignment over all roots (:func:`label_modes`) gives
+    every coordinate to one root; where a flap root carries a blade
+    coordinate too, a flap-free root can be left its second coordinate
+    (measured: mdart-fig6, Fig. 14 at a flap length of 0.22 R, the blade
+    torsion 1 root -- torsion 1 coordinate 0.41, flap 3 0.35 -- was named
+    blade flap 3 because the TEF root took torsion 1).  The flap-free roots
+    are the blade's own roots: one whose largest blade coordinate went to a
+    root that moves the flap takes it back (the moving roots are named by
+    their paths).  Lock partners (``(locked)``) keep their labels.
+    """
+    free = np.asarray(motion) < FLAP_ACTIVE
+    out = list(carried)
+    holder = {name: j for j, name in enumerate(out)}
+    blade = list(labels[:-1])                   # the flap is the last coordinate
+    for j in np.flatnonzero(free):
+        own = blade[int(np.argmax(shares[:len(blade), j]))]
+        k = holder.get(own)
+        if out[j] == own or out[j].endswith("(locked)") or k is None or free[k]:
+            continue
+        out[j], out[k] = own, out[j]            # the moving root's label only a fallback
+        holder[own], holder[out[k]] = j, k
+    return out
 
 
 def _flap_free_by_participation(origin, motion, carried):
@@ -498,9 +535,16 @@ def _flap_free_by_participation(origin, motion, carried):
         return names, changed
     # names of the moving roots: its own path's (0), its own coordinate's (1),
     # any other left (2) -- the assignment of least total cost
-    pool = left + [str(carried[i]) for i in active]       # never short of names
-    cost = np.array([[0.0 if n and n == origin[i] else 1.0 if _base_name(n) == _base_name(
-        str(carried[i])) else 2.0 for n in pool] for i in active])
+    # each name once (a moving root's coordinate can be another's path name:
+    # given twice, two roots took it -- measured on mdart-fig6, Fig. 14 at
+    # 0.22 R); the repeats stay at the end, dearest, so it is never short of names
+    offered = left + [str(carried[i]) for i in active]
+    pool = list(dict.fromkeys(offered))
+    repeat = len(pool)
+    pool += [n for k, n in enumerate(offered) if n in offered[:k]]
+    cost = np.array([[3.0 if k >= repeat else 0.0 if n and n == origin[i] else 1.0
+                      if _base_name(n) == _base_name(str(carried[i])) else 2.0
+                      for k, n in enumerate(pool)] for i in active])
     rows, cols = linear_sum_assignment(cost)
     for r, c in zip(rows, cols, strict=True):
         i = active[r]

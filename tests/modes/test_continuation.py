@@ -224,3 +224,32 @@ def test_the_tef_frequency_of_a_real_sweep_falls_without_shifts_or_mirrors():
     # the point values keep the Floquet convention: within 1/2 /rev of the
     # continuous curve at a k/2 lock's mirror image, never a whole /rev off
     assert np.all(np.abs(tef["frequency_per_rev"].to_numpy() - f) < 0.5)
+
+
+def test_a_root_that_does_not_move_the_flap_keeps_its_own_coordinate():
+    """mdart-fig6 (the flap system fitted to Fig. 6), Fig. 14's flap of 0.22 R:
+    the blade torsion 1 root (3.63 /rev, -0.78 /rev; torsion 1 coordinate 0.41,
+    flap 3 0.35) moves the flap by less than FLAP_ACTIVE, but the assignment
+    over all roots had given torsion 1 to the TEF root, so it was named blade
+    flap 3, torsion 1's track ended at 0.20 R and the flap 3 root (6.29 /rev)
+    took 'blade flap 4 (locked)' beside the flutter root's 'blade flap 4'
+    (measured).  The names must run on from 0.20 R, each given once."""
+    from tefcore.linear.stability import stability
+    from tefcore.paper.figures import figure_config
+
+    base = figure_config("fig14", load_config("mdart-fig6"))
+    named = {}
+    for span in (0.20, 0.22):
+        m = stability(base.with_overrides({"flap.span": span})).modes
+        named[span] = dict(zip(m["label"], zip(m["frequency_per_rev"], m["real_part"],
+                                               strict=True), strict=True))
+        assert m["label"].is_unique
+        assert not any(x.endswith("(locked)") for x in m["label"] if "flap 1" not in x)
+    for name, (f, r) in named[0.20].items():
+        # a name follows its root: a 10 % longer flap moves each root by at most
+        # 0.33 /rev in frequency and 0.32 /rev in real part here (the TEF's,
+        # measured); the wrong names sat on roots 2.5 /rev away (flap 3 named
+        # on the root at 3.63 /rev, it was at 6.09) or were missing
+        assert name in named[0.22], name
+        f2, r2 = named[0.22][name]
+        assert abs(f2 - f) < 0.5 and abs(r2 - r) < 0.5, name
