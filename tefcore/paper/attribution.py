@@ -60,11 +60,11 @@ import pandas as pd
 
 from ..safe_io import atomic_output
 from .attribution_eval import RunSettings
-from .attribution_levers import FIG6_NAME, knows_field, levers, pair_lever, placement_levers
+from .attribution_levers import FIG6_NAME, levers, pair_lever, placement_levers
 from .attribution_search import Target, lever_rows
 
 __all__ = ["COLUMNS", "EXTRA_COLUMNS", "Attribution", "attribute", "attribute_run",
-           "failing_claims", "fig6_calibration", "summarise", "write_attribution"]
+           "failing_claims", "summarise", "write_attribution"]
 
 #: The columns the issue asks for, in order.
 COLUMNS = ["claim", "status", "assumption", "flips_at", "plausible_low", "plausible_high",
@@ -155,51 +155,11 @@ def _cost(lever) -> float:
     return lever.cost * (len(lever.options) if lever.discrete else 3.0)
 
 
-def fig6_calibration(lever, settings: RunSettings, expected: float = 2.3) -> float:
-    """The setting of the Fig. 6 lever that reproduces Fig. 6 (its calibration).
-
-    With ``actuator.reflected_inertia`` known: the top of the lever's range
-    (the ``mdart-fig6`` value).  With the stand-in: the factor at which the
-    flap's half peak-to-peak response is `expected` (brentq within the range;
-    its top end if the range does not reach it).
-
-    Parameters
-    ----------
-    lever : tefcore.paper.attribution_levers.Lever
-        :func:`~tefcore.paper.attribution_levers.fig6_lever`.
-    settings : RunSettings
-        The run (base configuration and overrides).
-    expected : float
-        Half peak-to-peak flap response [deg] to reproduce (Fig. 6: 15 % above
-        the 2 deg input).
-
-    Returns
-    -------
-    float
-        The setting (in ``lever.setting`` terms).
-    """
-    from .attribution_levers import FIG6_FIELD
-
-    if knows_field(FIG6_FIELD):
-        return float(lever.high)
-    import scipy.optimize
-
-    from .figures import flap_response_figure
-
-    def miss(t):
-        cfg = lever.move(settings.base, t)
-        return flap_response_figure(cfg, **settings.overrides)["half_peak_to_peak_deg"] - expected
-
-    if miss(0.0) * miss(1.0) > 0:
-        return float(lever.high)
-    return lever.value(scipy.optimize.brentq(miss, 0.0, 1.0, xtol=1e-3))
-
-
 def _explained(rows) -> set:
     return {r["claim"] for r in rows if r.get("within_plausible") and r.get("confirmed") is True}
 
 
-def _pairs(lvs, settings_of, cfg):
+def _pairs(lvs, cfg):
     """The pair levers (the Fig. 6 calibration with each placement lever), and why none."""
     fig6 = next((lv for lv in lvs if lv.name == FIG6_NAME), None)
     if fig6 is None:
@@ -208,8 +168,8 @@ def _pairs(lvs, settings_of, cfg):
     if not placing:
         return [], ("no assumption places blade flap 4/5 and torsion 2: the pairs with the "
                     "Fig. 6 calibration cannot be tried (an assumption is missing)")
-    at = fig6_calibration(fig6, next(iter(settings_of.values())))
-    return [pair_lever(fig6, at, p) for p in placing], ""
+    # the Fig. 6 lever's top is its calibration (the mdart-fig6 value)
+    return [pair_lever(fig6, float(fig6.high), p) for p in placing], ""
 
 
 def _none_row(target, note) -> dict:
@@ -263,7 +223,7 @@ def attribute(claims: pd.DataFrame, settings_of: dict | None = None, *, lever_li
             done, c1 = _run([(lv, todo) for lv in lvs], settings_of, Path(tmp), n_jobs)
             found = [r for part in done for r in part]
             left = [t for t in todo if t.claim.id not in _explained(found)]
-            pair_levers, missing = _pairs(lvs, settings_of, base) if pairs and left \
+            pair_levers, missing = _pairs(lvs, base) if pairs and left \
                 else ([], "")
             c2 = 0.0
             if pair_levers:
@@ -391,7 +351,7 @@ def summarise(table: pd.DataFrame, top: int = 5) -> dict:
         ``figures``: figure -> one row per failing claim (``claim``,
         ``plausible``: what flips it, ``beyond``: what flips it only outside
         its range or unconfirmed, ``conflicts``); ``notes``: the levers'
-        notes (a stand-in, a missing assumption).
+        notes (an assumption that cannot be tried).
     """
     t = table.fillna("").astype({"flips_at": str})
     flips = t[(t["flips_at"] != "") & (t["assumption"] != "none")]
@@ -415,7 +375,7 @@ def summarise(table: pd.DataFrame, top: int = 5) -> dict:
                 for r in rest.itertuples()),
             "conflicts": "; ".join(c for c in ok["conflicts"].astype(str) if c)})
     notes = [n for n in dict.fromkeys(t.get("note", pd.Series(dtype=str)).astype(str))
-             if n.startswith("stand-in") or "cannot be tried" in n]
+             if "cannot be tried" in n]
     failing = t["claim"].nunique()
     return {"failing": failing, "explained": failing - len(unexplained),
             "explains": explains[:top], "unexplained": unexplained, "figures": figures,

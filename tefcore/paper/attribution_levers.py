@@ -11,8 +11,7 @@ paper, with the range over which it is plausible:
   value of its range is tried;
 * the Fig. 6 flap-system inertia (:func:`fig6_lever`), the one hook for the
   flap-system calibration of issue 23: ``actuator.reflected_inertia`` from 0
-  to the ``mdart-fig6`` value once the configuration knows that field; until
-  then the flap's own inertia about its CG scaled 1x-4x stands in for it;
+  to the ``mdart-fig6`` value;
 * the model options of :data:`MODEL_OPTIONS` (unsteady aerodynamics, dynamic
   inflow, the multiple-load-path hub, the XFOIL C81 deck), discrete.
 
@@ -46,9 +45,9 @@ import numpy as np
 from ..config.configuration import SECTIONS, resolve_field
 from .assumptions import ASSUMPTIONS, Assumption
 
-__all__ = ["FIG6_CONFIG", "FIG6_FIELD", "FIG6_NAME", "FIG6_STAND_IN", "Lever", "MODEL_OPTIONS",
+__all__ = ["FIG6_CONFIG", "FIG6_FIELD", "FIG6_NAME", "Lever", "MODEL_OPTIONS",
            "ModelOption", "PLACEMENT_MODES", "PLACEMENT_SHIFT", "assumption_lever",
-           "fig6_lever", "knows_field", "levers", "option_lever", "pair_lever",
+           "fig6_lever", "levers", "option_lever", "pair_lever",
            "placement_levers"]
 
 #: The field of the flap system's reflected actuator inertia (issue 23's calibration).
@@ -57,8 +56,6 @@ FIG6_FIELD = "actuator.reflected_inertia"
 FIG6_CONFIG = "mdart-fig6"
 #: Name of the Fig. 6 flap-system inertia lever in tables and the report.
 FIG6_NAME = "Fig. 6 flap-system inertia"
-#: Until ``FIG6_FIELD`` exists: the field scaled, and the factors of its range.
-FIG6_STAND_IN = ("flap.inertia_cg", 1.0, 4.0)
 #: Blade modes whose placement the paired levers move (:func:`placement_levers`).
 PLACEMENT_MODES = ("flap 4", "flap 5", "torsion 2")
 #: Least relative shift of one of :data:`PLACEMENT_MODES` at an end of a lever's range
@@ -89,7 +86,7 @@ class Lever:
     basis : str
         Why the range is what it is.
     note : str
-        What the reader must know (a stand-in, a missing field).
+        What the reader must know (e.g. a field it cannot move).
     cost : float
         Relative cost of a point with the lever moved (scheduling only).
     """
@@ -131,30 +128,6 @@ class Lever:
         """
         end = self.high if setting >= self.base else self.low
         return float(np.sign(setting - self.base) * (setting - self.base) / (end - self.base))
-
-
-def knows_field(key: str) -> bool:
-    """Whether the configuration has the dotted field `key`.
-
-    Parameters
-    ----------
-    key : str
-        ``"section.name"``.
-
-    Returns
-    -------
-    bool
-
-    Examples
-    --------
-    >>> knows_field("flap.inertia_cg"), knows_field("flap.no_such_field")
-    (True, False)
-    """
-    try:
-        resolve_field(key)
-    except ValueError:
-        return False
-    return True
 
 
 def _lerp(base, end, s: float):
@@ -307,13 +280,10 @@ def _field_lever(name, key, base, low, high, factor: bool, basis, note) -> Lever
 
 
 def fig6_lever(cfg) -> Lever:
-    """The Fig. 6 flap-system inertia: the reflected actuator inertia, or its stand-in.
+    """The Fig. 6 flap-system inertia: the reflected actuator inertia, from none to its calibration.
 
-    With :data:`FIG6_FIELD` in the configuration: that field from 0 to its
-    value in the packaged :data:`FIG6_CONFIG` (the calibration to Fig. 6's
-    15 %).  Without it: :data:`FIG6_STAND_IN`, the flap's inertia about its
-    CG scaled 1x-4x (the flap system's inertia about the hinge grows with it;
-    issue 23 measured 3.5x for Fig. 6's 1.15x), and the lever's note says so.
+    :data:`FIG6_FIELD` from 0 to its value in the packaged :data:`FIG6_CONFIG`
+    (the calibration to Fig. 6's 15 %).
 
     Parameters
     ----------
@@ -324,20 +294,12 @@ def fig6_lever(cfg) -> Lever:
     -------
     Lever
     """
-    if knows_field(FIG6_FIELD):
-        from ..config.io import load_config
+    from ..config.io import load_config
 
-        top = float(load_config(FIG6_CONFIG).get(FIG6_FIELD))
-        return _field_lever(FIG6_NAME, FIG6_FIELD, float(cfg.get(FIG6_FIELD)), 0.0, top, False,
-                            f"the actuator's moving parts reflected through the linkage: from "
-                            f"none to the {FIG6_CONFIG} calibration to Fig. 6", "")
-    key, lo, hi = FIG6_STAND_IN
-    return _field_lever(FIG6_NAME, key, 1.0, lo, hi, True,
-                        "flap plus reflected actuator inertia: up to the ~4x a one-dof "
-                        "estimate puts at Fig. 6's 15 % (issue 23)",
-                        f"stand-in: the configuration has no {FIG6_FIELD} yet, so the flap's "
-                        f"inertia about its CG ({key}) scaled {lo:g}x-{hi:g}x plays the "
-                        "flap-system inertia")
+    top = float(load_config(FIG6_CONFIG).get(FIG6_FIELD))
+    return _field_lever(FIG6_NAME, FIG6_FIELD, float(cfg.get(FIG6_FIELD)), 0.0, top, False,
+                        f"the actuator's moving parts reflected through the linkage: from "
+                        f"none to the {FIG6_CONFIG} calibration to Fig. 6", "")
 
 
 def levers(cfg, assumptions=ASSUMPTIONS, options=MODEL_OPTIONS) -> list[Lever]:
