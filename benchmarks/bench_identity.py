@@ -5,7 +5,7 @@ Run: ``python benchmarks/bench_identity.py [--repeat N]``.
 ``stability(cfg)`` names every root by continuation in the blade-flap coupling
 (:func:`tefcore.modes.continuation.continue_roots`); ``stability(cfg,
 identity=False)`` names them by participation only.  Measured here, in one
-process, as medians of ``--repeat`` runs after a warm-up: one point in hover
+process, as medians of ``--repeat`` runs of each, interleaved, after a warm-up: one point in hover
 and at mu = 0.3 (the paper's imbalanced flap), with the eigenproblems the
 continuation solved; and Fig. 9's sweep (11 points, mu = 0.3, no refinement)
 both ways.  The goal: a sweep with identity by continuation costs at most 2x
@@ -33,14 +33,18 @@ def load() -> str:
     return " ".join(f"{x:.2f}" for x in os.getloadavg())
 
 
-def median_s(fn, repeat):
-    fn()                                    # warm-up (imports, caches)
-    times = []
+def paired_medians(on_fn, off_fn, repeat):
+    """Medians of `repeat` runs of each, interleaved (on, off, on, off, ...) so a
+    change of the machine's load falls on both alike; one warm-up each first."""
+    on_fn()
+    off_fn()
+    on, off = [], []
     for _ in range(repeat):
-        t0 = time.perf_counter()
-        fn()
-        times.append(time.perf_counter() - t0)
-    return statistics.median(times)
+        for fn, times in ((on_fn, on), (off_fn, off)):
+            t0 = time.perf_counter()
+            fn()
+            times.append(time.perf_counter() - t0)
+    return statistics.median(on), statistics.median(off)
 
 
 def main(argv=None):
@@ -54,18 +58,19 @@ def main(argv=None):
              "mu 0.3, c_cg 0.33 (Fig. 10's flap)": figure_config("fig10").with_overrides(
                  {"hub.pitch_link_stiffness": "400 lb/in"})}
     for name, cfg in cases.items():
-        on = median_s(lambda cfg=cfg: stability(cfg), args.repeat)
-        off = median_s(lambda cfg=cfg: stability(cfg, identity=False), args.repeat)
+        on, off = paired_medians(lambda cfg=cfg: stability(cfg),
+                                 lambda cfg=cfg: stability(cfg, identity=False), args.repeat)
         n = stability(cfg).identity.n_solves
         print(f"{name:38s} point with identity {1e3 * on:7.1f} ms, without {1e3 * off:7.1f} ms,"
               f" ratio {on / off:4.2f} ({n} eigenproblems on the path)")
     cfg = figure_config("fig9")
     values = list(np.round(np.arange(0.0, 0.41, 0.04), 2))
     kw = dict(progress=False, refine=False)
-    on = median_s(lambda: sweep(cfg, "flap.cg_offset", values, **kw), max(1, args.repeat // 2))
-    off = median_s(lambda: sweep(cfg, "flap.cg_offset", values,
-                                 point=functools.partial(stability, identity=False), **kw),
-                   max(1, args.repeat // 2))
+    on, off = paired_medians(
+        lambda: sweep(cfg, "flap.cg_offset", values, **kw),
+        lambda: sweep(cfg, "flap.cg_offset", values,
+                      point=functools.partial(stability, identity=False), **kw),
+        args.repeat)
     ratio = on / off
     print(f"{'Fig. 9 sweep, 11 points, mu 0.3':38s} with identity {on:6.2f} s, without "
           f"{off:6.2f} s, ratio {ratio:4.2f}: goal <= 2x {'met' if ratio <= 2 else 'NOT met'}")

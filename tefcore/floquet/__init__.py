@@ -14,6 +14,9 @@ whose matrix is periodic in the azimuth ``psi`` with period ``period``
 * :func:`floquet_modes` -- characteristic exponents with the frequency
   ambiguity (integer multiples of ``2 pi / period``) resolved from the
   dominant harmonic of the periodic mode shape; :class:`FloquetResult`.
+* :func:`floquet_motions` -- the exponents (principal branch) and each
+  root's motion over the period on one grid, without error control or
+  harmonic analysis: what continuation compares at each step.
 * :func:`constant_coefficient_modes` -- the same result for a constant
   ``A`` (hover) by direct eigenanalysis.
 
@@ -56,7 +59,7 @@ the periodic change of variables ``x = (1 + 0.3 sin psi) z``:
 from __future__ import annotations
 
 from ._accuracy import DEFAULT_ATOL, DEFAULT_RTOL, MAX_DOUBLINGS
-from ._analysis import LIFT_RTOL, MAX_SUB, MIN_ROOT, floquet_modes
+from ._analysis import LIFT_RTOL, MAX_SUB, MIN_ROOT, floquet_modes, floquet_motions
 from ._multipliers import characteristic_multipliers
 from ._propagators import (
     DEFAULT_N_STEPS,
@@ -87,6 +90,7 @@ __all__ = [
     "constant_coefficient_modes",
     "damping_ratio",
     "floquet_modes",
+    "floquet_motions",
     "monodromy",
     "step_propagators",
     "transition_matrices",

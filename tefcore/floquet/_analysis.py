@@ -41,7 +41,8 @@ from ._propagators import (
 )
 from ._result import sorted_result
 
-__all__ = ["LIFT_RTOL", "MIN_ROOT", "MAX_SUB", "choose_sub", "floquet_modes", "sub_products"]
+__all__ = ["LIFT_RTOL", "MIN_ROOT", "MAX_SUB", "choose_sub", "floquet_modes", "floquet_motions",
+           "sub_products"]
 
 
 #: Smallest modulus ``|mu| = |lambda|^(1/K)`` of a lifted root that
@@ -341,12 +342,14 @@ def _frozen(a):
     return rate
 
 
-def _modes(p, period, k_sub, max_sub, shapes, shift_states, min_rate=None, duals=False,
-           frozen_rate=None):
-    """Floquet modes from the step propagators ``p``; also ``max ||Phi_k||`` and whether
-    the lifted roots split one per multiplier.  ``duals``: with the participation
-    factors from the adjoint solutions (:func:`_adjoint_participation`)."""
-    n_steps, n = p.shape[0], p.shape[-1]
+def _lift(p, period, k_sub, max_sub, min_rate=None, duals=False, frozen_rate=None):
+    """The lifted roots: ``K`` chosen and raised until they are resolved.
+
+    Returns ``K``, the roots ``mu``, the right (and with ``duals`` left)
+    eigenvector blocks, the steps grouped by sub-interval (``stack, bounds,
+    valid``, :func:`group`), ``max ||Phi_k||`` and whether the roots split.
+    """
+    n_steps = p.shape[0]
     k_sub = check_sub(k_sub, n_steps)
     max_sub = min(max(max_sub, k_sub), n_steps)
     eps = np.finfo(float).eps
@@ -388,17 +391,123 @@ def _modes(p, period, k_sub, max_sub, shapes, shift_states, min_rate=None, duals
         if not (floor < 1.0 and np.isfinite(need) and need > 0):
             need = 2 * k_sub                     # round-off above 1: just halve the blocks
         k_sub = int(min(max_sub, max(2 * k_sub, 2 ** np.ceil(np.log2(need)))))
+    return k_sub, mu, blocks, lblocks, (stack, bounds, valid), phis, znorm, split
+
+
+def _solutions(blocks, stack, valid):
+    """The solutions on the step grid, each sub-interval from its lifted block:
+    ``x(psi) = Phi(psi, psi_k) v_k`` in sub-interval ``k`` (without ``mu^k``),
+    ``(n_steps, n, m)`` in time order."""
+    n = blocks.shape[1]
+    x = np.empty((*valid.shape, n, blocks.shape[2]), dtype=complex)
+    cur = blocks.astype(complex)
+    for step in range(valid.shape[1]):
+        x[:, step] = cur
+        cur = stack[:, step] @ cur
+    return x[valid]
+
+
+def floquet_motions(A, n_steps, n_sub=4, period=TWO_PI, method="magnus", max_sub=MAX_SUB):
+    """Characteristic exponents and each root's motion over the period, on one grid.
+
+    What continuation needs of a Floquet system at each step, and no more:
+    the exponents on the principal branch (``|Im eta| <= pi / T``; no
+    integer frequency shift is chosen), one of each conjugate pair, and the
+    motion ``exp(-sigma psi) x(psi)`` of each root's solution on the step grid
+    -- the solution without its decay, which no frequency convention changes
+    (``exp(i omega psi) p(psi)`` for every choice of ``omega``; compare
+    :func:`tefcore.modes.labels.trajectory_shapes`).  The lift is chosen as in
+    :func:`floquet_modes` (``K`` raised until the most damped root is
+    resolved); there is no error control, no Fourier analysis of the
+    periodic shapes and no participation: about half the cost of
+    :func:`floquet_modes` with ``shapes=True`` (measured: 3.6 against 6.6 ms
+    for MDART's 20 states at mu = 0.3, 72 Magnus steps).
+
+    Parameters
+    ----------
+    A : callable
+        Vectorised ``A(psi)`` of a real system (see :func:`step_propagators`).
+    n_steps : int
+        Steps per period.
+    n_sub : int, optional
+        The first ``K`` tried (as in :func:`floquet_modes`).
+    period : float, optional
+        Period ``T``.
+    method : {'magnus', 'rk4'}, optional
+        Step integrator.
+    max_sub : int, optional
+        Largest ``K``.
+
+    Returns
+    -------
+    exponents : numpy.ndarray of complex
+        One per kept root [per unit of psi]: the root of each conjugate pair
+        of multipliers with ``0 < Im eta < pi / T``, and every real multiplier
+        (``Im eta`` 0 or ``pi / T``).
+    motions : numpy.ndarray of complex
+        ``(n_steps, n, m)``: ``exp(-sigma psi) x(psi)`` of each kept root.
+
+    Examples
+    --------
+    An undamped oscillator at 0.3 /rev: one root, its motion ``exp(0.3 i psi)``
+    times its eigenvector.
+
+    >>> import numpy as np
+    >>> a = np.array([[0.0, 1.0], [-0.09, 0.0]])
+    >>> eta, x = floquet_motions(lambda psi: np.broadcast_to(a, (len(psi), 2, 2)), 72)
+    >>> np.round(eta, 6), x.shape
+    (array([0.+0.3j]), (72, 2, 1))
+    """
+    period = check_period(period)
+    method = check_method(method)
+    a, n_steps, constant = sample(A, n_steps, period)
+    p = propagators(a, period / n_steps, constant, method)
+    k_sub, mu, blocks, _, (stack, bounds, valid), _, _, split = _lift(
+        p, period, n_sub, check_int("max_sub", max_sub, 1), frozen_rate=_frozen(a))
+    if not split:
+        warn_unsplit()
+    log_mu = log_roots(mu)
+    x = _solutions(blocks, stack, valid)
+    h = period / n_steps
+    psi = np.arange(n_steps) * h
+    k_of = np.repeat(np.arange(k_sub), np.diff(bounds))
+    psi_k = bounds[k_of] * h
+    # x(psi) = mu^k Phi(psi, psi_k) v_k; exp(-sigma psi) mu^k = exp(-sigma (psi - psi_k)
+    # + i Im(log mu) k) for equal sub-intervals: bounded factors only
+    rate = k_sub * log_mu.real / period
+    expo = (-rate[None, :] * (psi - psi_k)[:, None]
+            + 1j * log_mu.imag[None, :] * k_of[:, None]
+            + log_mu.real[None, :] * (k_of - k_sub * psi_k / period)[:, None])
+    with np.errstate(over="ignore", invalid="ignore"):
+        x = np.exp(np.minimum(expo.real, 700.0) + 1j * expo.imag)[:, None, :] * x
+    x[~np.isfinite(x)] = 0.0                       # only for unresolvable (garbage) roots
+    # the multiplier's angle, K arg(mu), on the principal branch: the lift's
+    # roots of a conjugate pair of multipliers need not be conjugates, their
+    # multipliers are (to round-off)
+    angle = np.angle(np.exp(1j * k_sub * log_mu.imag))
+    # a real multiplier (a frequency locked to k/2 /rev, or no oscillation) is
+    # its own conjugate: kept, at angle 0 or pi (the two of a locked pair both)
+    real = np.abs(np.sin(angle)) <= 1e-8
+    angle = np.where(real, np.abs(angle), angle)
+    keep = real | (angle > 0)
+    eta = (rate + 1j * angle / period)[keep]
+    return eta, x[..., keep]
+
+
+def _modes(p, period, k_sub, max_sub, shapes, shift_states, min_rate=None, duals=False,
+           frozen_rate=None):
+    """Floquet modes from the step propagators ``p``; also ``max ||Phi_k||`` and whether
+    the lifted roots split one per multiplier.  ``duals``: with the participation
+    factors from the adjoint solutions (:func:`_adjoint_participation`)."""
+    n_steps, n = p.shape[0], p.shape[-1]
+    k_sub, mu, blocks, lblocks, (stack, bounds, valid), phis, znorm, split = _lift(
+        p, period, k_sub, max_sub, min_rate, duals, frozen_rate)
     log_mu = log_roots(mu)
     eta = k_sub * log_mu / period                  # the branch of the selected roots
 
     # solution on the step grid, each sub-interval from its lifted block:
     # x(psi) = mu^k Phi(psi, psi_k) v_k for psi in sub-interval k
-    x = np.empty((*valid.shape, n, n), dtype=complex)
-    cur = blocks.astype(complex)
-    for step in range(valid.shape[1]):
-        x[:, step] = cur
-        cur = stack[:, step] @ cur
-    x = x[valid]                                   # (n_steps, n, m), in time order
+    x = _solutions(blocks, stack, valid)           # (n_steps, n, m), in time order
     if duals:
         # adjoint solutions on the same grid, carried backwards from the start of
         # the next sub-interval, y(psi_m) = P_m^H y(psi_m+1) (u_k = Phi_k^H u_k+1

@@ -28,7 +28,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ._accuracy import DEFAULT_ATOL
-from ._analysis import floquet_modes
+from ._analysis import floquet_modes, floquet_motions
 from ._result import constant_coefficient_modes
 
 __all__ = ["STATE_MIN_RATE", "SecondOrderSystem", "augmented_state_matrix", "combine",
@@ -161,6 +161,21 @@ class SecondOrderSystem:
                                      min_rate=STATE_MIN_RATE if self.n_first else None,
                                      participation=(bool(self.n_first) if participation is None
                                                     else participation))
+
+    def motions(self, n_steps: int = 72, n_sub: int = 4):
+        """Exponents and motions on one grid of Magnus steps (forward flight).
+
+        :func:`tefcore.floquet.floquet_motions` of :meth:`state_matrix`: the
+        exponents on the principal branch, one of each conjugate pair, and
+        each root's solution without its decay, ``(n_steps, n_states, m)``.
+        For a periodic system without first-order states (``ValueError``
+        otherwise: a constant system has :meth:`modes`).
+        """
+        if not self.periodic or self.n_first:
+            raise ValueError("motions: for a periodic second-order system without "
+                             "first-order states")
+        return floquet_motions(self.state_matrix, n_steps=n_steps, n_sub=n_sub,
+                               method="magnus")
 
 
 def _derivative_coefficients(cos_c, sin_c, k, derivative):

@@ -30,7 +30,15 @@ import pandas as pd
 from ..assignment import linear_sum_assignment
 from ..floquet.second_order import SecondOrderSystem
 from .labels import coordinate_shares, label_modes, tracking_shapes, trajectory_shapes
-from .matching import COALESCED_DISTANCE, COALESCED_MAC, LOCK_TOL, decide, mac, relative_distance
+from .matching import (
+    CLEAR_COST,
+    COALESCED_DISTANCE,
+    COALESCED_MAC,
+    LOCK_TOL,
+    MARGIN,
+    mac,
+    relative_distance,
+)
 from .tracking import follow_root
 
 __all__ = ["FIRST_STEPS", "FLAP_ACTIVE", "MIN_STEP", "ContinuedRoots", "continue_roots",
@@ -261,13 +269,35 @@ def _solve(system, n, eps, periodic, n_steps, participation=False):
     """Positive roots of the system at coupling `eps` (Floquet: one grid, shapes)."""
     s = coupling_homotopy(system, n - 1, eps)
     if periodic:
-        res = s.modes(n_steps=n_steps, n_sub=4, shapes=True, participation=participation,
+        # n_sub=1: the lift's K chosen as for the point's own roots (raised
+        # until the most damped root is resolved)
+        res = s.modes(n_steps=n_steps, n_sub=1, shapes=True, participation=participation,
                       atol=None)
     else:
         res = s.modes()
     if participation and res.participation is None:
         res = res.with_participation()
     return positive_roots(res)
+
+
+def _path_step(system, n, eps, n_steps, basis):
+    """The roots at coupling `eps` as a path step compares them: exponents and shapes.
+
+    Floquet: :meth:`~tefcore.floquet.second_order.SecondOrderSystem.motions`
+    on one grid of `n_steps` -- the exponents on the principal branch (the
+    march unwraps them along each path) and each root's motion over the
+    revolution through `basis`, the shapes :func:`path_shapes` gives a full
+    result, without the harmonic analysis and participation a path step does
+    not use (3.6 against 6.6 ms an eigenproblem, measured on MDART at mu = 0.3).
+    Constant coefficients: the positive roots and :func:`path_shapes`.
+    """
+    if not system.periodic:
+        res = _solve(system, n, eps, False, n_steps)
+        return res.exponents, path_shapes(basis, res, n, False, n_steps)
+    eta, x = coupling_homotopy(system, n - 1, eps).motions(n_steps=n_steps, n_sub=1)
+    order = np.lexsort((-eta.real, np.round(eta.imag, 9)))
+    shapes = basis @ x[:, :n, order]                     # (azimuths, n_phys, roots)
+    return eta[order], shapes.reshape(-1, order.size)
 
 
 @dataclass
@@ -291,8 +321,9 @@ class ContinuedRoots:
         told apart at the smallest step (:data:`MIN_STEP`): ``eps`` and the two
         ``origins`` -- an exceptional point of the family within that step.
     n_solves : int
-        Eigenproblems solved on the path (the two ends included, and the
-        steps halved).
+        Eigenproblems solved for the path: ``eps = 0`` and each step's end
+        once (a step halved and retried reuses its end; the coupled system's
+        roots count only when they were not given, ``final``).
     flap_motion : numpy.ndarray
         Per root: the share of its kinematic motion (squared) in the flap's
         trailing edge (:data:`FLAP_ACTIVE`).
@@ -318,8 +349,11 @@ def continue_roots(system: SecondOrderSystem, labels, final=None, *, basis=None,
     roots of the new ``eps`` are assigned to the paths (shapes by MAC,
     eigenvalues extrapolated linearly along each path; the assignment of
     least total cost).  A step whose assignment is not decided for some path
-    (its match not clear against the rival,
-    :func:`tefcore.modes.matching.decide`) is halved, down to `min_step`; a
+    (its shape changed by more than :data:`tefcore.modes.matching.CLEAR_COST`
+    over the step, or an assignment without its match within
+    :data:`tefcore.modes.matching.MARGIN` of the best, :func:`_regrets`;
+    or, where the eigenvalues alone decide, :func:`_nearest_clear`) is
+    halved, down to `min_step`; a
     decided step lets the next one double, up to ``1 / first_steps``.  A
     rival that continues the *same* uncoupled mode (``X`` and ``X (locked)``,
     the two real roots of an overdamped pair) does not make a step undecided.
@@ -405,16 +439,21 @@ def continue_roots(system: SecondOrderSystem, labels, final=None, *, basis=None,
                          periodic=per)
     march = _March(res0.exponents, vec0, names0, basis.shape[0], per)
     h_max, eps, h, n_solves = 1.0 / first_steps, 0.0, 1.0 / first_steps, 1
+    solved: dict = {}                  # eps -> the roots there, for steps retried
     streak = 2                         # clear steps since the last halving
     while eps < 1.0 - 1e-12:
         h = min(h, 1.0 - eps)
         if eps + h == 1.0 and final is not None:
-            res = final
+            eig, vecs = final.exponents, path_shapes(basis, final, n, per, n_steps)
+        elif eps + h in solved:
+            eig, vecs = solved[eps + h]
         else:
-            res = _solve(system, n, eps + h, per, n_steps)
-        n_solves += 1
-        if march.step(eps + h, res.exponents, path_shapes(basis, res, n, per, n_steps),
-                      final_step=h <= min_step * (1 + 1e-9)):
+            # a step that was halved comes back to its end: solved once (ends
+            # are dyadic, so equal as floats; measured on Fig. 9's sweep: 45
+            # eigenproblems on the paths instead of 66 over 11 points)
+            eig, vecs = solved[eps + h] = _path_step(system, n, eps + h, n_steps, basis)
+            n_solves += 1
+        if march.step(eps + h, eig, vecs, final_step=h <= min_step * (1 + 1e-9)):
             eps += h
             streak = streak + 1 if march.last_clear else 0
             if streak >= 2:            # a step that had to be halved is not doubled at once
@@ -615,6 +654,21 @@ def _near_lock(eig, periodic) -> np.ndarray:
     return at_half & pair.any(axis=1)
 
 
+def _padded(cost, path_lock, root_lock):
+    """The square cost matrix of the assignment: where the counts differ (a pair
+    entering or leaving a lock at ``k/2``), a path near a lock ends for free and
+    only a root near one appears for free (:data:`_UNEXPLAINED` otherwise)."""
+    p, r = cost.shape
+    n = max(p, r)
+    full = np.zeros((n, n))
+    full[:p, :r] = cost
+    if r < p:
+        full[:p, r:] = np.where(path_lock, 0.0, _UNEXPLAINED)[:, None]
+    elif p < r:
+        full[p:, :r] = np.where(root_lock, 0.0, _UNEXPLAINED)[None, :]
+    return full
+
+
 def _assign(cost, path_lock, root_lock):
     """Least-cost assignment of paths (rows) to roots (columns).
 
@@ -624,16 +678,34 @@ def _assign(cost, path_lock, root_lock):
     p, r = cost.shape
     if p == r:
         return linear_sum_assignment(cost)
-    n = max(p, r)
-    full = np.zeros((n, n))
-    full[:p, :r] = cost
-    if r < p:
-        full[:p, r:] = np.where(path_lock, 0.0, _UNEXPLAINED)[:, None]
-    else:
-        full[p:, :r] = np.where(root_lock, 0.0, _UNEXPLAINED)[None, :]
-    rows, cols = linear_sum_assignment(full)
+    rows, cols = linear_sum_assignment(_padded(cost, path_lock, root_lock))
     keep = (rows < p) & (cols < r)
     return rows[keep], cols[keep]
+
+
+def _regrets(cost, path_lock, root_lock, rows, cols):
+    """Per assigned pair: how much dearer the best assignment without it is.
+
+    The match of path ``r`` to root ``c`` is decided by the whole step, not
+    by its row and column alone: a veering pair whose two matches are each
+    near their rivals (costs 0.07 and 0.28 against 0.10 and 0.40, measured on
+    Fig. 9's c_cg 0.12 at eps 0.53) can still have a swap that costs 0.5
+    more.  The regret is the least-cost assignment with ``(r, c)`` forbidden,
+    less the optimum (every rearrangement: swaps, rotations of three, a path
+    ending at a lock).
+    """
+    full = _padded(cost, path_lock, root_lock)
+    best = full[linear_sum_assignment(full)].sum()
+    out = []
+    for r, c in zip(rows, cols, strict=True):
+        alt = full.copy()
+        alt[r, c] = _FORBIDDEN
+        out.append(float(alt[linear_sum_assignment(alt)].sum() - best))
+    return np.array(out)
+
+
+#: A cost no assignment takes (above any sum of :data:`_UNEXPLAINED`).
+_FORBIDDEN = 1e6
 
 
 def _nearest_clear(dist, rows, cols):
@@ -642,13 +714,23 @@ def _nearest_clear(dist, rows, cols):
     ``dist`` is the absolute distance [/rev] from each path's predicted root
     to each root (in the representation the path sees).
     """
-    out = []
-    for r, c in zip(rows, cols, strict=True):
-        own = dist[r, c]
-        row_alt = np.delete(dist[r], c).min(initial=np.inf)
-        col_alt = np.delete(dist[:, c], r).min(initial=np.inf)
-        out.append(bool(own <= NEAR_RATIO * min(row_alt, col_alt)))
-    return out
+    rows, cols = np.asarray(rows, int), np.asarray(cols, int)
+    own = dist[rows, cols]
+    other = dist.astype(float)                  # a copy
+    other[rows, cols] = np.inf
+    row_alt = other[rows].min(axis=1, initial=np.inf)
+    col_alt = other[:, cols].min(axis=0, initial=np.inf)
+    return (own <= NEAR_RATIO * np.minimum(row_alt, col_alt)).tolist()
+
+
+def _rivals(cost, rows, cols):
+    """Per assigned pair: the column of the path's next best root (-1: none)."""
+    rows, cols = np.asarray(rows, int), np.asarray(cols, int)
+    if cost.shape[1] < 2:
+        return [-1] * rows.size
+    other = cost.astype(float)
+    other[rows, cols] = np.inf
+    return np.argmin(other[rows], axis=1).tolist()
 
 
 def _lock_partner(eig, c, assigned, periodic):
@@ -703,37 +785,85 @@ class _March:
         e0, eig0 = self.before
         return self.eig + (self.eig - eig0) * (eps - self.eps) / (self.eps - e0)
 
-    def _distance(self, pred, eig):
-        """Eigenvalue part of the cost, (paths, roots), and the roots as each path sees them.
-
-        A Floquet root's frequency is taken in the representation (shift by
-        1/rev, sign) nearest the path's predicted frequency, which is carried
-        unwrapped along the path: a frequency that moves by more than 1/2 /rev
-        over a step is still told from its alias.
-        """
-        if self.periodic:
-            f, q = eig.imag[None, :], pred.imag[:, None]
-            up, down = f + np.round(q - f), -f + np.round(q + f)
-            seen = eig.real[None, :] + 1j * np.where(np.abs(up - q) <= np.abs(down - q), up, down)
-        else:
-            seen = np.broadcast_to(eig[None, :], (pred.size, eig.size))
+    def _distance(self, pred, seen):
+        """Eigenvalue part of the cost of each path (rows) to each root as it sees it."""
         a = pred[:, None]
         ds = np.abs(a.real - seen.real)
         ss = 0.5 + 0.5 * (np.abs(a.real) + np.abs(seen.real))
         sw = 1.0 + 0.5 * (np.abs(a.imag) + np.abs(seen.imag))
-        return np.hypot(ds / ss, np.abs(a.imag - seen.imag) / sw), seen
+        return np.hypot(ds / ss, np.abs(a.imag - seen.imag) / sw)
+
+    def _costs(self, pred, eig, vecs):
+        """Match costs (paths, roots), their ``1 - MAC`` parts, the roots as each path sees them.
+
+        Constant coefficients: eigenvalue distance (:meth:`_distance`) plus
+        ``1 - MAC`` of the shapes, against the path's shape and its conjugate
+        (the sign of the imaginary part is the pair's convention).
+
+        Floquet: a root's frequency is known modulo 1/rev and up to the sign.
+        Each root is taken in the representation a path would carry it in
+        unwrapped: the integer shift nearest the path's predicted frequency,
+        of the root (``up``) or of its conjugate (``down``, whose motion is the
+        conjugate).  The shapes compared are the motions over the revolution
+        with each one's own frequency taken out -- the periodic parts
+        ``p(psi)`` in that representation -- so the drift ``exp(i (f' - f) psi)``
+        of a frequency that moves along ``eps`` does not read as a change of
+        shape, and a representation that is near in frequency but not the
+        root's own (a root near ``k/2``: ``f`` and ``k - f`` both near the
+        path) shows in the shape.  Of the two, the one of least cost.
+        (Measured on Fig. 9's point c_cg 0.04: comparing the motions
+        themselves, the TEF root at 18.6 /rev kept MAC 0.25 with itself over
+        the step to eps = 0.5, and steps were halved to 1/64 where no two
+        roots met.)
+        """
+        if not self.periodic:
+            seen = np.broadcast_to(eig[None, :], (pred.size, eig.size))
+            shape = 1.0 - np.maximum(mac(self.vecs, vecs), mac(self.vecs.conj(), vecs))
+            return np.minimum(1.0, self._distance(pred, seen)) + shape, shape, seen, \
+                np.zeros(seen.shape, bool)
+        f, q = eig.imag[None, :], pred.imag[:, None]
+        n_phys = self.n_phys
+        samples = vecs.shape[0] // n_phys
+        psi = 2 * np.pi * np.arange(samples) / samples
+        # conj(path motion) exp(i f_path psi) and root motion exp(-i f_root psi):
+        # what is left of exp(i (f_path - f_seen) psi) is exp(-i j psi) for the
+        # integer shift j of the representation -- harmonic j of the product,
+        # read from its FFT over the samples
+        a = (np.swapaxes(self.vecs.reshape(samples, n_phys, -1), 1, 2).conj()
+             * np.exp(1j * np.outer(psi, self.eig.imag))[:, :, None])
+        b = vecs.reshape(samples, n_phys, -1)
+        turn = np.exp(-1j * np.outer(psi, eig.imag))[:, None, :]
+        norm = (np.sum(np.abs(self.vecs) ** 2, axis=0)[:, None]
+                * np.sum(np.abs(vecs) ** 2, axis=0)[None, :])
+        rows, cols = np.indices(norm.shape)
+        out = []
+        # the root (f + j, its motion) and its conjugate (-f + j', the conjugate motion)
+        for sign, other in ((1.0, b * turn), (-1.0, b.conj() * turn.conj())):
+            shift = np.round(q - sign * f)
+            harm = np.fft.fft(a @ other, axis=0)          # (harmonics, paths, roots)
+            num = np.abs(harm[shift.astype(int) % samples, rows, cols]) ** 2
+            seen = eig.real[None, :] + 1j * (sign * f + shift)
+            shape = 1.0 - num / norm
+            out.append((np.minimum(1.0, self._distance(pred, seen)) + shape, shape, seen))
+        flip = out[1][0] < out[0][0]
+        cost, shape, seen = (np.where(flip, dn, up)
+                             for up, dn in zip(out[0], out[1], strict=True))
+        return cost, shape, seen, flip
 
     def step(self, eps, eig, vecs, final_step) -> bool:
         """Assign the roots at `eps` to the paths; False when the step must be halved."""
         eig = np.asarray(eig, complex)
         pred = self._predicted(eps)
-        # shapes by MAC, against the path's shape and its conjugate (the sign of
-        # a Floquet frequency is a convention: the conjugate root is the same mode)
-        shape = 1.0 - np.maximum(mac(self.vecs, vecs), mac(self.vecs.conj(), vecs))
-        dist, seen = self._distance(pred, eig)
-        cost = np.minimum(1.0, dist) + shape
-        rows, cols = _assign(cost, _near_lock(pred, self.periodic), _near_lock(eig, self.periodic))
-        clear, rival = decide(cost, rows, cols, shape)
+        cost, shape, seen, flip = self._costs(pred, eig, vecs)
+        path_lock, root_lock = _near_lock(pred, self.periodic), _near_lock(eig, self.periodic)
+        rows, cols = _assign(cost, path_lock, root_lock)
+        rival = _rivals(cost, rows, cols)
+        # clear: the root's shape is resolved by the step (its own 1 - MAC at
+        # most CLEAR_COST) and no rearrangement of the step is within MARGIN of
+        # the assignment (tefcore.modes.matching: a quarter of a MAC)
+        regret = _regrets(cost, path_lock, root_lock, rows, cols)
+        clear = [bool(shape[r, c] <= CLEAR_COST and g >= MARGIN)
+                 for r, c, g in zip(rows, cols, regret, strict=True)]
         near = _nearest_clear(np.abs(seen - pred[:, None]), rows, cols)
         clear = [a or b for a, b in zip(clear, near, strict=True)]
         path_of = dict(zip(cols, rows, strict=True))
@@ -759,14 +889,17 @@ class _March:
         self.last_clear = not meet
         if meet and not final_step:
             return False
-        self._accept(eps, seen, vecs, rows, cols, meet, lock, eig)
+        self._accept(eps, seen, flip, vecs, rows, cols, meet, lock, eig)
         return True
 
-    def _accept(self, eps, seen, vecs, rows, cols, meet, lock, raw):
-        # each root as the path it continues sees it (its frequency unwrapped)
+    def _accept(self, eps, seen, flip, vecs, rows, cols, meet, lock, raw):
+        # each root as the path it continues sees it (its frequency unwrapped),
+        # its motion in the same orientation (the conjugate where the sign flipped)
         eig = seen[0].copy()
+        turn = flip[0].copy()
         for r, c in zip(rows, cols, strict=True):
-            eig[c] = seen[r, c]
+            eig[c], turn[c] = seen[r, c], flip[r, c]
+        vecs = np.where(turn[None, :], vecs.conj(), vecs)
         origin = [""] * eig.size
         start = np.full(eig.size, np.nan, complex)
         last = np.full(eig.size, np.nan, complex)     # each path's eigenvalue a step back
