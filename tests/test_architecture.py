@@ -78,9 +78,6 @@ LONG_FUNCTIONS: dict[str, str] = {
         "the accuracy loop: sub-intervals raised for damped roots, steps doubled until "
         "every exponent meets its tolerance, the lift's round-off bound; its branches are "
         "the documented outcomes (theory 5.6a)",
-    "tefcore.floquet._analysis._modes":
-        "exponents, periodic shapes and adjoint participation of one lift share its "
-        "eigenvectors and sub-interval factors; split, they would be recomputed",
     "tefcore.model.jacobian.jacobian_blocks":
         "the dispatch between the exact Jacobian and the difference schemes with the "
         "shed-wake and inflow states; one screen",

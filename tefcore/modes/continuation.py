@@ -30,15 +30,7 @@ import pandas as pd
 from ..assignment import linear_sum_assignment
 from ..floquet.second_order import SecondOrderSystem
 from .labels import coordinate_shares, label_modes, tracking_shapes, trajectory_shapes
-from .matching import (
-    CLEAR_COST,
-    COALESCED_DISTANCE,
-    COALESCED_MAC,
-    LOCK_TOL,
-    MARGIN,
-    mac,
-    relative_distance,
-)
+from .march import FLAP_ACTIVE, March, base_name, flap_share
 from .tracking import follow_root
 
 __all__ = ["FIRST_STEPS", "FLAP_ACTIVE", "MIN_STEP", "ContinuedRoots", "continue_roots",
@@ -213,14 +205,6 @@ def tef_root(system: SecondOrderSystem, *, basis=None, n_steps: int = 72):
 # ------------------------------------------------------------------ all roots
 
 
-#: Least share of a root's kinematic motion (squared) in the flap's trailing edge
-#: (the last row of :meth:`tefcore.model.coupled.CoupledModel.tracking_basis`) for
-#: the root to take part in the blade-flap coupling.  Measured on MDART: the blade's
-#: low modes carry 1e-8 to 1e-2 (torsion 1 at c_cg 0.33, mu 0.3: 2e-2 at full
-#: coupling, 1e-4 at half), the roots the flap moves 5e-2 to 1.
-FLAP_ACTIVE = 1e-2
-
-
 def path_shapes(basis, res, n, periodic, samples=72):
     """The shapes paths are matched by.
 
@@ -256,13 +240,6 @@ def path_shapes(basis, res, n, periodic, samples=72):
     # between MDART's TEF and first torsion roots at Fig. 14's 0.08 span,
     # measured), at 72 it is resolved up to 36 /rev
     return trajectory_shapes(basis, res, n, samples=samples)
-
-
-def _flap_share(vecs, n_phys):
-    """Each root's kinematic share in the flap (the basis' last row) over its shape's blocks."""
-    blocks = vecs.reshape(-1, n_phys, vecs.shape[-1])
-    total = np.sum(np.abs(blocks) ** 2, axis=(0, 1))
-    return np.sum(np.abs(blocks[:, -1]) ** 2, axis=0) / np.maximum(total, np.finfo(float).tiny)
 
 
 def _solve(system, n, eps, periodic, n_steps, participation=False):
@@ -351,7 +328,7 @@ def continue_roots(system: SecondOrderSystem, labels, final=None, *, basis=None,
     least total cost).  A step whose assignment is not decided for some path
     (its shape changed by more than :data:`tefcore.modes.matching.CLEAR_COST`
     over the step, or an assignment without its match within
-    :data:`tefcore.modes.matching.MARGIN` of the best, :func:`_regrets`;
+    :data:`tefcore.modes.matching.MARGIN` of the best, :func:`tefcore.modes.march.regrets`;
     or, where the eigenvalues alone decide, :func:`_nearest_clear`) is
     halved, down to `min_step`; a
     decided step lets the next one double, up to ``1 / first_steps``.  A
@@ -437,7 +414,7 @@ def continue_roots(system: SecondOrderSystem, labels, final=None, *, basis=None,
     vec0 = path_shapes(basis, res0, n, per, n_steps)
     names0 = label_modes(frac0, labels, res0.frequencies, res0.damping_rates, vec0,
                          periodic=per)
-    march = _March(res0.exponents, vec0, names0, basis.shape[0], per)
+    march = March(res0.exponents, vec0, names0, basis.shape[0], per)
     h_max, eps, h, n_solves = 1.0 / first_steps, 0.0, 1.0 / first_steps, 1
     solved: dict = {}                  # eps -> the roots there, for steps retried
     streak = 2                         # clear steps since the last halving
@@ -462,7 +439,7 @@ def continue_roots(system: SecondOrderSystem, labels, final=None, *, basis=None,
             h *= 0.5
             streak = 0
     origin, uncoupled, certain = list(march.origin), march.start.copy(), ~march.doubt
-    motion = _flap_share(march.vecs, basis.shape[0])
+    motion = flap_share(march.vecs, basis.shape[0])
     if final_labels is not None and per:
         carried = list(final_labels)
         if final_shares is not None:
@@ -470,7 +447,7 @@ def continue_roots(system: SecondOrderSystem, labels, final=None, *, basis=None,
         origin, changed = _flap_free_by_participation(origin, motion, carried)
         certain = certain & ~changed
         held = dict(zip(names0, res0.exponents, strict=True))
-        uncoupled = np.array([held.get(o, held.get(_base_name(o), np.nan)) for o in origin],
+        uncoupled = np.array([held.get(o, held.get(base_name(o), np.nan)) for o in origin],
                              complex)
     meetings = _renamed_meetings(march, origin)
     return ContinuedRoots(origin=origin, certain=certain, uncoupled=uncoupled,
@@ -483,11 +460,6 @@ def continue_roots(system: SecondOrderSystem, labels, final=None, *, basis=None,
 _STRUCTURAL = 0.5
 
 
-def _base_name(name: str) -> str:
-    """A name without its locked-partner suffix."""
-    return name.removesuffix(" (locked)")
-
-
 def _renamed_meetings(march, names) -> pd.DataFrame:
     """The march's meetings between the roots the two paths end on, by their final names.
 
@@ -497,7 +469,7 @@ def _renamed_meetings(march, names) -> pd.DataFrame:
     roots that end as one mode's pair (``X``, ``X (locked)``: a lock entered
     there) did not meet another mode.
     """
-    final = {int(p): _base_name(n) for p, n in zip(march.pid, names, strict=True)}
+    final = {int(p): base_name(n) for p, n in zip(march.pid, names, strict=True)}
     rows = []
     for m in march.meetings:
         a, b = (final.get(p, n) for n, p in m["paths"].items())
@@ -566,8 +538,8 @@ def _flap_free_by_participation(origin, motion, carried):
     names = [str(c) if f else o for o, c, f in zip(origin, carried, free, strict=True)]
     # the names left for the moving roots: not a mode a flap-free root already
     # is (nor its lock partner's name: the pair that left its lock is one root)
-    taken = {_base_name(names[i]) for i in np.flatnonzero(free)}
-    left = [o for o in origin if o and _base_name(o) not in taken]   # "": unexplained
+    taken = {base_name(names[i]) for i in np.flatnonzero(free)}
+    left = [o for o in origin if o and base_name(o) not in taken]   # "": unexplained
     changed = np.zeros(len(origin), bool)
     active = np.flatnonzero(~free)
     if not active.size:
@@ -582,7 +554,7 @@ def _flap_free_by_participation(origin, motion, carried):
     repeat = len(pool)
     pool += [n for k, n in enumerate(offered) if n in offered[:k]]
     cost = np.array([[3.0 if k >= repeat else 0.0 if n and n == origin[i] else 1.0
-                      if _base_name(n) == _base_name(str(carried[i])) else 2.0
+                      if base_name(n) == base_name(str(carried[i])) else 2.0
                       for k, n in enumerate(pool)] for i in active])
     rows, cols = linear_sum_assignment(cost)
     for r, c in zip(rows, cols, strict=True):
@@ -613,341 +585,5 @@ def _by_participation(res0, n, labels, basis, final, final_labels) -> ContinuedR
     return ContinuedRoots(origin=names, certain=np.zeros(len(names), bool),
                           uncoupled=uncoupled,
                           meetings=pd.DataFrame(columns=["eps", "origins"]), n_solves=1,
-                          flap_motion=_flap_share(tracking_shapes(basis, final, n),
+                          flap_motion=flap_share(tracking_shapes(basis, final, n),
                                                   basis.shape[0]))
-
-
-#: An eigenvalue match is clear by distance alone when the predicted root is at
-#: most this fraction of the way to the next nearest (and the root nearest to no
-#: other path by the same ratio): the linear predictor's error would have to be
-#: three times the distance it is trusted for to swap them.
-NEAR_RATIO = 1.0 / 3.0
-
-#: Cost of a path that ends or a root that appears without a lock to explain it:
-#: above any match (a match costs at most 2), so the assignment drops or adds a
-#: root only at a lock.
-_UNEXPLAINED = 5.0
-
-
-def _fold(eig) -> np.ndarray:
-    """Floquet frequencies folded into [0, 1/2] (modulo 1/rev and sign)."""
-    f = np.abs(np.asarray(eig, complex).imag) % 1.0
-    return np.minimum(f, 1.0 - f)
-
-
-def _near_lock(eig, periodic) -> np.ndarray:
-    """Which roots are one of a locked pair: at a multiple of 1/2 /rev, with another
-    root at the same frequency (both within :data:`tefcore.modes.matching.LOCK_TOL`
-    ten times over; Floquet only).
-
-    Only such a pair can merge into one complex root (a path ends) or split
-    from one (a root appears).
-    """
-    eig = np.asarray(eig, complex)
-    if not periodic:
-        return np.zeros(eig.size, bool)
-    fold = _fold(eig)
-    tol = 10 * LOCK_TOL
-    at_half = np.minimum(fold, 0.5 - fold) <= tol
-    pair = np.abs(fold[:, None] - fold[None, :]) <= tol
-    np.fill_diagonal(pair, False)
-    return at_half & pair.any(axis=1)
-
-
-def _padded(cost, path_lock, root_lock):
-    """The square cost matrix of the assignment: where the counts differ (a pair
-    entering or leaving a lock at ``k/2``), a path near a lock ends for free and
-    only a root near one appears for free (:data:`_UNEXPLAINED` otherwise)."""
-    p, r = cost.shape
-    n = max(p, r)
-    full = np.zeros((n, n))
-    full[:p, :r] = cost
-    if r < p:
-        full[:p, r:] = np.where(path_lock, 0.0, _UNEXPLAINED)[:, None]
-    elif p < r:
-        full[p:, :r] = np.where(root_lock, 0.0, _UNEXPLAINED)[None, :]
-    return full
-
-
-def _assign(cost, path_lock, root_lock):
-    """Least-cost assignment of paths (rows) to roots (columns).
-
-    Where the counts differ (a pair entering or leaving a lock at ``k/2``),
-    only a path near a lock ends and only a root near one appears.
-    """
-    p, r = cost.shape
-    if p == r:
-        return linear_sum_assignment(cost)
-    rows, cols = linear_sum_assignment(_padded(cost, path_lock, root_lock))
-    keep = (rows < p) & (cols < r)
-    return rows[keep], cols[keep]
-
-
-def _regrets(cost, path_lock, root_lock, rows, cols):
-    """Per assigned pair: how much dearer the best assignment without it is.
-
-    The match of path ``r`` to root ``c`` is decided by the whole step, not
-    by its row and column alone: a veering pair whose two matches are each
-    near their rivals (costs 0.07 and 0.28 against 0.10 and 0.40, measured on
-    Fig. 9's c_cg 0.12 at eps 0.53) can still have a swap that costs 0.5
-    more.  The regret is the least-cost assignment with ``(r, c)`` forbidden,
-    less the optimum (every rearrangement: swaps, rotations of three, a path
-    ending at a lock).
-    """
-    full = _padded(cost, path_lock, root_lock)
-    best = full[linear_sum_assignment(full)].sum()
-    out = []
-    for r, c in zip(rows, cols, strict=True):
-        alt = full.copy()
-        alt[r, c] = _FORBIDDEN
-        out.append(float(alt[linear_sum_assignment(alt)].sum() - best))
-    return np.array(out)
-
-
-#: A cost no assignment takes (above any sum of :data:`_UNEXPLAINED`).
-_FORBIDDEN = 1e6
-
-
-def _nearest_clear(dist, rows, cols):
-    """Per assigned pair: the root is the path's nearest by :data:`NEAR_RATIO`, and back.
-
-    ``dist`` is the absolute distance [/rev] from each path's predicted root
-    to each root (in the representation the path sees).
-    """
-    rows, cols = np.asarray(rows, int), np.asarray(cols, int)
-    own = dist[rows, cols]
-    other = dist.astype(float)                  # a copy
-    other[rows, cols] = np.inf
-    row_alt = other[rows].min(axis=1, initial=np.inf)
-    col_alt = other[:, cols].min(axis=0, initial=np.inf)
-    return (own <= NEAR_RATIO * np.minimum(row_alt, col_alt)).tolist()
-
-
-def _rivals(cost, rows, cols):
-    """Per assigned pair: the column of the path's next best root (-1: none)."""
-    rows, cols = np.asarray(rows, int), np.asarray(cols, int)
-    if cost.shape[1] < 2:
-        return [-1] * rows.size
-    other = cost.astype(float)
-    other[rows, cols] = np.inf
-    return np.argmin(other[rows], axis=1).tolist()
-
-
-def _lock_partner(eig, c, assigned, periodic):
-    """The assigned root whose second root ``c`` is, or None.
-
-    Floquet: a root at the same frequency folded into ``[0, 1/2]`` (within
-    ten times :data:`tefcore.modes.matching.LOCK_TOL`: the two of a lock share
-    ``k/2`` to round-off), the
-    nearest in real part.  Constant coefficients: two real roots of one
-    overdamped pair, the nearest real root.
-    """
-    eig = np.asarray(eig, complex)
-    fold = _fold(eig)
-    if periodic:
-        ok = assigned & (np.abs(fold - fold[c]) <= 10 * LOCK_TOL)
-    else:
-        ok = assigned & (np.abs(eig.imag) <= 1e-9) & (abs(eig[c].imag) <= 1e-9)
-    if not ok.any():
-        return None
-    return int(np.argmin(np.where(ok, np.abs(eig.real - eig[c].real), np.inf)))
-
-
-class _March:
-    """The paths of all roots along ``eps``: their origins, last roots and doubts.
-
-    ``doubt``: the path met another mode's (an exceptional point); ``lock``:
-    the path passed an undecided match among roots the flap takes no part in
-    (a frequency lock of the blade, named by participation at the end).
-    """
-
-    def __init__(self, eig, vecs, names, n_phys, periodic):
-        self.eig, self.vecs = np.asarray(eig, complex), vecs
-        self.n_phys, self.periodic = n_phys, periodic
-        self.origin = [str(x) for x in names]
-        self.start = self.eig.copy()
-        self.before = None                # (eps, each path's eigenvalue) at the step before
-        self.eps = 0.0
-        self.doubt = np.zeros(self.eig.size, bool)
-        self.lock = np.zeros(self.eig.size, bool)
-        self.pid = np.arange(self.eig.size)       # each path's id, carried along
-        self.next_pid = self.eig.size
-        self.meetings: list[dict] = []
-        self.last_clear = True
-
-    def _base(self, i):
-        return _base_name(self.origin[i])
-
-    def _predicted(self, eps):
-        """Each path's eigenvalue extrapolated linearly from its last two steps."""
-        if self.before is None:
-            return self.eig
-        e0, eig0 = self.before
-        return self.eig + (self.eig - eig0) * (eps - self.eps) / (self.eps - e0)
-
-    def _distance(self, pred, seen):
-        """Eigenvalue part of the cost of each path (rows) to each root as it sees it."""
-        a = pred[:, None]
-        ds = np.abs(a.real - seen.real)
-        ss = 0.5 + 0.5 * (np.abs(a.real) + np.abs(seen.real))
-        sw = 1.0 + 0.5 * (np.abs(a.imag) + np.abs(seen.imag))
-        return np.hypot(ds / ss, np.abs(a.imag - seen.imag) / sw)
-
-    def _costs(self, pred, eig, vecs):
-        """Match costs (paths, roots), their ``1 - MAC`` parts, the roots as each path sees them.
-
-        Constant coefficients: eigenvalue distance (:meth:`_distance`) plus
-        ``1 - MAC`` of the shapes, against the path's shape and its conjugate
-        (the sign of the imaginary part is the pair's convention).
-
-        Floquet: a root's frequency is known modulo 1/rev and up to the sign.
-        Each root is taken in the representation a path would carry it in
-        unwrapped: the integer shift nearest the path's predicted frequency,
-        of the root (``up``) or of its conjugate (``down``, whose motion is the
-        conjugate).  The shapes compared are the motions over the revolution
-        with each one's own frequency taken out -- the periodic parts
-        ``p(psi)`` in that representation -- so the drift ``exp(i (f' - f) psi)``
-        of a frequency that moves along ``eps`` does not read as a change of
-        shape, and a representation that is near in frequency but not the
-        root's own (a root near ``k/2``: ``f`` and ``k - f`` both near the
-        path) shows in the shape.  Of the two, the one of least cost.
-        (Measured on Fig. 9's point c_cg 0.04: comparing the motions
-        themselves, the TEF root at 18.6 /rev kept MAC 0.25 with itself over
-        the step to eps = 0.5, and steps were halved to 1/64 where no two
-        roots met.)
-        """
-        if not self.periodic:
-            seen = np.broadcast_to(eig[None, :], (pred.size, eig.size))
-            shape = 1.0 - np.maximum(mac(self.vecs, vecs), mac(self.vecs.conj(), vecs))
-            return np.minimum(1.0, self._distance(pred, seen)) + shape, shape, seen, \
-                np.zeros(seen.shape, bool)
-        f, q = eig.imag[None, :], pred.imag[:, None]
-        n_phys = self.n_phys
-        samples = vecs.shape[0] // n_phys
-        psi = 2 * np.pi * np.arange(samples) / samples
-        # conj(path motion) exp(i f_path psi) and root motion exp(-i f_root psi):
-        # what is left of exp(i (f_path - f_seen) psi) is exp(-i j psi) for the
-        # integer shift j of the representation -- harmonic j of the product,
-        # read from its FFT over the samples
-        a = (np.swapaxes(self.vecs.reshape(samples, n_phys, -1), 1, 2).conj()
-             * np.exp(1j * np.outer(psi, self.eig.imag))[:, :, None])
-        b = vecs.reshape(samples, n_phys, -1)
-        turn = np.exp(-1j * np.outer(psi, eig.imag))[:, None, :]
-        norm = (np.sum(np.abs(self.vecs) ** 2, axis=0)[:, None]
-                * np.sum(np.abs(vecs) ** 2, axis=0)[None, :])
-        rows, cols = np.indices(norm.shape)
-        out = []
-        # the root (f + j, its motion) and its conjugate (-f + j', the conjugate motion)
-        for sign, other in ((1.0, b * turn), (-1.0, b.conj() * turn.conj())):
-            shift = np.round(q - sign * f)
-            harm = np.fft.fft(a @ other, axis=0)          # (harmonics, paths, roots)
-            num = np.abs(harm[shift.astype(int) % samples, rows, cols]) ** 2
-            seen = eig.real[None, :] + 1j * (sign * f + shift)
-            shape = 1.0 - num / norm
-            out.append((np.minimum(1.0, self._distance(pred, seen)) + shape, shape, seen))
-        flip = out[1][0] < out[0][0]
-        cost, shape, seen = (np.where(flip, dn, up)
-                             for up, dn in zip(out[0], out[1], strict=True))
-        return cost, shape, seen, flip
-
-    def step(self, eps, eig, vecs, final_step) -> bool:
-        """Assign the roots at `eps` to the paths; False when the step must be halved."""
-        eig = np.asarray(eig, complex)
-        pred = self._predicted(eps)
-        cost, shape, seen, flip = self._costs(pred, eig, vecs)
-        path_lock, root_lock = _near_lock(pred, self.periodic), _near_lock(eig, self.periodic)
-        rows, cols = _assign(cost, path_lock, root_lock)
-        rival = _rivals(cost, rows, cols)
-        # clear: the root's shape is resolved by the step (its own 1 - MAC at
-        # most CLEAR_COST) and no rearrangement of the step is within MARGIN of
-        # the assignment (tefcore.modes.matching: a quarter of a MAC)
-        regret = _regrets(cost, path_lock, root_lock, rows, cols)
-        clear = [bool(shape[r, c] <= CLEAR_COST and g >= MARGIN)
-                 for r, c, g in zip(rows, cols, regret, strict=True)]
-        near = _nearest_clear(np.abs(seen - pred[:, None]), rows, cols)
-        clear = [a or b for a, b in zip(clear, near, strict=True)]
-        path_of = dict(zip(cols, rows, strict=True))
-        active = _flap_share(vecs, self.n_phys) >= FLAP_ACTIVE
-        meet, lock = [], []
-        for r, c, ok, k in zip(rows, cols, clear, rival, strict=True):
-            other = path_of.get(k)
-            if ok or (other is not None and self._base(other) == self._base(r)):
-                continue
-            if self.periodic and not (active[c] and k >= 0 and active[k]):
-                # two roots that do not both move the flap: not refined.  The
-                # coupling moves a root in proportion to its motion of the flap,
-                # so a root that does not move it is the blade's own and is named
-                # by participation at the end, which also gives a moving root
-                # the name left when the two swapped here
-                # (_flap_free_by_participation); only two moving roots need the
-                # step resolved.  (Measured on Fig. 9's sweep: 312 eigenproblems
-                # on the paths with every such pair refined, 132 without; the
-                # names of the moving roots unchanged.)
-                lock.append((r, other))
-            else:
-                meet.append((r, other))
-        self.last_clear = not meet
-        if meet and not final_step:
-            return False
-        self._accept(eps, seen, flip, vecs, rows, cols, meet, lock, eig)
-        return True
-
-    def _accept(self, eps, seen, flip, vecs, rows, cols, meet, lock, raw):
-        # each root as the path it continues sees it (its frequency unwrapped),
-        # its motion in the same orientation (the conjugate where the sign flipped)
-        eig = seen[0].copy()
-        turn = flip[0].copy()
-        for r, c in zip(rows, cols, strict=True):
-            eig[c], turn[c] = seen[r, c], flip[r, c]
-        vecs = np.where(turn[None, :], vecs.conj(), vecs)
-        origin = [""] * eig.size
-        start = np.full(eig.size, np.nan, complex)
-        last = np.full(eig.size, np.nan, complex)     # each path's eigenvalue a step back
-        doubt = np.zeros(eig.size, bool)
-        locked = np.zeros(eig.size, bool)
-        pid = np.full(eig.size, -1)
-        for r, c in zip(rows, cols, strict=True):
-            origin[c], start[c], last[c] = self.origin[r], self.start[r], self.eig[r]
-            doubt[c], locked[c], pid[c] = self.doubt[r], self.lock[r], self.pid[r]
-        col_of = dict(zip(rows, cols, strict=True))
-        for r, other in lock:
-            locked[[col_of[x] for x in (r, other) if x is not None]] = True
-        for r, other in meet:
-            doubt[[col_of[x] for x in (r, other) if x is not None]] = True
-            pair = sorted({self._base(r), self._base(other) if other is not None else "?"})
-            if len(pair) < 2 or other is None:
-                continue
-            a, b = col_of[r], col_of[other]
-            # Floquet: the multipliers coalesce (frequencies modulo 1/rev and
-            # up to the sign, a combination resonance among them)
-            gap = float(relative_distance(eig[a:a + 1], eig[b:b + 1], self.periodic)[0, 0])
-            shape = float(max(mac(vecs[:, a], vecs[:, b])[0, 0],
-                              mac(vecs[:, a].conj(), vecs[:, b])[0, 0]))
-            # a meeting is an exceptional point only where the two roots
-            # coalesce, one eigenvalue and one shape; two roots still apart
-            # whose match no step decided keep the assignment of least cost,
-            # uncertain but not a coalescence (measured on the paper's
-            # figures: undecided pairs at MAC 0.18-0.8 or 0.1-0.6 apart, and
-            # coalescing pairs at MAC 0.97, 0.03 apart)
-            if shape >= COALESCED_MAC and gap <= COALESCED_DISTANCE:
-                self.meetings.append({"eps": eps, "origins": " / ".join(pair),
-                                      "gap": gap, "mac": shape,
-                                      "paths": {self._base(r): int(self.pid[r]),
-                                                self._base(other): int(self.pid[other])}})
-        assigned = np.isin(np.arange(eig.size), cols)
-        for c in np.flatnonzero(~assigned):
-            pid[c], self.next_pid = self.next_pid, self.next_pid + 1
-            # a root that appears: a pair became two real roots (a lock at k/2,
-            # or an overdamped pair): it is the second root of its partner,
-            # the assigned root at its frequency (folded into [0, 1/2])
-            near = _lock_partner(raw, c, assigned, self.periodic)
-            if near is None:
-                origin[c], doubt[c], last[c] = "", True, eig[c]     # unexplained
-                continue
-            origin[c] = _base_name(origin[near]) + " (locked)"
-            start[c], doubt[c], last[c] = start[near], doubt[near], eig[c]
-            locked[[c, near]] = True
-        self.before = (self.eps, last)
-        self.eps, self.eig, self.vecs = eps, eig, vecs
-        self.origin, self.start, self.doubt, self.lock = origin, start, doubt, locked
-        self.pid = pid
