@@ -41,9 +41,9 @@ __all__ = ["FIRST_STEPS", "FLAP_ACTIVE", "MIN_STEP", "ContinuedRoots", "continue
 #: eigenproblem); a step whose matches are not all decided is halved.
 FIRST_STEPS = 2
 
-#: Smallest step of ``eps``: 1/256 (7 halvings of the first 1/2).  A match still
+#: Smallest step of ``eps``: 1/4096 (11 halvings of the first 1/2).  A match still
 #: undecided at this step is a coalescence on the path (an exceptional point
-#: within ~1/256 of the coupling), reported rather than refined further.
+#: within ~1/4096 of the coupling), reported rather than refined further.
 MIN_STEP = 1.0 / 4096
 
 
