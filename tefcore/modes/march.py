@@ -40,16 +40,40 @@ FLAP_ACTIVE = 1e-2
 
 
 def flap_share(vecs, n_phys):
-    """Each root's kinematic share in the flap (the basis' last row) over its shape's blocks."""
+    """Each root's kinematic share in the flap (the basis' last row) over its shape's blocks.
+
+    Parameters
+    ----------
+    vecs : numpy.ndarray
+        Shapes through the tracking basis, one column per root, stacked in
+        blocks of `n_phys` rows (azimuths, or displacement and velocity).
+    n_phys : int
+        Rows of the basis; the last is the flap's trailing-edge motion.
+
+    Returns
+    -------
+    numpy.ndarray
+        Per root, ``sum |flap row|^2 / sum |all rows|^2``.
+    """
     blocks = vecs.reshape(-1, n_phys, vecs.shape[-1])
     total = np.sum(np.abs(blocks) ** 2, axis=(0, 1))
     return np.sum(np.abs(blocks[:, -1]) ** 2, axis=0) / np.maximum(total, np.finfo(float).tiny)
 
 
 def base_name(name: str) -> str:
-    """A name without its locked-partner suffix."""
-    return name.removesuffix(" (locked)")
+    """A name without its locked-partner suffix.
 
+    Parameters
+    ----------
+    name : str
+        A root's name, e.g. ``"blade flap 1 (locked)"``.
+
+    Returns
+    -------
+    str
+        ``"blade flap 1"``.
+    """
+    return name.removesuffix(" (locked)")
 
 
 #: An eigenvalue match is clear by distance alone when the predicted root is at
@@ -214,6 +238,20 @@ class March:
     ``doubt``: the path met another mode's (an exceptional point); ``lock``:
     the path passed an undecided match among roots the flap takes no part in
     (a frequency lock of the blade, named by participation at the end).
+
+    Parameters
+    ----------
+    eig : numpy.ndarray of complex
+        The roots at ``eps = 0``, one path each [/rev].
+    vecs : numpy.ndarray
+        Their shapes (:func:`tefcore.modes.continuation.path_shapes`), one
+        column per root.
+    names : list of str
+        Their names (the uncoupled modes).
+    n_phys : int
+        Rows of the tracking basis (the flap's motion last).
+    periodic : bool
+        Floquet exponents (frequencies known modulo 1/rev and up to the sign).
     """
 
     def __init__(self, eig, vecs, names, n_phys, periodic):
