@@ -67,3 +67,12 @@ def test_exponents_and_motions_are_those_of_floquet_modes():
                                                       * np.vdot(ref[:, 0], ref[:, 0]).real)
                   for v in (got, got.conj()))
         assert mac == pytest.approx(1.0, abs=1e-9)
+
+
+def test_motions_of_a_second_order_system_refuse_what_they_cannot_do():
+    from tefcore.floquet.second_order import SecondOrderSystem
+
+    m, c, k = np.eye(2)[None], 0.1 * np.eye(2)[None], np.diag([1.0, 4.0])[None]
+    # constant coefficients: the modes are direct eigenvalues, not a path's motions
+    with pytest.raises(ValueError, match="periodic"):
+        SecondOrderSystem(m, c, k).motions()
