@@ -325,13 +325,13 @@ def continue_roots(system: SecondOrderSystem, labels, final=None, *, basis=None,
     two blocks being decoupled) and marched to ``eps = 1``: at each step all
     roots of the new ``eps`` are assigned to the paths (shapes by MAC,
     eigenvalues extrapolated linearly along each path; the assignment of
-    least total cost).  A step whose assignment is not decided for some path
-    (its shape changed by more than :data:`tefcore.modes.matching.CLEAR_COST`
-    over the step, or an assignment without its match within
-    :data:`tefcore.modes.matching.MARGIN` of the best, :func:`tefcore.modes.march.regrets`;
-    or, where the eigenvalues alone decide, :func:`_nearest_clear`) is
-    halved, down to `min_step`; a
-    decided step lets the next one double, up to ``1 / first_steps``.  A
+    least total cost; :class:`tefcore.modes.march.March`).  A step whose
+    assignment is not decided for some path (its shape changed by more than
+    :data:`tefcore.modes.matching.CLEAR_COST` over the step, or an assignment
+    without its match within :data:`tefcore.modes.matching.MARGIN` of the
+    best, :func:`tefcore.modes.march.regrets`; unless the eigenvalues alone
+    decide it) is halved, down to `min_step`; a decided step lets the next
+    one double, up to ``1 / first_steps``; an end solved once is reused.  A
     rival that continues the *same* uncoupled mode (``X`` and ``X (locked)``,
     the two real roots of an overdamped pair) does not make a step undecided.
     A match still undecided at `min_step` between two different uncoupled
@@ -341,8 +341,12 @@ def continue_roots(system: SecondOrderSystem, labels, final=None, *, basis=None,
 
     **Periodic coefficients (forward flight).**  The same march on the
     Floquet roots, with two differences.  Their frequencies are known modulo
-    1/rev and up to the sign, so the shapes compared are the roots' motion
-    over the revolution (:func:`path_shapes`), which no convention changes.
+    1/rev and up to the sign: each step's roots come on the principal branch
+    (:func:`tefcore.floquet.floquet_motions`), a path sees each root in the
+    representation nearest its own unwrapped frequency (the root's or its
+    conjugate's), and the shapes compared are the periodic parts of the
+    roots' motions over the revolution in that representation, which a
+    frequency drifting along ``eps`` does not change.
     And the blade's low modes sit in frequency locks (pairs of real
     multipliers at ``k/2`` /rev) whose roots meet and part along ``eps``
     although the flap takes no part in them: an undecided match in which a
