@@ -24,6 +24,7 @@ from .matching import (
     COALESCED_MAC,
     LOCK_TOL,
     MARGIN,
+    decide,
     mac,
     relative_distance,
 )
@@ -202,16 +203,6 @@ def _nearest_clear(dist, rows, cols):
     return (own <= NEAR_RATIO * np.minimum(row_alt, col_alt)).tolist()
 
 
-def _rivals(cost, rows, cols):
-    """Per assigned pair: the column of the path's next best root (-1: none)."""
-    rows, cols = np.asarray(rows, int), np.asarray(cols, int)
-    if cost.shape[1] < 2:
-        return [-1] * rows.size
-    other = cost.astype(float)
-    other[rows, cols] = np.inf
-    return np.argmin(other[rows], axis=1).tolist()
-
-
 def _lock_partner(eig, c, assigned, periodic):
     """The assigned root whose second root ``c`` is, or None.
 
@@ -350,7 +341,7 @@ class March:
         cost, shape, seen, flip = self._costs(pred, eig, vecs)
         full = _padded(cost, _near_lock(pred, self.periodic), _near_lock(eig, self.periodic))
         perm, rows, cols = _assign(full, *cost.shape)
-        rival = _rivals(cost, rows, cols)
+        _, rival = decide(cost, rows, cols, shape)
         # clear: the root's shape is resolved by the step (its own 1 - MAC at
         # most CLEAR_COST) and no rearrangement of the step is within MARGIN of
         # the assignment (tefcore.modes.matching: a quarter of a MAC)

@@ -305,16 +305,17 @@ def decide(cost, rows, cols, shape=None):
         Per pair, the column of the next best mode for the track (-1: none).
     """
     shape = np.full(cost.shape, np.nan) if shape is None else shape
-    clear, rival = [], []
-    for r, c in zip(rows, cols, strict=True):
-        best = cost[r, c]
-        row_alt = np.delete(cost[r], c)
-        col_alt = np.delete(cost[:, c], r)
-        alt = min(row_alt.min(initial=np.inf), col_alt.min(initial=np.inf))
-        clear.append(is_clear(best, shape[r, c], alt))
-        others = [j for j in range(cost.shape[1]) if j != c]
-        rival.append(min(others, key=lambda j: cost[r, j]) if others else -1)
-    return clear, rival
+    rows, cols = np.asarray(rows, dtype=int), np.asarray(cols, dtype=int)
+    best = cost[rows, cols]
+    other = np.array(cost, dtype=float)          # each pair's own entry out of the way
+    other[rows, cols] = np.inf
+    alt = np.minimum(other[rows].min(axis=1, initial=np.inf),
+                     other[:, cols].min(axis=0, initial=np.inf))
+    clear = [is_clear(b, s, a) for b, s, a in zip(best, shape[rows, cols], alt, strict=True)]
+    if cost.shape[1] < 2:
+        return clear, [-1] * rows.size
+    # the first cheapest other column of the path's row
+    return clear, np.argmin(other[rows], axis=1).tolist()
 
 
 def is_coalesced(eig, vecs, j, k, periodic) -> bool:
