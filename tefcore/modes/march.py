@@ -61,20 +61,24 @@ def flap_share(vecs, n_phys):
     return np.sum(np.abs(blocks[:, -1]) ** 2, axis=0) / np.maximum(total, np.finfo(float).tiny)
 
 
-def base_name(name: str) -> str:
-    """A name without its locked-partner suffix.
+def base_name(name) -> str:
+    """A root's name without the suffix of a locked pair's second root.
 
     Parameters
     ----------
-    name : str
-        A root's name, e.g. ``"blade flap 1 (locked)"``.
+    name : object
+        ``"blade flap 1 (locked)"``, ``"TEF"``, ...
 
     Returns
     -------
     str
-        ``"blade flap 1"``.
+
+    Examples
+    --------
+    >>> base_name("blade flap 1 (locked)")
+    'blade flap 1'
     """
-    return name.removesuffix(" (locked)")
+    return str(name).removesuffix(" (locked)")
 
 
 #: An eigenvalue match is clear by distance alone when the predicted root is at

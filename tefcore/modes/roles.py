@@ -44,6 +44,7 @@ import numpy as np
 import pandas as pd
 
 from .continuation import FLAP_ACTIVE
+from .march import base_name
 
 __all__ = ["FLUTTER_PARTICIPATION", "FLUTTER_ROOT", "RATE_RESOLUTION", "ModeNotFound",
            "assign_roles", "base_name", "exceptional_points", "flap_induced", "flutter_root",
@@ -65,26 +66,6 @@ RATE_RESOLUTION = 1e-2
 
 class ModeNotFound(ValueError):
     """The rows a mode's role asks for are not in the table."""
-
-
-def base_name(name) -> str:
-    """A root's name without the suffix of a locked pair's second root.
-
-    Parameters
-    ----------
-    name : object
-        ``"blade flap 1 (locked)"``, ``"TEF"``, ...
-
-    Returns
-    -------
-    str
-
-    Examples
-    --------
-    >>> base_name("blade flap 1 (locked)")
-    'blade flap 1'
-    """
-    return str(name).removesuffix(" (locked)")
 
 
 # ------------------------------------------------------------------ one point
