@@ -424,8 +424,8 @@ def continue_roots(system: SecondOrderSystem, labels, final=None, *, basis=None,
     streak = 2                         # clear steps since the last halving
     while eps < 1.0 - 1e-12:
         h = min(h, 1.0 - eps)
-        if eps + h == 1.0 and final is not None:
-            eig, vecs = final.exponents, path_shapes(basis, final, n, per, n_steps)
+        if eps + h == 1.0 and final is not None and 1.0 not in solved:
+            eig, vecs = solved[1.0] = final.exponents, path_shapes(basis, final, n, per, n_steps)
         elif eps + h in solved:
             eig, vecs = solved[eps + h]
         else:
