@@ -31,6 +31,7 @@ from ..assignment import linear_sum_assignment
 from ..floquet.second_order import SecondOrderSystem
 from .labels import coordinate_shares, label_modes, tracking_shapes, trajectory_shapes
 from .march import FLAP_ACTIVE, March, base_name, flap_share
+from .matching import is_locked
 from .tracking import follow_root
 
 __all__ = ["FIRST_STEPS", "FLAP_ACTIVE", "MIN_STEP", "ContinuedRoots", "continue_roots",
@@ -447,7 +448,7 @@ def continue_roots(system: SecondOrderSystem, labels, final=None, *, basis=None,
     if final_labels is not None and per:
         carried = list(final_labels)
         if final_shares is not None:
-            carried = _free_labels(carried, motion, final_shares, labels)
+            carried = _free_labels(carried, motion, final_shares, labels, final.exponents)
         origin, changed = _flap_free_by_participation(origin, motion, carried)
         certain = certain & ~changed
         held = dict(zip(names0, res0.exponents, strict=True))
@@ -484,7 +485,7 @@ def _renamed_meetings(march, names) -> pd.DataFrame:
     return meetings.drop_duplicates("origins", keep="first").reset_index(drop=True)
 
 
-def _free_labels(carried, motion, shares, labels):
+def _free_labels(carried, motion, shares, labels, eig=None):
     """Participation labels in which a root that does not move the flap keeps its own coordinate.
 
     The one-to-one assignment over all roots (:func:`label_modes`) gives
@@ -495,7 +496,13 @@ def _free_labels(carried, motion, shares, labels):
     blade flap 3 because the TEF root took torsion 1).  The flap-free roots
     are the blade's own roots: one whose largest blade coordinate went to a
     root that moves the flap takes it back (the moving roots are named by
-    their paths).  Lock partners (``(locked)``) keep their labels.
+    their paths).  Lock partners (``(locked)``) keep their labels.  A root
+    that does not move the flap is never the flap's mode: one the assignment
+    left the flap's label (the flap's own root split into a locked pair that
+    took two labels) is the second root of its blade coordinate's lock when
+    the root holding that coordinate is its lock partner (`eig`; measured on
+    Fig. 12 at 56 ft-lb/rad: the second real root of blade flap 1's lock at
+    1 /rev, flap motion 1e-4, had been named TEF).
     """
     free = np.asarray(motion) < FLAP_ACTIVE
     out = list(carried)
@@ -504,6 +511,13 @@ def _free_labels(carried, motion, shares, labels):
     for j in np.flatnonzero(free):
         own = blade[int(np.argmax(shares[:len(blade), j]))]
         k = holder.get(own)
+        if base_name(out[j]) == labels[-1] and k is not None and free[k]:
+            second = f"{own} (locked)"
+            if eig is not None and is_locked(eig, j, k, True) and second not in holder:
+                holder.pop(out[j], None)
+                out[j] = second
+                holder[second] = j
+            continue
         if out[j] == own or out[j].endswith("(locked)") or k is None or free[k]:
             continue
         out[j], out[k] = own, out[j]            # the moving root's label only a fallback

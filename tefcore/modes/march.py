@@ -24,12 +24,11 @@ from .matching import (
     COALESCED_MAC,
     LOCK_TOL,
     MARGIN,
-    decide,
     mac,
     relative_distance,
 )
 
-__all__ = ["FLAP_ACTIVE", "March", "base_name", "flap_share", "regrets"]
+__all__ = ["FLAP_ACTIVE", "March", "base_name", "exchanges", "flap_share", "regrets"]
 
 
 #: Least share of a root's kinematic motion (squared) in the flap's trailing edge
@@ -177,6 +176,43 @@ def regrets(full, perm, rows):
     >>> regrets(np.array([[0.1, 0.4], [0.3, 0.1]]), np.array([0, 1]), [0, 1]).round(6)
     array([0.5, 0.5])
     """
+    return exchanges(full, perm, rows)[0]
+
+
+def exchanges(full, perm, rows):
+    """Per assigned path: its regret (:func:`regrets`) and the root it would take instead.
+
+    The rival of a match is the root the path takes in the cheapest
+    assignment without it -- the other end of the exchange the regret
+    prices -- not the next cheapest entry of its row: two paths that swap
+    roots at a veering are each other's rivals even where a third root,
+    alone, is nearer one of them in cost (measured on Fig. 14's flap length
+    0.0775 R at mu 0.3: the TEF path's row had a flap-free root next, while
+    its exchange was with blade torsion 2's root).
+
+    Parameters
+    ----------
+    full, perm, rows
+        As :func:`regrets`.
+
+    Returns
+    -------
+    regret : numpy.ndarray
+        One per row asked (inf where the path has no other root).
+    rival : numpy.ndarray of int
+        The column the path takes in that assignment (-1: none, or a padded
+        column -- the path ending at a lock).
+
+    Examples
+    --------
+    Three paths; path 0's cheapest exchange is with path 2's root:
+
+    >>> import numpy as np
+    >>> full = np.array([[0.1, 0.3, 0.2], [0.9, 0.1, 0.9], [0.2, 0.9, 0.1]])
+    >>> regret, rival = exchanges(full, np.array([0, 1, 2]), [0])
+    >>> regret.round(6).tolist(), rival.tolist()
+    ([0.2], [2])
+    """
     own = full[np.arange(full.shape[0]), perm]
     w = full[:, perm] - own[:, None]                 # w[i, j]: i takes j's root
     n = w.shape[0]
@@ -184,12 +220,14 @@ def regrets(full, perm, rows):
     np.fill_diagonal(d, 0.0)
     for k in range(n):                               # shortest exchanges j -> ... -> i
         d = np.minimum(d, d[:, k:k + 1] + d[k:k + 1, :])
-    out = []
+    out, rival = [], []
     for i in rows:
         alt = w[i] + d[:, i]                          # i takes j's root, j's chain back to i
         alt[i] = np.inf
-        out.append(float(alt.min(initial=np.inf)))
-    return np.maximum(np.array(out), 0.0)
+        j = int(np.argmin(alt)) if n > 1 else i
+        out.append(float(alt[j]) if n > 1 else np.inf)
+        rival.append(int(perm[j]) if n > 1 else -1)
+    return np.maximum(np.array(out), 0.0), np.array(rival, int)
 
 
 def _nearest_clear(dist, rows, cols):
@@ -345,32 +383,43 @@ class March:
         cost, shape, seen, flip = self._costs(pred, eig, vecs)
         full = _padded(cost, _near_lock(pred, self.periodic), _near_lock(eig, self.periodic))
         perm, rows, cols = _assign(full, *cost.shape)
-        _, rival = decide(cost, rows, cols, shape)
         # clear: the root's shape is resolved by the step (its own 1 - MAC at
         # most CLEAR_COST) and no rearrangement of the step is within MARGIN of
         # the assignment (tefcore.modes.matching: a quarter of a MAC)
-        regret = regrets(full, perm, rows)
+        regret, rival = exchanges(full, perm, rows)
+        rival = np.where(rival < cost.shape[1], rival, -1)     # a padded column: none
         clear = [bool(shape[r, c] <= CLEAR_COST and g >= MARGIN)
                  for r, c, g in zip(rows, cols, regret, strict=True)]
         near = _nearest_clear(np.abs(seen - pred[:, None]), rows, cols)
         clear = [a or b for a, b in zip(clear, near, strict=True)]
-        path_of = dict(zip(cols, rows, strict=True))
         active = flap_share(vecs, self.n_phys) >= FLAP_ACTIVE
+        moved = flap_share(self.vecs, self.n_phys) >= FLAP_ACTIVE
+        path_of = dict(zip(cols, rows, strict=True))
         meet, lock = [], []
         for r, c, ok, k in zip(rows, cols, clear, rival, strict=True):
             other = path_of.get(k)
             if ok or (other is not None and self._base(other) == self._base(r)):
                 continue
-            if self.periodic and not (active[c] and k >= 0 and active[k]):
-                # two roots that do not both move the flap: not refined.  The
-                # coupling moves a root in proportion to its motion of the flap,
-                # so a root that does not move it is the blade's own and is named
-                # by participation at the end, which also gives a moving root
-                # the name left when the two swapped here
-                # (_flap_free_by_participation); only two moving roots need the
-                # step resolved.  (Measured on Fig. 9's sweep: 312 eigenproblems
-                # on the paths with every such pair refined, 132 without; the
-                # names of the moving roots unchanged.)
+            mine = moved[r] or active[c]
+            theirs = (k >= 0 and active[k]) or (other is not None and moved[other])
+            unresolved = shape[r, c] > CLEAR_COST
+            if self.periodic and not (mine and (theirs or unresolved)):
+                # an exchange that does not move the flap on both sides: not
+                # refined.  The coupling moves a root in proportion to its
+                # motion of the flap, so a root that does not move it is the
+                # blade's own and is named by participation at the end, which
+                # also gives a moving root the name left when the two swapped
+                # here (_flap_free_by_participation); only an exchange between
+                # two paths or roots that move the flap needs the step resolved.
+                # The rival is the other end of the exchange the regret prices
+                # (:func:`exchanges`), and a side moves the flap when its path
+                # did or its root does (measured: with the matched root and the
+                # row's next root alone, the TEF path of mdart-fig6's Fig. 14
+                # point 0.22 R took a flap-free root at 1 - MAC 1.00 at the
+                # first step, against flap 4's path and a root moving the flap,
+                # and ended on blade flap 3's root).  (Measured on Fig. 9's
+                # sweep: 312 eigenproblems on the paths with every undecided
+                # pair refined, 132 without.)
                 lock.append((r, other))
             else:
                 meet.append((r, other))
@@ -422,6 +471,15 @@ class March:
                                       "gap": gap, "mac": shape,
                                       "paths": {self._base(r): int(self.pid[r]),
                                                 self._base(other): int(self.pid[other])}})
+        # a lock that dissolves: its two real roots become one complex root
+        # again, and one of the two paths ends; the root left is the mode
+        # itself, whichever path it continues (measured on Fig. 13 at 0.725 R:
+        # the TEF path ended where its lock closed, and 'TEF (locked)' went on)
+        names = set(origin)
+        for c in cols:
+            if origin[c].endswith(" (locked)") and base_name(origin[c]) not in names:
+                names.add(base_name(origin[c]))
+                origin[c] = base_name(origin[c])
         assigned = np.isin(np.arange(eig.size), cols)
         for c in np.flatnonzero(~assigned):
             pid[c], self.next_pid = self.next_pid, self.next_pid + 1

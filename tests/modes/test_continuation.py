@@ -18,6 +18,10 @@ uncoupled mode it continues from.  The cases:
 * **A Floquet blade mode in a 1/2 /rev lock** (a Mathieu oscillator in its
   first tongue) beside the flap: the lock's two real-multiplier roots keep the
   blade's name (``X``, ``X (locked)``), the flap's root its own, decided.
+* **MDART at mu = 0.3 against a fine march**: where a coarse step of the
+  adaptive march was decided wrongly (a match by the row's next root, a flap
+  path accepted with its shape lost), the names must equal those of a march
+  in 256 equal steps, which 1024 steps do not change (measured).
 """
 
 from types import SimpleNamespace
@@ -253,3 +257,61 @@ def test_a_root_that_does_not_move_the_flap_keeps_its_own_coordinate():
         assert name in named[0.22], name
         f2, r2 = named[0.22][name]
         assert abs(f2 - f) < 0.5 and abs(r2 - r) < 0.5, name
+
+
+def _named(cfg, first_steps=None, monkeypatch=None):
+    from tefcore.linear.stability import stability
+    if first_steps is not None:
+        monkeypatch.setitem(continue_roots.__kwdefaults__, "first_steps", first_steps)
+    m = stability(cfg).modes
+    if first_steps is not None:
+        monkeypatch.undo()
+    return m
+
+
+@pytest.mark.parametrize(("figure", "field", "value", "tef"), [
+    # the TEF path's row had a flap-free root next while its exchange was with
+    # blade torsion 2's: the step to eps = 1 was taken at 1 - MAC 0.93 and the
+    # TEF named the 11.6 /rev root
+    ("fig14", "flap.span", 0.0775, (15.20, -0.477)),
+    # the TEF path's match at the step to eps = 1 had MAC 0.00, its exchange
+    # rival a flap-free root (blade torsion 1): with the rival taken from the
+    # exchange but a lost shape not refined, the step was taken and the TEF
+    # named on the root at 12.5 /rev, -1.57 /rev (measured)
+    ("fig15", "flap.chord_ratio", 0.1875, (22.42, -0.34)),
+])
+def test_the_adaptive_march_names_the_roots_as_a_fine_march_does(figure, field, value, tef,
+                                                                 monkeypatch):
+    from tefcore.paper.figures import figure_config
+
+    cfg = figure_config(figure).with_overrides({field: value})
+    coarse = _named(cfg)
+    fine = _named(cfg, 256, monkeypatch)
+    assert coarse["label"].tolist() == fine["label"].tolist()
+    row = coarse[coarse["label"] == "TEF"].iloc[0]
+    # the point's own roots to 0.01 /rev (printed to two places when measured)
+    assert abs(row["frequency_per_rev"] - tef[0]) < 0.01
+    assert abs(row["real_part"] - tef[1]) < 0.01
+
+
+def test_a_root_that_does_not_move_the_flap_is_never_the_flap_mode():
+    """Fig. 12 (mu 0.3) at an actuator stiffness of 56 ft-lb/rad: the flap's
+    own root is a locked pair at 5 /rev (-5.6 and -5.3 /rev) that the one-to-one
+    participation labels gave 'TEF (locked)' and 'blade flap 4 (locked)',
+    leaving 'TEF' to the second real root of blade flap 1's lock at 1 /rev
+    (flap motion 1e-4), which kept it as a root that does not move the flap
+    (measured).  The flap mode is the pair that moves the flap."""
+    from tefcore.linear.stability import stability
+    from tefcore.modes.continuation import FLAP_ACTIVE
+    from tefcore.paper.figures import figure_config
+
+    cfg = figure_config("fig12").with_overrides(
+        {"actuator.stiffness": "75.98681691423332 N*m/rad"})
+    res = stability(cfg)
+    m = res.modes
+    motion = res.identity.flap_motion
+    tef = np.flatnonzero(m["label"].map(lambda x: x.startswith("TEF")).to_numpy())
+    assert tef.size == 2
+    assert np.all(motion[tef] >= FLAP_ACTIVE)
+    assert sorted(np.round(m["frequency_per_rev"].to_numpy()[tef], 6)) == [5.0, 5.0]
+    assert "blade flap 1 (locked)" in set(m["label"])

@@ -5,6 +5,9 @@
   match forbidden (scipy's solver), on random cost matrices, square and with
   a path ending at a lock (padded).  Exact equality to round-off: both are
   the same minimum, found two ways.
+* :func:`exchanges` names, beside each regret, the root the path takes in
+  that cheapest other assignment: checked the same way (the forbidden
+  assignment solved again gives the path's new root).
 * A Floquet root whose frequency moves along ``eps`` with its shape fixed is
   compared by its periodic part: a path sees it at MAC 1 whatever the
   frequency drift over the step (compared as whole motions, a drift of
@@ -17,7 +20,7 @@ import numpy as np
 import pytest
 from scipy.optimize import linear_sum_assignment
 
-from tefcore.modes.march import March, _padded, regrets
+from tefcore.modes.march import March, _padded, exchanges, regrets
 
 
 def _forbidden(full, r, c):
@@ -40,6 +43,39 @@ def test_regret_is_the_best_assignment_without_the_match(seed):
     # both are the same minimum over assignments (sums of at most 9 costs
     # of order 1): equal to round-off
     np.testing.assert_allclose(got, want, atol=1e-9)
+
+
+def _forbidden_root(full, r, c):
+    alt = full.copy()
+    alt[r, c] = 1e6
+    i, j = linear_sum_assignment(alt)
+    return int(j[list(i).index(r)])
+
+
+@pytest.mark.parametrize("seed", range(20))
+def test_the_rival_is_the_root_taken_in_the_best_assignment_without_the_match(seed):
+    rng = np.random.default_rng(100 + seed)
+    n = int(rng.integers(3, 9))
+    # distinct sums (continuous costs): the best other assignment is unique
+    full = rng.uniform(0.0, 2.0, (n, n))
+    rows, perm = linear_sum_assignment(full)
+    regret, rival = exchanges(full, perm, rows)
+    want = [_forbidden_root(full, i, perm[i]) for i in rows]
+    assert rival.tolist() == want
+    np.testing.assert_allclose(regret, regrets(full, perm, rows), atol=0)
+
+
+def test_the_rival_of_a_veering_pair_is_its_partner_not_the_next_in_its_row():
+    # the row of path 0 has root 2 next (0.30), but the cheapest exchange is
+    # with path 1 (0.20 + 0.25 - 0.10 - 0.10 = 0.25 < 0.30 + 0.9 - 0.1 - 0.1):
+    # the shape of Fig. 14's TEF path at 0.0775 R, whose row had a flap-free
+    # root next while its exchange was with blade torsion 2's
+    full = np.array([[0.10, 0.20, 0.30],
+                     [0.25, 0.10, 0.95],
+                     [0.90, 0.90, 0.10]])
+    regret, rival = exchanges(full, np.array([0, 1, 2]), [0])
+    assert rival.tolist() == [1]
+    np.testing.assert_allclose(regret, [0.25], atol=1e-12)
 
 
 def test_a_veering_swap_dearer_than_its_rows_show_is_decided():
