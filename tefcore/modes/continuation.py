@@ -31,7 +31,7 @@ from ..assignment import linear_sum_assignment
 from ..floquet.second_order import SecondOrderSystem
 from .labels import coordinate_shares, label_modes, tracking_shapes, trajectory_shapes
 from .march import FLAP_ACTIVE, March, base_name, flap_share
-from .matching import is_locked
+from .matching import LOCK_TOL, is_locked
 from .tracking import follow_root
 
 __all__ = ["FIRST_STEPS", "FLAP_ACTIVE", "MIN_STEP", "ContinuedRoots", "continue_roots",
@@ -450,7 +450,10 @@ def continue_roots(system: SecondOrderSystem, labels, final=None, *, basis=None,
         if final_shares is not None:
             carried = _free_labels(carried, motion, final_shares, labels, final.exponents)
         origin, changed = _flap_free_by_participation(origin, motion, carried)
-        certain = certain & ~changed
+        origin, renamed = _second_roots_of_locks(origin, list(march.origin),
+                                                 final.exponents if final is not None
+                                                 else march.eig)
+        certain = certain & ~changed & ~renamed
         held = dict(zip(names0, res0.exponents, strict=True))
         uncoupled = np.array([held.get(o, held.get(base_name(o), np.nan)) for o in origin],
                              complex)
@@ -522,7 +525,82 @@ def _free_labels(carried, motion, shares, labels, eig=None):
             continue
         out[j], out[k] = own, out[j]            # the moving root's label only a fallback
         holder[own], holder[out[k]] = j, k
+    return _one_plain_per_lock(out, free, eig)
+
+
+def _one_plain_per_lock(out, free, eig):
+    """Two flap-free roots left one lock label ``X (locked)``: the less damped is ``X``.
+
+    The one-to-one participation labels can give ``X`` to a root that moves
+    the flap (it carries X too) and ``X (locked)`` to both real roots of X's
+    own lock (measured on Fig. 12 at 41.4 ft-lb/rad: the two roots at 1 /rev
+    both 'blade flap 1 (locked)', the flutter root 'blade flap 1').  A root
+    that moves the flap is named by its path, its label only a fallback, so
+    it takes the lock label and the lock's less damped root (the convention
+    of :func:`tefcore.modes.labels.label_modes`) the plain one.
+    """
+    for name in sorted(set(out)):
+        same = [j for j in np.flatnonzero(free) if out[j] == name]
+        if len(same) < 2 or not name.endswith(" (locked)"):
+            continue
+        plain = base_name(name)
+        k = next((i for i, x in enumerate(out) if x == plain), None)
+        if k is not None and free[k]:
+            continue
+        j = max(same, key=lambda i: eig[i].real) if eig is not None else same[0]
+        if k is not None:
+            out[k] = name
+        out[j] = plain
     return out
+
+
+def _second_roots_of_locks(names, paths, eig):
+    """A root no path explains, or named twice, beside its lock partner: ``X (locked)``.
+
+    A lock whose two real roots both came without a path (the path of their
+    mode ended where the pair locked, e.g. the heavily damped flap mode at a
+    soft actuator) leaves the second root to the fallback labels, which can
+    repeat a name (measured on Fig. 12 at 41.4 ft-lb/rad: the TEF's two real
+    roots at 3.5 and 4.5 /rev -- one multiplier pair on the negative axis --
+    named TEF and 'blade flap 1 (locked)' beside the two roots of blade flap
+    1's own lock).  Such a root, at the frequency (modulo 1/rev and sign) of
+    a root named ``X`` at ``k/2``, is ``X (locked)`` when that name is free.
+
+    Parameters
+    ----------
+    names : list of str
+        The roots' names.
+    paths : list of str
+        Their paths' names (``""``: a root no path explains).
+    eig : numpy.ndarray of complex
+        Their exponents [/rev].
+
+    Returns
+    -------
+    names : list of str
+    renamed : numpy.ndarray of bool
+    """
+    eig = np.asarray(eig, complex)
+    names = list(names)
+    renamed = np.zeros(len(names), bool)
+    fold = np.abs(eig.imag) % 1.0
+    fold = np.minimum(fold, 1.0 - fold)
+    at_half = np.minimum(fold, 0.5 - fold) <= 10 * LOCK_TOL
+    for i, name in enumerate(names):
+        repeated = names.count(name) > 1
+        if not at_half[i] or not (repeated or not paths[i]):
+            continue
+        partners = [p for p in range(len(names)) if p != i and at_half[p]
+                    and abs(fold[p] - fold[i]) <= 10 * LOCK_TOL
+                    and not names[p].endswith("(locked)") and names[p] != name]
+        if not partners:
+            continue
+        p = min(partners, key=lambda q: abs(eig[q].real - eig[i].real))
+        second = f"{base_name(names[p])} (locked)"
+        if second not in names:
+            names[i] = second
+            renamed[i] = True
+    return names, renamed
 
 
 def _flap_free_by_participation(origin, motion, carried):

@@ -683,6 +683,19 @@ def continuous_frequency(x, f, *, span: int = 3, weight: float = 2.0,
     dev = np.where(np.isfinite(cand), np.where(np.abs(cand - fs[:, None]) <= 1e-9, 0.0, weight),
                    np.inf)
     cost = dev[0][:, None] + dev[1][None, :]      # (choice at i-1, choice at i)
+    # a second point at one parameter value has no step to be smooth over: the
+    # curve is found on the first of each, and each other takes the
+    # representation nearest it
+    first = np.concatenate([[True], np.diff(xs) > 0])
+    if not first.all():
+        keep = idx[first]
+        out[keep] = continuous_frequency(x[keep], f[keep], span=span, reach=reach,
+                                         weight=weight)
+        at = np.searchsorted(x[keep], xs, side="right") - 1
+        for i in np.flatnonzero(~first):
+            c = cand[i][np.isfinite(cand[i])]
+            out[idx[i]] = c[np.argmin(np.abs(c - out[keep[at[i]]]))]
+        return out
     back = []
     for i in range(2, len(xs)):
         h0, h1 = max(xs[i - 1] - xs[i - 2], 1e-300), max(xs[i] - xs[i - 1], 1e-300)

@@ -315,3 +315,33 @@ def test_a_root_that_does_not_move_the_flap_is_never_the_flap_mode():
     assert np.all(motion[tef] >= FLAP_ACTIVE)
     assert sorted(np.round(m["frequency_per_rev"].to_numpy()[tef], 6)) == [5.0, 5.0]
     assert "blade flap 1 (locked)" in set(m["label"])
+
+
+def test_continuous_frequency_takes_a_repeated_parameter_value_without_a_jump():
+    # two rows of one name at one value (a lock's two roots, once, before the
+    # names were made unique) made every step through them infinitely curved,
+    # and the whole curve came out shifted by 3 /rev (measured: [2, 2.1, ...])
+    x = np.array([0.0, 1.0, 1.0, 2.0, 3.0])
+    true = np.array([5.0, 5.1, 5.2, 5.3, 5.4])
+    seen = true.copy()
+    seen[2] = 11.0 - seen[2]                   # the mirror, 1/rev shifted
+    np.testing.assert_allclose(continuous_frequency(x, seen), true, atol=1e-9)
+
+
+def test_the_second_roots_of_two_locks_are_named_once_each():
+    """Fig. 12 at 41.4 ft-lb/rad (56.13 N m/rad): the flap's heavily damped mode
+    is a pair of real multipliers on the negative axis (3.5 and 4.5 /rev by
+    their dominant harmonics, -6.2 and -5.4 /rev) whose path ended where it
+    locked, beside blade flap 1's lock at 1 /rev.  The fallback labels had
+    named both roots at 1 /rev and the flap's second root 'blade flap 1
+    (locked)' (measured); each name is given once, the flap's pair TEF."""
+    from tefcore.linear.stability import stability
+    from tefcore.paper.figures import figure_config
+
+    m = stability(figure_config("fig12").with_overrides(
+        {"actuator.stiffness": "56.12662612983142 N*m/rad"})).modes
+    assert m["label"].is_unique
+    f = dict(zip(m["label"], m["frequency_per_rev"].to_numpy() % 1.0, strict=True))
+    # a locked pair sits at k/2 to the lock tolerance (3.500002 measured)
+    np.testing.assert_allclose([f["TEF"], f["TEF (locked)"]], 0.5, atol=1e-4)
+    np.testing.assert_allclose([f["blade flap 1"], f["blade flap 1 (locked)"]], 0.0, atol=1e-4)
