@@ -444,7 +444,7 @@ def continue_roots(system: SecondOrderSystem, labels, final=None, *, basis=None,
             h *= 0.5
             streak = 0
     origin, uncoupled, certain = list(march.origin), march.start.copy(), ~march.doubt
-    motion = flap_share(march.vecs, basis.shape[0])
+    motion = march.share                   # flap_share of its last roots
     if final_labels is not None and per:
         carried = list(final_labels)
         if final_shares is not None:
