@@ -350,12 +350,17 @@ def continue_roots(system: SecondOrderSystem, labels, final=None, *, basis=None,
     frequency drifting along ``eps`` does not change.
     And the blade's low modes sit in frequency locks (pairs of real
     multipliers at ``k/2`` /rev) whose roots meet and part along ``eps``
-    although the flap takes no part in them: an undecided match in which a
-    root carries less than :data:`FLAP_ACTIVE` of its motion in the flap is
-    not refined; at the end the roots that do not move the flap are named by
-    the coordinate they carry (their participation, ``final_labels``) --
-    what the coupling through the flap cannot have changed -- and the moving
-    roots keep their paths' names, or take the names left.
+    although the flap takes no part in them: an undecided match is refined
+    only when the exchange it belongs to moves the flap on both sides (the
+    path or its root carries :data:`FLAP_ACTIVE` of its motion in the flap,
+    and so does the rival root or its path, :func:`tefcore.modes.march.exchanges`),
+    or when a path or root that moves the flap lost its shape over the step;
+    at the end the roots that do not move the flap are named by the
+    coordinate they carry (their participation, ``final_labels``) -- what the
+    coupling through the flap cannot have changed, and never the flap's own
+    label -- and the moving roots keep their paths' names, or take the names
+    left; a lock's second root no path explains is ``X (locked)`` beside its
+    partner.
 
     Parameters
     ----------
