@@ -413,7 +413,7 @@ class March:
                 # motion of the flap, so a root that does not move it is the
                 # blade's own and is named by participation at the end, which
                 # also gives a moving root the name left when the two swapped
-                # here (_flap_free_by_participation); only an exchange between
+                # here (final_names.flap_free_by_participation); only an exchange between
                 # two paths or roots that move the flap needs the step resolved.
                 # The rival is the other end of the exchange the regret prices
                 # (:func:`exchanges`), and a side moves the flap when its path
