@@ -22,7 +22,7 @@ __all__ = ["flap_free_by_participation", "free_labels", "second_roots_of_locks"]
 def free_labels(carried, motion, shares, labels, eig=None):
     """Participation labels in which a root that does not move the flap keeps its own coordinate.
 
-    The one-to-one assignment over all roots (:func:`label_modes`) gives
+    The one-to-one assignment over all roots (:func:`tefcore.modes.labels.label_modes`) gives
     every coordinate to one root; where a flap root carries a blade
     coordinate too, a flap-free root can be left its second coordinate
     (measured: mdart-fig6, Fig. 14 at a flap length of 0.22 R, the blade
@@ -37,6 +37,27 @@ def free_labels(carried, motion, shares, labels, eig=None):
     the root holding that coordinate is its lock partner (`eig`; measured on
     Fig. 12 at 56 ft-lb/rad: the second real root of blade flap 1's lock at
     1 /rev, flap motion 1e-4, had been named TEF).
+
+    Parameters
+    ----------
+    carried : list of str
+        Each root's participation label
+        (:func:`tefcore.modes.labels.label_modes`).
+    motion : numpy.ndarray
+        Each root's kinematic share of the flap
+        (:func:`tefcore.modes.march.flap_share`).
+    shares : numpy.ndarray
+        The coordinates' shares of participation in each root (coordinates
+        x roots, the flap last).
+    labels : list of str
+        The coordinates' labels (blade modes, then the flap's).
+    eig : numpy.ndarray of complex, optional
+        The roots' exponents [/rev], to tell a lock's partner.
+
+    Returns
+    -------
+    list of str
+        The labels, each root's.
     """
     free = np.asarray(motion) < FLAP_ACTIVE
     out = list(carried)
