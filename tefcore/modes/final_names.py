@@ -13,8 +13,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..assignment import linear_sum_assignment
-from .march import FLAP_ACTIVE, base_name
-from .matching import LOCK_TOL, is_locked
+from .march import FLAP_ACTIVE, base_name, same_lock
 
 __all__ = ["flap_free_by_participation", "free_labels", "second_roots_of_locks"]
 
@@ -68,7 +67,7 @@ def free_labels(carried, motion, shares, labels, eig=None):
         k = holder.get(own)
         if base_name(out[j]) == labels[-1] and k is not None and free[k]:
             second = f"{own} (locked)"
-            if eig is not None and is_locked(eig, j, k, True) and second not in holder:
+            if eig is not None and same_lock(eig, j, k) and second not in holder:
                 holder.pop(out[j], None)
                 out[j] = second
                 holder[second] = j
@@ -135,15 +134,10 @@ def second_roots_of_locks(names, paths, eig):
     eig = np.asarray(eig, complex)
     names = list(names)
     renamed = np.zeros(len(names), bool)
-    fold = np.abs(eig.imag) % 1.0
-    fold = np.minimum(fold, 1.0 - fold)
-    at_half = np.minimum(fold, 0.5 - fold) <= 10 * LOCK_TOL
     for i, name in enumerate(names):
-        repeated = names.count(name) > 1
-        if not at_half[i] or not (repeated or not paths[i]):
+        if names.count(name) == 1 and paths[i]:
             continue
-        partners = [p for p in range(len(names)) if p != i and at_half[p]
-                    and abs(fold[p] - fold[i]) <= 10 * LOCK_TOL
+        partners = [p for p in range(len(names)) if same_lock(eig, i, p)
                     and not names[p].endswith("(locked)") and names[p] != name]
         if not partners:
             continue

@@ -28,7 +28,8 @@ from .matching import (
     relative_distance,
 )
 
-__all__ = ["FLAP_ACTIVE", "March", "base_name", "exchanges", "flap_share", "regrets"]
+__all__ = ["FLAP_ACTIVE", "March", "base_name", "exchanges", "flap_share", "regrets",
+           "same_lock"]
 
 
 #: Least share of a root's kinematic motion (squared) in the flap's trailing edge
@@ -98,6 +99,44 @@ def _fold(eig) -> np.ndarray:
     return np.minimum(f, 1.0 - f)
 
 
+def _at_half(fold) -> np.ndarray:
+    """Which folded frequencies (:func:`_fold`) sit at a multiple of 1/2 /rev: within
+    ten times :data:`tefcore.modes.matching.LOCK_TOL`, where a locked pair's two
+    real roots sit to round-off."""
+    return np.minimum(fold, 0.5 - fold) <= 10 * LOCK_TOL
+
+
+def same_lock(eig, j, k) -> bool:
+    """Whether Floquet roots ``j`` and ``k`` are the two real roots of one lock.
+
+    One frequency folded into ``[0, 1/2]`` (modulo 1/rev and sign), at ``k/2``:
+    a pair of real multipliers on the negative axis may carry 3.5 and 4.5 /rev
+    by their dominant harmonics (:func:`tefcore.modes.matching.is_locked`
+    compares the frequencies as they are).
+
+    Parameters
+    ----------
+    eig : numpy.ndarray of complex
+        The roots [/rev].
+    j, k : int
+        Two of them.
+
+    Returns
+    -------
+    bool
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> same_lock(np.array([-6.2 + 3.5j, -5.4 + 4.5j, -0.5 + 4.4j]), 0, 1)
+    True
+    """
+    if j == k:
+        return False
+    fold = _fold(np.asarray(eig, complex)[[j, k]])
+    return bool(_at_half(fold[:1])[0] and abs(fold[0] - fold[1]) <= 10 * LOCK_TOL)
+
+
 def _near_lock(eig, periodic) -> np.ndarray:
     """Which roots are one of a locked pair: at a multiple of 1/2 /rev, with another
     root at the same frequency (both within :data:`tefcore.modes.matching.LOCK_TOL`
@@ -110,11 +149,9 @@ def _near_lock(eig, periodic) -> np.ndarray:
     if not periodic:
         return np.zeros(eig.size, bool)
     fold = _fold(eig)
-    tol = 10 * LOCK_TOL
-    at_half = np.minimum(fold, 0.5 - fold) <= tol
-    pair = np.abs(fold[:, None] - fold[None, :]) <= tol
+    pair = np.abs(fold[:, None] - fold[None, :]) <= 10 * LOCK_TOL
     np.fill_diagonal(pair, False)
-    return at_half & pair.any(axis=1)
+    return _at_half(fold) & pair.any(axis=1)
 
 
 def _padded(cost, path_lock, root_lock):
@@ -413,8 +450,9 @@ class March:
                 # motion of the flap, so a root that does not move it is the
                 # blade's own and is named by participation at the end, which
                 # also gives a moving root the name left when the two swapped
-                # here (final_names.flap_free_by_participation); only an exchange between
-                # two paths or roots that move the flap needs the step resolved.
+                # here (final_names.flap_free_by_participation); only an
+                # exchange between two paths or roots that move the flap needs
+                # the step resolved.
                 # The rival is the other end of the exchange the regret prices
                 # (:func:`exchanges`), and a side moves the flap when its path
                 # did or its root does (measured: with the matched root and the
@@ -430,11 +468,10 @@ class March:
         self.last_clear = not meet
         if meet and not final_step:
             return False
-        self._accept(eps, seen, flip, vecs, rows, cols, meet, lock, eig)
-        self.share = share              # a conjugate has the same share: columns as vecs
+        self._accept(eps, seen, flip, vecs, rows, cols, meet, lock, eig, share)
         return True
 
-    def _accept(self, eps, seen, flip, vecs, rows, cols, meet, lock, raw):
+    def _accept(self, eps, seen, flip, vecs, rows, cols, meet, lock, raw, share):
         # each root as the path it continues sees it (its frequency unwrapped),
         # its motion in the same orientation (the conjugate where the sign flipped)
         eig = seen[0].copy()
@@ -500,5 +537,6 @@ class March:
             locked[[c, near]] = True
         self.before = (self.eps, last)
         self.eps, self.eig, self.vecs = eps, eig, vecs
+        self.share = share              # flap_share(vecs): a conjugate's is the same
         self.origin, self.start, self.doubt, self.lock = origin, start, doubt, locked
         self.pid = pid
