@@ -39,9 +39,11 @@ __all__ = ["STATE_MIN_RATE", "SecondOrderSystem", "augmented_state_matrix", "com
 #: (per radian of azimuth) need not be resolved by the Floquet lifting
 #: (``min_rate`` of :func:`tefcore.floquet.floquet_modes`): the fastest shed-wake
 #: states of a blade decay at -30 /rev and would drive the lifting to 16
-#: sub-intervals; -8 /rev keeps 8 (measured at MDART mu = 0.3 with the wake:
-#: every root above -12 /rev within 1.4e-6 of the 16-interval result, 0.3 s
-#: instead of 1.6 s per lift), below every blade or flap root of the figures.
+#: sub-intervals; -8 /rev keeps 8 or fewer (measured at MDART mu = 0.3 with the
+#: wake: every root above -12 /rev within 1.4e-6 of the 16-interval result, 0.3 s
+#: instead of 1.6 s per lift; 4 at zero coupling since the adjoints' bound is
+#: taken at this rate too, :func:`tefcore.floquet.floquet_modes`), below every
+#: blade or flap root of the figures.
 STATE_MIN_RATE = -8.0
 
 
