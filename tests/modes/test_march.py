@@ -113,3 +113,23 @@ def test_a_drifting_frequency_is_not_a_change_of_shape(drift):
     whole = abs(np.vdot(a, b)) ** 2 / (np.vdot(a, a).real * np.vdot(b, b).real)
     assert whole == pytest.approx(np.sinc(drift) ** 2, abs=1e-3)
     assert shape_cost[0, 1] > 0.5                 # the other root stays another
+
+
+def test_the_second_root_of_a_lock_no_path_explains_is_unexplained_too():
+    # a lock forming on a root that no path explains (its path was lost at an
+    # earlier step): the root that appears beside it has no mode to be the
+    # second root of, so it is unexplained ('') like its partner, for the
+    # final naming to place (final_names.second_roots_of_locks) -- not
+    # ' (locked)', the suffix on an empty name (measured at Fig. 14's 0.2175 R
+    # with A changed by 1e-13: a root left named '')
+    a = np.array([1.0, 0.3, 0.0])
+    b = np.array([0.1, 0.5, 1.0])
+    march = March(np.array([-0.2 + 0.3j, -5.0 + 0.45j]),
+                  np.hstack([_motion(0.3, a), _motion(0.45, b)]), ["blade flap 1", "TEF"], 3,
+                  True)
+    march.origin[1] = ""                          # the TEF path lost before this step
+    eig = np.array([-0.2 + 0.3j, -5.0 + 0.5j, -5.3 + 0.5j])     # the pair locked at 1/2 /rev
+    vecs = np.hstack([_motion(0.3, a), _motion(0.5, b), _motion(0.5, b * (1 + 0.01j))])
+    assert march.step(0.5, eig, vecs, final_step=True)
+    assert march.origin[0] == "blade flap 1"
+    assert sorted(march.origin[1:]) == ["", ""]
