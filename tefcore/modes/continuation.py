@@ -30,12 +30,12 @@ import pandas as pd
 from ..floquet.second_order import SecondOrderSystem
 from .final_names import flap_free_by_participation, free_labels, second_roots_of_locks
 from .labels import coordinate_shares, label_modes, tracking_shapes, trajectory_shapes
-from .march import FLAP_ACTIVE, March, base_name, flap_share
+from .march import FLAP_ACTIVE, March, base_name, flap_share, same_lock
 from .tracking import follow_root
 
 __all__ = ["FIRST_STEPS", "FLAP_ACTIVE", "MIN_STEP", "ContinuedRoots", "continue_roots",
            "coupling_homotopy", "path_shapes", "positive_roots", "root_solver", "tef_root",
-           "visible_roots"]
+           "visible_roots", "zero_coupling_names"]
 
 #: Equal steps of ``eps`` the continuation starts with (each step's end is one
 #: eigenproblem); a step whose matches are not all decided is halved.
@@ -257,6 +257,77 @@ def _solve(system, n, eps, periodic, n_steps, participation=False):
     return positive_roots(res)
 
 
+def zero_coupling_names(frac, labels, freqs, rates, shapes, periodic=False):
+    """The roots' names at zero coupling: by coordinate, a lock's two roots from its one mode.
+
+    :func:`tefcore.modes.labels.label_modes` gives each coordinate to one
+    root.  A lock's two real roots are one mode and one root more than the
+    coordinates, and that assignment can hand the second of them another
+    coordinate (measured on Fig. 12, mu = 0.3: at 29 of 42 points blade flap
+    1's second real root, which its dominant harmonic writes at 2.5 /rev, was
+    'blade flap 2', and flap 2's own root at 2.498 /rev 'blade flap 2
+    (locked)'; the flap 2 path then started from the lock, and the uncoupled
+    root of the coupled flap 2 was the lock's).  At zero coupling blade and
+    flap are apart, so a lock (:func:`tefcore.modes.march.same_lock`) is one
+    mode's: its two roots take one column of the assignment, their shares
+    summed; the less damped is named plainly, the other ``X (locked)``.
+
+    Parameters
+    ----------
+    frac : numpy.ndarray
+        Coordinate shares, coordinates x roots (:func:`coordinate_shares`).
+    labels : list of str
+        The coordinates' labels.
+    freqs, rates : numpy.ndarray
+        The roots' frequencies and damping rates [/rev].
+    shapes : numpy.ndarray
+        Their physical shapes, one column each (for
+        :func:`tefcore.modes.labels.label_modes`).
+    periodic : bool, optional
+        Floquet roots (constant coefficients: :func:`label_modes` as it is).
+
+    Returns
+    -------
+    list of str
+
+    Examples
+    --------
+    Two coordinates, three roots: a lock at 1/2 /rev (two real roots) that
+    carries some of the second coordinate, and the second coordinate's own
+    root near the lock's folded frequency.
+
+    >>> import numpy as np
+    >>> frac = np.array([[0.6, 0.55, 0.1], [0.4, 0.45, 0.9]])
+    >>> zero_coupling_names(frac, ["blade flap 1", "blade flap 2"],
+    ...                     np.array([0.5, 2.5, 2.498]), np.array([-1.5, -0.4, -0.5]),
+    ...                     np.eye(3), periodic=True)
+    ['blade flap 1 (locked)', 'blade flap 1', 'blade flap 2']
+    """
+    freqs, rates = np.asarray(freqs, float), np.asarray(rates, float)
+    if not periodic:
+        return label_modes(frac, labels, freqs, rates, shapes, periodic)
+    eig = rates + 1j * freqs
+    second: dict = {}                      # the more damped root of a lock -> its partner
+    paired: set = set()
+    for j in range(eig.size):
+        for k in range(j + 1, eig.size):
+            if j in paired or k in paired or not same_lock(eig, j, k):
+                continue
+            a, b = (j, k) if rates[j] >= rates[k] else (k, j)
+            second[b] = a
+            paired |= {j, k}
+    keep = [j for j in range(eig.size) if j not in second]
+    col = {j: i for i, j in enumerate(keep)}
+    sub = np.array(frac, float)[:, keep]
+    for b, a in second.items():
+        sub[:, col[a]] += frac[:, b]
+    named = label_modes(sub, labels, freqs[keep], rates[keep], shapes[:, keep], periodic)
+    out = [named[col[j]] if j in col else "" for j in range(eig.size)]
+    for b, a in second.items():
+        out[b] = base_name(out[a]) + " (locked)"
+    return out
+
+
 def _path_step(system, n, eps, n_steps, basis):
     """The roots at coupling `eps` as a path step compares them: exponents and shapes.
 
@@ -421,8 +492,8 @@ def continue_roots(system: SecondOrderSystem, labels, final=None, *, basis=None,
         return _by_participation(res0, n, labels, basis, final, final_labels)
     frac0 = coordinate_shares(res0.participation, n)
     vec0 = path_shapes(basis, res0, n, per, n_steps)
-    names0 = label_modes(frac0, labels, res0.frequencies, res0.damping_rates, vec0,
-                         periodic=per)
+    names0 = zero_coupling_names(frac0, labels, res0.frequencies, res0.damping_rates, vec0,
+                                 periodic=per)
     march = March(res0.exponents, vec0, names0, basis.shape[0], per)
     h_max, eps, h, n_solves = 1.0 / first_steps, 0.0, 1.0 / first_steps, 1
     solved: dict = {}                  # eps -> the roots there, for steps retried
@@ -503,9 +574,10 @@ def _by_participation(res0, n, labels, basis, final, final_labels) -> ContinuedR
     mag = np.abs(res0.participation)
     keep = mag[:2 * n].sum(axis=0) >= _STRUCTURAL * mag.sum(axis=0)
     res0 = res0.select(keep)
-    names0 = label_modes(coordinate_shares(res0.participation, n), labels, res0.frequencies,
-                         res0.damping_rates, tracking_shapes(basis, res0, n),
-                         periodic=res0.shapes is not None)
+    names0 = zero_coupling_names(coordinate_shares(res0.participation, n), labels,
+                                 res0.frequencies, res0.damping_rates,
+                                 tracking_shapes(basis, res0, n),
+                                 periodic=res0.shapes is not None)
     held = dict(zip(names0, res0.exponents, strict=True))
     names = [str(x) for x in final_labels]
     uncoupled = np.array([held.get(x, held.get(x.removesuffix(" (locked)"), np.nan))

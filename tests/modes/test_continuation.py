@@ -381,3 +381,27 @@ def test_the_names_do_not_depend_on_round_off_where_a_lock_forms(monkeypatch, fi
     shaken = stability(cfg).modes
     assert all(str(x).strip() and not str(x).startswith(" ") for x in shaken["label"])
     assert list(shaken["label"]) == list(plain["label"])
+
+
+def test_a_lock_at_zero_coupling_is_named_from_its_own_mode():
+    """Fig. 12 (mu 0.3) at 110 ft-lb/rad, zero coupling: blade flap 1 is locked
+    (two real roots, -1.48 /rev at 0.5 and -0.44 /rev written at 2.5 /rev by
+    its dominant harmonic) and blade flap 2's own root is at 2.497 /rev.  The
+    one-to-one labels gave the lock's second root 'blade flap 2' and flap 2's
+    root 'blade flap 2 (locked)' (measured), so the coupled flap 2 was
+    compared with the lock's root (real_part_uncoupled -0.44 instead of its own
+    -0.48).  At zero coupling blade and flap are apart: a lock is one mode's,
+    and the names there are exact."""
+    from tefcore.linear.stability import stability
+    from tefcore.paper.figures import figure_config
+
+    cfg = figure_config("fig12").with_overrides({"actuator.stiffness": "110 ft-lb/rad"})
+    m = stability(cfg).modes.set_index("label")
+    # flap 2's uncoupled root is its own, off the lock's 1/2 /rev (folded) by
+    # 2.6e-3 /rev -- 26 times the lock tolerance -- and -0.480 /rev
+    assert abs(m.loc["blade flap 2", "frequency_uncoupled"] - 2.4974) < 1e-3
+    assert abs(m.loc["blade flap 2", "real_part_uncoupled"] + 0.480) < 1e-3
+    # the lock's two roots both continue blade flap 1, at 1/2 /rev folded
+    for name in ("blade flap 1", "blade flap 1 (locked)"):
+        f = m.loc[name, "frequency_uncoupled"] % 1.0
+        assert abs(min(f, 1.0 - f) - 0.5) < 1e-6
