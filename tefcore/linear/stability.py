@@ -403,6 +403,14 @@ def _split_aero_roots(res, model, periodic):
     total = mag.sum(axis=0)
     structural = mag[:2 * n].sum(axis=0) / total
     aero = structural < STRUCTURAL_SHARE
+    if periodic:
+        # below STATE_MIN_RATE a root is not resolved (the lift is not asked
+        # to) and its adjoint, so its participation, is round-off: it is a
+        # state's (STATE_MIN_RATE lies below every blade or flap root), never
+        # a candidate for a coordinate (measured at MDART mu = 0.3, c_cg 0.1,
+        # with the wake: such a root at -15.9 /rev read a structural share
+        # above 1/2 once the adjoints' K was set by STATE_MIN_RATE)
+        aero |= res.damping_rates < STATE_MIN_RATE
     # a root that the coordinates' labels leave over is a state's, unless it is
     # the partner of a locked pair (the same frequency as a labelled root): e.g.
     # the mean inflow root in hover, 58 % in the collective flap motion (measured)
@@ -411,10 +419,7 @@ def _split_aero_roots(res, model, periodic):
     _, cols = linear_sum_assignment(-np.log(frac + 1e-300))
     named = res.frequencies[cand[cols]]
     for j in np.setdiff1d(np.arange(cand.size), cols):
-        # below STATE_MIN_RATE a periodic root is not resolved (its participation
-        # is not to be trusted): never a locked partner
-        unresolved = periodic and res.damping_rates[cand[j]] < STATE_MIN_RATE
-        if unresolved or np.abs(named - res.frequencies[cand[j]]).min() > 1e-6:
+        if np.abs(named - res.frequencies[cand[j]]).min() > 1e-6:
             aero[cand[j]] = True
     wake, inflow = mag[2 * n:2 * n + nw].sum(axis=0), mag[2 * n + nw:].sum(axis=0)
     flap = (mag[n - 1] + mag[2 * n - 1]) / total if model.has_flap else np.zeros(total.size)

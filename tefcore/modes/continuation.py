@@ -27,7 +27,7 @@ from dataclasses import dataclass
 import numpy as np
 import pandas as pd
 
-from ..floquet.second_order import SecondOrderSystem
+from ..floquet.second_order import STATE_MIN_RATE, SecondOrderSystem
 from .final_names import flap_free_by_participation, free_labels, second_roots_of_locks
 from .labels import coordinate_shares, label_modes, tracking_shapes, trajectory_shapes
 from .march import FLAP_ACTIVE, March, base_name, flap_share, same_lock
@@ -307,15 +307,28 @@ def zero_coupling_names(frac, labels, freqs, rates, shapes, periodic=False):
     if not periodic:
         return label_modes(frac, labels, freqs, rates, shapes, periodic)
     eig = rates + 1j * freqs
+    # the pairs: roots at one k/2 (folded), the most alike in shape first --
+    # two locks can share a folded frequency (measured on MDART at mu 0.3,
+    # c_cg 0.33: blade flap 1's at 0.5 / 2.5 /rev and flap 2's at 2.5 /rev;
+    # MAC 1.00 within flap 2's pair, 0.17 within flap 1's, 0.007 across), and
+    # pairing in index order made the names depend on the roots' order
+    # (found in review)
+    # alike: MAC of the shapes plus the overlap of the coordinate shares (a
+    # lock's two roots carry one coordinate), each in [0, 1]
+    unit = shapes / np.maximum(np.linalg.norm(shapes, axis=0, keepdims=True), 1e-300)
+    share = np.asarray(frac, float) / np.maximum(np.sum(frac, axis=0), 1e-300)
+    alike = (np.abs(unit.conj().T @ unit) ** 2
+             + np.minimum(share[:, :, None], share[:, None, :]).sum(axis=0))
+    pairs = sorted(((alike[j, k], j, k) for j in range(eig.size) for k in range(j + 1, eig.size)
+                    if same_lock(eig, j, k)), key=lambda t: (-round(t[0], 9), t[1], t[2]))
     second: dict = {}                      # the more damped root of a lock -> its partner
     paired: set = set()
-    for j in range(eig.size):
-        for k in range(j + 1, eig.size):
-            if j in paired or k in paired or not same_lock(eig, j, k):
-                continue
-            a, b = (j, k) if rates[j] >= rates[k] else (k, j)
-            second[b] = a
-            paired |= {j, k}
+    for _, j, k in pairs:
+        if j in paired or k in paired:
+            continue
+        a, b = (j, k) if (rates[j], -j) >= (rates[k], -k) else (k, j)
+        second[b] = a
+        paired |= {j, k}
     keep = [j for j in range(eig.size) if j not in second]
     col = {j: i for i, j in enumerate(keep)}
     sub = np.array(frac, float)[:, keep]
@@ -323,8 +336,15 @@ def zero_coupling_names(frac, labels, freqs, rates, shapes, periodic=False):
         sub[:, col[a]] += frac[:, b]
     named = label_modes(sub, labels, freqs[keep], rates[keep], shapes[:, keep], periodic)
     out = [named[col[j]] if j in col else "" for j in range(eig.size)]
+    fallback = None
     for b, a in second.items():
-        out[b] = base_name(out[a]) + " (locked)"
+        name = base_name(out[a]) + " (locked)"
+        if name in out:
+            # more roots than coordinates: the pair's plain root is itself a
+            # '(locked)' extra; the second root keeps the labels' own name
+            fallback = fallback or label_modes(frac, labels, freqs, rates, shapes, periodic)
+            name = fallback[b]
+        out[b] = name
     return out
 
 
@@ -573,6 +593,11 @@ def _by_participation(res0, n, labels, basis, final, final_labels) -> ContinuedR
     """
     mag = np.abs(res0.participation)
     keep = mag[:2 * n].sum(axis=0) >= _STRUCTURAL * mag.sum(axis=0)
+    if res0.shapes is not None:
+        # a Floquet root below STATE_MIN_RATE is not resolved and its
+        # participation is round-off: a state's (as in
+        # tefcore.linear.stability, which splits the point's own roots so)
+        keep &= res0.damping_rates >= STATE_MIN_RATE
     res0 = res0.select(keep)
     names0 = zero_coupling_names(coordinate_shares(res0.participation, n), labels,
                                  res0.frequencies, res0.damping_rates,

@@ -405,3 +405,36 @@ def test_a_lock_at_zero_coupling_is_named_from_its_own_mode():
     for name in ("blade flap 1", "blade flap 1 (locked)"):
         f = m.loc[name, "frequency_uncoupled"] % 1.0
         assert abs(min(f, 1.0 - f) - 0.5) < 1e-6
+
+
+def test_zero_coupling_names_follow_the_roots_not_their_order():
+    """MDART at mu 0.3, c_cg 0.33, zero coupling: four roots at 1/2 /rev folded
+    -- blade flap 1's lock (0.5 and 2.5 /rev) and blade flap 2's (both at
+    2.5) -- and pairing them in index order named a flap 2 root 'blade flap
+    1' in 16 of the 24 orders of those four (found in review).  Pairs are
+    the most alike roots (shape MAC plus overlap of coordinate shares), so
+    every order of the roots gives each root the same name."""
+    from tefcore.linear.stability import stability
+    from tefcore.model.coupled import coupled_model
+    from tefcore.modes import continuation
+    from tefcore.modes.labels import coordinate_shares
+    from tefcore.paper.figures import figure_config
+
+    cfg = figure_config("fig9").with_overrides({"flap.cg_offset": 0.33})
+    system = stability(cfg).system
+    n = system.n_dof
+    basis = coupled_model(cfg).tracking_basis()
+    res0 = continuation._solve(system, n, 0.0, True, 72, participation=True)
+    frac = coordinate_shares(res0.participation, n)
+    shapes = continuation.path_shapes(basis, res0, n, True, 72)
+    labels = coupled_model(cfg).labels
+    f, r = res0.frequencies, res0.damping_rates
+    base = continuation.zero_coupling_names(frac, labels, f, r, shapes, periodic=True)
+    assert base.count("blade flap 1") == 1 and base.count("blade flap 1 (locked)") == 1
+    assert base.count("blade flap 2") == 1 and base.count("blade flap 2 (locked)") == 1
+    rng = np.random.default_rng(3)
+    for _ in range(12):
+        p = rng.permutation(f.size)
+        got = continuation.zero_coupling_names(frac[:, p], labels, f[p], r[p], shapes[:, p],
+                                               periodic=True)
+        assert [got[list(p).index(j)] for j in range(f.size)] == base
