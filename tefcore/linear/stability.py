@@ -396,7 +396,9 @@ def _split_aero_roots(res, model, periodic):
     :data:`STRUCTURAL_SHARE` in the blade and flap states ``[q, q*]`` is a root
     of the shed wake or the inflow: it gets no mode label; so does a root that
     the assignment of the coordinates' labels leaves over and that is not the
-    partner of a locked pair.
+    partner of a locked pair.  In forward flight a root below
+    :data:`~tefcore.floquet.second_order.STATE_MIN_RATE` is a state's too:
+    the lift does not resolve it, nor its participation.
     """
     n, nw = model.n_dof, model.n_wake
     mag = np.abs(res.participation)
