@@ -167,8 +167,12 @@ def name_roots(table: pd.DataFrame, continued, shares=None, coordinates=None) ->
         ``flutter_root`` (one row at most).
     """
     out = table.copy()
-    origin = _plain_name_to_less_stable(list(continued.origin),
-                                        table["real_part"].to_numpy(float))
+    # a root no path explains (and no final naming placed: constant
+    # coefficients, or no labels at full coupling) keeps the coordinate it
+    # carries, not an empty name (which read as kind 'TEF'; found in review)
+    origin = [o if o else str(d)
+              for o, d in zip(continued.origin, table["label"], strict=True)]
+    origin = _plain_name_to_less_stable(origin, table["real_part"].to_numpy(float))
     out["label"] = origin
     out["kind"] = [o.split()[1] if o.startswith("blade") else "TEF" for o in origin]
     if shares is not None:

@@ -438,3 +438,19 @@ def test_zero_coupling_names_follow_the_roots_not_their_order():
         got = continuation.zero_coupling_names(frac[:, p], labels, f[p], r[p], shapes[:, p],
                                                periodic=True)
         assert [got[list(p).index(j)] for j in range(f.size)] == base
+
+
+def test_a_root_no_path_explains_keeps_the_coordinate_it_carries():
+    # a root the march could not place (origin '') where no final naming
+    # runs (constant coefficients) kept the empty name and read as kind 'TEF'
+    # (found in review): it takes the coordinate it carries, uncertain
+    table = pd.DataFrame({"mode_id": [0, 1], "label": ["blade flap 1", "blade lag 1"],
+                          "frequency_per_rev": [1.1, 0.7], "real_part": [-0.3, -0.05]})
+    continued = SimpleNamespace(origin=["blade flap 1", ""], certain=np.array([True, False]),
+                                uncoupled=np.array([-0.3 + 1.1j, np.nan]),
+                                meetings=pd.DataFrame(columns=["eps", "origins"]),
+                                flap_motion=np.array([0.0, 0.0]))
+    out = name_roots(table, continued)
+    assert out["label"].tolist() == ["blade flap 1", "blade lag 1"]
+    assert out["kind"].tolist() == ["flap", "lag"]
+    assert out["identity_certain"].tolist() == [True, False]
