@@ -277,8 +277,12 @@ def goals(args):
     t_ready = time.perf_counter()
     while not pool_ready() and time.perf_counter() - t_ready < 60:
         time.sleep(0.05)
-    warm = sweep(cfg03, "actuator.stiffness", values, n_jobs=2, **kw).timing
-    close_pool()
+    if not pool_ready():
+        print("    (the pool's worker was not ready after 60 s: the next line may be serial)")
+    try:
+        warm = sweep(cfg03, "actuator.stiffness", values, n_jobs=2, **kw).timing
+    finally:
+        close_pool()
     line("40-point sweep --jobs 2 >= 1.6 x --jobs 1", f"{t_j2:.2f} s",
          f"{t_j1:.2f} s ({1 / r_j:.2f} x)",
          f"{t_j1 - serial['wall_s'] / 2:.2f} s (Amdahl)", 1 / r_j >= 1.6)

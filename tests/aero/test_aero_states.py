@@ -526,6 +526,40 @@ def test_min_rate_keeps_the_resolved_roots_and_their_participation():
         floquet_modes(a_of, min_rate=1.0)
 
 
+def test_min_rate_holds_the_participation_of_a_root_just_above_it():
+    # the adjoints' K is set by min_rate (-8 /rev), not by the -20..-40 /rev
+    # states: a wanted root near the cut, here a state at -6.5 /rev coupled to
+    # the slow oscillator, is where that bound bites.  Its round-off is
+    # eps exp((sigma_max - sigma) 2 pi / K) ~ 2e-16 exp(6.5 2 pi / 4) ~ 6e-12
+    # at K = 4 (measured: 2e-14 against a 16-block reference); 1e-9 leaves
+    # two decades and still fails a lift too coarse for it (K = 1: 0.55,
+    # measured, and its exponent 0.12 /rev off)
+    rng = np.random.default_rng(7)
+    n_fast = 6
+    size = 3 + n_fast
+    base = np.zeros((size, size))
+    base[0, 1], base[1, 0], base[1, 1] = 1.0, -9.0, -0.1
+    base[2, 2] = -6.5
+    base[3:, 3:] = np.diag(-np.linspace(20.0, 40.0, n_fast))
+    couple = 0.5 * rng.standard_normal((size, size))
+    couple[3:, 3:] = 0.0
+
+    def a_of(psi):
+        psi = np.atleast_1d(psi)
+        return base + np.cos(psi)[:, None, None] * couple
+
+    ref = floquet_modes(a_of, method="magnus", n_sub=16, max_sub=16, shapes=True)
+    ref = ref.with_participation()
+    res = floquet_modes(a_of, method="magnus", n_sub=1, min_rate=-8.0, participation=True)
+    assert res.n_sub == 4
+    near = int(np.argmin(np.abs(ref.exponents - (-6.5))))
+    assert -8.0 < ref.exponents[near].real < -6.0
+    j = int(np.argmin(np.abs(res.exponents - ref.exponents[near])))
+    assert abs(res.exponents[j] - ref.exponents[near]) < 1e-10
+    np.testing.assert_allclose(np.abs(res.participation[:, j]),
+                               np.abs(ref.participation[:, near]), atol=1e-9)
+
+
 def test_wake_fit_used_is_the_phase_one_fit():
     model = coupled_model(HOVER.with_overrides({"model.aero": "unsteady",
                                                 "model.wake_states": 6}))
