@@ -30,7 +30,7 @@ import pandas as pd
 from ..floquet.second_order import STATE_MIN_RATE, SecondOrderSystem
 from .final_names import flap_free_by_participation, free_labels, second_roots_of_locks
 from .labels import coordinate_shares, label_modes, tracking_shapes, trajectory_shapes
-from .march import FLAP_ACTIVE, March, base_name, flap_share, same_lock
+from .march import FLAP_ACTIVE, March, base_name, flap_share, lock_matrix
 from .tracking import follow_root
 
 __all__ = ["FIRST_STEPS", "FLAP_ACTIVE", "MIN_STEP", "ContinuedRoots", "continue_roots",
@@ -304,9 +304,9 @@ def zero_coupling_names(frac, labels, freqs, rates, shapes, periodic=False):
     ['blade flap 1 (locked)', 'blade flap 1', 'blade flap 2']
     """
     freqs, rates = np.asarray(freqs, float), np.asarray(rates, float)
-    if not periodic:
+    locks = np.triu(lock_matrix(rates + 1j * freqs), 1) if periodic else None
+    if locks is None or not locks.any():
         return label_modes(frac, labels, freqs, rates, shapes, periodic)
-    eig = rates + 1j * freqs
     # the pairs: roots at one k/2 (folded), the most alike in shape first --
     # two locks can share a folded frequency (measured on MDART at mu 0.3,
     # c_cg 0.33: blade flap 1's at 0.5 / 2.5 /rev and flap 2's at 2.5 /rev;
@@ -319,8 +319,8 @@ def zero_coupling_names(frac, labels, freqs, rates, shapes, periodic=False):
     share = np.asarray(frac, float) / np.maximum(np.sum(frac, axis=0), 1e-300)
     alike = (np.abs(unit.conj().T @ unit) ** 2
              + np.minimum(share[:, :, None], share[:, None, :]).sum(axis=0))
-    pairs = sorted(((alike[j, k], j, k) for j in range(eig.size) for k in range(j + 1, eig.size)
-                    if same_lock(eig, j, k)), key=lambda t: (-round(t[0], 9), t[1], t[2]))
+    pairs = sorted(((alike[j, k], j, k) for j, k in np.argwhere(locks).tolist()),
+                   key=lambda t: (-round(t[0], 9), t[1], t[2]))
     second: dict = {}                      # the more damped root of a lock -> its partner
     paired: set = set()
     for _, j, k in pairs:
@@ -329,13 +329,13 @@ def zero_coupling_names(frac, labels, freqs, rates, shapes, periodic=False):
         a, b = (j, k) if (rates[j], -j) >= (rates[k], -k) else (k, j)
         second[b] = a
         paired |= {j, k}
-    keep = [j for j in range(eig.size) if j not in second]
+    keep = [j for j in range(freqs.size) if j not in second]
     col = {j: i for i, j in enumerate(keep)}
     sub = np.array(frac, float)[:, keep]
     for b, a in second.items():
         sub[:, col[a]] += frac[:, b]
     named = label_modes(sub, labels, freqs[keep], rates[keep], shapes[:, keep], periodic)
-    out = [named[col[j]] if j in col else "" for j in range(eig.size)]
+    out = [named[col[j]] if j in col else "" for j in range(freqs.size)]
     fallback = None
     for b, a in second.items():
         name = base_name(out[a]) + " (locked)"

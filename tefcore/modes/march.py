@@ -28,8 +28,8 @@ from .matching import (
     relative_distance,
 )
 
-__all__ = ["FLAP_ACTIVE", "March", "base_name", "exchanges", "flap_share", "regrets",
-           "same_lock"]
+__all__ = ["FLAP_ACTIVE", "March", "base_name", "exchanges", "flap_share", "lock_matrix",
+           "regrets", "same_lock"]
 
 
 #: Least share of a root's kinematic motion (squared) in the flap's trailing edge
@@ -140,10 +140,33 @@ def same_lock(eig, j, k) -> bool:
     >>> same_lock(np.array([-6.2 + 3.5j, -5.4 + 4.5j, -0.5 + 4.4j]), 0, 1)
     True
     """
-    if j == k:
-        return False
-    fold = _fold(np.asarray(eig, complex)[[j, k]])
-    return bool(_at_half(fold[:1])[0] and abs(fold[0] - fold[1]) <= 10 * LOCK_TOL)
+    return j != k and bool(lock_matrix(np.asarray(eig, complex)[[j, k]])[0, 1])
+
+
+def lock_matrix(eig) -> np.ndarray:
+    """:func:`same_lock` of every two roots at once: ``(m, m)``, False on the diagonal.
+
+    Parameters
+    ----------
+    eig : numpy.ndarray of complex
+        The roots [/rev].
+
+    Returns
+    -------
+    numpy.ndarray of bool
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> lock_matrix(np.array([-6.2 + 3.5j, -5.4 + 4.5j, -0.5 + 4.4j])).astype(int)
+    array([[0, 1, 0],
+           [1, 0, 0],
+           [0, 0, 0]])
+    """
+    fold = _fold(eig)
+    out = _at_half(fold)[:, None] & (np.abs(fold[:, None] - fold[None, :]) <= 10 * LOCK_TOL)
+    np.fill_diagonal(out, False)
+    return out
 
 
 def _near_lock(eig, periodic) -> np.ndarray:
@@ -157,10 +180,7 @@ def _near_lock(eig, periodic) -> np.ndarray:
     eig = np.asarray(eig, complex)
     if not periodic:
         return np.zeros(eig.size, bool)
-    fold = _fold(eig)
-    pair = np.abs(fold[:, None] - fold[None, :]) <= 10 * LOCK_TOL
-    np.fill_diagonal(pair, False)
-    return _at_half(fold) & pair.any(axis=1)
+    return lock_matrix(eig).any(axis=1)
 
 
 def _padded(cost, path_lock, root_lock):

@@ -488,25 +488,36 @@ def test_state_matrix_matches_the_descriptor_pencil():
         assert np.abs(mine - e_).min() < 1e-9 * max(1.0, abs(e_))
 
 
-def test_min_rate_keeps_the_resolved_roots_and_their_participation():
-    # a slow oscillator coupled to fast lag states: the lift cannot resolve the
-    # -40 /rev states with 8 blocks; min_rate says it need not, the slow roots and
-    # their participation agree with a 16-block reference
+def _slow_and_fast_states(near=None):
+    """A slow oscillator (0.04 /rev damped, 3 /rev) coupled through cos(psi) to
+    six lag states at -20..-40 /rev (and, with `near`, one state at that rate):
+    ``A(psi)``, its 16-block reference with participation, and the
+    ``min_rate = -8`` result."""
     rng = np.random.default_rng(7)
-    n_fast = 6
-    base = np.zeros((2 + n_fast, 2 + n_fast))
+    n_fast, slow = 6, 2 + (near is not None)
+    size = slow + n_fast
+    base = np.zeros((size, size))
     base[0, 1], base[1, 0], base[1, 1] = 1.0, -9.0, -0.1
-    base[2:, 2:] = np.diag(-np.linspace(20.0, 40.0, n_fast))
-    couple = 0.5 * rng.standard_normal((2 + n_fast, 2 + n_fast))
-    couple[2:, 2:] = 0.0
+    if near is not None:
+        base[2, 2] = near
+    base[slow:, slow:] = np.diag(-np.linspace(20.0, 40.0, n_fast))
+    couple = 0.5 * rng.standard_normal((size, size))
+    couple[slow:, slow:] = 0.0
 
     def a_of(psi):
         psi = np.atleast_1d(psi)
         return base + np.cos(psi)[:, None, None] * couple
 
     ref = floquet_modes(a_of, method="magnus", n_sub=16, max_sub=16, shapes=True)
-    ref = ref.with_participation()
     res = floquet_modes(a_of, method="magnus", n_sub=1, min_rate=-8.0, participation=True)
+    return a_of, ref.with_participation(), res
+
+
+def test_min_rate_keeps_the_resolved_roots_and_their_participation():
+    # a slow oscillator coupled to fast lag states: the lift cannot resolve the
+    # -40 /rev states with 8 blocks; min_rate says it need not, the slow roots and
+    # their participation agree with a 16-block reference
+    a_of, ref, res = _slow_and_fast_states()
     # K resolves down to min_rate only (exp(-8 2 pi / 4) = 3.5e-6 >= MIN_ROOT,
     # 1e-6), while the -40 /rev states would need K = 32.  The adjoint of a
     # root damped at sigma loses exp(|sigma| 2 pi / K) of its accuracy over a
@@ -534,23 +545,7 @@ def test_min_rate_holds_the_participation_of_a_root_just_above_it():
     # at K = 4 (measured: 2e-14 against a 16-block reference); 1e-9 leaves
     # two decades and still fails a lift too coarse for it (K = 1: 0.55,
     # measured, and its exponent 0.12 /rev off)
-    rng = np.random.default_rng(7)
-    n_fast = 6
-    size = 3 + n_fast
-    base = np.zeros((size, size))
-    base[0, 1], base[1, 0], base[1, 1] = 1.0, -9.0, -0.1
-    base[2, 2] = -6.5
-    base[3:, 3:] = np.diag(-np.linspace(20.0, 40.0, n_fast))
-    couple = 0.5 * rng.standard_normal((size, size))
-    couple[3:, 3:] = 0.0
-
-    def a_of(psi):
-        psi = np.atleast_1d(psi)
-        return base + np.cos(psi)[:, None, None] * couple
-
-    ref = floquet_modes(a_of, method="magnus", n_sub=16, max_sub=16, shapes=True)
-    ref = ref.with_participation()
-    res = floquet_modes(a_of, method="magnus", n_sub=1, min_rate=-8.0, participation=True)
+    _, ref, res = _slow_and_fast_states(near=-6.5)
     assert res.n_sub == 4
     near = int(np.argmin(np.abs(ref.exponents - (-6.5))))
     assert -8.0 < ref.exponents[near].real < -6.0
