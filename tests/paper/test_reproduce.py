@@ -144,6 +144,28 @@ def test_exit_status(tmp_path, monkeypatch, status, recorded, run_status, code):
     assert ("Worse than recorded: 1" in md) == (code == 1 and run_status == "ok")
 
 
+def test_the_kernelspec_is_looked_up_before_the_notebooks_thread_starts(tmp_path, monkeypatch):
+    """The race seen in a reproduction: jupyter_client's kernelspec lookup imports
+    IPython, and matplotlib's first canvas (the fan plot, drawn in the main
+    thread while the notebooks start) reads ``IPython.version_info`` if IPython
+    is in ``sys.modules`` -- half-imported in the other thread, an
+    AttributeError.  The lookup must be done, in the main thread, before the
+    notebooks' thread exists (a wrong order fails here, not once in a while)."""
+    import threading
+    events = []
+    monkeypatch.setattr(rp, "ensure_kernel", lambda *a, **k: events.append(
+        ("kernelspec", threading.current_thread() is threading.main_thread())))
+    fake = _fake_runs([_claim("pass", "pass")])
+
+    def runs(*a, **k):
+        events.append(("notebooks", threading.current_thread() is threading.main_thread()))
+        return fake(*a, **k)
+    monkeypatch.setattr(rp, "run_notebooks", runs)
+    monkeypatch.setattr(rp, "start_variant_runs", lambda *a, **k: [])
+    assert rp.reproduce(tmp_path, notebooks=["04"], progress=False) == 0
+    assert events[:2] == [("kernelspec", True), ("notebooks", False)]
+
+
 # ------------------------------------------------------------------ a real tiny run
 
 
