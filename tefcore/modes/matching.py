@@ -614,20 +614,28 @@ def unwrap_frequency(eig: complex, predicted: complex, periodic: bool) -> float:
     return float(up if abs(up - p) <= abs(down - p) else down)
 
 
-def continuous_frequency(x, f, *, span: int = 3, weight: float = 2.0,
-                         reach: int = 2) -> np.ndarray:
+def continuous_frequency(x, f, *, span: int = 3, weight: float = 1.0,
+                         reach: int = 2, anchor: float = 0.25) -> np.ndarray:
     """Floquet frequencies along a curve, in the representation that makes it smoothest.
 
     Each point's frequency ``f`` is known modulo 1/rev and up to its sign (the
     Floquet convention writes the dominant harmonic of the mode's motion).
     The candidates at a point are its representations ``+-f + k`` within
     `span` /rev of the conventions of the points up to `reach` places on
-    either side; of these, the choice at every point that minimises the
-    curve's squared change of slope plus `weight` for each point written
-    otherwise than by its own convention is found by dynamic programming over
-    the whole curve.  So a 1/rev jump of the convention (two harmonics of nearly equal
-    power) is smoothed away, and a stretch written as the mirror image
-    (``k - f``) is put back where its neighbours say; the same points give the
+    either side.  Each candidate is the point's own convention rewritten by
+    one *offset* (the sign and the shift ``k``).  A root's frequency is
+    continuous along the curve, and the convention jumps by whole /rev (two
+    harmonics of nearly equal power) or to the mirror image, so what is
+    priced is a change of offset between neighbours, not each point written
+    otherwise: the choice at every point that minimises the curve's squared
+    change of slope, plus `weight` for each change of offset between two
+    neighbours, plus `anchor` for each point not in its own convention (which
+    ties the curve to the convention most of its points carry), is found by
+    dynamic programming over the whole curve.  So a stretch of points written
+    1/rev off or as the mirror image (``k - f``) is put back where its
+    neighbours say, up to ``(4 - 2 weight) / anchor`` points (8), and a
+    convention that changes for good is made continuous when the shorter side
+    has up to ``(2 - weight) / anchor`` points (4); the same points give the
     same curve whatever order they came in.
 
     Parameters
@@ -639,18 +647,34 @@ def continuous_frequency(x, f, *, span: int = 3, weight: float = 2.0,
     span : int, optional
         How far from a neighbour's convention a candidate may lie [/rev].
     weight : float, optional
-        Cost of writing a point in another representation than its own
-        convention, against the squared change of slope (in /rev, the slope
-        per local step).  A jump of ``J`` /rev at one point costs about
-        ``2 J**2`` to 4 ``J**2`` in slope changes: with 2, a convention that
-        jumps by a whole /rev (or is a mirror image far from ``k/2``) is put
-        back, and one a few tenths from a smooth line through its neighbours
-        -- a sparse sweep of a curving frequency, or a root near a lock whose
-        mirror image lies close -- is kept.  (Measured on Fig. 9 at overhang
-        0.1, 11 points: with a cost per /rev of departure instead, 0.1 drifted
-        the whole curve by up to 1.35 /rev to straighten it.)
+        Cost of a change of offset between two neighbouring points, against
+        the squared change of slope (in /rev, the slope per local step).  A
+        jump of ``J`` /rev in and out of a stretch costs about ``2 J**2`` at each
+        end (4 for a 1/rev stretch): with 1, a stretch 1/rev off is put back
+        (cost 2 plus its anchors), and a point a few tenths from a smooth line
+        through its neighbours -- a sparse sweep of a curving frequency, or a
+        root near a lock whose mirror image lies close -- is kept, the offsets
+        changing twice for less than 2 of smoothness.  (Measured on Fig. 14,
+        flap length 0.165-0.19 R, mu 0.3: the TEF's convention 1/rev up at
+        three points running; with a cost of 2 for *each point* written
+        otherwise, the earlier rule, the three were kept and the tracked
+        frequency jumped +0.77 and -1.11 /rev.)
     reach : int, optional
         Neighbours on each side whose conventions place the candidates.
+    anchor : float, optional
+        Cost of each point written otherwise than by its own convention.  A
+        whole curve rewritten by one offset changes no slope; this is what
+        keeps it in the convention its points carry.  Measured on the
+        reproduction's 4079 named rows in forward flight: with 0.25, 0.1 and
+        0.05, 27, 16 and 12 isolated steps of a name along one track stayed a
+        whole /rev off its neighbours' (49 with the earlier rule), and 8.5, 12.5
+        and 16 % of the rows were written otherwise than by their dominant
+        harmonic.  0.1 and 0.05 also shifted the tail of this function's
+        example (a curve falling 1.3 /rev a step, a mirrored stretch and a
+        shifted point in 8 points) and the whole of Fig. 9's overhang-0.1 TEF
+        curve by 1/rev: a weaker anchor lets the offsets wander; 0.25 is kept.  (Measured on Fig. 9 at
+        overhang 0.1, 11 points: with a cost per /rev of departure instead,
+        0.1 drifted the whole curve by up to 1.35 /rev to straighten it.)
 
     Returns
     -------
@@ -678,11 +702,13 @@ def continuous_frequency(x, f, *, span: int = 3, weight: float = 2.0,
     idx = good[np.argsort(x[good], kind="stable")]
     xs, fs = x[idx], f[idx]
     cand = _candidates(fs, span, reach)
-    # a representation other than the point's own convention costs `weight`,
-    # whatever its distance: all are the same root
-    dev = np.where(np.isfinite(cand), np.where(np.abs(cand - fs[:, None]) <= 1e-9, 0.0, weight),
+    # a representation other than the point's own convention costs `anchor`,
+    # whatever its distance (all are the same root); a change of offset
+    # between neighbours costs `weight`
+    dev = np.where(np.isfinite(cand), np.where(np.abs(cand - fs[:, None]) <= 1e-9, 0.0, anchor),
                    np.inf)
-    cost = dev[0][:, None] + dev[1][None, :]      # (choice at i-1, choice at i)
+    plus, minus = _offsets(cand, fs)
+    cost = dev[0][:, None] + dev[1][None, :] + weight * _changes(plus, minus, 0)
     # a second point at one parameter value has no step to be smooth over: the
     # curve is found on the first of each, and each other takes the
     # representation nearest it
@@ -690,7 +716,7 @@ def continuous_frequency(x, f, *, span: int = 3, weight: float = 2.0,
     if not first.all():
         keep = idx[first]
         out[keep] = continuous_frequency(x[keep], f[keep], span=span, reach=reach,
-                                         weight=weight)
+                                         weight=weight, anchor=anchor)
         at = np.searchsorted(x[keep], xs, side="right") - 1
         for i in np.flatnonzero(~first):
             c = cand[i][np.isfinite(cand[i])]
@@ -704,7 +730,8 @@ def continuous_frequency(x, f, *, span: int = 3, weight: float = 2.0,
         curv = ((s1[None, :, :] - s0[:, :, None]) * (0.5 * (h0 + h1))) ** 2
         total = np.where(np.isfinite(curv), cost[:, :, None] + curv, np.inf)
         arg = np.argmin(total, axis=0)                                   # (a, b) -> z
-        cost = np.take_along_axis(total, arg[None], axis=0)[0] + dev[i][None, :]
+        cost = (np.take_along_axis(total, arg[None], axis=0)[0] + dev[i][None, :]
+                + weight * _changes(plus, minus, i - 1))
         back.append(arg)
     a, b = np.unravel_index(int(np.argmin(cost)), cost.shape)
     choice = [b, a]
@@ -713,6 +740,25 @@ def continuous_frequency(x, f, *, span: int = 3, weight: float = 2.0,
     choice = choice[::-1]
     out[idx] = cand[np.arange(len(xs)), choice]
     return out
+
+
+def _offsets(cand, fs):
+    """Per candidate, the shift ``k`` that writes it as ``f + k`` and the one that
+    writes it as ``-f + k`` (NaN where it is not such): its offset from the
+    point's own convention ``f`` (at ``k/2`` a candidate is both)."""
+    with np.errstate(invalid="ignore"):
+        up, down = cand - fs[:, None], cand + fs[:, None]
+        plus = np.where(np.abs(up - np.round(up)) <= 1e-6, np.round(up), np.nan)
+        minus = np.where(np.abs(down - np.round(down)) <= 1e-6, np.round(down), np.nan)
+    return plus, minus
+
+
+def _changes(plus, minus, i):
+    """``(a, b)``: 1 where candidate ``a`` at point ``i`` and ``b`` at ``i + 1`` are
+    written with different offsets (:func:`_offsets`), else 0."""
+    same = ((plus[i][:, None] == plus[i + 1][None, :])
+            | (minus[i][:, None] == minus[i + 1][None, :]))
+    return np.where(same, 0.0, 1.0)
 
 
 def _candidates(fs, span, reach):

@@ -317,6 +317,37 @@ def test_a_root_that_does_not_move_the_flap_is_never_the_flap_mode():
     assert "blade flap 1 (locked)" in set(m["label"])
 
 
+def test_continuous_frequency_puts_back_a_stretch_written_one_per_rev_off():
+    """Measured case: Fig. 14's TEF (mu 0.3, flap length 0.165-0.19 R), the
+    point's own convention (its dominant harmonic) 1/rev up at three points
+    running, 0.175-0.18 R.  A Floquet frequency is continuous along a root;
+    the known answer is the curve with those three shifted down, which falls
+    smoothly (steps -0.09 to -0.23 /rev).  The rule that priced each point
+    written otherwise kept the stretch (jumps +0.77 and -1.11 /rev)."""
+    x = 0.165 + 0.0025 * np.arange(11)
+    own = np.array([7.834818, 7.726080, 7.604256, 7.442463, 8.208709, 8.021819, 7.893596,
+                    6.786041, 6.686840, 6.591755, 6.5])
+    true = own.copy()
+    true[4:7] -= 1.0
+    got = continuous_frequency(x, own)
+    np.testing.assert_allclose(got, true, atol=1e-9)
+    assert np.all(np.diff(got) < 0)
+    # a stretch of two points is put back; with six of the eleven 1/rev up the
+    # curve is the same one, written as most of its points write it (1/rev up
+    # everywhere); the whole curve 1/rev off stays as its points write it
+    seen = true.copy()
+    seen[4:6] += 1.0
+    np.testing.assert_allclose(continuous_frequency(x, seen), true, atol=1e-9)
+    seen = true.copy()
+    seen[2:8] += 1.0
+    np.testing.assert_allclose(continuous_frequency(x, seen), true + 1.0, atol=1e-9)
+    np.testing.assert_allclose(continuous_frequency(x, true + 1.0), true + 1.0, atol=1e-9)
+    # in any order
+    order = np.random.default_rng(1).permutation(x.size)
+    np.testing.assert_allclose(continuous_frequency(x[order], own[order]), true[order],
+                               atol=1e-9)
+
+
 def test_continuous_frequency_takes_a_repeated_parameter_value_without_a_jump():
     # two rows of one name at one value (a lock's two roots, once, before the
     # names were made unique) made every step through them infinitely curved,
