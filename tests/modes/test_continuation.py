@@ -348,6 +348,23 @@ def test_continuous_frequency_puts_back_a_stretch_written_one_per_rev_off():
                                atol=1e-9)
 
 
+def test_continuous_frequency_keeps_a_locked_stretch_beside_where_it_unlocks():
+    """Measured case: Fig. 12's TEF (mu 0.3, imbalanced flap), actuator stiffness
+    55-97 N m/rad: locked (two real multipliers, frequency at k/2, written 4.0
+    to 5.5 /rev) up to 69 N m/rad, unlocking at 4.80 /rev and rising to 6.27.
+    At a lock the mirror image and the shifts are the same numbers, so the
+    lock's points are as continuous at 4.5-5.0 as anywhere; they must stay
+    within 1/2 /rev of 4.80 where the root unlocks (a rule pricing offsets
+    next to a lock wrote them 6.5-7.0 through the mirror image 11 - f, and the
+    curve fell 2 /rev at 72.5)."""
+    x = np.array([55.2631, 56.1266, 56.9901, 58.7171, 62.171, 65.625, 69.0789, 72.5329,
+                  75.9868, 82.8947, 96.7105])
+    own = np.array([4.5, 4.5, 4.0, 5.0, 5.0, 4.5, 5.5, 4.80127724, 5.0, 5.5, 6.26508076])
+    got = continuous_frequency(x, own)
+    assert np.all(np.abs(got[:7] - 4.80127724) <= 0.5 + 1e-9)
+    np.testing.assert_allclose(got[7:], own[7:], atol=1e-9)     # unlocked: as written
+
+
 def test_continuous_frequency_takes_a_repeated_parameter_value_without_a_jump():
     # two rows of one name at one value (a lock's two roots, once, before the
     # names were made unique) made every step through them infinitely curved,
