@@ -178,16 +178,33 @@ def build_table(parameter, values, keys, records):
 def _unwrap_by_name(table: pd.DataFrame, periodic: bool) -> None:
     """``frequency_tracked``: each named root's frequency continuous along the sweep.
 
-    Per name (the roots of one uncoupled mode, point by point), the Floquet
+    Per name (the roots of one uncoupled mode, point by point) and per stretch
+    of it on one root (consecutive points of one ``track``), the Floquet
     frequency's representation (1/rev shift, sign) that makes the curve
     smoothest and keeps nearest the points' own convention
     (:func:`tefcore.modes.matching.continuous_frequency`); the flutter root's
-    rows are a name's rows too.  Constant coefficients: the frequency itself.
+    rows are a name's rows too.  Where the name moves to another root (an
+    exceptional point between two points) the frequency is that root's in its
+    own stretch: smoothing across would write one root as the mirror image of
+    its frequency to meet another's (measured on Fig. 12, mu 0.3: the TEF name
+    alternating between the flutter root at 13.4-13.9 /rev and a root at
+    10.5-11 /rev above 1.5x the actuator stiffness, smoothed as one curve,
+    wrote the flutter root at 25 - 13.68 = 11.32).  Constant coefficients: the
+    frequency itself.
     """
     if "frequency_tracked" not in table or not periodic:
         return
     ok = (table["status"] == "ok") & table["label"].notna()
     for _, g in table[ok].groupby(table.loc[ok, "label"].astype(str), sort=False):
         x = pd.to_numeric(g["value_si"]).to_numpy(float)
-        table.loc[g.index, "frequency_tracked"] = continuous_frequency(
-            x, g["frequency_per_rev"].to_numpy(float))
+        order = np.argsort(x, kind="stable")
+        # a row without a track (none linked it) is a stretch of its own
+        track = pd.to_numeric(g["track"], errors="coerce").to_numpy(float)[order]
+        new_run = ~(track[1:] == track[:-1])          # NaN: never equal
+        run = np.concatenate([[0], np.cumsum(new_run)])
+        freq = g["frequency_per_rev"].to_numpy(float)
+        out = freq.copy()
+        for r in np.unique(run):
+            idx = order[run == r]
+            out[idx] = continuous_frequency(x[idx], freq[idx])
+        table.loc[g.index, "frequency_tracked"] = out
