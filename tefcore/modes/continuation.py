@@ -395,6 +395,15 @@ class ContinuedRoots:
     flap_motion : numpy.ndarray
         Per root: the share of its kinematic motion (squared) in the flap's
         trailing edge (:data:`FLAP_ACTIVE`).
+    frequency : numpy.ndarray
+        Per root (Floquet): its frequency [/rev] in the representation its
+        path carried from the uncoupled root (the 1/rev shift and the sign
+        chosen step by step nearest the path's prediction): continuous in
+        ``eps``, and so in the design parameter wherever no exceptional point
+        intervenes, the uncoupled root's convention being continuous in it.
+        NaN where the path did not decide the root's name (not ``certain``, a
+        root named by participation at the end, a lock's second root) and
+        with constant coefficients (the frequency itself is continuous).
     """
 
     origin: list
@@ -403,6 +412,7 @@ class ContinuedRoots:
     meetings: pd.DataFrame
     n_solves: int
     flap_motion: np.ndarray
+    frequency: np.ndarray = None
 
 
 def continue_roots(system: SecondOrderSystem, labels, final=None, *, basis=None,
@@ -553,8 +563,13 @@ def continue_roots(system: SecondOrderSystem, labels, final=None, *, basis=None,
         uncoupled = np.array([held.get(o, held.get(base_name(o), np.nan)) for o in origin],
                              complex)
     meetings = _renamed_meetings(march, origin)
+    carried = np.full(len(origin), np.nan)
+    if per:
+        own = certain & np.array([bool(o) and not o.endswith(" (locked)") for o in origin])
+        carried[own] = march.eig.imag[own]
     return ContinuedRoots(origin=origin, certain=certain, uncoupled=uncoupled,
-                          meetings=meetings, n_solves=n_solves, flap_motion=motion)
+                          meetings=meetings, n_solves=n_solves, flap_motion=motion,
+                          frequency=carried)
 
 
 #: Least share of a root's participation in the blade and flap states for it to
@@ -611,4 +626,5 @@ def _by_participation(res0, n, labels, basis, final, final_labels) -> ContinuedR
                           uncoupled=uncoupled,
                           meetings=pd.DataFrame(columns=["eps", "origins"]), n_solves=1,
                           flap_motion=flap_share(tracking_shapes(basis, final, n),
-                                                  basis.shape[0]))
+                                                  basis.shape[0]),
+                          frequency=np.full(len(names), np.nan))

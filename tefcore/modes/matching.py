@@ -615,7 +615,7 @@ def unwrap_frequency(eig: complex, predicted: complex, periodic: bool) -> float:
 
 
 def continuous_frequency(x, f, *, span: int = 3, weight: float = 1.0,
-                         reach: int = 2, anchor: float = 0.25) -> np.ndarray:
+                         reach: int = 2, anchor: float = 0.25, carried=None) -> np.ndarray:
     """Floquet frequencies along a curve, in the representation that makes it smoothest.
 
     Each point's frequency ``f`` is known modulo 1/rev and up to its sign (the
@@ -676,6 +676,17 @@ def continuous_frequency(x, f, *, span: int = 3, weight: float = 1.0,
         overhang 0.1, 11 points: with a cost per /rev of departure instead,
         0.1 drifted the whole curve by up to 1.35 /rev to straighten it.)
 
+    carried : array_like, optional
+        Per point, its frequency as continuation in the coupling carried it
+        from the uncoupled root (``frequency_continued``; NaN: none).  A
+        second representation the point may take without the anchor's cost:
+        where the dominant harmonic changes for good, continuation says which
+        way the curve goes (measured on Fig. 14's TEF at 0.1275 R: own 9.547,
+        carried 10.547, continuous with 10.677 at 0.125); it is not imposed,
+        since a path that passed near a lock may carry the mirror image
+        (measured on Fig. 9 at overhang 0.1, c_cg 0.28: 12.09, the mirror
+        of the 17.97 continuity gives).
+
     Returns
     -------
     numpy.ndarray
@@ -695,18 +706,19 @@ def continuous_frequency(x, f, *, span: int = 3, weight: float = 1.0,
     """
     x = np.asarray(x, float)
     f = np.asarray(f, float)
+    carried = np.full(f.shape, np.nan) if carried is None else np.asarray(carried, float)
     out = f.copy()
     good = np.flatnonzero(np.isfinite(f) & np.isfinite(x))
     if good.size < 3:
         return out
     idx = good[np.argsort(x[good], kind="stable")]
-    xs, fs = x[idx], f[idx]
-    cand = _candidates(fs, span, reach)
-    # a representation other than the point's own convention costs `anchor`,
-    # whatever its distance (all are the same root); a change of offset
-    # between neighbours costs `weight`
-    dev = np.where(np.isfinite(cand), np.where(np.abs(cand - fs[:, None]) <= 1e-9, 0.0, anchor),
-                   np.inf)
+    xs, fs, cs = x[idx], f[idx], carried[idx]
+    cand = _candidates(fs, span, reach, cs)
+    # a representation other than the point's own convention (or the one
+    # continuation carried) costs `anchor`, whatever its distance (all are the
+    # same root); a change of offset between neighbours costs `weight`
+    free = (np.abs(cand - fs[:, None]) <= 1e-9) | (np.abs(cand - cs[:, None]) <= 1e-9)
+    dev = np.where(np.isfinite(cand), np.where(free, 0.0, anchor), np.inf)
     plus, minus = _offsets(cand, fs)
     cost = dev[0][:, None] + dev[1][None, :] + weight * _changes(plus, minus, 0)
     # a second point at one parameter value has no step to be smooth over: the
@@ -716,7 +728,7 @@ def continuous_frequency(x, f, *, span: int = 3, weight: float = 1.0,
     if not first.all():
         keep = idx[first]
         out[keep] = continuous_frequency(x[keep], f[keep], span=span, reach=reach,
-                                         weight=weight, anchor=anchor)
+                                         weight=weight, anchor=anchor, carried=carried[keep])
         at = np.searchsorted(x[keep], xs, side="right") - 1
         for i in np.flatnonzero(~first):
             c = cand[i][np.isfinite(cand[i])]
@@ -769,8 +781,9 @@ def _changes(plus, minus, i):
     return np.where(same | at_lock[i] | at_lock[i + 1], 0.0, 1.0)
 
 
-def _candidates(fs, span, reach):
-    """Per point, its representations +-f + k near its neighbours' conventions (NaN-padded)."""
+def _candidates(fs, span, reach, carried=None):
+    """Per point, its representations +-f + k near its neighbours' conventions, and
+    the one continuation carried if any (NaN-padded)."""
     rows = []
     for i, fi in enumerate(fs):
         refs = fs[max(0, i - reach):i + reach + 1]
@@ -782,6 +795,8 @@ def _candidates(fs, span, reach):
                     c = base + k
                     if abs(c - r) <= span + 1e-9:
                         vals.add(round(c, 9))
+        if carried is not None and np.isfinite(carried[i]):
+            vals.add(round(float(carried[i]), 9))
         rows.append(sorted(vals))
     width = max(len(r) for r in rows)
     return np.array([r + [np.nan] * (width - len(r)) for r in rows])

@@ -163,7 +163,9 @@ def name_roots(table: pd.DataFrame, continued, shares=None, coordinates=None) ->
         name of the root its path met: an exceptional point within the
         smallest step of the coupling; empty otherwise),
         ``real_part_uncoupled`` (where the path starts: the root with the flap
-        held, or the flap alone), ``flap_motion``, ``flap_induced`` and
+        held, or the flap alone), ``frequency_continued`` (the root's frequency
+        as its path carried it from there, or NaN), ``flap_motion``,
+        ``flap_induced`` and
         ``flutter_root`` (one row at most).
     """
     out = table.copy()
@@ -183,6 +185,9 @@ def name_roots(table: pd.DataFrame, continued, shares=None, coordinates=None) ->
     pos = list(out.columns).index("real_part") + 1
     out.insert(pos, "real_part_uncoupled", continued.uncoupled.real)
     out.insert(pos + 1, "frequency_uncoupled", continued.uncoupled.imag)
+    carried = getattr(continued, "frequency", None)
+    out.insert(pos + 2, "frequency_continued",
+               np.full(len(out), np.nan) if carried is None else carried)
     out.insert(3, "identity_certain", continued.certain)
     met: dict = {}
     for pair in continued.meetings["origins"]:

@@ -162,7 +162,9 @@ class SweepResult:
         continues its track), the mode columns (``mode_id``,
         ``frequency_per_rev``, ``frequency_tracked`` -- continuous along each
         name, :func:`tefcore.modes.matching.continuous_frequency` --,
-        ``real_part``, ``damping_ratio``, ``real_part_uncoupled``, ...), the
+        ``real_part``, ``damping_ratio``, ``real_part_uncoupled``,
+        ``frequency_continued`` -- the frequency as continuation carried it
+        from the uncoupled root --, ...), the
         roles ``tef_branch`` (the root named ``TEF``), ``tef_branch_certain``
         (and its path from zero coupling decided) and ``flutter_root`` (the
         least stable flap-induced root of its point,

@@ -203,8 +203,11 @@ def _unwrap_by_name(table: pd.DataFrame, periodic: bool) -> None:
         new_run = ~(track[1:] == track[:-1])          # NaN: never equal
         run = np.concatenate([[0], np.cumsum(new_run)])
         freq = g["frequency_per_rev"].to_numpy(float)
+        carried = (g["frequency_continued"].to_numpy(float) if "frequency_continued" in g
+                   else np.full(len(g), np.nan))
         out = freq.copy()
         for r in np.unique(run):
             idx = order[run == r]
-            out[idx] = continuous_frequency(x[idx], freq[idx])
+            out[idx] = continuous_frequency(x[idx], freq[idx], carried=carried[idx])
         table.loc[g.index, "frequency_tracked"] = out
+

@@ -348,6 +348,53 @@ def test_continuous_frequency_puts_back_a_stretch_written_one_per_rev_off():
                                atol=1e-9)
 
 
+def test_continuous_frequency_takes_the_carried_representation_where_the_convention_changes_for_good():
+    """Measured case: Fig. 16b's blade torsion 2 (mu 0.3, collective 0-7.5 deg):
+    its dominant harmonic 12.07, 12.08, 12.11 at the first three points and
+    11.14-11.16 from the fourth on, the frequency as continuation carried it
+    11.07-11.16 throughout (the same roots: whole /rev apart).  A Floquet
+    frequency is continuous along a root: the known answer is the carried
+    curve.  Without it the for-good change (3 points on one side, 5 on the
+    other) is kept: the anchor prices each point written otherwise."""
+    x = np.array([0.0, 0.034907, 0.069813, 0.10472, 0.122173, 0.126536, 0.128718, 0.129809])
+    own = np.array([12.07097, 12.083995, 12.10925, 11.13705, 11.149683, 11.152629, 11.154067,
+                    11.154778])
+    carried = own.copy()
+    carried[:3] -= 1.0
+    np.testing.assert_allclose(continuous_frequency(x, own, carried=carried), carried,
+                               atol=1e-9)
+    assert np.ptp(np.diff(continuous_frequency(x, own))) > 0.9       # the jump kept
+    # only an option: a carried mirror image at one point (a path that passed
+    # near a lock) is not taken where the neighbours say otherwise
+    true = 21.77 - 31.1 * np.linspace(0.0, 0.4, 11)
+    odd = np.full(11, np.nan)
+    odd[7] = 30.0 - true[7]
+    np.testing.assert_allclose(continuous_frequency(np.linspace(0.0, 0.4, 11), true,
+                                                    carried=odd), true, atol=1e-9)
+
+
+def test_the_carried_frequency_is_the_same_root_continued_across_a_harmonic_switch():
+    """Fig. 14 (mu 0.3), flap length 0.125 and 0.1275 R: the TEF's dominant
+    harmonic drops from 10.68 to 9.55 /rev between the two (measured) while
+    the root moves 0.13 /rev.  ``frequency_continued`` is a representation of
+    the root's own exponent (a whole number of /rev from ``frequency_per_rev``,
+    to round-off) and continuous across the switch (within 0.2 /rev: the
+    neighbours' steps are 0.13)."""
+    from tefcore.linear.stability import stability
+    from tefcore.paper.figures import figure_config
+
+    cfg = figure_config("fig14")
+    rows = []
+    for span in (0.125, 0.1275):
+        t = stability(cfg.with_overrides({"flap.span": span})).modes
+        rows.append(t[t["label"] == "TEF"].iloc[0])
+    own = np.array([r["frequency_per_rev"] for r in rows])
+    carried = np.array([r["frequency_continued"] for r in rows])
+    shift = carried - own
+    assert np.allclose(shift, np.round(shift), atol=1e-6)
+    assert abs(own[1] - own[0]) > 1.0 and abs(carried[1] - carried[0]) < 0.2
+
+
 def test_continuous_frequency_keeps_a_locked_stretch_beside_where_it_unlocks():
     """Measured case: Fig. 12's TEF (mu 0.3, imbalanced flap), actuator stiffness
     55-97 N m/rad: locked (two real multipliers, frequency at k/2, written 4.0
