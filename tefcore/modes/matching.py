@@ -672,10 +672,10 @@ def continuous_frequency(x, f, *, span: int = 3, weight: float = 1.0,
         harmonic.  0.1 and 0.05 also shifted the tail of this function's
         example (a curve falling 1.3 /rev a step, a mirrored stretch and a
         shifted point in 8 points) and the whole of Fig. 9's overhang-0.1 TEF
-        curve by 1/rev: a weaker anchor lets the offsets wander; 0.25 is kept.  (Measured on Fig. 9 at
-        overhang 0.1, 11 points: with a cost per /rev of departure instead,
-        0.1 drifted the whole curve by up to 1.35 /rev to straighten it.)
-
+        curve by 1/rev: a weaker anchor lets the offsets wander; 0.25 is kept.
+        (Measured on Fig. 9 at overhang 0.1, 11 points: with a cost per /rev
+        of departure instead, 0.1 drifted the whole curve by up to 1.35 /rev
+        to straighten it.)
     carried : array_like, optional
         Per point, its frequency as continuation in the coupling carried it
         from the uncoupled root (``frequency_continued``; NaN: none).  A

@@ -348,7 +348,7 @@ def test_continuous_frequency_puts_back_a_stretch_written_one_per_rev_off():
                                atol=1e-9)
 
 
-def test_continuous_frequency_takes_the_carried_representation_where_the_convention_changes_for_good():
+def test_continuous_frequency_takes_the_carried_curve_where_the_convention_changes_for_good():
     """Measured case: Fig. 16b's blade torsion 2 (mu 0.3, collective 0-7.5 deg):
     its dominant harmonic 12.07, 12.08, 12.11 at the first three points and
     11.14-11.16 from the fourth on, the frequency as continuation carried it
