@@ -412,7 +412,7 @@ class ContinuedRoots:
     meetings: pd.DataFrame
     n_solves: int
     flap_motion: np.ndarray
-    frequency: np.ndarray = None
+    frequency: np.ndarray
 
 
 def continue_roots(system: SecondOrderSystem, labels, final=None, *, basis=None,

@@ -720,7 +720,9 @@ def continuous_frequency(x, f, *, span: int = 3, weight: float = 1.0,
     free = (np.abs(cand - fs[:, None]) <= 1e-9) | (np.abs(cand - cs[:, None]) <= 1e-9)
     dev = np.where(np.isfinite(cand), np.where(free, 0.0, anchor), np.inf)
     plus, minus = _offsets(cand, fs)
-    cost = dev[0][:, None] + dev[1][None, :] + weight * _changes(plus, minus, 0)
+    # a point at a lock (frequency at k/2: both a shift and a mirror of itself)
+    at_lock = np.isfinite(plus[:, 0]) & np.isfinite(minus[:, 0])
+    cost = dev[0][:, None] + dev[1][None, :] + weight * _changes(plus, minus, at_lock, 0)
     # a second point at one parameter value has no step to be smooth over: the
     # curve is found on the first of each, and each other takes the
     # representation nearest it
@@ -743,7 +745,7 @@ def continuous_frequency(x, f, *, span: int = 3, weight: float = 1.0,
         total = np.where(np.isfinite(curv), cost[:, :, None] + curv, np.inf)
         arg = np.argmin(total, axis=0)                                   # (a, b) -> z
         cost = (np.take_along_axis(total, arg[None], axis=0)[0] + dev[i][None, :]
-                + weight * _changes(plus, minus, i - 1))
+                + weight * _changes(plus, minus, at_lock, i - 1))
         back.append(arg)
     a, b = np.unravel_index(int(np.argmin(cost)), cost.shape)
     choice = [b, a]
@@ -765,7 +767,7 @@ def _offsets(cand, fs):
     return plus, minus
 
 
-def _changes(plus, minus, i):
+def _changes(plus, minus, at_lock, i):
     """``(a, b)``: 1 where candidate ``a`` at point ``i`` and ``b`` at ``i + 1`` are
     written with different offsets (:func:`_offsets`), else 0.
 
@@ -774,8 +776,8 @@ def _changes(plus, minus, i):
     change is priced next to it.  (Measured on Fig. 12, mu 0.3: the locked
     TEF at 55-69 N m/rad, conventions 4.0-5.5 /rev, was otherwise written
     6.5-7.0 /rev, one mirror image ``11 - f`` being shared by most of its
-    points, and fell 2 /rev where it unlocked at 72.5.)"""
-    at_lock = np.isfinite(plus[:, 0]) & np.isfinite(minus[:, 0])
+    points, and fell 2 /rev where it unlocked at 72.5.)  ``at_lock``: per point,
+    whether it is at a lock (its candidates both shifts and mirrors)."""
     same = ((plus[i][:, None] == plus[i + 1][None, :])
             | (minus[i][:, None] == minus[i + 1][None, :]))
     return np.where(same | at_lock[i] | at_lock[i + 1], 0.0, 1.0)

@@ -185,9 +185,7 @@ def name_roots(table: pd.DataFrame, continued, shares=None, coordinates=None) ->
     pos = list(out.columns).index("real_part") + 1
     out.insert(pos, "real_part_uncoupled", continued.uncoupled.real)
     out.insert(pos + 1, "frequency_uncoupled", continued.uncoupled.imag)
-    carried = getattr(continued, "frequency", None)
-    out.insert(pos + 2, "frequency_continued",
-               np.full(len(out), np.nan) if carried is None else carried)
+    out.insert(pos + 2, "frequency_continued", continued.frequency)
     out.insert(3, "identity_certain", continued.certain)
     met: dict = {}
     for pair in continued.meetings["origins"]:

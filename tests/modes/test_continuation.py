@@ -544,7 +544,8 @@ def test_a_root_no_path_explains_keeps_the_coordinate_it_carries():
     continued = SimpleNamespace(origin=["blade flap 1", ""], certain=np.array([True, False]),
                                 uncoupled=np.array([-0.3 + 1.1j, np.nan]),
                                 meetings=pd.DataFrame(columns=["eps", "origins"]),
-                                flap_motion=np.array([0.0, 0.0]))
+                                flap_motion=np.array([0.0, 0.0]),
+                                frequency=np.full(2, np.nan))
     out = name_roots(table, continued)
     assert out["label"].tolist() == ["blade flap 1", "blade lag 1"]
     assert out["kind"].tolist() == ["flap", "lag"]
