@@ -59,17 +59,17 @@ the periodic change of variables ``x = (1 + 0.3 sin psi) z``:
 from __future__ import annotations
 
 from ._accuracy import DEFAULT_ATOL, DEFAULT_RTOL, MAX_DOUBLINGS
-from ._analysis import LIFT_RTOL, MAX_SUB, MIN_ROOT, floquet_modes, floquet_motions
+from ._analysis import LIFT_RTOL, MAX_SUB, MIN_ROOT, ROOT_RTOL, floquet_modes, floquet_motions
 from ._multipliers import characteristic_multipliers
 from ._propagators import (
-    DEFAULT_N_STEPS,
-    DEFAULT_N_SUB,
-    FloquetAccuracyError,
-    FloquetAccuracyWarning,
-    FloquetOverflowError,
-    monodromy,
-    step_propagators,
-    transition_matrices,
+                        DEFAULT_N_STEPS,
+                        DEFAULT_N_SUB,
+                        FloquetAccuracyError,
+                        FloquetAccuracyWarning,
+                        FloquetOverflowError,
+                        monodromy,
+                        step_propagators,
+                        transition_matrices,
 )
 from ._result import FloquetResult, constant_coefficient_modes, damping_ratio
 
@@ -82,6 +82,7 @@ __all__ = [
     "MAX_DOUBLINGS",
     "MAX_SUB",
     "MIN_ROOT",
+    "ROOT_RTOL",
     "FloquetAccuracyError",
     "FloquetAccuracyWarning",
     "FloquetOverflowError",

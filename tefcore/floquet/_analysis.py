@@ -41,7 +41,8 @@ from ._propagators import (
 )
 from ._result import sorted_result
 
-__all__ = ["LIFT_RTOL", "MIN_ROOT", "MAX_SUB", "choose_sub", "floquet_modes", "floquet_motions",
+__all__ = ["LIFT_RTOL", "MIN_ROOT", "MAX_SUB", "ROOT_RTOL", "choose_sub", "floquet_modes",
+           "floquet_motions",
            "sub_products"]
 
 
@@ -54,6 +55,10 @@ __all__ = ["LIFT_RTOL", "MIN_ROOT", "MAX_SUB", "choose_sub", "floquet_modes", "f
 #: of 4 or 8) and the largest exponent error from 4e-7 to 1.2e-6 /rev
 #: (docs/theory.md 5.3), a thousandth of the default tolerance.
 MIN_ROOT = 1e-6
+
+#: Largest relative round-off ``eps max ||Phi_k|| / |mu|`` of a trusted root of
+#: the lift (the floor ``1e6 eps max ||Phi_k||``).
+ROOT_RTOL = 1e-6
 
 
 #: Largest number of sub-intervals :func:`floquet_modes` raises ``n_sub`` to.
@@ -151,7 +156,7 @@ def floquet_modes(A, n_steps=None, n_sub=DEFAULT_N_SUB, period=TWO_PI, method="r
         ``|mu| = exp(sigma T / K)``, and its relative error is about
         ``eps ||Z|| / |mu|``, where the transition matrices of a rotor are
         far from normal (``||Phi_k||`` up to 1e7 seen). So when the most damped
-        root has ``|mu|`` below :data:`MIN_ROOT` (1e-3) or below
+        root has ``|mu|`` below :data:`MIN_ROOT` (1e-6) or below
         ``1e6 eps max ||Phi_k||`` (a relative round-off above 1e-6), or the
         roots do not split one per multiplier, ``K`` is raised to the power
         of two that lifts that root above this floor (at most ``max_sub``),
@@ -342,7 +347,8 @@ def _frozen(a):
     return rate
 
 
-def _lift(p, period, k_sub, max_sub, min_rate=None, duals=False, frozen_rate=None):
+def _lift(p, period, k_sub, max_sub, min_rate=None, duals=False, frozen_rate=None,
+          min_root=MIN_ROOT, root_rtol=ROOT_RTOL):
     """The lifted roots: ``K`` chosen and raised until they are resolved.
 
     Returns ``K``, the roots ``mu``, the right (and with ``duals`` left)
@@ -355,7 +361,8 @@ def _lift(p, period, k_sub, max_sub, min_rate=None, duals=False, frozen_rate=Non
     eps = np.finfo(float).eps
     # K before solving, from a cheap bound of the smallest multiplier
     levels: dict = {}
-    k_sub = choose_sub(p, period, k_sub, max_sub, min_rate, frozen_rate, duals, levels)
+    k_sub = choose_sub(p, period, k_sub, max_sub, min_rate, frozen_rate, duals, levels,
+                       min_root, root_rtol)
     while True:
         stack, bounds, valid = group(p, k_sub)
         phis = sub_products(p, k_sub, levels)
@@ -367,7 +374,7 @@ def _lift(p, period, k_sub, max_sub, min_rate=None, duals=False, frozen_rate=Non
         # eps ||Z|| / |mu| relative (||Z|| = the largest ||Phi_k||), is <= 1e-6
         with np.errstate(over="ignore"):     # an inf norm: no K resolves it (below)
             znorm = float(np.linalg.norm(phis, axis=(1, 2)).max())
-            floor = max(MIN_ROOT, 1e6 * eps * znorm)
+            floor = max(min_root, eps * znorm / root_rtol)
         if k_sub >= max_sub:
             break
         if split and smallest >= floor:
@@ -407,7 +414,8 @@ def _solutions(blocks, stack, valid):
     return x[valid]
 
 
-def floquet_motions(A, n_steps, n_sub=4, period=TWO_PI, method="magnus", max_sub=MAX_SUB):
+def floquet_motions(A, n_steps, n_sub=4, period=TWO_PI, method="magnus", max_sub=MAX_SUB,
+                    min_root=MIN_ROOT, root_rtol=ROOT_RTOL):
     """Characteristic exponents and each root's motion over the period, on one grid.
 
     What continuation needs of a Floquet system at each step, and no more:
@@ -437,6 +445,17 @@ def floquet_motions(A, n_steps, n_sub=4, period=TWO_PI, method="magnus", max_sub
         Step integrator.
     max_sub : int, optional
         Largest ``K``.
+    min_root : float, optional
+        Least modulus of a lifted root that is trusted: ``K`` is raised until
+        the most damped root's ``|mu|`` is above it (and above the round-off
+        floor ``eps max ||Phi_k|| / root_rtol``).  Default :data:`MIN_ROOT`;
+        a caller that needs the roots told apart rather than converged may
+        pass less (the continuation's path steps,
+        :mod:`tefcore.modes.continuation`).
+    root_rtol : float, optional
+        Largest relative round-off ``eps max ||Phi_k|| / |mu|`` of a trusted
+        root; default :data:`ROOT_RTOL` (1e-6, the floor ``1e6 eps max
+        ||Phi_k||``).
 
     Returns
     -------
@@ -463,7 +482,8 @@ def floquet_motions(A, n_steps, n_sub=4, period=TWO_PI, method="magnus", max_sub
     a, n_steps, constant = sample(A, n_steps, period)
     p = propagators(a, period / n_steps, constant, method)
     k_sub, mu, blocks, _, (stack, bounds, valid), _, _, split = _lift(
-        p, period, n_sub, check_int("max_sub", max_sub, 1), frozen_rate=_frozen(a))
+        p, period, n_sub, check_int("max_sub", max_sub, 1), frozen_rate=_frozen(a),
+        min_root=min_root, root_rtol=root_rtol)
     if not split:
         warn_unsplit()
     log_mu = log_roots(mu)
@@ -630,7 +650,7 @@ def _ill_conditioned(mu, right, left, znorm, cut):
 
 
 def choose_sub(p, period, k_min, max_sub, min_rate=None, frozen_rate=None, duals=False,
-               levels=None):
+               levels=None, min_root=MIN_ROOT, root_rtol=ROOT_RTOL):
     """Sub-intervals ``K`` for the lift, chosen before solving it.
 
     The explicit product ``Phi`` (cheap: ``n x n`` eigenvalues) gives the
@@ -640,7 +660,7 @@ def choose_sub(p, period, k_min, max_sub, min_rate=None, frozen_rate=None, duals
     root of the mean ``A``, ``frozen_rate``, less 1/2 per rev (the lift then
     checks it, :func:`floquet_modes`).  ``K`` is the least power of two, at
     least ``k_min`` and at most ``max_sub``, that lifts it (or
-    ``exp(min_rate T)``, if larger) to the floor ``max(MIN_ROOT, 1e6 eps
+    ``exp(min_rate T)``, if larger) to the floor ``max(min_root, 1e6 eps
     max ||Phi_k||)``.
 
     Parameters
@@ -667,6 +687,10 @@ def choose_sub(p, period, k_min, max_sub, min_rate=None, frozen_rate=None, duals
     levels : dict, optional
         Sub-interval products computed on the way (:func:`sub_products`), for
         the lift to reuse.
+    min_root : float, optional
+        Least modulus of a lifted root that is trusted (:data:`MIN_ROOT`).
+    root_rtol : float, optional
+        Largest relative round-off of a trusted root (:data:`ROOT_RTOL`).
 
     Returns
     -------
@@ -711,7 +735,7 @@ def choose_sub(p, period, k_min, max_sub, min_rate=None, frozen_rate=None, duals
     while k < max_sub:
         phis = sub_products(p, k, levels)
         with np.errstate(over="ignore"):
-            floor = max(MIN_ROOT, 1e6 * eps * np.linalg.norm(phis, axis=(1, 2)).max())
+            floor = max(min_root, eps * np.linalg.norm(phis, axis=(1, 2)).max() / root_rtol)
         if floor < 1.0 and log_min / k >= np.log(floor):
             break
         k *= 2

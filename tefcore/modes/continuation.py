@@ -27,19 +27,32 @@ from dataclasses import dataclass
 import numpy as np
 import pandas as pd
 
+from ..floquet import floquet_modes, floquet_motions
 from ..floquet.second_order import STATE_MIN_RATE, SecondOrderSystem
 from .final_names import flap_free_by_participation, free_labels, second_roots_of_locks
 from .labels import coordinate_shares, label_modes, tracking_shapes, trajectory_shapes
 from .march import FLAP_ACTIVE, March, base_name, flap_share, lock_matrix
 from .tracking import follow_root
 
-__all__ = ["FIRST_STEPS", "FLAP_ACTIVE", "MIN_STEP", "ContinuedRoots", "continue_roots",
-           "coupling_homotopy", "path_shapes", "positive_roots", "root_solver", "tef_root",
-           "visible_roots", "zero_coupling_names"]
+__all__ = ["FIRST_STEPS", "FLAP_ACTIVE", "MIN_STEP", "PATH_MIN_ROOT", "PATH_RTOL",
+           "ContinuedRoots", "HomotopySamples", "continue_roots", "coupling_homotopy",
+           "path_shapes", "positive_roots", "root_solver", "tef_root", "visible_roots",
+           "zero_coupling_names"]
 
 #: Equal steps of ``eps`` the continuation starts with (each step's end is one
 #: eigenproblem); a step whose matches are not all decided is halved.
 FIRST_STEPS = 2
+
+#: The lift of a path step trusts a root down to ``|mu| = 1e-9`` and a relative
+#: round-off of 1e-3 (:func:`tefcore.floquet.floquet_motions`; the point's own
+#: roots: 1e-6 and 1e-6).  A path step must tell the roots apart, not converge
+#: them: measured on Fig. 9's sweep (mu 0.3, 78 path steps), the lift's K fell
+#: from 1/2/4/8 at 24/38/15/1 steps to 55/13/10/0, the exponents moved by at
+#: most 1.5e-6 /rev, and no name, certainty or role changed on 21 points of
+#: Figs. 9, 12, 13 and 14 (1.7 ms a point less; K = 4 stays where a root grows
+#: at +3 /rev and another decays at -4.5 /rev: ``||Phi|| ~ 1e10``).
+PATH_MIN_ROOT = 1e-9
+PATH_RTOL = 1e-3
 
 #: Smallest step of ``eps``: 1/4096 (11 halvings of the first 1/2).  A match still
 #: undecided at this step is a coalescence on the path (an exceptional point
@@ -242,8 +255,14 @@ def path_shapes(basis, res, n, periodic, samples=72):
     return trajectory_shapes(basis, res, n, samples=samples)
 
 
-def _solve(system, n, eps, periodic, n_steps, participation=False):
-    """Positive roots of the system at coupling `eps` (Floquet: one grid, shapes)."""
+def _solve(system, n, eps, periodic, n_steps, participation=False, homotopy=None):
+    """Positive roots of the system at coupling `eps` (Floquet: one grid, shapes;
+    from `homotopy`'s samples when given, a :class:`HomotopySamples`)."""
+    if homotopy is not None:
+        res = floquet_modes(homotopy(eps), n_steps=homotopy.n_steps, n_sub=1, method="magnus",
+                            shapes=True, shift_states=slice(0, n), atol=None,
+                            participation=participation)
+        return positive_roots(res)
     s = coupling_homotopy(system, n - 1, eps)
     if periodic:
         # n_sub=1: the lift's K chosen as for the point's own roots (raised
@@ -348,21 +367,98 @@ def zero_coupling_names(frac, labels, freqs, rates, shapes, periodic=False):
     return out
 
 
-def _path_step(system, n, eps, n_steps, basis):
+class HomotopySamples:
+    """``A(psi)`` of :func:`coupling_homotopy` on one Floquet grid, for any ``eps``.
+
+    The flap is one coordinate (the last), so the mass matrix of the
+    homotopy, ``M(eps) = [[M_bb, eps m_bf], [eps m_fb, m_ff]]``, is inverted by
+    eliminating the blade block once: with ``G = M_bb^-1 [K_b, C_b]`` (the
+    blade rows of ``[K, C]``) and ``u = M_bb^-1 m_bf`` at every azimuth, the
+    flap row of ``M(eps)^-1 [K(eps), C(eps)]`` is
+    ``x_f = (r_f(eps) - eps m_fb G d(eps)) / (m_ff - eps^2 m_fb u)`` and the
+    blade rows ``G d(eps) - eps u x_f``, where ``d(eps)`` scales the flap
+    columns by ``eps`` and ``r_f(eps)`` is the flap row of ``[K, C]`` with its
+    blade columns scaled (docs/theory.md 10.1).  Each ``eps`` then costs a few
+    products instead of sampling the trigonometric interpolation and
+    factorising ``M`` at every azimuth (0.5 of a path step's 3.6 ms, measured
+    on MDART at mu = 0.3); equal to
+    ``coupling_homotopy(system, n - 1, eps).state_matrix(psi)`` to round-off
+    (tested).
+
+    Parameters
+    ----------
+    system : tefcore.floquet.second_order.SecondOrderSystem
+        Periodic, blade coordinates first and the flap last, no first-order states.
+    n_steps : int
+        Floquet steps per period: the samples are the step ends and midpoints,
+        ``psi_j = j pi / n_steps``, ``j = 0 .. 2 n_steps - 1``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tefcore.floquet.second_order import SecondOrderSystem
+    >>> psi = 2 * np.pi * np.arange(8) / 8
+    >>> m = np.eye(2) + 0.1 * np.cos(psi)[:, None, None] * np.array([[0, 1], [1, 0]])
+    >>> k = np.array([[1.0, 0.3], [0.3, 4.0]]) + 0.0 * m
+    >>> system = SecondOrderSystem(m, 0.02 * m, k)
+    >>> a = HomotopySamples(system, 4)(0.5)
+    >>> direct = coupling_homotopy(system, 1, 0.5).state_matrix(np.arange(8) * np.pi / 4)
+    >>> bool(np.allclose(a, direct, rtol=1e-12, atol=1e-14))
+    True
+    """
+
+    def __init__(self, system: SecondOrderSystem, n_steps: int):
+        if not system.periodic or system.n_first:
+            raise ValueError("HomotopySamples: for a periodic second-order system without "
+                             "first-order states")
+        n = self.n = system.n_dof
+        nb = n - 1
+        self.n_steps = n_steps
+        m, c, k = system.matrices(np.arange(2 * n_steps) * np.pi / n_steps)
+        rhs = np.concatenate([k, c], axis=-1)                      # (N, n, 2n)
+        both = np.linalg.solve(m[:, :nb, :nb], np.concatenate(
+            [rhs[:, :nb], m[:, :nb, nb:]], axis=-1))               # one factorisation
+        self._g, self._u = both[..., :2 * n], both[..., 2 * n]
+        self._w = np.einsum("pb,pbj->pj", m[:, nb, :nb], self._g)  # m_fb G
+        self._z = np.einsum("pb,pb->p", m[:, nb, :nb], self._u)    # m_fb u
+        self._mff, self._rf = m[:, nb, nb], rhs[:, nb]
+        self._flap_col = np.zeros(2 * n, bool)
+        self._flap_col[[nb, n + nb]] = True
+
+    def __call__(self, eps: float) -> np.ndarray:
+        """``A`` at the samples, ``(2 n_steps, 2n, 2n)``, with the coupling scaled by `eps`."""
+        n = self.n
+        d = np.where(self._flap_col, eps, 1.0)                     # blade rows' columns
+        x_f = ((self._rf * np.where(self._flap_col, 1.0, eps) - eps * self._w * d)
+               / (self._mff - eps * eps * self._z)[:, None])
+        x_b = self._g * d - eps * self._u[..., None] * x_f[:, None, :]
+        out = np.zeros((x_f.shape[0], 2 * n, 2 * n))
+        out[:, :n, n:] = np.eye(n)
+        out[:, n:-1] = -x_b
+        out[:, -1] = -x_f
+        return out
+
+
+def _path_step(homotopy, eps, basis):
     """The roots at coupling `eps` as a path step compares them: exponents and shapes.
 
-    Floquet: :meth:`~tefcore.floquet.second_order.SecondOrderSystem.motions`
-    on one grid of `n_steps` -- the exponents on the principal branch (the
-    march unwraps them along each path) and each root's motion over the
-    revolution through `basis`, the shapes :func:`path_shapes` gives a full
-    result, without the harmonic analysis and participation a path step does
-    not use (3.6 against 6.6 ms an eigenproblem, measured on MDART at mu = 0.3).
-    Constant coefficients: the positive roots and :func:`path_shapes`.
+    Floquet (`homotopy` a :class:`HomotopySamples`):
+    :func:`tefcore.floquet.floquet_motions` on its grid -- the exponents on
+    the principal branch (the march unwraps them along each path) and each
+    root's motion over the revolution through `basis`, the shapes
+    :func:`path_shapes` gives a full result, without the harmonic analysis and
+    participation a path step does not use (3.6 against 6.6 ms an
+    eigenproblem, measured on MDART at mu = 0.3).  Constant coefficients
+    (`homotopy` the system itself): the positive roots and :func:`path_shapes`.
     """
-    if not system.periodic:
-        res = _solve(system, n, eps, False, n_steps)
-        return res.exponents, path_shapes(basis, res, n, False, n_steps)
-    eta, x = coupling_homotopy(system, n - 1, eps).motions(n_steps=n_steps, n_sub=1)
+    if isinstance(homotopy, SecondOrderSystem):
+        n = homotopy.n_dof
+        res = _solve(homotopy, n, eps, False, None)
+        return res.exponents, path_shapes(basis, res, n, False)
+    n = homotopy.n
+    eta, x = floquet_motions(homotopy(eps), n_steps=homotopy.n_steps, n_sub=1,
+                             method="magnus", min_root=PATH_MIN_ROOT,
+                             root_rtol=PATH_RTOL)
     order = np.lexsort((-eta.real, np.round(eta.imag, 9)))
     shapes = basis @ x[:, :n, order]                     # (azimuths, n_phys, roots)
     return eta[order], shapes.reshape(-1, order.size)
@@ -517,9 +613,12 @@ def continue_roots(system: SecondOrderSystem, labels, final=None, *, basis=None,
     n = system.n_dof
     basis = np.eye(n) if basis is None else basis
     per = system.periodic
-    res0 = _solve(system, n, 0.0, per, n_steps, participation=True)
     if system.n_first:
+        res0 = _solve(system, n, 0.0, per, n_steps, participation=True)
         return _by_participation(res0, n, labels, basis, final, final_labels)
+    homotopy = HomotopySamples(system, n_steps) if per else system
+    res0 = _solve(system, n, 0.0, per, n_steps, participation=True,
+                  homotopy=homotopy if per else None)
     frac0 = coordinate_shares(res0.participation, n)
     vec0 = path_shapes(basis, res0, n, per, n_steps)
     names0 = zero_coupling_names(frac0, labels, res0.frequencies, res0.damping_rates, vec0,
@@ -538,7 +637,7 @@ def continue_roots(system: SecondOrderSystem, labels, final=None, *, basis=None,
             # a step that was halved comes back to its end: solved once (ends
             # are dyadic, so equal as floats; measured on Fig. 9's sweep: 45
             # eigenproblems on the paths instead of 66 over 11 points)
-            eig, vecs = solved[eps + h] = _path_step(system, n, eps + h, n_steps, basis)
+            eig, vecs = solved[eps + h] = _path_step(homotopy, eps + h, basis)
             n_solves += 1
         if march.step(eps + h, eig, vecs, final_step=h <= min_step * (1 + 1e-9)):
             eps += h
@@ -588,14 +687,13 @@ def _renamed_meetings(march, names) -> pd.DataFrame:
     there) did not meet another mode.
     """
     final = {int(p): base_name(n) for p, n in zip(march.pid, names, strict=True)}
-    rows = []
+    rows: dict = {}                        # the first meeting of each pair
     for m in march.meetings:
         a, b = (final.get(p, n) for n, p in m["paths"].items())
-        if a != b:
-            rows.append({"eps": m["eps"], "origins": " / ".join(sorted((a, b))),
-                         "gap": m["gap"], "mac": m["mac"]})
-    meetings = pd.DataFrame(rows, columns=["eps", "origins", "gap", "mac"])
-    return meetings.drop_duplicates("origins", keep="first").reset_index(drop=True)
+        pair = " / ".join(sorted((a, b)))
+        if a != b and pair not in rows:
+            rows[pair] = {"eps": m["eps"], "origins": pair, "gap": m["gap"], "mac": m["mac"]}
+    return pd.DataFrame(list(rows.values()), columns=["eps", "origins", "gap", "mac"])
 
 
 def _by_participation(res0, n, labels, basis, final, final_labels) -> ContinuedRoots:

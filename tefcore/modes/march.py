@@ -56,9 +56,14 @@ def flap_share(vecs, n_phys):
     numpy.ndarray
         Per root, ``sum |flap row|^2 / sum |all rows|^2``.
     """
+    return _share_and_norm(vecs, n_phys)[0]
+
+
+def _share_and_norm(vecs, n_phys):
+    """:func:`flap_share` and each column's ``sum |.|^2``, from one pass over the shapes."""
     blocks = _modulus2(vecs.reshape(-1, n_phys, vecs.shape[-1]))
     total = np.sum(blocks, axis=(0, 1))
-    return np.sum(blocks[:, -1], axis=0) / np.maximum(total, np.finfo(float).tiny)
+    return np.sum(blocks[:, -1], axis=0) / np.maximum(total, np.finfo(float).tiny), total
 
 
 def _modulus2(z):
@@ -355,7 +360,8 @@ class March:
 
     def __init__(self, eig, vecs, names, n_phys, periodic):
         self.eig, self.vecs = np.asarray(eig, complex), vecs
-        self.share = flap_share(vecs, n_phys)     # each path's flap share, as self.vecs
+        # each path's flap share and sum |shape|^2, as self.vecs
+        self.share, self.norm = _share_and_norm(vecs, n_phys)
         self.n_phys, self.periodic = n_phys, periodic
         self.origin = [str(x) for x in names]
         self.start = self.eig.copy()
@@ -386,7 +392,7 @@ class March:
         sw = 1.0 + 0.5 * (np.abs(a.imag) + np.abs(seen.imag))
         return np.hypot(ds / ss, np.abs(a.imag - seen.imag) / sw)
 
-    def _costs(self, pred, eig, vecs):
+    def _costs(self, pred, eig, vecs, norm=None):
         """Match costs (paths, roots), their ``1 - MAC`` parts, the roots as each path sees them.
 
         Constant coefficients: eigenvalue distance (:meth:`_distance`) plus
@@ -428,15 +434,18 @@ class March:
         path_h = np.swapaxes(self.vecs.reshape(samples, n_phys, -1).conj(), 1, 2)
         spin = np.exp(1j * np.outer(psi, self.eig.imag))[:, :, None]
         bt = vecs.reshape(samples, n_phys, -1) * np.exp(-1j * np.outer(psi, eig.imag))[:, None, :]
-        norm = (np.sum(_modulus2(self.vecs), axis=0)[:, None]
-                * np.sum(_modulus2(vecs), axis=0)[None, :])
+        if norm is None:                   # each root's sum |shape|^2
+            norm = _share_and_norm(vecs, n_phys)[1]
+        norm = self.norm[:, None] * norm[None, :]
         rows, cols = np.indices(norm.shape)
+        # the root (f + j, its motion) and its conjugate (-f + j', the conjugate
+        # motion) side by side: one product and one FFT for both
+        # (harmonics, paths, 2 roots)
+        harm = np.fft.fft((path_h @ np.concatenate([bt, bt.conj()], axis=-1)) * spin, axis=0)
         out = []
-        # the root (f + j, its motion) and its conjugate (-f + j', the conjugate motion)
-        for sign, other in ((1.0, bt), (-1.0, bt.conj())):
+        for half, sign in enumerate((1.0, -1.0)):
             shift = np.round(q - sign * f)
-            harm = np.fft.fft((path_h @ other) * spin, axis=0)   # (harmonics, paths, roots)
-            num = _modulus2(harm[shift.astype(int) % samples, rows, cols])
+            num = _modulus2(harm[shift.astype(int) % samples, rows, cols + half * eig.size])
             seen = eig.real[None, :] + 1j * (sign * f + shift)
             shape = 1.0 - num / norm
             out.append((np.minimum(1.0, self._distance(pred, seen)) + shape, shape, seen))
@@ -449,7 +458,8 @@ class March:
         """Assign the roots at `eps` to the paths; False when the step must be halved."""
         eig = np.asarray(eig, complex)
         pred = self._predicted(eps)
-        cost, shape, seen, flip = self._costs(pred, eig, vecs)
+        share, norm = _share_and_norm(vecs, self.n_phys)
+        cost, shape, seen, flip = self._costs(pred, eig, vecs, norm)
         full = _padded(cost, _near_lock(pred, self.periodic), _near_lock(eig, self.periodic))
         perm, rows, cols = _assign(full, *cost.shape)
         # clear: the root's shape is resolved by the step (its own 1 - MAC at
@@ -461,7 +471,6 @@ class March:
                  for r, c, g in zip(rows, cols, regret, strict=True)]
         near = _nearest_clear(np.abs(seen - pred[:, None]), rows, cols)
         clear = [a or b for a, b in zip(clear, near, strict=True)]
-        share = flap_share(vecs, self.n_phys)
         active = share >= FLAP_ACTIVE
         moved = self.share >= FLAP_ACTIVE
         path_of = dict(zip(cols, rows, strict=True))
@@ -498,6 +507,7 @@ class March:
         if meet and not final_step:
             return False
         self._accept(eps, seen, flip, vecs, rows, cols, meet, lock, eig, share)
+        self.norm = norm
         return True
 
     def _accept(self, eps, seen, flip, vecs, rows, cols, meet, lock, raw, share):
