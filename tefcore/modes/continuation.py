@@ -378,7 +378,7 @@ class HomotopySamples:
     ``x_f = (r_f(eps) - eps m_fb G d(eps)) / (m_ff - eps^2 m_fb u)`` and the
     blade rows ``G d(eps) - eps u x_f``, where ``d(eps)`` scales the flap
     columns by ``eps`` and ``r_f(eps)`` is the flap row of ``[K, C]`` with its
-    blade columns scaled (docs/theory.md 10.1).  Each ``eps`` then costs a few
+    blade columns scaled (docs/theory.md 9.1).  Each ``eps`` then costs a few
     products instead of sampling the trigonometric interpolation and
     factorising ``M`` at every azimuth (0.5 of a path step's 3.6 ms, measured
     on MDART at mu = 0.3); equal to
