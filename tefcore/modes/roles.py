@@ -48,7 +48,7 @@ from .march import base_name
 
 __all__ = ["FLUTTER_PARTICIPATION", "FLUTTER_ROOT", "RATE_RESOLUTION", "ModeNotFound",
            "assign_roles", "base_name", "exceptional_points", "flap_induced", "flutter_root",
-           "mode_rows", "name_roots", "switch_steps"]
+           "mode_rows", "name_roots", "switch_steps", "undecided_steps"]
 
 #: Least share of the flap's participation for a root to count as a flutter root
 #: where roots are not named by continuation (a point function that labels its
@@ -254,7 +254,8 @@ def assign_roles(table: pd.DataFrame, threshold: float = FLUTTER_PARTICIPATION) 
 
 
 def _switches(table: pd.DataFrame, x: str):
-    """Consecutive rows of one track whose names differ across an exceptional point.
+    """Consecutive rows of one track whose names differ across an exceptional point
+    (:func:`_moves` with :func:`_is_exceptional`).
 
     The exchange of two names ``a -> b`` along a track between two points is
     one when: the root of the other name is there at both points (the pair
@@ -267,6 +268,13 @@ def _switches(table: pd.DataFrame, x: str):
     exactly known on either side, and the name moves across the coupled
     pair's gap with them).
     """
+    return _moves(table, x, _is_exceptional)
+
+
+def _moves(table: pd.DataFrame, x: str, kind) -> list:
+    """``(x_before, x_after, a, b)`` where a track's name changes ``a -> b``, the
+    other name is there at both points (the pair exchanged, not a lock forming)
+    and ``kind(rows)`` holds (rows: a, b at the first point; a, b at the second)."""
     out = []
     t = table.sort_values([x, "track"], kind="stable")
     base = t["label"].map(base_name)
@@ -278,10 +286,26 @@ def _switches(table: pd.DataFrame, x: str):
             a, b = names[i], names[i + 1]
             rows = [at.get((xs[i], a)), at.get((xs[i], b)), at.get((xs[i + 1], a)),
                     at.get((xs[i + 1], b))]
-            if None in rows or not _is_exceptional(t.loc[rows]):
+            if None in rows or not kind(t.loc[rows]):
                 continue
             out.append((xs[i], xs[i + 1], a, b))
     return out
+
+
+def _uncoupled_crossed(rows: pd.DataFrame) -> bool:
+    """The two uncoupled roots changed order between the points (their Floquet
+    conventions, the dominant harmonic of one blade mode or of the flap alone,
+    are continuous in the parameter: measured on every figure's sweep)."""
+    if "frequency_uncoupled" not in rows:
+        return False
+    f = rows["frequency_uncoupled"].to_numpy(float)
+    return bool((f[0] - f[1]) * (f[2] - f[3]) < 0)
+
+
+def _is_undecided(rows: pd.DataFrame) -> bool:
+    """Rows (a, b at the first point; a, b at the second) of a move with a name undecided."""
+    certain = rows["identity_certain"].fillna(False).astype(bool)
+    return not certain.all() and not _uncoupled_crossed(rows)
 
 
 def _is_exceptional(rows: pd.DataFrame) -> bool:
@@ -292,15 +316,7 @@ def _is_exceptional(rows: pd.DataFrame) -> bool:
         m = rows["flap_motion"].to_numpy(float)
         if not (max(m[0], m[2]) >= FLAP_ACTIVE and max(m[1], m[3]) >= FLAP_ACTIVE):
             return False
-    if "frequency_uncoupled" in rows:
-        f = rows["frequency_uncoupled"].to_numpy(float)
-        before, after = f[0] - f[1], f[2] - f[3]
-        # the uncoupled pair changed order (their Floquet conventions, the
-        # dominant harmonic of one blade mode or of the flap alone, are
-        # continuous in the parameter: measured on every figure's sweep)
-        if before * after < 0:
-            return False
-    return True
+    return not _uncoupled_crossed(rows)
 
 
 def switch_steps(table: pd.DataFrame, x: str = "value_si") -> list[tuple[float, float]]:
@@ -360,7 +376,60 @@ def exceptional_points(table: pd.DataFrame, x: str = "x") -> pd.DataFrame:
                 rows.append({"modes": " / ".join(sorted((base_name(r["label"]), other))),
                              "x_low": float(r[x]), "x_high": float(r[x]),
                              "kind": "paths meet"})
-    out = pd.DataFrame(rows, columns=["modes", "x_low", "x_high", "kind"])
+    return _merged(pd.DataFrame(rows, columns=["modes", "x_low", "x_high", "kind"]))
+
+
+def undecided_steps(table: pd.DataFrame, x: str = "x") -> pd.DataFrame:
+    """Where a name moves to another root along a sweep with its identity undecided.
+
+    A root followed along the sweep (its ``track``) whose name changes between
+    two neighbouring points, the other name being there at both points, is
+    either an exchange through an exceptional point
+    (:func:`exceptional_points`), the uncoupled modes themselves changing
+    places (their frequencies at zero coupling changing order), or -- listed
+    here -- a step where one of the two names was not decided
+    (``identity_certain`` False on either side: a path that met an undecided
+    match no step resolved and that was no coalescence, or a name given at
+    the end).  The name did move between roots there, with no located
+    exceptional point to say why: a reader sees it instead of a silent jump.
+    A claim is not withheld for it (only an exceptional point makes a claim
+    ambiguous).
+
+    Parameters
+    ----------
+    table : pandas.DataFrame
+        A sweep table or figure frame (ok rows) with `x`, ``track``,
+        ``label``, ``identity_certain`` (and ``frequency_uncoupled`` where
+        known).
+    x : str, optional
+        The column of the parameter.
+
+    Returns
+    -------
+    pandas.DataFrame
+        ``modes`` (``"A / B"``), ``x_low``, ``x_high``, ``kind``
+        (``"identity undecided"``); overlapping intervals of one pair merged.
+
+    Examples
+    --------
+    Two names exchange tracks between x = 0 and 1, one of them undecided at 1:
+
+    >>> rows = [{"x": x, "track": k, "label": n, "identity_certain": x == 0 or k == 0}
+    ...         for x, names in ((0.0, ["TEF", "blade flap 3"]), (1.0, ["blade flap 3", "TEF"]))
+    ...         for k, n in enumerate(names)]
+    >>> undecided_steps(pd.DataFrame(rows))[["modes", "x_low", "x_high"]].values.tolist()
+    [['TEF / blade flap 3', 0.0, 1.0]]
+    """
+    rows = []
+    if "identity_certain" in table:
+        rows = [{"modes": " / ".join(sorted((a, b))), "x_low": lo, "x_high": hi,
+                 "kind": "identity undecided"}
+                for lo, hi, a, b in _moves(table, x, _is_undecided)]
+    return _merged(pd.DataFrame(rows, columns=["modes", "x_low", "x_high", "kind"]))
+
+
+def _merged(out: pd.DataFrame) -> pd.DataFrame:
+    """Overlapping intervals of one pair and kind merged, sorted by ``x_low``."""
     if out.empty:
         return out
     merged = []

@@ -26,7 +26,7 @@ import pandas as pd
 
 from ..aero.unsteady import theodorsen_function
 from ..linear.mechanism import mechanism
-from ..modes.roles import exceptional_points
+from ..modes.roles import exceptional_points, undecided_steps
 from . import validation
 from .curve_metrics import zero_crossings
 from .figure_runs import run_config
@@ -200,8 +200,10 @@ def report_identity(name: str, result) -> None:
     Every root is named by the uncoupled mode it continues from (at every
     point, by continuation in the blade-flap coupling); printed: the
     exceptional points where two names exchange (none: every root keeps its
-    name over the range), how many points the refinement added to locate
-    them, and the modes the flutter root continues from.  Nothing is returned.
+    name over the range), the steps where a name moves to another root with
+    its identity undecided (:func:`tefcore.modes.roles.undecided_steps`), how
+    many points the refinement added to locate the exceptional points, and
+    the modes the flutter root continues from.  Nothing is returned.
 
     Parameters
     ----------
@@ -226,6 +228,14 @@ def report_identity(name: str, result) -> None:
         where = (f"at x = {e['x_low']:.4g}" if e["x_low"] == e["x_high"]
                  else f"between x = {e['x_low']:.4g} and {e['x_high']:.4g}")
         print(f"  exceptional point of {e['modes']} {where} ({e['kind']})")
+    moved = undecided_steps(ok, x="x")
+    if not moved.empty:
+        print("  names that move to another root with the identity undecided "
+              "(no exceptional point located there):")
+    for modes, g in moved.groupby("modes", sort=False):
+        steps = ", ".join(f"{lo:.4g}-{hi:.4g}" for lo, hi in zip(g["x_low"], g["x_high"],
+                                                                 strict=True))
+        print(f"    {modes} at x = {steps}")
     fr = ok[ok["flutter_root"].fillna(False).astype(bool)]
     if "refinement" in fr:
         fr = fr[fr["refinement"] == 0]

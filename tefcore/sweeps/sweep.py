@@ -53,7 +53,7 @@ import pandas as pd
 from tqdm import tqdm
 
 from ..config.configuration import SECTIONS, Config, resolve_field
-from ..modes.roles import exceptional_points
+from ..modes.roles import exceptional_points, undecided_steps
 from ..safe_io import atomic_output
 from .evaluate import (
     MIN_COLD_CHAINS,
@@ -235,6 +235,16 @@ class SweepResult:
         """
         t = self.table[self.table["status"] == "ok"]
         return exceptional_points(t, x="value_si")
+
+    @property
+    def undecided_steps(self) -> pd.DataFrame:
+        """Where a name moves to another root with its identity undecided.
+
+        See :func:`tefcore.modes.roles.undecided_steps` (``x_low``, ``x_high``
+        in SI values of the parameter): no exceptional point was located there.
+        """
+        t = self.table[self.table["status"] == "ok"]
+        return undecided_steps(t, x="value_si")
 
     def curve(self, label: str) -> pd.DataFrame:
         """Rows of the root named `label` at each point, in sweep order.

@@ -150,6 +150,46 @@ def test_an_exchange_away_from_an_uncoupled_crossing_is_an_exceptional_point():
     assert exceptional_points(pd.DataFrame(rows)).empty
 
 
+def _exchange_rows(certain_at_1=(True, True), crossed=False):
+    """The TEF and blade flap 3 exchange tracks between x = 0 and 1; at x = 1 the
+    two names' certainty as given; the uncoupled frequencies keep their order
+    unless `crossed`."""
+    rows = []
+    for x, names in [(0.0, ["blade flap 3", "TEF"]), (1.0, ["TEF", "blade flap 3"])]:
+        for track, name in enumerate(names):
+            sure = True if x == 0.0 else certain_at_1[name == "TEF"]
+            f = 3.0 if name == "TEF" else 2.0
+            if crossed and x == 1.0:
+                f = 5.0 - f
+            rows.append({"x": x, "track": track, "label": name, "identity_certain": sure,
+                         "flap_motion": 0.5, "frequency_uncoupled": f})
+    return pd.DataFrame(rows)
+
+
+@pytest.mark.parametrize("certain_at_1, crossed, kind", [
+    ((True, True), False, "names exchange"),       # decided on both sides: an EP
+    ((True, False), False, "identity undecided"),  # the TEF undecided at x = 1
+    ((False, True), False, "identity undecided"),  # blade flap 3 undecided
+    ((True, False), True, None),                   # the uncoupled modes crossed: no jump
+])
+def test_a_name_that_moves_is_an_exceptional_point_or_an_undecided_step(certain_at_1, crossed,
+                                                                         kind):
+    """A label moves to another track in one of three ways, and is never silent:
+    through an exceptional point (both names decided: :func:`exceptional_points`),
+    with a name undecided on a side (:func:`undecided_steps`: not an EP, since
+    no coalescence was located, but the jump is listed), or with the uncoupled
+    modes changing places (the names follow them: neither)."""
+    from tefcore.modes.roles import undecided_steps
+
+    table = _exchange_rows(certain_at_1, crossed)
+    ep, moved = exceptional_points(table), undecided_steps(table)
+    assert (ep["kind"].tolist() + moved["kind"].tolist()) == ([kind] if kind else [])
+    for found in (ep, moved):
+        if len(found):
+            assert found[["modes", "x_low", "x_high"]].values.tolist() == [
+                ["TEF / blade flap 3", 0.0, 1.0]]
+
+
 # ------------------------------------------------------------------ Floquet lock
 
 
