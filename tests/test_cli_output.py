@@ -273,9 +273,12 @@ def fake_sweep(eps=()):
             rows.append({"point": i, "value": f"{k:g} lb/in", "value_si": k * lb_in,
                          "refinement": 0, "status": "ok", "label": label, "real_part": real,
                          "tef_branch": tef, "flutter_root": fr})
+    columns = ["modes", "x_low", "x_high", "kind"]
     return SimpleNamespace(table=pd.DataFrame(rows), parameter="hub.pitch_link_stiffness",
                            exceptional_points=pd.DataFrame(
-                               list(eps), columns=["modes", "x_low", "x_high", "kind"]))
+                               [e for e in eps if e[3] != "identity undecided"], columns=columns),
+                           undecided_steps=pd.DataFrame(
+                               [e for e in eps if e[3] == "identity undecided"], columns=columns))
 
 
 def test_sweep_summary_in_the_given_unit_with_exceptional_points():
@@ -296,6 +299,23 @@ def test_sweep_summary_in_the_given_unit_with_exceptional_points():
     # its names include the TEF: the TEF's exceptional point is one of its names'
     assert "exceptional points of its names: TEF / blade flap 3" in text
     assert "exceptional points" not in sweep_summary(fake_sweep())[1]
+
+
+def test_sweep_summary_names_a_step_where_a_role_s_name_moved_undecided():
+    """A name that moved to another root with no located exceptional point is
+    said on its role's line (never a silent jump), apart from the exceptional
+    points; a pair of other modes is not."""
+    lb_in = 175.126835
+    res = fake_sweep([("TEF / blade flap 3", 650 * lb_in, 660 * lb_in, "identity undecided"),
+                      ("blade flap 1 / blade lag 1", 500 * lb_in, 510 * lb_in,
+                       "identity undecided")])
+    lines = sweep_summary(res)
+    assert fits(lines)
+    text = " ".join(" ".join(lines).split())
+    assert "TEF mode: onset at 533.3; largest real part +1.500 /rev at 800 lb/in; identity " \
+        "undecided: TEF / blade flap 3 between 650 and 660" in text
+    assert "exceptional points" not in text
+    assert "blade flap 1 / blade lag 1" not in text
 
 
 def test_a_real_hover_sweep_summary(capsys, tmp_path):

@@ -394,8 +394,10 @@ def onset(x, real, neutral=None) -> tuple[str, float]:
     return text, value
 
 
-def _role_line(what: str, rows: pd.DataFrame, unit: tuple[str, float], names_ep) -> str:
-    """One role's summary: onset, largest growth, exceptional points of its names."""
+def _role_line(what: str, rows: pd.DataFrame, unit: tuple[str, float], names_ep,
+               undecided=()) -> str:
+    """One role's summary: onset, largest growth, exceptional points of its names and
+    the steps where one of its names moved with the identity undecided."""
     rows = rows[np.isfinite(rows["real_part"].to_numpy(float))]
     if rows.empty:
         return wrap(f"{what}: not at any point of the sweep")
@@ -408,12 +410,15 @@ def _role_line(what: str, rows: pd.DataFrame, unit: tuple[str, float], names_ep)
     name = "" if what == "TEF mode" else f" ({top['label']})"
     line = (f"{what}: {text}; largest real part {top['real_part']:+.3f} /rev at "
             f"{x[i]:.4g}{(' ' + u) if u else ''}{name}")
-    eps = [e for e in names_ep if set(e[0].split(" / ")) & set(map(base_name, rows["label"]))]
-    if eps:
-        where = "; ".join(f"{m} " + (f"at {lo * f:.4g}" if lo == hi else
-                                       f"between {lo * f:.4g} and {hi * f:.4g}")
-                          for m, lo, hi in eps)
-        line += f"; exceptional points{' of its names' if name else ''}: {where}"
+    own = set(map(base_name, rows["label"]))
+    for found, what_kind in ((names_ep, "exceptional points"),
+                             (undecided, "identity undecided")):
+        hits = [e for e in found if set(e[0].split(" / ")) & own]
+        if hits:
+            where = "; ".join(f"{m} " + (f"at {lo * f:.4g}" if lo == hi else
+                                           f"between {lo * f:.4g} and {hi * f:.4g}")
+                              for m, lo, hi in hits)
+            line += f"; {what_kind}{' of its names' if name else ''}: {where}"
     return wrap(line)
 
 
@@ -441,10 +446,12 @@ def sweep_summary(result) -> list[str]:
 
     For each role, over the points asked for (``refinement == 0``) that
     were computed: the onset of instability (:func:`onset`), the largest
-    real part and where (with the flutter root's name there), and the
+    real part and where (with the flutter root's name there), the
     exceptional points (:attr:`tefcore.sweeps.sweep.SweepResult.exceptional_points`)
-    involving its names.  Values of the parameter are in the unit the sweep
-    was given in.
+    involving its names, and the steps where one of its names moved to
+    another root with the identity undecided
+    (:attr:`tefcore.sweeps.sweep.SweepResult.undecided_steps`).  Values of
+    the parameter are in the unit the sweep was given in.
 
     Parameters
     ----------
@@ -464,14 +471,14 @@ def sweep_summary(result) -> list[str]:
     if "refinement" in ok:
         ok = ok[ok["refinement"] == 0]
     unit = _x_unit(t, result.parameter)
-    eps = result.exceptional_points
-    named = [(m, lo, hi) for m, lo, hi in zip(eps["modes"], eps["x_low"], eps["x_high"],
-                                              strict=True)]
+    named, undecided = ([(m, lo, hi) for m, lo, hi in zip(e["modes"], e["x_low"], e["x_high"],
+                                                            strict=True)]
+                        for e in (result.exceptional_points, result.undecided_steps))
     head = f"{result.parameter}" + (f" in {unit[0]}" if unit[0] else "")
     lines = [f"along {head}:"]
     for what, col in (("TEF mode", "tef_branch"), ("flutter root", "flutter_root")):
         if col in ok:
             rows = ok[ok[col].fillna(False).astype(bool)]
             rows = rows.sort_values("value_si", key=lambda s: s.astype(float), kind="stable")
-            lines.append(_role_line(what, rows, unit, named))
+            lines.append(_role_line(what, rows, unit, named, undecided))
     return "\n".join(lines).splitlines()
