@@ -371,7 +371,8 @@ def _lift(p, period, k_sub, max_sub, min_rate=None, duals=False, frozen_rate=Non
         # with min_rate, the roots below the cut need not be resolved
         smallest = max(np.abs(mu).min(), cut)
         # a root is trusted when it is above MIN_ROOT and its round-off,
-        # eps ||Z|| / |mu| relative (||Z|| = the largest ||Phi_k||), is <= 1e-6
+        # eps ||Z|| / |mu| relative (||Z|| = the largest ||Phi_k||), is <= root_rtol
+        # (1e-6 by default)
         with np.errstate(over="ignore"):     # an inf norm: no K resolves it (below)
             znorm = float(np.linalg.norm(phis, axis=(1, 2)).max())
             floor = max(min_root, eps * znorm / root_rtol)
@@ -391,7 +392,7 @@ def _lift(p, period, k_sub, max_sub, min_rate=None, duals=False, frozen_rate=Non
         # |mu| = |lambda|^(1/K): the K that lifts the most damped root to the
         # floor (from the computed root even when it is garbage: then it is
         # below round-off, and the true one smaller still)
-        if floor >= 1.0:        # ||Phi_k|| beyond 1/(1e6 eps): no K resolves it
+        if floor >= 1.0:        # ||Phi_k|| beyond root_rtol / eps: no K resolves it
             k_sub = max_sub
             continue
         need = k_sub * np.log(max(smallest, np.finfo(float).tiny)) / np.log(floor)
@@ -479,6 +480,9 @@ def floquet_motions(A, n_steps, n_sub=4, period=TWO_PI, method="magnus", max_sub
     """
     period = check_period(period)
     method = check_method(method)
+    for name, value in (("min_root", min_root), ("root_rtol", root_rtol)):
+        if not (isinstance(value, (int, float, np.floating)) and 0.0 < value < 1.0):
+            raise ValueError(f"{name} must be a number in (0, 1), got {value!r}")
     a, n_steps, constant = sample(A, n_steps, period)
     p = propagators(a, period / n_steps, constant, method)
     k_sub, mu, blocks, _, (stack, bounds, valid), _, _, split = _lift(
@@ -660,8 +664,8 @@ def choose_sub(p, period, k_min, max_sub, min_rate=None, frozen_rate=None, duals
     root of the mean ``A``, ``frozen_rate``, less 1/2 per rev (the lift then
     checks it, :func:`floquet_modes`).  ``K`` is the least power of two, at
     least ``k_min`` and at most ``max_sub``, that lifts it (or
-    ``exp(min_rate T)``, if larger) to the floor ``max(min_root, 1e6 eps
-    max ||Phi_k||)``.
+    ``exp(min_rate T)``, if larger) to the floor ``max(min_root, eps
+    max ||Phi_k|| / root_rtol)`` (``1e6 eps max ||Phi_k||`` by default).
 
     Parameters
     ----------

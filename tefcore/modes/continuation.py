@@ -50,7 +50,9 @@ FIRST_STEPS = 2
 #: from 1/2/4/8 at 24/38/15/1 steps to 55/13/10/0, the exponents moved by at
 #: most 1.5e-6 /rev, and no name, certainty or role changed on 21 points of
 #: Figs. 9, 12, 13 and 14 (1.7 ms a point less; K = 4 stays where a root grows
-#: at +3 /rev and another decays at -4.5 /rev: ``||Phi|| ~ 1e10``).
+#: at +3 /rev and another decays at -4.5 /rev: ``||Phi|| ~ 1e10``).  (The
+#: balanced exponentials of the same stop changed the round-off, and with it
+#: the certainty of a few locked TEF pairs at k/2: docs/theory.md 9.1.)
 PATH_MIN_ROOT = 1e-9
 PATH_RTOL = 1e-3
 
@@ -451,7 +453,9 @@ def _path_step(homotopy, eps, basis):
     eigenproblem, measured on MDART at mu = 0.3).  Constant coefficients
     (`homotopy` the system itself): the positive roots and :func:`path_shapes`.
     """
-    if isinstance(homotopy, SecondOrderSystem):
+    if not isinstance(homotopy, HomotopySamples):
+        if homotopy.periodic:
+            raise ValueError("_path_step: a periodic system goes through HomotopySamples")
         n = homotopy.n_dof
         res = _solve(homotopy, n, eps, False, None)
         return res.exponents, path_shapes(basis, res, n, False)

@@ -303,9 +303,21 @@ def _uncoupled_crossed(rows: pd.DataFrame) -> bool:
 
 
 def _is_undecided(rows: pd.DataFrame) -> bool:
-    """Rows (a, b at the first point; a, b at the second) of a move with a name undecided."""
+    """Rows (a, b at the first point; a, b at the second) of a move with a name undecided.
+
+    Not where the two paths met at either point (their rows' ``meets``): that
+    is an exceptional point, located (``"paths meet"``, :func:`exceptional_points`).
+    """
     certain = rows["identity_certain"].fillna(False).astype(bool)
-    return not certain.all() and not _uncoupled_crossed(rows)
+    if certain.all() or _uncoupled_crossed(rows):
+        return False
+    if "meets" in rows:
+        names = [base_name(n) for n in rows["label"]]
+        met = [set(str(m).split(", ")) if isinstance(m, str) and m else set()
+               for m in rows["meets"]]
+        if any(names[j] in met[i] for i, j in enumerate((1, 0, 3, 2))):   # a's partner: b
+            return False
+    return True
 
 
 def _is_exceptional(rows: pd.DataFrame) -> bool:

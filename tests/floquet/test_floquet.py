@@ -34,6 +34,7 @@ from tefcore.floquet import (
     constant_coefficient_modes,
     damping_ratio,
     floquet_modes,
+    floquet_motions,
     monodromy,
     step_propagators,
     transition_matrices,
@@ -688,6 +689,43 @@ def test_a_rotor_step_is_balanced_before_its_exponential():
     # the unbalanced exponential misses the gate (round-off grows with the
     # squarings): the balancing is what the gate above measures
     assert np.abs(_expm(a)[0] - exact).max() > 3e-15 * scale
+
+
+def test_balanced_exponential_of_odd_stacks():
+    """Balancing is an exact similarity whatever the stack: a complex graded
+    stack (entries from 1e-6 to 1e6) within 1e-13 of scipy's expm relative to
+    its largest entry (1.3e-15 measured, 3e-11 without the balancing); a zero
+    row and column (nothing to
+    balance there), one 1x1 matrix and an empty stack as before; non-finite
+    input, or a finite complex entry whose modulus overflows, gives NaN of the
+    same shape and dtype (found in review: ``|a|`` overflowed and the balancing
+    raised)."""
+    from tefcore.floquet._propagators import expm_batch
+
+    rng = np.random.default_rng(7)
+    grade = 10.0 ** np.linspace(-3, 3, 6)
+    a = (rng.standard_normal((3, 6, 6)) + 1j * rng.standard_normal((3, 6, 6))) \
+        * grade[:, None] / grade[None, :] * 0.3
+    ref = np.stack([scipy.linalg.expm(x) for x in a])
+    assert np.abs(expm_batch(a) - ref).max() < 1e-13 * np.abs(ref).max()
+    z = rng.standard_normal((2, 4, 4))
+    z[:, 1, :] = 0.0
+    z[:, :, 1] = 0.0
+    ref = np.stack([scipy.linalg.expm(x) for x in z])
+    assert np.abs(expm_batch(z) - ref).max() < 1e-14 * np.abs(ref).max()
+    assert_allclose(expm_batch(np.array([[[0.5]]])), [[[np.exp(0.5)]]], rtol=1e-15)
+    assert expm_batch(np.zeros((0, 3, 3))).shape == (0, 3, 3)
+    for bad in (np.array([[[np.nan, 0.0], [0.0, 1.0]]]),
+                np.array([[[1.5e308 + 1.5e308j, 0.0], [0.0, 1.0]]])):
+        out = expm_batch(bad)
+        assert out.shape == bad.shape and out.dtype == bad.dtype and np.isnan(out).all()
+
+
+@pytest.mark.parametrize("kwargs", [{"min_root": 0.0}, {"min_root": 1.0}, {"root_rtol": -1e-3},
+                                    {"root_rtol": float("nan")}, {"min_root": "1e-9"}])
+def test_the_trust_of_the_lift_is_validated(kwargs):
+    with pytest.raises(ValueError, match=next(iter(kwargs))):
+        floquet_motions(np.array([[0.0, 1.0], [-0.09, 0.0]]), 72, **kwargs)
 
 
 def test_sub_intervals_are_chosen_before_the_lift(monkeypatch):

@@ -166,6 +166,21 @@ def _exchange_rows(certain_at_1=(True, True), crossed=False):
     return pd.DataFrame(rows)
 
 
+def test_paths_that_met_are_an_exceptional_point_not_an_undecided_step():
+    """Where two paths met (a coalescence located on the way from zero coupling)
+    both names are undecided at that point; the names' move into it is that
+    exceptional point ('paths meet'), not listed again as undecided (found in
+    review: the same pair printed under both)."""
+    from tefcore.modes.roles import undecided_steps
+
+    table = _exchange_rows((False, False))
+    at_1 = table["x"] == 1.0
+    table["meets"] = ""
+    table.loc[at_1, "meets"] = np.where(table.loc[at_1, "label"] == "TEF", "blade flap 3", "TEF")
+    assert exceptional_points(table)["kind"].tolist() == ["paths meet"]
+    assert undecided_steps(table).empty
+
+
 @pytest.mark.parametrize("certain_at_1, crossed, kind", [
     ((True, True), False, "names exchange"),       # decided on both sides: an EP
     ((True, False), False, "identity undecided"),  # the TEF undecided at x = 1
