@@ -59,7 +59,15 @@ the periodic change of variables ``x = (1 + 0.3 sin psi) z``:
 from __future__ import annotations
 
 from ._accuracy import DEFAULT_ATOL, DEFAULT_RTOL, MAX_DOUBLINGS
-from ._analysis import LIFT_RTOL, MAX_SUB, MIN_ROOT, ROOT_RTOL, floquet_modes, floquet_motions
+from ._analysis import (
+    LIFT_RTOL,
+    MAX_SUB,
+    MIN_ROOT,
+    ROOT_RTOL,
+    STATE_ROOT_RTOL,
+    floquet_modes,
+    floquet_motions,
+)
 from ._multipliers import characteristic_multipliers
 from ._propagators import (
                         DEFAULT_N_STEPS,
@@ -83,6 +91,7 @@ __all__ = [
     "MAX_SUB",
     "MIN_ROOT",
     "ROOT_RTOL",
+    "STATE_ROOT_RTOL",
     "FloquetAccuracyError",
     "FloquetAccuracyWarning",
     "FloquetOverflowError",

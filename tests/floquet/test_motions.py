@@ -76,3 +76,31 @@ def test_motions_of_a_second_order_system_refuse_what_they_cannot_do():
     # constant coefficients: the modes are direct eigenvalues, not a path's motions
     with pytest.raises(ValueError, match="periodic"):
         SecondOrderSystem(m, c, k).motions()
+
+
+def test_the_shed_wake_lift_trusts_its_deep_roots_less():
+    """With ``min_rate`` (fast states whose deep roots are not wanted) the lift
+    trusts its most damped wanted root to a relative round-off of 1e-4
+    (STATE_ROOT_RTOL) instead of 1e-6: MDART's 92-state shed-wake system at
+    mu 0.3, c_cg 0.33, needs K = 4 instead of 8 (a lift of 368 instead of 736
+    states).  The roots that are wanted -- every root above -6 /rev, the
+    blade's and the flap's -- move by 7.8e-7 /rev (measured); gate 1e-5, a
+    hundredth of the error control's default tolerance (DEFAULT_ATOL, 1e-3
+    /rev), which a lift that lost a root (wrong by 1e-2 /rev or more) cannot
+    meet."""
+    from tefcore.config.io import load_config
+    from tefcore.floquet import STATE_ROOT_RTOL, floquet_modes
+    from tefcore.floquet.second_order import STATE_MIN_RATE
+    from tefcore.linear.stability import stability
+
+    assert STATE_ROOT_RTOL == 1e-4
+    system = stability(load_config("mdart").with_overrides(
+        {"flight.advance_ratio": 0.3, "model.aero": "unsteady", "flap.cg_offset": 0.33})).system
+    kw = dict(n_steps=72, n_sub=1, method="magnus", min_rate=STATE_MIN_RATE, atol=None)
+    relaxed = floquet_modes(system.state_matrix, **kw)
+    strict = floquet_modes(system.state_matrix, root_rtol=1e-6, **kw)
+    assert (relaxed.n_sub, strict.n_sub) == (4, 8)
+    a = relaxed.exponents[relaxed.exponents.real >= -6.0]
+    b = strict.exponents[strict.exponents.real >= -6.0]
+    assert a.size == b.size > 40
+    assert np.abs(a[:, None] - b[None, :]).min(axis=1).max() < 1e-5
