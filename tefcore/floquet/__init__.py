@@ -70,14 +70,14 @@ from ._analysis import (
 )
 from ._multipliers import characteristic_multipliers
 from ._propagators import (
-                        DEFAULT_N_STEPS,
-                        DEFAULT_N_SUB,
-                        FloquetAccuracyError,
-                        FloquetAccuracyWarning,
-                        FloquetOverflowError,
-                        monodromy,
-                        step_propagators,
-                        transition_matrices,
+    DEFAULT_N_STEPS,
+    DEFAULT_N_SUB,
+    FloquetAccuracyError,
+    FloquetAccuracyWarning,
+    FloquetOverflowError,
+    monodromy,
+    step_propagators,
+    transition_matrices,
 )
 from ._result import FloquetResult, constant_coefficient_modes, damping_ratio
 

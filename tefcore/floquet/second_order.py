@@ -32,7 +32,7 @@ from ._analysis import floquet_modes, floquet_motions
 from ._result import constant_coefficient_modes
 
 __all__ = ["STATE_MIN_RATE", "SecondOrderSystem", "augmented_state_matrix", "combine",
-           "state_matrix"]
+           "periodic_modes", "state_matrix"]
 
 
 #: With first-order (aerodynamic) states, roots damped faster than this
@@ -153,16 +153,9 @@ class SecondOrderSystem:
         """
         if not self.periodic:
             return constant_coefficient_modes(self.state_matrix([0.0])[0])
-        # floquet_modes chooses K before the lift: for first-order states down to
-        # STATE_MIN_RATE, and for the adjoints of the participation factors with
-        # the fastest state in view (8 with the shed wake's -31 /rev states)
-        return floquet_modes(self.state_matrix, n_steps=n_steps, n_sub=n_sub,
-                                     method="magnus", shapes=shapes,
-                                     shift_states=slice(0, self.n_dof),
-                                     on_inaccurate=on_inaccurate, atol=atol,
-                                     min_rate=STATE_MIN_RATE if self.n_first else None,
-                                     participation=(bool(self.n_first) if participation is None
-                                                    else participation))
+        return periodic_modes(self.state_matrix, self.n_dof, self.n_first, n_steps=n_steps,
+                              n_sub=n_sub, shapes=shapes, on_inaccurate=on_inaccurate,
+                              participation=participation, atol=atol)
 
     def motions(self, n_steps: int = 72, n_sub: int = 4):
         """Exponents and motions on one grid of Magnus steps (forward flight).
@@ -178,6 +171,44 @@ class SecondOrderSystem:
                              "first-order states")
         return floquet_motions(self.state_matrix, n_steps=n_steps, n_sub=n_sub,
                                method="magnus")
+
+
+def periodic_modes(a, n_dof: int, n_first: int = 0, *, n_steps: int = 72, n_sub: int = 4,
+                   shapes: bool = False, on_inaccurate: str = "warn",
+                   participation: bool | None = None, atol: float | None = DEFAULT_ATOL):
+    """Floquet modes of a periodic second-order system from its ``A(psi)``.
+
+    What :meth:`SecondOrderSystem.modes` does in forward flight, for an
+    ``A`` given directly -- the system's :meth:`~SecondOrderSystem.state_matrix`,
+    or samples of it on the step grid computed another way (the coupling
+    homotopy's, :class:`tefcore.modes.continuation.HomotopySamples`).
+
+    Parameters
+    ----------
+    a : callable or numpy.ndarray
+        ``A(psi)`` (vectorised), or its ``2 n_steps`` samples at the step ends
+        and midpoints (:func:`tefcore.floquet.floquet_modes`).
+    n_dof : int
+        Second-order coordinates ``n`` (the displacements decide the integer
+        frequency shift).
+    n_first : int, optional
+        First-order states after ``[q, q*]``: with them, roots below
+        :data:`STATE_MIN_RATE` need not be resolved, and the participation
+        factors come by default.
+    n_steps, n_sub, shapes, on_inaccurate, participation, atol
+        As :meth:`SecondOrderSystem.modes`.
+
+    Returns
+    -------
+    tefcore.floquet.FloquetResult
+    """
+    # floquet_modes chooses K before the lift: for first-order states down to
+    # STATE_MIN_RATE, and for the adjoints of the participation factors with
+    # the fastest state in view (8 with the shed wake's -31 /rev states)
+    return floquet_modes(a, n_steps=n_steps, n_sub=n_sub, method="magnus", shapes=shapes,
+                         shift_states=slice(0, n_dof), on_inaccurate=on_inaccurate, atol=atol,
+                         min_rate=STATE_MIN_RATE if n_first else None,
+                         participation=bool(n_first) if participation is None else participation)
 
 
 def _derivative_coefficients(cos_c, sin_c, k, derivative):

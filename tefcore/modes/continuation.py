@@ -27,8 +27,8 @@ from dataclasses import dataclass
 import numpy as np
 import pandas as pd
 
-from ..floquet import floquet_modes, floquet_motions
-from ..floquet.second_order import STATE_MIN_RATE, SecondOrderSystem
+from ..floquet import floquet_motions
+from ..floquet.second_order import STATE_MIN_RATE, SecondOrderSystem, periodic_modes
 from .final_names import flap_free_by_participation, free_labels, second_roots_of_locks
 from .labels import coordinate_shares, label_modes, tracking_shapes, trajectory_shapes
 from .march import FLAP_ACTIVE, March, base_name, flap_share, lock_matrix
@@ -257,22 +257,18 @@ def path_shapes(basis, res, n, periodic, samples=72):
     return trajectory_shapes(basis, res, n, samples=samples)
 
 
-def _solve(system, n, eps, periodic, n_steps, participation=False, homotopy=None):
+def _solve(system, n, eps, n_steps, participation=False, homotopy=None):
     """Positive roots of the system at coupling `eps` (Floquet: one grid, shapes;
-    from `homotopy`'s samples when given, a :class:`HomotopySamples`)."""
-    if homotopy is not None:
-        res = floquet_modes(homotopy(eps), n_steps=homotopy.n_steps, n_sub=1, method="magnus",
-                            shapes=True, shift_states=slice(0, n), atol=None,
-                            participation=participation)
-        return positive_roots(res)
-    s = coupling_homotopy(system, n - 1, eps)
-    if periodic:
+    ``A`` from `homotopy`'s samples when given, a :class:`HomotopySamples`)."""
+    if not system.periodic:
+        res = coupling_homotopy(system, n - 1, eps).modes()
+    else:
+        a = (homotopy(eps) if homotopy is not None
+             else coupling_homotopy(system, n - 1, eps).state_matrix)
         # n_sub=1: the lift's K chosen as for the point's own roots (raised
         # until the most damped root is resolved)
-        res = s.modes(n_steps=n_steps, n_sub=1, shapes=True, participation=participation,
-                      atol=None)
-    else:
-        res = s.modes()
+        res = periodic_modes(a, n, system.n_first, n_steps=n_steps, n_sub=1, shapes=True,
+                             participation=participation, atol=None)
     if participation and res.participation is None:
         res = res.with_participation()
     return positive_roots(res)
@@ -442,30 +438,29 @@ class HomotopySamples:
 
 
 def _path_step(homotopy, eps, basis):
-    """The roots at coupling `eps` as a path step compares them: exponents and shapes.
+    """The roots at coupling `eps` as a Floquet path step compares them (`homotopy` a
+    :class:`HomotopySamples`): exponents and shapes.
 
-    Floquet (`homotopy` a :class:`HomotopySamples`):
     :func:`tefcore.floquet.floquet_motions` on its grid -- the exponents on
     the principal branch (the march unwraps them along each path) and each
     root's motion over the revolution through `basis`, the shapes
     :func:`path_shapes` gives a full result, without the harmonic analysis and
     participation a path step does not use (3.6 against 6.6 ms an
-    eigenproblem, measured on MDART at mu = 0.3).  Constant coefficients
-    (`homotopy` the system itself): the positive roots and :func:`path_shapes`.
+    eigenproblem, measured on MDART at mu = 0.3).
     """
-    if not isinstance(homotopy, HomotopySamples):
-        if homotopy.periodic:
-            raise ValueError("_path_step: a periodic system goes through HomotopySamples")
-        n = homotopy.n_dof
-        res = _solve(homotopy, n, eps, False, None)
-        return res.exponents, path_shapes(basis, res, n, False)
-    n = homotopy.n
     eta, x = floquet_motions(homotopy(eps), n_steps=homotopy.n_steps, n_sub=1,
-                             method="magnus", min_root=PATH_MIN_ROOT,
-                             root_rtol=PATH_RTOL)
+                             min_root=PATH_MIN_ROOT, root_rtol=PATH_RTOL)
     order = np.lexsort((-eta.real, np.round(eta.imag, 9)))
-    shapes = basis @ x[:, :n, order]                     # (azimuths, n_phys, roots)
+    shapes = basis @ x[:, :homotopy.n, order]            # (azimuths, n_phys, roots)
     return eta[order], shapes.reshape(-1, order.size)
+
+
+def _constant_step(system, eps, basis):
+    """The roots at coupling `eps` of a constant-coefficient system (hover): the
+    positive roots and :func:`path_shapes`."""
+    n = system.n_dof
+    res = _solve(system, n, eps, None)
+    return res.exponents, path_shapes(basis, res, n, False)
 
 
 @dataclass
@@ -618,11 +613,10 @@ def continue_roots(system: SecondOrderSystem, labels, final=None, *, basis=None,
     basis = np.eye(n) if basis is None else basis
     per = system.periodic
     if system.n_first:
-        res0 = _solve(system, n, 0.0, per, n_steps, participation=True)
+        res0 = _solve(system, n, 0.0, n_steps, participation=True)
         return _by_participation(res0, n, labels, basis, final, final_labels)
-    homotopy = HomotopySamples(system, n_steps) if per else system
-    res0 = _solve(system, n, 0.0, per, n_steps, participation=True,
-                  homotopy=homotopy if per else None)
+    homotopy = HomotopySamples(system, n_steps) if per else None
+    res0 = _solve(system, n, 0.0, n_steps, participation=True, homotopy=homotopy)
     frac0 = coordinate_shares(res0.participation, n)
     vec0 = path_shapes(basis, res0, n, per, n_steps)
     names0 = zero_coupling_names(frac0, labels, res0.frequencies, res0.damping_rates, vec0,
@@ -641,7 +635,8 @@ def continue_roots(system: SecondOrderSystem, labels, final=None, *, basis=None,
             # a step that was halved comes back to its end: solved once (ends
             # are dyadic, so equal as floats; measured on Fig. 9's sweep: 45
             # eigenproblems on the paths instead of 66 over 11 points)
-            eig, vecs = solved[eps + h] = _path_step(homotopy, eps + h, basis)
+            eig, vecs = solved[eps + h] = (_path_step(homotopy, eps + h, basis) if per
+                                           else _constant_step(system, eps + h, basis))
             n_solves += 1
         if march.step(eps + h, eig, vecs, final_step=h <= min_step * (1 + 1e-9)):
             eps += h

@@ -571,7 +571,7 @@ def test_zero_coupling_names_follow_the_roots_not_their_order():
     system = stability(cfg).system
     n = system.n_dof
     basis = coupled_model(cfg).tracking_basis()
-    res0 = continuation._solve(system, n, 0.0, True, 72, participation=True)
+    res0 = continuation._solve(system, n, 0.0, 72, participation=True)
     frac = coordinate_shares(res0.participation, n)
     shapes = continuation.path_shapes(basis, res0, n, True, 72)
     labels = coupled_model(cfg).labels
