@@ -499,6 +499,12 @@ class ContinuedRoots:
         NaN where the path did not decide the root's name (not ``certain``, a
         root named by participation at the end, a lock's second root) and
         with constant coefficients (the frequency itself is continuous).
+    by_path : numpy.ndarray of bool or None
+        Per root: its name is the one its path brought from zero coupling --
+        False where the final naming (forward flight) gave it another: a root
+        that does not move the flap named by the coordinate it carries, a
+        moving root given a name left, a lock's second root.  None: every
+        root with a path (``origin`` not empty).
     """
 
     origin: list
@@ -508,6 +514,7 @@ class ContinuedRoots:
     n_solves: int
     flap_motion: np.ndarray
     frequency: np.ndarray
+    by_path: np.ndarray | None = None
 
 
 def continue_roots(system: SecondOrderSystem, labels, final=None, *, basis=None,
@@ -646,7 +653,8 @@ def continue_roots(system: SecondOrderSystem, labels, final=None, *, basis=None,
         else:
             h *= 0.5
             streak = 0
-    origin, uncoupled, certain = list(march.origin), march.start.copy(), ~march.doubt
+    paths = list(march.origin)
+    origin, uncoupled, certain = list(paths), march.start.copy(), ~march.doubt
     motion = march.share                   # flap_share of its last roots
     if final_labels is not None and per:
         carried = list(final_labels)
@@ -660,14 +668,27 @@ def continue_roots(system: SecondOrderSystem, labels, final=None, *, basis=None,
         held = dict(zip(names0, res0.exponents, strict=True))
         uncoupled = np.array([held.get(o, held.get(base_name(o), np.nan)) for o in origin],
                              complex)
-    meetings = _renamed_meetings(march, origin)
-    carried = np.full(len(origin), np.nan)
-    if per:
-        own = certain & np.array([bool(o) and not o.endswith(" (locked)") for o in origin])
-        carried[own] = march.eig.imag[own]
+    by_path, carried = _own_paths(origin, paths, certain, march.eig, per)
     return ContinuedRoots(origin=origin, certain=certain, uncoupled=uncoupled,
-                          meetings=meetings, n_solves=n_solves, flap_motion=motion,
-                          frequency=carried)
+                          meetings=_renamed_meetings(march, origin), n_solves=n_solves,
+                          flap_motion=motion, frequency=carried, by_path=by_path)
+
+
+def _own_paths(origin, paths, certain, eig, periodic):
+    """Per root: its name is its own path's (``by_path``), and the frequency that
+    path carried where it decided the name (Floquet; NaN otherwise).
+
+    A flap-free root renamed by participation carries another path's frequency
+    (measured on Fig. 13 at 0.71875 R: blade torsion 1's root, whose path was
+    the TEF's, had been given the TEF's continued 10.30 /rev).
+    """
+    by_path = np.array([bool(p) and base_name(o) == base_name(p)
+                        for o, p in zip(origin, paths, strict=True)])
+    carried = np.full(len(origin), np.nan)
+    if periodic:
+        own = certain & by_path & np.array([not o.endswith(" (locked)") for o in origin])
+        carried[own] = eig.imag[own]
+    return by_path, carried
 
 
 #: Least share of a root's participation in the blade and flap states for it to
@@ -724,4 +745,5 @@ def _by_participation(res0, n, labels, basis, final, final_labels) -> ContinuedR
                           meetings=pd.DataFrame(columns=["eps", "origins"]), n_solves=1,
                           flap_motion=flap_share(tracking_shapes(basis, final, n),
                                                   basis.shape[0]),
-                          frequency=np.full(len(names), np.nan))
+                          frequency=np.full(len(names), np.nan),
+                          by_path=np.zeros(len(names), bool))

@@ -165,7 +165,9 @@ def name_roots(table: pd.DataFrame, continued, shares=None, coordinates=None) ->
         ``real_part_uncoupled`` (where the path starts: the root with the flap
         held, or the flap alone), ``frequency_continued`` (the root's frequency
         as its path carried it from there, or NaN), ``flap_motion``,
-        ``flap_induced`` and
+        ``named_by_path`` (the name is the one the root's own path brought,
+        not one the final naming gave it: a flap-free root's coordinate, a
+        name left, a lock's second root), ``flap_induced`` and
         ``flutter_root`` (one row at most).
     """
     out = table.copy()
@@ -194,6 +196,9 @@ def name_roots(table: pd.DataFrame, continued, shares=None, coordinates=None) ->
         met.setdefault(b, []).append(a)
     out.insert(4, "meets", [", ".join(met.get(base_name(o), [])) for o in origin])
     out["flap_motion"] = continued.flap_motion
+    by_path = getattr(continued, "by_path", None)
+    out["named_by_path"] = (np.array([bool(o) for o in continued.origin], bool)
+                            if by_path is None else by_path)
     out["flap_induced"] = flap_induced(out)
     out["flutter_root"] = False
     row = flutter_root(out)
@@ -302,13 +307,25 @@ def _uncoupled_crossed(rows: pd.DataFrame) -> bool:
     return bool((f[0] - f[1]) * (f[2] - f[3]) < 0)
 
 
+def _decided(rows: pd.DataFrame) -> pd.Series:
+    """Per row: its name decided by its own path (``identity_certain`` and, where
+    known, ``named_by_path``: not a name the final naming gave a root whose path
+    brought another)."""
+    certain = rows["identity_certain"].fillna(False).astype(bool)
+    if "named_by_path" in rows:
+        certain &= rows["named_by_path"].fillna(False).astype(bool)
+    return certain
+
+
 def _is_undecided(rows: pd.DataFrame) -> bool:
     """Rows (a, b at the first point; a, b at the second) of a move with a name undecided.
 
-    Not where the two paths met at either point (their rows' ``meets``): that
-    is an exceptional point, located (``"paths meet"``, :func:`exceptional_points`).
+    Undecided: a name not ``identity_certain`` or not the one its root's path
+    brought (:func:`_decided`).  Not where the two paths met at either point
+    (their rows' ``meets``): that is an exceptional point, located (``"paths
+    meet"``, :func:`exceptional_points`).
     """
-    certain = rows["identity_certain"].fillna(False).astype(bool)
+    certain = _decided(rows)
     if certain.all() or _uncoupled_crossed(rows):
         return False
     if "meets" in rows:
@@ -321,8 +338,17 @@ def _is_undecided(rows: pd.DataFrame) -> bool:
 
 
 def _is_exceptional(rows: pd.DataFrame) -> bool:
-    """Rows (a, b at the first point; a, b at the second) of an exchange through an EP."""
-    if "identity_certain" in rows and not rows["identity_certain"].fillna(False).astype(bool).all():
+    """Rows (a, b at the first point; a, b at the second) of an exchange through an EP.
+
+    The four names decided by their paths (:func:`_decided`): only an exchange
+    of continued identities is evidence of an exceptional point, not one in
+    which a name came from the final naming (measured on Fig. 13 at 0.71875 R:
+    blade torsion 1's name, given by participation to the flap-free root whose
+    path was the TEF's, read as an exchange of blade flap 3 and torsion 1 with
+    the root that carried torsion 1's path at 0.725 R; the paths themselves
+    had not exchanged).
+    """
+    if "identity_certain" in rows and not _decided(rows).all():
         return False
     if "flap_motion" in rows:
         m = rows["flap_motion"].to_numpy(float)
@@ -402,8 +428,10 @@ def undecided_steps(table: pd.DataFrame, x: str = "x") -> pd.DataFrame:
     here -- a step where one of the two names was not decided
     (``identity_certain`` False on either side: a path that met an undecided
     match no step resolved and that was no coalescence, or a name given at
-    the end).  The name did move between roots there, with no located
-    exceptional point to say why: a reader sees it instead of a silent jump.
+    the end; or ``named_by_path`` False: a root whose path brought another
+    name, named by the coordinate it carries).  The name did move between
+    roots there, with no located exceptional point to say why: a reader sees
+    it instead of a silent jump.
     A claim is not withheld for it (only an exceptional point makes a claim
     ambiguous).
 
