@@ -31,7 +31,7 @@ from ..floquet import floquet_motions
 from ..floquet.second_order import STATE_MIN_RATE, SecondOrderSystem, periodic_modes
 from .final_names import flap_free_by_participation, free_labels, second_roots_of_locks
 from .labels import coordinate_shares, label_modes, tracking_shapes, trajectory_shapes
-from .march import FLAP_ACTIVE, March, base_name, flap_share, lock_matrix
+from .march import FLAP_ACTIVE, March, base_name, compact_basis, flap_share, lock_matrix
 from .tracking import follow_root
 
 __all__ = ["FIRST_STEPS", "FLAP_ACTIVE", "MIN_STEP", "PATH_MIN_ROOT", "PATH_RTOL",
@@ -617,7 +617,10 @@ def continue_roots(system: SecondOrderSystem, labels, final=None, *, basis=None,
     (['blade flap 1', 'TEF'], [True, True])
     """
     n = system.n_dof
-    basis = np.eye(n) if basis is None else basis
+    # the same MACs, norms and flap shares on n + 1 rows (march.compact_basis:
+    # measured on Fig. 9's sweep, MDART's 37 rows made the march's costs and
+    # the path steps' shapes a third of the continuation)
+    basis = compact_basis(np.eye(n) if basis is None else basis)
     per = system.periodic
     if system.n_first:
         res0 = _solve(system, n, 0.0, n_steps, participation=True)
