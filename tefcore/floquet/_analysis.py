@@ -431,13 +431,26 @@ def _solutions(blocks, stack, valid):
     """The solutions on the step grid, each sub-interval from its lifted block:
     ``x(psi) = Phi(psi, psi_k) v_k`` in sub-interval ``k`` (without ``mu^k``),
     ``(n_steps, n, m)`` in time order."""
-    n = blocks.shape[1]
-    x = np.empty((*valid.shape, n, blocks.shape[2]), dtype=complex)
-    cur = blocks.astype(complex)
+    n, m = blocks.shape[1], blocks.shape[2]
+    if np.iscomplexobj(stack):
+        x = np.empty((*valid.shape, n, m), dtype=complex)
+        cur = blocks.astype(complex)
+        for step in range(valid.shape[1]):
+            x[:, step] = cur
+            cur = stack[:, step] @ cur
+        return x[valid]
+    # real propagators (a real system): the real and imaginary parts side by
+    # side in one real product a step, not a complex product that first casts
+    # the propagator (measured with 20 states, 72 steps: 10 roots 0.19 against
+    # 0.25 ms; 20 roots 0.79 against 0.77 ms -- the products' size, not their
+    # type, is what costs there)
+    x = np.empty((*valid.shape, n, 2 * m))
+    cur = np.concatenate([blocks.real, blocks.imag], axis=-1)
     for step in range(valid.shape[1]):
         x[:, step] = cur
         cur = stack[:, step] @ cur
-    return x[valid]
+    x = x[valid]
+    return x[..., :m] + 1j * x[..., m:]
 
 
 def floquet_motions(A, n_steps, n_sub=4, period=TWO_PI, method="magnus", max_sub=MAX_SUB,
@@ -515,7 +528,22 @@ def floquet_motions(A, n_steps, n_sub=4, period=TWO_PI, method="magnus", max_sub
     if not split:
         warn_unsplit()
     log_mu = log_roots(mu)
-    x = _solutions(blocks, stack, valid)
+    # the multiplier's angle, K arg(mu), on the principal branch: the lift's
+    # roots of a conjugate pair of multipliers need not be conjugates, their
+    # multipliers are (to round-off)
+    angle = np.angle(np.exp(1j * k_sub * log_mu.imag))
+    # a real multiplier (a frequency locked to k/2 /rev, or no oscillation) is
+    # its own conjugate: kept, at angle 0 or pi (the two of a locked pair both).
+    # Measured on Fig. 9's points (c_cg 0-0.36, eps 0.25-0.75): |sin| of a real
+    # multiplier's angle at most 7e-14 (round-off), of a complex one at least
+    # 0.04; 1e-8 lies between with five decades to spare on either side
+    real = np.abs(np.sin(angle)) <= 1e-8
+    angle = np.where(real, np.abs(angle), angle)
+    keep = real | (angle > 0)
+    # only the kept roots' motions are propagated: half the columns (measured
+    # with 20 states, 72 steps: 0.19 ms for the 10 kept against 0.77 for all 20)
+    log_mu, angle = log_mu[keep], angle[keep]
+    x = _solutions(blocks[:, :, keep], stack, valid)
     h = period / n_steps
     psi = np.arange(n_steps) * h
     k_of = np.repeat(np.arange(k_sub), np.diff(bounds))
@@ -529,20 +557,7 @@ def floquet_motions(A, n_steps, n_sub=4, period=TWO_PI, method="magnus", max_sub
     with np.errstate(over="ignore", invalid="ignore"):
         x = np.exp(np.minimum(expo.real, 700.0) + 1j * expo.imag)[:, None, :] * x
     x[~np.isfinite(x)] = 0.0                       # only for unresolvable (garbage) roots
-    # the multiplier's angle, K arg(mu), on the principal branch: the lift's
-    # roots of a conjugate pair of multipliers need not be conjugates, their
-    # multipliers are (to round-off)
-    angle = np.angle(np.exp(1j * k_sub * log_mu.imag))
-    # a real multiplier (a frequency locked to k/2 /rev, or no oscillation) is
-    # its own conjugate: kept, at angle 0 or pi (the two of a locked pair both).
-    # Measured on Fig. 9's points (c_cg 0-0.36, eps 0.25-0.75): |sin| of a real
-    # multiplier's angle at most 7e-14 (round-off), of a complex one at least
-    # 0.04; 1e-8 lies between with five decades to spare on either side
-    real = np.abs(np.sin(angle)) <= 1e-8
-    angle = np.where(real, np.abs(angle), angle)
-    keep = real | (angle > 0)
-    eta = (rate + 1j * angle / period)[keep]
-    return eta, x[..., keep]
+    return rate + 1j * angle / period, x
 
 
 def _modes(p, period, k_sub, max_sub, shapes, shift_states, min_rate=None, duals=False,
