@@ -48,7 +48,7 @@ from .march import base_name
 
 __all__ = ["FLUTTER_PARTICIPATION", "FLUTTER_ROOT", "RATE_RESOLUTION", "ModeNotFound",
            "assign_roles", "base_name", "exceptional_points", "flap_induced", "flutter_root",
-           "mode_rows", "name_roots", "switch_steps", "undecided_steps"]
+           "mode_rows", "name_roots", "switch_steps", "uncoupled_relation", "undecided_steps"]
 
 #: Least share of the flap's participation for a root to count as a flutter root
 #: where roots are not named by continuation (a point function that labels its
@@ -403,7 +403,9 @@ def exceptional_points(table: pd.DataFrame, x: str = "x") -> pd.DataFrame:
     pandas.DataFrame
         ``modes`` (the two names, ``"A / B"``), ``x_low``, ``x_high``,
         ``kind`` (``"names exchange"`` or ``"paths meet"``); overlapping
-        intervals of one pair merged.
+        intervals of one pair merged; ``uncoupled``: the two modes'
+        frequencies at zero coupling there and how near they lie
+        (:func:`uncoupled_relation`; empty where the table does not say).
     """
     rows = [{"modes": " / ".join(sorted((a, b))), "x_low": lo, "x_high": hi,
              "kind": "names exchange"} for lo, hi, a, b in _switches(table, x)]
@@ -414,7 +416,67 @@ def exceptional_points(table: pd.DataFrame, x: str = "x") -> pd.DataFrame:
                 rows.append({"modes": " / ".join(sorted((base_name(r["label"]), other))),
                              "x_low": float(r[x]), "x_high": float(r[x]),
                              "kind": "paths meet"})
-    return _merged(pd.DataFrame(rows, columns=["modes", "x_low", "x_high", "kind"]))
+    out = _merged(pd.DataFrame(rows, columns=["modes", "x_low", "x_high", "kind"]))
+    out["uncoupled"] = [uncoupled_relation(table, e["modes"], e["x_low"], e["x_high"], x)
+                        for _, e in out.iterrows()]
+    return out
+
+
+def uncoupled_relation(table: pd.DataFrame, modes: str, lo: float, hi: float,
+                       x: str = "x") -> str:
+    """The two modes' uncoupled frequencies over ``[lo, hi]`` and how near they lie.
+
+    An exceptional point of the family in (parameter, coupling) grows out of
+    two roots near each other at zero coupling: in hover two frequencies, in
+    forward flight two Floquet frequencies equal modulo 1/rev and up to the
+    sign (a combination resonance ``f_a -+ f_b = k /rev``).  This says which,
+    from the table's ``frequency_uncoupled`` (the mean over the points of the
+    bracket); forward flight is told by a finite ``frequency_continued``.
+
+    Parameters
+    ----------
+    table : pandas.DataFrame
+        A sweep table or figure frame with `x`, ``label``,
+        ``frequency_uncoupled`` (and ``frequency_continued``).
+    modes : str
+        ``"A / B"``, as :func:`exceptional_points` writes them.
+    lo, hi : float
+        The bracket.
+    x : str, optional
+        The column of the parameter.
+
+    Returns
+    -------
+    str
+        E.g. ``"uncoupled TEF 17.66, blade flap 5 10.71 /rev: TEF - blade
+        flap 5 = 7 /rev to 0.05"``; empty when a frequency is not known.
+
+    Examples
+    --------
+    >>> t = pd.DataFrame({"x": [0.0, 0.0], "label": ["TEF", "blade flap 5"],
+    ...                   "frequency_uncoupled": [17.66, 10.71],
+    ...                   "frequency_continued": [17.2, 10.9]})
+    >>> uncoupled_relation(t, "TEF / blade flap 5", 0.0, 0.0)
+    'uncoupled TEF 17.66, blade flap 5 10.71 /rev: TEF - blade flap 5 = 7 /rev to 0.05'
+    """
+    if "frequency_uncoupled" not in table:
+        return ""
+    a, b = modes.split(" / ")
+    at = table[(table[x] >= lo) & (table[x] <= hi)]
+    label = at["label"].astype(str)
+    f = [at.loc[label == m, "frequency_uncoupled"].to_numpy(float) for m in (a, b)]
+    if not all(v.size and np.isfinite(v).all() for v in f):
+        return ""
+    fa, fb = (float(v.mean()) for v in f)
+    text = f"uncoupled {a} {fa:.2f}, {b} {fb:.2f} /rev: "
+    periodic = ("frequency_continued" in table
+                and bool(np.isfinite(table["frequency_continued"].to_numpy(float)).any()))
+    if not periodic:
+        return text + f"{a} - {b} = {fa - fb:.2f} /rev"
+    # modulo 1/rev and up to the sign: the nearer of f_a - f_b and f_a + f_b to an integer
+    sign, k = min(((s, round(fa - s * fb)) for s in (1, -1)),
+                  key=lambda sk: abs(fa - sk[0] * fb - sk[1]))
+    return text + f"{a} {'-' if sign > 0 else '+'} {b} = {k} /rev to {abs(fa - sign * fb - k):.2f}"
 
 
 def undecided_steps(table: pd.DataFrame, x: str = "x") -> pd.DataFrame:

@@ -70,10 +70,14 @@ def where(e) -> str:
     Returns
     -------
     str
-        ``"at x = ..."`` or ``"between x = ... and ..."``.
+        ``"at x = ..."`` or ``"between x = ... and ..."``, with the two
+        modes' uncoupled frequencies in brackets where known
+        (:func:`tefcore.modes.roles.uncoupled_relation`).
     """
-    return (f"at x = {e['x_low']:.4g}" if e["x_low"] == e["x_high"]
-            else f"between x = {e['x_low']:.4g} and {e['x_high']:.4g}")
+    place = (f"at x = {e['x_low']:.4g}" if e["x_low"] == e["x_high"]
+             else f"between x = {e['x_low']:.4g} and {e['x_high']:.4g}")
+    note = e.get("uncoupled", "")
+    return f"{place} [{note}]" if isinstance(note, str) and note else place
 
 
 def swapped(frame, points) -> pd.DataFrame:

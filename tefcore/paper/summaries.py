@@ -227,7 +227,8 @@ def report_identity(name: str, result) -> None:
     for _, e in eps.iterrows():
         where = (f"at x = {e['x_low']:.4g}" if e["x_low"] == e["x_high"]
                  else f"between x = {e['x_low']:.4g} and {e['x_high']:.4g}")
-        print(f"  exceptional point of {e['modes']} {where} ({e['kind']})")
+        near = f"; {e['uncoupled']}" if e.get("uncoupled") else ""
+        print(f"  exceptional point of {e['modes']} {where} ({e['kind']}{near})")
     moved = undecided_steps(ok, x="x")
     if not moved.empty:
         print("  names that move to another root with the identity undecided "

@@ -671,3 +671,30 @@ def test_a_root_named_by_participation_carries_no_other_path_s_frequency():
             # a path's own frequency: the root's, modulo 1/rev and the sign
             f, g = m["frequency_per_rev"].iloc[j], c.frequency[j]
             assert min(abs((f - g + 0.5) % 1 - 0.5), abs((f + g + 0.5) % 1 - 0.5)) < 1e-6
+
+
+def test_an_exceptional_point_says_how_near_its_uncoupled_modes_lie():
+    """An exceptional point grows out of two roots near each other at zero
+    coupling: in hover two frequencies, in forward flight two Floquet
+    frequencies equal modulo 1/rev and up to the sign.  Fig. 15's TEF at
+    16.48 /rev and blade flap 5 at 10.71 /rev (mu 0.3): the sum, 27.19, lies
+    0.19 from 27 /rev, nearer an integer than the difference 5.77 (0.23): the
+    mirror (``f`` and ``1 - f`` modulo 1/rev) -- measured between 0.2719 and
+    0.275 c, where the two exchange names.  In hover the plain difference."""
+    from tefcore.modes.roles import uncoupled_relation
+
+    floquet = pd.DataFrame({"x": [0.27, 0.275], "label": ["TEF", "blade flap 5"],
+                            "frequency_uncoupled": [16.48, 10.71],
+                            "frequency_continued": [16.1, np.nan]})
+    assert uncoupled_relation(floquet, "TEF / blade flap 5", 0.27, 0.275).endswith(
+        "TEF + blade flap 5 = 27 /rev to 0.19")
+    hover = floquet.assign(frequency_continued=np.nan, frequency_uncoupled=[3.3, 3.1])
+    assert uncoupled_relation(hover, "TEF / blade flap 5", 0.27, 0.275).endswith(
+        "TEF - blade flap 5 = 0.20 /rev")
+    # the exchange table: the note rides along with the point, and says nothing
+    # where a frequency is not known
+    ep = exceptional_points(_exchange_rows())
+    assert ep["uncoupled"].tolist() == [
+        "uncoupled TEF 3.00, blade flap 3 2.00 /rev: TEF - blade flap 3 = 1.00 /rev"]
+    assert uncoupled_relation(floquet.drop(columns="frequency_uncoupled"),
+                              "TEF / blade flap 5", 0.27, 0.275) == ""
