@@ -35,7 +35,9 @@ def load() -> str:
 
 def paired_medians(on_fn, off_fn, repeat):
     """Medians of `repeat` runs of each, interleaved (on, off, on, off, ...) so a
-    change of the machine's load falls on both alike; one warm-up each first."""
+    change of the machine's load falls on both alike; one warm-up each first.
+    Also the spread of the ratios of each adjacent pair (min, median, max): a
+    load that moves during the run shows there, not as a shifted median."""
     on_fn()
     off_fn()
     on, off = [], []
@@ -44,7 +46,9 @@ def paired_medians(on_fn, off_fn, repeat):
             t0 = time.perf_counter()
             fn()
             times.append(time.perf_counter() - t0)
-    return statistics.median(on), statistics.median(off)
+    pairs = sorted(a / b for a, b in zip(on, off, strict=True))
+    return statistics.median(on), statistics.median(off), (pairs[0], statistics.median(pairs),
+                                                          pairs[-1])
 
 
 def main(argv=None):
@@ -58,15 +62,15 @@ def main(argv=None):
              "mu 0.3, c_cg 0.33 (Fig. 10's flap)": figure_config("fig10").with_overrides(
                  {"hub.pitch_link_stiffness": "400 lb/in"})}
     for name, cfg in cases.items():
-        on, off = paired_medians(lambda cfg=cfg: stability(cfg),
-                                 lambda cfg=cfg: stability(cfg, identity=False), args.repeat)
+        on, off, _ = paired_medians(lambda cfg=cfg: stability(cfg),
+                                    lambda cfg=cfg: stability(cfg, identity=False), args.repeat)
         n = stability(cfg).identity.n_solves
         print(f"{name:38s} point with identity {1e3 * on:7.1f} ms, without {1e3 * off:7.1f} ms,"
               f" ratio {on / off:4.2f} ({n} eigenproblems on the path)")
     cfg = figure_config("fig9")
     values = list(np.round(np.arange(0.0, 0.41, 0.04), 2))
     kw = dict(progress=False, refine=False)
-    on, off = paired_medians(
+    on, off, spread = paired_medians(
         lambda: sweep(cfg, "flap.cg_offset", values, **kw),
         lambda: sweep(cfg, "flap.cg_offset", values,
                       point=functools.partial(stability, identity=False), **kw),
@@ -76,6 +80,8 @@ def main(argv=None):
               for v in values]
     print(f"{'Fig. 9 sweep, 11 points, mu 0.3':38s} with identity {on:6.2f} s, without "
           f"{off:6.2f} s, ratio {ratio:4.2f}: goal <= 2x {'met' if ratio <= 2 else 'NOT met'}")
+    print(f"{'':38s} ratios of adjacent pairs: {spread[0]:.2f} / {spread[1]:.2f} / "
+          f"{spread[2]:.2f} (min / median / max)")
     print(f"{'':38s} eigenproblems for the paths: {sum(solves)} ({min(solves)} to "
           f"{max(solves)} per point, eps = 0 included); continuation "
           f"{1e3 * (on - off) / len(values):.1f} ms per point")
