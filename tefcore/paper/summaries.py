@@ -28,6 +28,7 @@ from ..aero.unsteady import theodorsen_function
 from ..linear.mechanism import mechanism
 from ..modes.roles import exceptional_points, undecided_steps
 from . import validation
+from .claim_exceptional import where
 from .curve_metrics import zero_crossings
 from .figure_runs import run_config
 from .figures import FIGURES, figure_config
@@ -225,10 +226,7 @@ def report_identity(name: str, result) -> None:
     if eps.empty:
         print("  no exceptional point in the range: every root keeps its name")
     for _, e in eps.iterrows():
-        where = (f"at x = {e['x_low']:.4g}" if e["x_low"] == e["x_high"]
-                 else f"between x = {e['x_low']:.4g} and {e['x_high']:.4g}")
-        near = f"; {e['uncoupled']}" if e.get("uncoupled") else ""
-        print(f"  exceptional point of {e['modes']} {where} ({e['kind']}{near})")
+        print(f"  exceptional point of {e['modes']} {where(e)} ({e['kind']})")
     moved = undecided_steps(ok, x="x")
     if not moved.empty:
         print("  names that move to another root with the identity undecided "
