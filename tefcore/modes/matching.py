@@ -785,18 +785,32 @@ def _changes(plus, minus, at_lock, i):
 
 def _candidates(fs, span, reach, carried=None):
     """Per point, its representations +-f + k near its neighbours' conventions, and
-    the one continuation carried if any (NaN-padded)."""
+    the one continuation carried if any (NaN-padded).
+
+    A representation ``c = +-f + k`` is a candidate when it lies within
+    ``span`` (+1e-9) of one of the conventions up to ``reach`` points away;
+    the shifts ``k`` are searched for all points at once over the range
+    that covers every neighbour (the same set as neighbour by neighbour),
+    each candidate rounded to 1e-9 by Python's ``round`` (its value is
+    written to the table).
+    """
+    fs = np.asarray(fs, float)
+    n = fs.size
+    # refs[i]: the conventions up to `reach` places from point i (NaN-padded)
+    pos = np.arange(n)[:, None] + np.arange(-reach, reach + 1)[None, :]
+    refs = np.where((pos >= 0) & (pos < n), fs[np.clip(pos, 0, n - 1)], np.nan)
+    lo, hi = np.nanmin(refs, axis=1), np.nanmax(refs, axis=1)
+    base = np.stack([fs, -fs], axis=1)                                   # (n, 2)
+    k0 = np.floor(lo[:, None] - span - base)
+    width = int(np.max(np.ceil(hi[:, None] + span - base) - k0)) + 1
+    c = base[:, :, None] + (k0[:, :, None] + np.arange(width))           # (n, 2, w)
+    k_end = np.ceil(hi[:, None] + span - base)[:, :, None]
+    with np.errstate(invalid="ignore"):
+        near = (np.abs(c[..., None] - refs[:, None, None, :]) <= span + 1e-9).any(axis=-1)
+    near &= (k0[:, :, None] + np.arange(width)) <= k_end
     rows = []
-    for i, fi in enumerate(fs):
-        refs = fs[max(0, i - reach):i + reach + 1]
-        vals = set()
-        for r in refs:
-            for sign in (1.0, -1.0):
-                base = sign * fi
-                for k in range(int(np.floor(r - span - base)), int(np.ceil(r + span - base)) + 1):
-                    c = base + k
-                    if abs(c - r) <= span + 1e-9:
-                        vals.add(round(c, 9))
+    for i in range(n):
+        vals = {round(v, 9) for v in c[i][near[i]].tolist()}
         if carried is not None and np.isfinite(carried[i]):
             vals.add(round(float(carried[i]), 9))
         rows.append(sorted(vals))

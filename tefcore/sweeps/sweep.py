@@ -380,7 +380,7 @@ def sweep(cfg: Config, parameter: str, values, *, point: Callable | None = None,
         run.close()
 
     active = run.active()
-    table, modes, shapes = build_table(parameter, values, keys, active)
+    table, modes, shapes = build_table(parameter, values, keys, active, run.track_cache)
     index_of = {k: i for i, k in enumerate(keys)}
     n_clipped, clipped = clipped_summary(active.values())
     if warn:
@@ -438,6 +438,7 @@ class _Run:
         self.processes = 1
         self.n_failed = sum(records[k]["status"] != "ok" for k in keys if k in records)
         self.wanted: dict[str, int] = {}    # refinement key -> depth, as this run decides them
+        self.track_cache: dict = {}         # the last tracking (tefcore.sweeps.table._tracked)
         self.bar = tqdm(total=total, initial=n_loaded, disable=not progress, file=sys.stderr,
                         desc=desc, unit="pt")
 
@@ -500,7 +501,7 @@ class _Run:
         points start cold: their neighbours' trims may not be at hand (a
         resumed sweep), and cold is the same in every run.
         """
-        mids = [m for m in refinements(self.active(), budgets, self.main)
+        mids = [m for m in refinements(self.active(), budgets, self.main, self.track_cache)
                 if value_key(m[0]) not in self.wanted and value_key(m[0]) not in self.main]
         if not mids:
             return None

@@ -42,3 +42,39 @@ def test_field_and_validation():
         rotor_inflow(0.008, 0.2, model="free-wake")
     with pytest.raises(ValueError, match="finite"):
         momentum_inflow(float("nan"), 0.1)
+
+
+@pytest.mark.parametrize("ct", [-0.006, -0.001, 1e-5, 0.002, 0.0075, 0.015])
+@pytest.mark.parametrize("mu", [1e-3, 0.02, 0.1, 0.3, 0.5])
+@pytest.mark.parametrize("alpha_deg", [-12.0, -3.0, 0.0, 4.0, 10.0])
+def test_momentum_root_is_the_bracketing_solvers_root(ct, mu, alpha_deg):
+    # the safeguarded Newton iteration finds the root scipy's brentq finds on
+    # the same bracket (where the bracket holds one); brentq's own xtol is
+    # 1e-14, so the two agree to a few 1e-14 -- a wrong slope or a step out of
+    # the bracket shows as a different root or a residual of order C_T
+    scipy_optimize = pytest.importorskip("scipy.optimize")
+    a = np.deg2rad(alpha_deg)
+    lam_fs = mu * np.tan(a)
+
+    def g(li):
+        return li - ct / (2 * np.hypot(mu, lam_fs + li))
+
+    hover = np.sqrt(abs(ct) / 2)
+    lo, hi = (1e-12, 2 * hover) if ct > 0 else (-2 * hover, -1e-12)
+    if np.sign(g(lo)) == np.sign(g(hi)):
+        with pytest.raises(ValueError, match="no root"):
+            momentum_inflow(ct, mu, a)
+        return
+    expected = scipy_optimize.brentq(g, lo, hi, xtol=1e-14)
+    li = momentum_inflow(ct, mu, a)
+    assert abs(li - expected) <= 5e-14
+    assert abs(g(li)) <= 1e-13
+
+
+def test_forward_flight_inflow_limits():
+    # small mu: hover's sqrt(C_T/2) to O(mu^2 / lambda_h^2) (1.6 % at mu = 0.01
+    # with lambda_h = 0.0632: the gate 2 %); large mu: Glauert's C_T / (2 mu)
+    ct = 0.008
+    assert_allclose(momentum_inflow(ct, 0.01), np.sqrt(ct / 2), rtol=2e-2)
+    assert not np.isclose(momentum_inflow(ct, 0.01), np.sqrt(ct / 2), rtol=1e-4)
+    assert_allclose(momentum_inflow(-ct, 0.3), -momentum_inflow(ct, 0.3), rtol=1e-13)
