@@ -136,11 +136,14 @@ def cmd_stability(args) -> int:
 
 def cmd_sweep(args) -> int:
     from ..config.text_input import sweep_values
-    from ..sweeps.evaluate import close_pool, start_pool_for
+    from ..sweeps.evaluate import close_pool, fork_workers, start_pool_for
 
     values = sweep_values(args.parameter, args.values, args.range)
-    # the workers start and import while this process loads and checks
-    start_pool_for(len(values), args.jobs)
+    # a forked worker is this process's copy, ready at once: started once the
+    # inputs are checked; a spawned one starts and imports while they are
+    forked = fork_workers()
+    if not forked:
+        start_pool_for(len(values), args.jobs)
     from ..sweeps.sweep import sweep
     from .text import sweep_summary, timing_lines
 
@@ -148,6 +151,8 @@ def cmd_sweep(args) -> int:
     check_output_file(args.csv, "--csv")
     if args.out:
         check_output_file(args.out, "--out", create_folder=True)
+    if forked:
+        start_pool_for(len(values), args.jobs)
     try:
         result = sweep(cfg, args.parameter, values, n_jobs=args.jobs, out=args.out,
                        progress=False if args.quiet else None)

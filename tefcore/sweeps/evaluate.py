@@ -33,9 +33,9 @@ from .store import jsonable
 
 __all__ = ["MIN_COLD_CHAINS", "POOL_IDLE_SECONDS", "REQUIRED_MODE_COLUMNS", "WARM_CHAIN",
            "chains", "check_result", "clipped_summary", "close_pool", "decode_complex",
-           "default_point", "encode_complex", "evaluate_point", "pool_ready", "pool_started",
-           "run_joblib", "shape_vectors", "start_pool_for", "takes_warm_start", "warn_clipped",
-           "worker_pool"]
+           "default_point", "encode_complex", "evaluate_point", "fork_workers", "min_chains",
+           "pool_ready", "pool_started", "run_joblib", "shape_vectors", "start_pool_for",
+           "takes_warm_start", "warn_clipped", "worker_pool"]
 
 
 #: Columns a point function's ``modes`` table must have.
@@ -329,18 +329,64 @@ def _warm_worker():
     import tefcore.linear.stability  # noqa: F401  (the default point function's imports)
 
 
-_pool = None          # (workers, executor) of this process
+_pool = None          # (workers, executor, ready future, forked) of this process
+_fork = False         # start the workers by forking this process (fork_workers)
+
+
+def fork_workers(enabled: bool = True) -> bool:
+    """Start this process's pool workers by forking it, where the platform can.
+
+    For a short-lived process that has the solver imported already (the
+    command line): a forked worker is ready in milliseconds with everything
+    this process imported, where a spawned (loky) one starts a fresh
+    interpreter and imports the solver, 0.7-1 s (:data:`MIN_COLD_CHAINS`), so
+    that a sweep of a few chains could not use it.  Not for a notebook's
+    kernel or a long-lived script, whose threads a fork would copy half-way;
+    they keep loky's spawned pool, reused between sweeps.
+
+    Parameters
+    ----------
+    enabled : bool, optional
+        False: back to spawned workers.
+
+    Returns
+    -------
+    bool
+        Whether workers are forked from now on (False where the platform has
+        no ``fork``).
+    """
+    import multiprocessing
+
+    global _fork
+    if _pool is not None and _pool[3] != enabled:
+        close_pool()
+    _fork = bool(enabled) and "fork" in multiprocessing.get_all_start_methods()
+    return _fork
+
+
+def min_chains() -> int:
+    """Fewest chains worth the pool's workers: 2 when they are forked or started
+    already, else :data:`MIN_COLD_CHAINS`.
+
+    Returns
+    -------
+    int
+    """
+    return 2 if _fork or pool_started() else MIN_COLD_CHAINS
 
 
 def worker_pool(n_workers: int):
-    """The persistent pool of worker processes (a loky executor of tefcore's own), started now.
+    """The persistent pool of worker processes, started now.
 
-    The workers apply the process settings and import the solver when they
-    start (:func:`_warm_worker`), so a worker pays its start-up once, not per
-    sweep, and an idle one exits after :data:`POOL_IDLE_SECONDS`; calling it
-    early (the command does, before it loads its configuration) overlaps their
-    start with the caller's own.  The pool is not joblib's reusable executor,
-    which ``joblib.Parallel`` recreates whenever its arguments differ.
+    Spawned (a loky executor of tefcore's own): the workers apply the process
+    settings and import the solver when they start (:func:`_warm_worker`),
+    so a worker pays its start-up once, not per sweep, and an idle one exits
+    after :data:`POOL_IDLE_SECONDS`; calling it early (the command does,
+    before it loads its configuration) overlaps their start with the
+    caller's own.  The pool is not joblib's reusable executor, which
+    ``joblib.Parallel`` recreates whenever its arguments differ.  Forked
+    (:func:`fork_workers`): the standard library's executor on the ``fork``
+    context, the solver imported here first so that the workers have it.
 
     Parameters
     ----------
@@ -352,27 +398,36 @@ def worker_pool(n_workers: int):
     concurrent.futures.Executor
         The executor (the same one while ``n_workers`` stays the same and it works).
     """
-    from joblib.externals.loky import ProcessPoolExecutor
-
     global _pool
     if _pool is not None and (_pool[0] != n_workers or getattr(_pool[1], "_broken", False)):
-        _pool[1].shutdown(wait=False, kill_workers=True)
-        _pool = None
+        close_pool()
     if _pool is None:
-        pool = ProcessPoolExecutor(max_workers=n_workers, initializer=_warm_worker,
-                                   timeout=POOL_IDLE_SECONDS)
+        if _fork:
+            import concurrent.futures as cf
+            import multiprocessing
+
+            import tefcore.linear.stability  # noqa: F401  (the workers inherit it imported)
+
+            pool = cf.ProcessPoolExecutor(max_workers=n_workers, initializer=worker_init,
+                                          mp_context=multiprocessing.get_context("fork"))
+        else:
+            from joblib.externals.loky import ProcessPoolExecutor
+
+            pool = ProcessPoolExecutor(max_workers=n_workers, initializer=_warm_worker,
+                                       timeout=POOL_IDLE_SECONDS)
         # done once a worker has started and imported: until then the caller
         # keeps the chains (a chain queued behind a worker's start could
         # finish after all the others)
-        _pool = (n_workers, pool, pool.submit(int))
+        _pool = (n_workers, pool, pool.submit(int), _fork)
     return _pool[1]
 
 
 def start_pool_for(n_points: int, n_jobs: int) -> None:
     """Start the worker pool now for a sweep of `n_points` on `n_jobs` processes, if it
-    will use one (:data:`MIN_COLD_CHAINS` chains or more; `n_jobs` as in
-    :func:`run_joblib`): the workers start and import while the caller loads and
-    checks its inputs (the command does).
+    will use one (:func:`min_chains` chains or more; `n_jobs` as in
+    :func:`run_joblib`): spawned workers start and import while the caller
+    loads and checks its inputs (the command does); forked ones are copies of
+    the caller as it is now.
 
     Parameters
     ----------
@@ -381,7 +436,7 @@ def start_pool_for(n_points: int, n_jobs: int) -> None:
     n_jobs : int
         Processes at work, the caller included (negative: all the cores).
     """
-    if n_jobs != 1 and n_points >= MIN_COLD_CHAINS * WARM_CHAIN:
+    if n_jobs != 1 and n_points >= min_chains() * WARM_CHAIN:
         worker_pool(n_jobs - 1 if n_jobs > 1 else max(1, (os.cpu_count() or 2) - 1))
 
 
@@ -399,8 +454,15 @@ def close_pool() -> None:
     """Stop the worker pool now (its workers killed), e.g. before the command exits."""
     global _pool
     if _pool is not None:
-        _pool[1].shutdown(wait=False, kill_workers=True)
+        pool, forked = _pool[1], _pool[3]
         _pool = None
+        if forked:      # the standard library's executor: no kill_workers
+            workers = list((getattr(pool, "_processes", None) or {}).values())
+            pool.shutdown(wait=False, cancel_futures=True)
+            for proc in workers:
+                proc.terminate()
+        else:
+            pool.shutdown(wait=False, kill_workers=True)
 
 
 def pool_started() -> bool:

@@ -56,14 +56,13 @@ from ..config.configuration import SECTIONS, Config, resolve_field
 from ..modes.roles import exceptional_points, undecided_steps
 from ..safe_io import atomic_output
 from .evaluate import (
-    MIN_COLD_CHAINS,
     WARM_CHAIN,
     chains,
     clipped_summary,
     dask_client,
     default_point,
+    min_chains,
     point_name,
-    pool_started,
     run_dask,
     run_joblib,
     run_serial,
@@ -455,7 +454,7 @@ class _Run:
                 self.client_own, self.cluster = dask_client(self.n_jobs, self.client)
             return run_dask(jobs, self.client_own)
         # small jobs stay serial: a cold pool's start costs more than they take
-        if self.n_jobs == 1 or len(jobs) < (2 if pool_started() else MIN_COLD_CHAINS):
+        if self.n_jobs == 1 or len(jobs) < min_chains():
             return run_serial(jobs)
         return run_joblib(jobs, self.n_jobs)
 

@@ -65,3 +65,42 @@ def test_small_jobs_stay_serial_without_starting_a_pool():
                 progress=False, n_jobs=2)
     assert not evaluate.pool_started()
     assert res.timing["processes"] == 1
+
+
+def test_forked_workers_take_chains_at_once_and_give_the_serial_table():
+    # the command line's pool: workers forked from the caller, ready at once,
+    # so that two chains are worth them (a spawned pool needs MIN_COLD_CHAINS)
+    evaluate.close_pool()
+    if not evaluate.fork_workers():
+        pytest.skip("no fork start method on this platform")
+    try:
+        assert evaluate.min_chains() == 2 < evaluate.MIN_COLD_CHAINS
+        xs = XS[:2 * evaluate.WARM_CHAIN]                  # two chains
+        serial = sweep(MDART, PARAM, xs, point=PidPoint(), progress=False)
+        par = sweep(MDART, PARAM, xs, point=PidPoint(), progress=False, n_jobs=2)
+        assert evaluate.pool_started()
+        pids = set(par.table["trim_pid"])
+        assert float(os.getpid()) in pids and len(pids) == 2   # the fork did a chain
+        cols = [c for c in serial.table.columns if c != "trim_pid"]
+        pd.testing.assert_frame_equal(par.table[cols], serial.table[cols])
+    finally:
+        evaluate.close_pool()
+        evaluate.fork_workers(False)
+    assert not evaluate.pool_started() and evaluate.min_chains() == evaluate.MIN_COLD_CHAINS
+
+
+def test_the_command_with_two_jobs_writes_the_serial_table(tmp_path):
+    # tefcore sweep --jobs 2 (forked workers) against --jobs 1: the same bytes
+    import subprocess
+    import sys
+
+    out = {}
+    for jobs in ("1", "2"):
+        path = tmp_path / f"s{jobs}.csv"
+        run = subprocess.run([sys.executable, "-m", "tefcore", "sweep", "actuator.stiffness",
+                              "--range", "70 ft-lb/rad", "100 ft-lb/rad", "16", "--quiet",
+                              "-s", "flight.advance_ratio=0", "--csv", str(path), "--jobs", jobs],
+                             check=True, capture_output=True, text=True)
+        assert f"on {jobs} process(es)" in run.stdout            # the pool did take chains
+        out[jobs] = path.read_bytes()
+    assert out["1"] == out["2"]
