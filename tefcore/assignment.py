@@ -25,9 +25,9 @@ Examples
 
 from __future__ import annotations
 
-import numpy as np
-
 import sys
+
+import numpy as np
 
 __all__ = ["augmenting_assignment", "linear_sum_assignment", "plain_assignment",
            "unique_margin"]

@@ -3,15 +3,14 @@ when the optimum is unique by a margin, scipy's solver otherwise."""
 
 from __future__ import annotations
 
+from unittest import mock
+
 import numpy as np
+import pytest
 import scipy.optimize
 from hypothesis import given, settings
 from hypothesis import strategies as st
 from hypothesis.extra.numpy import arrays
-
-from unittest import mock
-
-import pytest
 
 from tefcore import assignment
 from tefcore.assignment import (
