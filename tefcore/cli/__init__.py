@@ -136,28 +136,26 @@ def cmd_stability(args) -> int:
 
 def cmd_sweep(args) -> int:
     from ..config.text_input import sweep_values
-    from ..sweeps.evaluate import close_pool, fork_workers, start_pool_for
+    from ..sweeps.evaluate import command_pool, start_pool_for
 
     values = sweep_values(args.parameter, args.values, args.range)
     # a forked worker is this process's copy, ready at once: started once the
-    # inputs are checked; a spawned one starts and imports while they are
-    forked = fork_workers()
-    if not forked:
-        start_pool_for(len(values), args.jobs)
-    from ..sweeps.sweep import sweep
-    from .text import sweep_summary, timing_lines
+    # inputs are checked; a spawned one starts and imports while they are.
+    # The pool is closed when the command ends: no idle worker to wait for
+    with command_pool() as forked:
+        if not forked:
+            start_pool_for(len(values), args.jobs)
+        from ..sweeps.sweep import sweep
+        from .text import sweep_summary, timing_lines
 
-    cfg = load(args)
-    check_output_file(args.csv, "--csv")
-    if args.out:
-        check_output_file(args.out, "--out", create_folder=True)
-    if forked:
-        start_pool_for(len(values), args.jobs)
-    try:
+        cfg = load(args)
+        check_output_file(args.csv, "--csv")
+        if args.out:
+            check_output_file(args.out, "--out", create_folder=True)
+        if forked:
+            start_pool_for(len(values), args.jobs)
         result = sweep(cfg, args.parameter, values, n_jobs=args.jobs, out=args.out,
                        progress=False if args.quiet else None)
-    finally:
-        close_pool()      # the command exits now: no idle worker to wait for
     path = result.to_csv(args.csv)
     n_bad = len(result.failed)
     print(f"wrote {path}: {len(values)} points, {n_bad} failed")

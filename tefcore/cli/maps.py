@@ -82,6 +82,7 @@ def cmd_map(args) -> int:
         0, or 1 when a point failed.
     """
     from ..sweeps import maps
+    from ..sweeps.evaluate import command_pool
 
     cfg = load(args)
     xs = _grid(cfg, args.x_field, args.x_start, args.x_stop, args.x_num, "X")
@@ -104,11 +105,14 @@ def cmd_map(args) -> int:
 
         client = Client(args.scheduler)
     try:
-        res = maps.stability_map(cfg, args.x_field, xs, args.y_field, ys, n_jobs=args.jobs,
-                                 backend="dask" if client is not None else "joblib",
-                                 client=client, out=args.out,
-                                 refine_boundary=not args.no_refine,
-                                 progress=False if args.quiet else None)
+        # the rows' workers: copies of this process, ready at once
+        with command_pool():
+            res = maps.stability_map(cfg, args.x_field, xs, args.y_field, ys,
+                                     n_jobs=args.jobs,
+                                     backend="dask" if client is not None else "joblib",
+                                     client=client, out=args.out,
+                                     refine_boundary=not args.no_refine,
+                                     progress=False if args.quiet else None)
     finally:
         if client is not None:
             client.close()

@@ -10,6 +10,7 @@ a dask cluster (:func:`run_serial`, :func:`run_joblib`, :func:`run_dask`).
 
 from __future__ import annotations
 
+import contextlib
 import inspect
 import numbers
 import os
@@ -32,10 +33,10 @@ from ..runtime import worker_init
 from .store import jsonable
 
 __all__ = ["MIN_COLD_CHAINS", "POOL_IDLE_SECONDS", "REQUIRED_MODE_COLUMNS", "WARM_CHAIN",
-           "chains", "check_result", "clipped_summary", "close_pool", "decode_complex",
-           "default_point", "encode_complex", "evaluate_point", "fork_workers", "min_chains",
-           "pool_ready", "pool_started", "run_joblib", "shape_vectors", "start_pool_for",
-           "takes_warm_start", "warn_clipped", "worker_pool"]
+           "chains", "check_result", "clipped_summary", "close_pool", "command_pool",
+           "decode_complex", "default_point", "encode_complex", "evaluate_point", "fork_workers",
+           "forked_workers", "min_chains", "pool_ready", "pool_started", "run_joblib",
+           "shape_vectors", "start_pool_for", "takes_warm_start", "warn_clipped", "worker_pool"]
 
 
 #: Columns a point function's ``modes`` table must have.
@@ -364,6 +365,35 @@ def fork_workers(enabled: bool = True) -> bool:
     return _fork
 
 
+@contextlib.contextmanager
+def command_pool():
+    """Forked workers for one command (:func:`fork_workers`), the pool closed and
+    the start method restored after it (a command run in-process, as the tests
+    do, leaves nothing behind).
+
+    Yields
+    ------
+    bool
+        Whether the workers are forked.
+    """
+    previous = _fork
+    try:
+        yield fork_workers()
+    finally:
+        close_pool()
+        fork_workers(previous)
+
+
+def forked_workers() -> bool:
+    """Whether this process's pool workers are forked (:func:`fork_workers`).
+
+    Returns
+    -------
+    bool
+    """
+    return _fork
+
+
 def min_chains() -> int:
     """Fewest chains worth the pool's workers: 2 when they are forked or started
     already, else :data:`MIN_COLD_CHAINS`.
@@ -457,10 +487,11 @@ def close_pool() -> None:
         pool, forked = _pool[1], _pool[3]
         _pool = None
         if forked:      # the standard library's executor: no kill_workers
-            workers = list((getattr(pool, "_processes", None) or {}).values())
-            pool.shutdown(wait=False, cancel_futures=True)
-            for proc in workers:
+            # the workers stopped first, then the executor's thread joined
+            # (left running, it met a torn-down interpreter at exit)
+            for proc in list((getattr(pool, "_processes", None) or {}).values()):
                 proc.terminate()
+            pool.shutdown(wait=True, cancel_futures=True)
         else:
             pool.shutdown(wait=False, kill_workers=True)
 

@@ -36,6 +36,7 @@ Examples
 from __future__ import annotations
 
 import numbers
+import os
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -48,7 +49,15 @@ from ..aero.c81.range_summary import merge_clipped
 from ..config.configuration import Config
 from ..modes.roles import flutter_root
 from ..runtime import worker_init
-from .evaluate import check_result, default_point, point_name, takes_warm_start, warn_clipped
+from .evaluate import (
+    check_result,
+    default_point,
+    forked_workers,
+    point_name,
+    takes_warm_start,
+    warn_clipped,
+    worker_pool,
+)
 from .map_store import BoundaryFile, boundary_header, crossing_key
 from .sweep import SweepResult, sweep
 
@@ -233,6 +242,18 @@ def _row_in_worker(cfg, x_field, x_values, point, out, resume):
                  refine=False, progress=False, warn=False)
 
 
+def _in_workers(fn, args, n_jobs):
+    """``[fn(*a) for a in args]`` in `n_jobs` worker processes, in order: the
+    forked pool of a command (:func:`tefcore.sweeps.evaluate.fork_workers`,
+    ready at once), else joblib's loky processes."""
+    if forked_workers():
+        workers = (os.cpu_count() or 1) if n_jobs < 0 else n_jobs
+        return list(worker_pool(workers).map(fn, *zip(*args, strict=True)))
+    from joblib import Parallel, delayed
+
+    return Parallel(n_jobs=n_jobs, backend="loky")(delayed(fn)(*a) for a in args)
+
+
 def _refine_in_worker(*args):
     """The task of a worker process: the process settings first (tefcore.runtime)."""
     worker_init()
@@ -339,11 +360,8 @@ def _run_map(cfg, x_field, x_values, y_field, y_values, point, n_jobs, backend, 
         # rows side by side, each a serial sweep in one worker: every worker busy
         # (a row's warm-start chains would leave one idle), the same points and
         # chains as row by row (tefcore.sweeps.evaluate.WARM_CHAIN): the same table
-        from joblib import Parallel, delayed
-
-        par = Parallel(n_jobs=n_jobs, backend="loky")
-        results = par(delayed(_row_in_worker)(cfg_y, x_field, x_values, point, outs[k],
-                                              resume) for k, _, _, cfg_y in row_cfgs)
+        results = _in_workers(_row_in_worker, [(cfg_y, x_field, x_values, point, outs[k], resume)
+                                               for k, _, _, cfg_y in row_cfgs], n_jobs)
     else:
         results = [sweep(cfg_y, x_field, x_values, point=point, n_jobs=n_jobs, backend=backend,
                          client=client, out=outs[k], resume=resume, refine=False,
@@ -397,10 +415,7 @@ def _boundary(table, cfg, x_field, y_field, y_values, point, n_jobs, backend, cl
             futures = [client.submit(_refine_in_worker, *a, pure=False) for a in args]
             found = client.gather(futures)
         elif n_jobs != 1 and len(args) > 1:
-            from joblib import Parallel, delayed
-
-            found = Parallel(n_jobs=n_jobs, backend="loky")(
-                delayed(_refine_in_worker)(*a) for a in args)
+            found = _in_workers(_refine_in_worker, args, n_jobs)
         else:
             found = [_refine(*a) for a in args]
         for (key, *_), rec in zip(todo, found, strict=True):
