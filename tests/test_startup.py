@@ -2,11 +2,12 @@
 
 Start-up is most of a one-point command's time: ``tefcore --version`` and
 ``--help`` import no numerics at all, and ``tefcore stability`` imports what a
-point needs (numpy, scipy.linalg, and pandas: the roots are named by
-continuation on the modes table, and the command words that table,
-tefcore.cli.text) but not scipy.constants (the unit factors are written out),
-scipy.integrate (only the tension integral of a tabulated mass uses it),
-scipy.interpolate (only a C81 deck read) nor scipy.optimize (the momentum
+point needs (numpy, scipy.linalg) but not pandas (the roots are named on
+the table's columns, and the command words the columns, tefcore.cli.text;
+the table itself is built on first use, for ``--csv``), scipy.constants (the
+unit factors are written out), scipy.integrate (only the tension integral of
+a tabulated mass uses it), scipy.interpolate (only a C81 deck read) nor
+scipy.optimize (the momentum
 inflow's root is a safeguarded Newton iteration, and tefcore.assignment
 solves the continuation's small assignments itself where their optimum is
 unique -- at the default point, mu = 0.3, it is).
@@ -48,6 +49,6 @@ def test_version_and_help_import_no_numerics(argv):
 def test_stability_imports_only_what_a_point_needs(argv):
     loaded = _modules_after(argv)
     assert {"numpy", "scipy.linalg", "tefcore.linear.stability"} <= loaded
-    for name in ("scipy.constants", "scipy.integrate", "scipy.interpolate", "scipy.optimize",
-                 "matplotlib"):
+    for name in ("pandas", "scipy.constants", "scipy.integrate", "scipy.interpolate",
+                 "scipy.optimize", "matplotlib"):
         assert name not in loaded, name

@@ -116,9 +116,10 @@ def cmd_stability(args) -> int:
     if args.csv:
         check_output_file(args.csv, "--csv")
     res = stability(cfg)
-    table = res.modes
+    # the table's columns: printing them needs no pandas (the CSV does)
+    table = res.columns if hasattr(res, "columns") else res.modes
     if args.csv:
-        _write_csv(table, args.csv)
+        _write_csv(res.modes, args.csv)
     print(modes_text(table))
     print("\n".join(legend(table)))
     if (sentence := flutter_text(table)) is not None:

@@ -42,13 +42,16 @@ from __future__ import annotations
 
 import re
 import textwrap
+from typing import TYPE_CHECKING
 
 import numpy as np
-import pandas as pd
 
 from ..config.text_input import field_param
 from ..modes.roles import base_name
 from ..units import from_si
+
+if TYPE_CHECKING:
+    import pandas as pd
 
 __all__ = ["LEGEND", "UNCERTAIN", "UNCERTAIN_LEGEND", "WIDTH", "flutter_row", "flutter_text",
            "legend", "mechanism_choice", "modes_text", "onset", "real_part_text",
@@ -123,51 +126,77 @@ def real_part_text(value: float, neutral: bool) -> str:
     return f"{value:+.4f}" if abs(value) >= 5e-5 else f"{value:+.2e}"
 
 
-def unstable(table: pd.DataFrame) -> np.ndarray:
+def _n_rows(table) -> int:
+    """Rows of a DataFrame or of a mapping of columns (name -> one value per row)."""
+    return len(table) if hasattr(table, "columns") else len(next(iter(table.values()), ()))
+
+
+def _flags(table, name: str, missing: bool) -> np.ndarray:
+    """A column of truth values, missing ones (NaN, None, NA) and a missing column as `missing`."""
+    if name not in table:
+        return np.full(_n_rows(table), missing)
+    out = []
+    for v in np.asarray(table[name], dtype=object):
+        try:
+            out.append(missing if v is None or (isinstance(v, float) and v != v) else bool(v))
+        except TypeError:                     # pandas' NA
+            out.append(missing)
+    return np.array(out, bool)
+
+
+def unstable(table) -> np.ndarray:
     """Which rows of a modes (or sweep) table are unstable: real part > 0 and not neutral.
 
     Parameters
     ----------
-    table : pandas.DataFrame
-        With ``real_part`` and, when known, ``neutral``.
+    table : pandas.DataFrame or mapping
+        With ``real_part`` and, when known, ``neutral``: a table or its
+        columns (name -> values, as
+        :attr:`tefcore.linear.stability.StabilityResult.columns`).
 
     Returns
     -------
     numpy.ndarray of bool
     """
-    real = table["real_part"].to_numpy(float)
-    neutral = (table["neutral"].fillna(False).to_numpy(bool) if "neutral" in table
-               else np.zeros(len(table), bool))
+    real = np.asarray(table["real_part"], float)
     with np.errstate(invalid="ignore"):
-        return (real > 0) & ~neutral
+        return (real > 0) & ~_flags(table, "neutral", False)
 
 
-def flutter_row(table: pd.DataFrame):
+def _flutter_position(table):
+    """Position of the point's flutter root when it is unstable, else None."""
+    if "flutter_root" not in table:
+        return None
+    mask = _flags(table, "flutter_root", False) & unstable(table)
+    return int(np.flatnonzero(mask)[0]) if mask.any() else None
+
+
+def flutter_row(table):
     """Index label of the point's flutter root when it is unstable, else None.
 
     Parameters
     ----------
-    table : pandas.DataFrame
-        A modes table with ``flutter_root`` (:func:`tefcore.modes.roles.name_roots`).
+    table : pandas.DataFrame or mapping
+        A modes table with ``flutter_root`` (:func:`tefcore.modes.roles.name_roots`),
+        or its columns (then the row's position is returned).
 
     Returns
     -------
     object or None
     """
-    if "flutter_root" not in table:
-        return None
-    mask = table["flutter_root"].fillna(False).to_numpy(bool) & unstable(table)
-    return table.index[mask][0] if mask.any() else None
+    pos = _flutter_position(table)
+    if pos is None or not hasattr(table, "index"):
+        return pos
+    return table.index[pos]
 
 
-def _notes(table: pd.DataFrame) -> list[str]:
-    row = flutter_row(table)
+def _notes(table) -> list[str]:
+    row = _flutter_position(table)
     bad = unstable(table)
-    certain = (table["identity_certain"].fillna(True).to_numpy(bool)
-               if "identity_certain" in table else np.ones(len(table), bool))
+    certain = _flags(table, "identity_certain", True)
     out = []
-    for i, idx in enumerate(table.index):
-        marks = ["FLUTTER ROOT" if idx == row else "UNSTABLE" if bad[i] else ""]
+    for i in range(_n_rows(table)):
+        marks = ["FLUTTER ROOT" if i == row else "UNSTABLE" if bad[i] else ""]
         marks += [] if certain[i] else [UNCERTAIN]
         out.append(", ".join(m for m in marks if m))
     return out
@@ -182,7 +211,7 @@ def _layout(columns: list[tuple[str, list[str], str]]) -> list[str]:
             for row in rows]
 
 
-def modes_text(table: pd.DataFrame) -> str:
+def modes_text(table) -> str:
     """The modes table as ``tefcore stability`` prints it, at most :data:`WIDTH` wide.
 
     One row per root: ``root`` (its name, the uncoupled mode it continues
@@ -195,18 +224,18 @@ def modes_text(table: pd.DataFrame) -> str:
 
     Parameters
     ----------
-    table : pandas.DataFrame
-        :attr:`tefcore.linear.stability.StabilityResult.modes`.
+    table : pandas.DataFrame or mapping
+        :attr:`tefcore.linear.stability.StabilityResult.modes`, or its
+        ``columns`` (the command prints these: no pandas needed).
 
     Returns
     -------
     str
     """
-    neutral = (table["neutral"].fillna(False).to_numpy(bool) if "neutral" in table
-               else np.zeros(len(table), bool))
-    names = table["label"].astype(str).tolist()
-    carries = (["" if d == n else d for d, n in zip(table["dominant"].astype(str), names,
-                                                     strict=True)]
+    neutral = _flags(table, "neutral", False)
+    names = [str(x) for x in table["label"]]
+    carries = (["" if str(d) == n else str(d) for d, n in zip(table["dominant"], names,
+                                                               strict=True)]
                if "dominant" in table else [])
     columns = [("root", names, "<"),
                ("freq /rev", [f"{v:.4f}" for v in table["frequency_per_rev"]], ">"),
@@ -223,21 +252,20 @@ def modes_text(table: pd.DataFrame) -> str:
     return "\n".join(lines)
 
 
-def legend(table: pd.DataFrame) -> list[str]:
+def legend(table) -> list[str]:
     """The legend lines under :func:`modes_text`: :data:`LEGEND`, and :data:`UNCERTAIN_LEGEND`
     when a root's name is uncertain.
 
     Parameters
     ----------
-    table : pandas.DataFrame
-        The modes table.
+    table : pandas.DataFrame or mapping
+        The modes table, or its columns.
 
     Returns
     -------
     list of str
     """
-    uncertain = ("identity_certain" in table
-                 and not table["identity_certain"].fillna(True).astype(bool).all())
+    uncertain = "identity_certain" in table and not _flags(table, "identity_certain", True).all()
     return [LEGEND] + ([UNCERTAIN_LEGEND] if uncertain else [])
 
 
@@ -270,13 +298,13 @@ def trim_lines(trim: dict) -> list[str]:
     return lines
 
 
-def flutter_text(table: pd.DataFrame) -> str | None:
+def flutter_text(table) -> str | None:
     """One sentence on the point's flutter root, or None without a flap.
 
     Parameters
     ----------
-    table : pandas.DataFrame
-        A modes table with ``flutter_root``.
+    table : pandas.DataFrame or mapping
+        A modes table with ``flutter_root``, or its columns.
 
     Returns
     -------
@@ -285,19 +313,23 @@ def flutter_text(table: pd.DataFrame) -> str | None:
         when it is unstable; else which flap-induced root is least stable and
         that it is stable (or neutral).
     """
-    row = flutter_row(table)
-    if row is not None:
-        r = table.loc[row]
-        return wrap(f"flutter root: {r['label']} at {r['real_part']:+.3f} /rev (continues from "
-                    f"{base_name(r['label'])}), frequency {r['frequency_per_rev']:.3f} /rev")
-    marked = table[table["flutter_root"].fillna(False).astype(bool)] \
-        if "flutter_root" in table else table.iloc[0:0]
-    if marked.empty:
+    def value(name, pos):
+        return np.asarray(table[name], dtype=object)[pos]
+
+    pos = _flutter_position(table)
+    if pos is not None:
+        label = value("label", pos)
+        return wrap(f"flutter root: {label} at {value('real_part', pos):+.3f} /rev (continues "
+                    f"from {base_name(label)}), frequency {value('frequency_per_rev', pos):.3f}"
+                    " /rev")
+    marked = np.flatnonzero(_flags(table, "flutter_root", False))
+    if not marked.size:
         return None
-    r = marked.iloc[0]
-    state = ("neutral (its real part within its error)" if bool(r.get("neutral", False))
-             else f"stable ({r['real_part']:+.4f} /rev)")
-    return wrap(f"no flutter root: the least stable flap-induced root, {r['label']}, is {state}")
+    pos = int(marked[0])
+    state = ("neutral (its real part within its error)" if _flags(table, "neutral", False)[pos]
+             else f"stable ({value('real_part', pos):+.4f} /rev)")
+    return wrap(f"no flutter root: the least stable flap-induced root, {value('label', pos)}, "
+                f"is {state}")
 
 
 def mechanism_choice(result, table: pd.DataFrame) -> str:

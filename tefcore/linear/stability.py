@@ -15,10 +15,10 @@ modes can be followed along sweeps (:mod:`tefcore.modes.tracking`).
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 import numpy as np
-import pandas as pd
 
 from ..aero.c81.range_summary import summarised_range_warnings
 from ..assignment import linear_sum_assignment
@@ -31,6 +31,9 @@ from ..modes.labels import coordinate_shares, label_modes, tracking_shapes
 from ..modes.roles import named_columns
 from ..runtime import blas_limit
 from ..trimming.trim import TrimResult, initial_collective, trim
+
+if TYPE_CHECKING:
+    import pandas as pd
 
 __all__ = ["REMODE_DEG", "SHARE_KINDS", "StabilityResult", "linear_system", "linearize",
            "periodic_state_matrix", "stability", "state_matrix"]
@@ -82,6 +85,9 @@ class StabilityResult:
 
     Attributes
     ----------
+    columns : dict
+        The modes table as its columns (name -> one value per mode, in the
+        table's order); :attr:`modes` is the table.
     modes : DataFrame
         One row per mode, see :func:`stability`.
     eigenvectors : ndarray, shape (2 n, n_modes)
@@ -115,7 +121,7 @@ class StabilityResult:
         share_TEF``.  They take no mode label and are not in ``modes``.
     """
 
-    modes: pd.DataFrame
+    columns: dict
     eigenvectors: np.ndarray
     trim: dict
     trim_result: TrimResult
@@ -124,6 +130,27 @@ class StabilityResult:
     system: SecondOrderSystem | None = None
     aero_modes: pd.DataFrame | None = None
     identity: object = None
+    _modes: pd.DataFrame | None = field(default=None, repr=False, compare=False)
+
+    @property
+    def modes(self) -> pd.DataFrame:
+        """The modes table, built from :attr:`columns` when first asked for.
+
+        Built on demand: a command that prints the roots (``tefcore
+        stability``) reads the columns and never imports pandas (0.15 s of
+        its start, measured at stop 35 with ``python -X importtime``).
+        """
+        if self._modes is None:
+            import pandas as pd
+
+            self._modes = pd.DataFrame(self.columns)   # one construction
+        return self._modes
+
+    @modes.setter
+    def modes(self, table: pd.DataFrame) -> None:
+        # a table given replaces the columns too: both say the same
+        self._modes = table
+        self.columns = {c: table[c].to_numpy() for c in table.columns}
 
 
 @blas_limit()
@@ -341,13 +368,12 @@ def _stability_of(model, tr: TrimResult, n_steps: int | None,
                                    final_labels=list(columns["dominant"]), final_shares=frac,
                                    n_steps=n_steps or cfg.model.n_floquet_steps)
         columns = named_columns(columns, continued, frac, model.labels)
-    table = pd.DataFrame(columns)          # one construction, not column by column
     summary = tr.summary()
     summary["reverse_flow_fraction"] = _reverse_flow_fraction(tr)
     if aero_modes is not None:
         summary["aero_state_growth"] = (float(aero_modes["real_part"].max())
                                         if len(aero_modes) else float("nan"))
-    return StabilityResult(modes=table, eigenvectors=keep.eigenvectors, trim=summary,
+    return StabilityResult(columns=columns, eigenvectors=keep.eigenvectors, trim=summary,
                            trim_result=tr, vectors=shapes, periodic=system.periodic,
                            system=system, aero_modes=aero_modes, identity=continued)
 
@@ -425,6 +451,8 @@ def _split_aero_roots(res, model, periodic):
             aero[cand[j]] = True
     wake, inflow = mag[2 * n:2 * n + nw].sum(axis=0), mag[2 * n + nw:].sum(axis=0)
     flap = (mag[n - 1] + mag[2 * n - 1]) / total if model.has_flap else np.zeros(total.size)
+    import pandas as pd  # only with aerodynamic states: a point without them needs no pandas
+
     table = pd.DataFrame({
         "kind": np.where(wake >= inflow, "wake", "inflow")[aero],
         "frequency_per_rev": res.frequencies[aero], "real_part": res.damping_rates[aero],

@@ -22,10 +22,10 @@ mode", a definition that depends on no label, participation or sweep.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import InitVar, dataclass, field
+from typing import TYPE_CHECKING, NamedTuple
 
 import numpy as np
-import pandas as pd
 
 from ..floquet import floquet_motions
 from ..floquet.second_order import STATE_MIN_RATE, SecondOrderSystem, periodic_modes
@@ -34,10 +34,13 @@ from .labels import coordinate_shares, label_modes, tracking_shapes, trajectory_
 from .march import FLAP_ACTIVE, March, base_name, compact_basis, flap_share, lock_matrix
 from .tracking import follow_root
 
+if TYPE_CHECKING:
+    import pandas as pd
+
 __all__ = ["FIRST_STEPS", "FLAP_ACTIVE", "MIN_STEP", "PATH_MIN_ROOT", "PATH_RTOL",
-           "ContinuedRoots", "HomotopySamples", "continue_roots", "coupling_homotopy",
-           "path_shapes", "positive_roots", "root_solver", "tef_root", "visible_roots",
-           "zero_coupling_names"]
+           "ContinuedRoots", "HomotopySamples", "MeetingRows", "continue_roots",
+           "coupling_homotopy", "path_shapes", "positive_roots", "root_solver", "tef_root",
+           "visible_roots", "zero_coupling_names"]
 
 #: Equal steps of ``eps`` the continuation starts with (each step's end is one
 #: eigenproblem); a step whose matches are not all decided is halved.
@@ -510,11 +513,61 @@ class ContinuedRoots:
     origin: list
     certain: np.ndarray
     uncoupled: np.ndarray
-    meetings: pd.DataFrame
+    meetings: InitVar[object]
     n_solves: int
     flap_motion: np.ndarray
     frequency: np.ndarray
     by_path: np.ndarray | None = None
+    _meetings: object = field(init=False, repr=False, compare=False)
+
+    def __post_init__(self, meetings):
+        self._meetings = meetings
+
+    def meeting_origins(self) -> list[str]:
+        """The ``origins`` of :attr:`meetings` (``"A / B"``), without building the table.
+
+        Returns
+        -------
+        list of str
+        """
+        m = self._meetings
+        return list(m.data.get("origins", [])) if isinstance(m, MeetingRows) \
+            else [str(x) for x in m["origins"]]
+
+
+class MeetingRows(NamedTuple):
+    """:attr:`ContinuedRoots.meetings` before it is asked for: its columns and their
+    values (a point's naming needs no pandas; the table is built on first use).
+
+    Parameters
+    ----------
+    columns : list of str
+        The table's columns, in order (those of an empty table too).
+    data : dict
+        Column -> list of values, one per meeting; empty for no meeting.
+    """
+
+    columns: list
+    data: dict
+
+
+def _meetings_table(self) -> pd.DataFrame:
+    m = self._meetings
+    if isinstance(m, MeetingRows):
+        import pandas as pd
+
+        m = (pd.DataFrame(m.data) if m.data.get(m.columns[0])
+             else pd.DataFrame([], columns=m.columns))
+        self._meetings = m
+    return m
+
+
+# a property set after the class is made: ``meetings`` is also the
+# constructor's argument (an InitVar), which a property in the class body
+# would turn into a default
+ContinuedRoots.meetings = property(_meetings_table, doc=(
+    "pandas.DataFrame: where two paths met (``eps``, ``origins``, ``gap``, ``mac``), "
+    "built on first use."))
 
 
 def continue_roots(system: SecondOrderSystem, labels, final=None, *, basis=None,
@@ -700,7 +753,7 @@ def _own_paths(origin, paths, certain, eig, periodic):
 _STRUCTURAL = 0.5
 
 
-def _renamed_meetings(march, names) -> pd.DataFrame:
+def _renamed_meetings(march, names) -> MeetingRows:
     """The march's meetings between the roots the two paths end on, by their final names.
 
     A path that passed a flap-free root (not refined, put right by
@@ -717,11 +770,11 @@ def _renamed_meetings(march, names) -> pd.DataFrame:
         if a != b and pair not in rows:
             rows[pair] = (m["eps"], pair, m["gap"], m["mac"])
     # from columns, not records: a third of the cost (0.2 against 0.7 ms a point)
+    columns = ["eps", "origins", "gap", "mac"]
     if not rows:
-        return pd.DataFrame([], columns=["eps", "origins", "gap", "mac"])
-    eps, origins, gap, mac = zip(*rows.values(), strict=True)
-    return pd.DataFrame({"eps": list(eps), "origins": list(origins), "gap": list(gap),
-                         "mac": list(mac)})
+        return MeetingRows(columns, {})
+    return MeetingRows(columns, dict(zip(columns, map(list, zip(*rows.values(), strict=True)),
+                                         strict=True)))
 
 
 def _by_participation(res0, n, labels, basis, final, final_labels) -> ContinuedRoots:
@@ -750,7 +803,7 @@ def _by_participation(res0, n, labels, basis, final, final_labels) -> ContinuedR
                           for x in names], complex)
     return ContinuedRoots(origin=names, certain=np.zeros(len(names), bool),
                           uncoupled=uncoupled,
-                          meetings=pd.DataFrame(columns=["eps", "origins"]), n_solves=1,
+                          meetings=MeetingRows(["eps", "origins"], {}), n_solves=1,
                           flap_motion=flap_share(tracking_shapes(basis, final, n),
                                                   basis.shape[0]),
                           frequency=np.full(len(names), np.nan),

@@ -51,11 +51,14 @@ array([[0.  , 0.99],
 from __future__ import annotations
 
 from collections.abc import Mapping
+from typing import TYPE_CHECKING
 
 import numpy as np
-import pandas as pd
 
 from ..assignment import linear_sum_assignment
+
+if TYPE_CHECKING:
+    import pandas as pd
 
 __all__ = ["CLEAR_COST", "COALESCED_DISTANCE", "COALESCED_MAC", "LOCK_TOL", "MARGIN",
            "MODE_COLUMNS", "as_point", "continuous_frequency", "decide", "eigen_distance",
@@ -543,6 +546,8 @@ def as_point(p):
     ValueError
         For missing columns or vectors that do not match the modes.
     """
+    import pandas as pd
+
     periodic = False
     if isinstance(p, pd.DataFrame):
         modes, vecs = p, None

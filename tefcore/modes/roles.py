@@ -40,11 +40,15 @@ lag root is unstable either way, the flap changing little: not the flap's.
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
-import pandas as pd
 
 from .continuation import FLAP_ACTIVE
 from .march import base_name
+
+if TYPE_CHECKING:
+    import pandas as pd
 
 __all__ = ["FLUTTER_PARTICIPATION", "FLUTTER_ROOT", "RATE_RESOLUTION", "ModeNotFound",
            "assign_roles", "base_name", "exceptional_points", "flap_induced", "flutter_root",
@@ -182,6 +186,8 @@ def name_roots(table: pd.DataFrame, continued, shares=None, coordinates=None) ->
         name left, a lock's second root), ``flap_induced`` and
         ``flutter_root`` (one row at most).
     """
+    import pandas as pd
+
     named = named_columns({c: table[c].to_numpy() for c in table.columns}, continued,
                           shares, coordinates)
     return pd.DataFrame(named, index=table.index)
@@ -235,7 +241,11 @@ def named_columns(columns: dict, continued, shares=None, coordinates=None) -> di
                                              if base_name(o) in names else np.nan
                                              for j, o in enumerate(origin)], float)
     met: dict = {}
-    for pair in continued.meetings["origins"]:
+    # ContinuedRoots names them without building its meetings table; any other
+    # object with a ``meetings`` table will do
+    pairs = (continued.meeting_origins() if hasattr(continued, "meeting_origins")
+             else [str(x) for x in continued.meetings["origins"]])
+    for pair in pairs:
         a, b = pair.split(" / ")
         met.setdefault(a, []).append(b)
         met.setdefault(b, []).append(a)
@@ -467,6 +477,8 @@ def exceptional_points(table: pd.DataFrame, x: str = "x") -> pd.DataFrame:
         frequencies at zero coupling there and how near they lie
         (:func:`uncoupled_relation`; empty where the table does not say).
     """
+    import pandas as pd
+
     rows = [{"modes": " / ".join(sorted((a, b))), "x_low": lo, "x_high": hi,
              "kind": "names exchange"} for lo, hi, a, b in _switches(table, x)]
     if "meets" in table:
@@ -586,6 +598,8 @@ def undecided_steps(table: pd.DataFrame, x: str = "x") -> pd.DataFrame:
     >>> undecided_steps(pd.DataFrame(rows))[["modes", "x_low", "x_high"]].values.tolist()
     [['TEF / blade flap 3', 0.0, 1.0]]
     """
+    import pandas as pd
+
     rows = []
     if "identity_certain" in table:
         rows = [{"modes": " / ".join(sorted((a, b))), "x_low": lo, "x_high": hi,
@@ -596,6 +610,8 @@ def undecided_steps(table: pd.DataFrame, x: str = "x") -> pd.DataFrame:
 
 def _merged(out: pd.DataFrame) -> pd.DataFrame:
     """Overlapping intervals of one pair and kind merged, sorted by ``x_low``."""
+    import pandas as pd
+
     if out.empty:
         return out
     merged = []

@@ -92,9 +92,9 @@ from __future__ import annotations
 
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 import numpy as np
-import pandas as pd
 
 from ..assignment import linear_sum_assignment
 from .matching import (
@@ -110,6 +110,9 @@ from .matching import (
     plane_mac,
     unwrap_frequency,
 )
+
+if TYPE_CHECKING:
+    import pandas as pd
 
 __all__ = ["EXCHANGE_MAC", "FollowResult", "ambiguous_steps", "follow_branch", "follow_root",
            "label_changes", "track_modes"]
@@ -183,6 +186,8 @@ def track_modes(points: Sequence, values=None, *, predict: bool = True) -> pd.Da
         pure function of the points and values: the same data give the same
         table.
     """
+    import pandas as pd
+
     if values is None:
         values = np.arange(len(points), dtype=float)
     values = list(values)
@@ -473,6 +478,8 @@ def follow_branch(tracked: pd.DataFrame, points: Sequence, start: tuple[int, int
     >>> follow_branch(t, pts, (0, 0)).values.tolist()
     [[0, 0, 0, False, True], [1, 0, 0, False, True], [2, 0, 1, True, False]]
     """
+    import pandas as pd
+
     if values is None:
         values = np.arange(len(points), dtype=float)
     step0, mode0 = (int(v) for v in start)
@@ -566,6 +573,8 @@ def label_changes(tracked: pd.DataFrame) -> pd.DataFrame:
         ``row`` (index in `tracked` where the new label first appears),
         ``from_label`` and ``to_label``.
     """
+    import pandas as pd
+
     rows = []
     valid = tracked[tracked["track"].notna()]
     for track, g in valid.groupby("track", sort=True):
