@@ -529,6 +529,7 @@ def uncoupled_relation(table: pd.DataFrame, modes: str, lo: float, hi: float,
 
     Examples
     --------
+    >>> import pandas as pd
     >>> t = pd.DataFrame({"x": [0.0, 0.0], "label": ["TEF", "blade flap 5"],
     ...                   "frequency_uncoupled": [17.66, 10.71],
     ...                   "frequency_continued": [17.2, 10.9]})
@@ -592,6 +593,7 @@ def undecided_steps(table: pd.DataFrame, x: str = "x") -> pd.DataFrame:
     --------
     Two names exchange tracks between x = 0 and 1, one of them undecided at 1:
 
+    >>> import pandas as pd
     >>> rows = [{"x": x, "track": k, "label": n, "identity_certain": x == 0 or k == 0}
     ...         for x, names in ((0.0, ["TEF", "blade flap 3"]), (1.0, ["blade flap 3", "TEF"]))
     ...         for k, n in enumerate(names)]
