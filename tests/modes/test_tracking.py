@@ -245,3 +245,46 @@ def test_track_table_is_a_pure_function_of_the_points():
     a = track_modes(pts, values=XS)
     b = track_modes([point(x) for x in XS], values=XS)
     pd.testing.assert_frame_equal(a, b)
+
+
+def test_a_resumed_march_is_the_march_from_scratch(monkeypatch):
+    # a sweep's refinement rounds add midpoints; the march resumes after the
+    # points before the first one added (memo) and must give, row for row,
+    # the table of a march from the first point -- also when the new point is
+    # the first, the last, or replaces a result by an equal copy
+    import tefcore.modes.tracking as tr
+
+    xs = list(XS)
+    built = {x: point(x) for x in np.linspace(0.0, 1.0, 41)}
+
+    def pts(values):
+        return [{"modes": built[x][0], "vectors": built[x][1]} for x in values]
+
+    rounds = [xs, sorted(xs + [0.55, 0.65]), sorted(xs + [0.55, 0.65, 0.025]),
+              sorted(xs + [0.55, 0.65, 0.025, 0.975]), sorted(xs + [0.55, 0.65, 0.025, 0.975])]
+    rounds = [[float(x) for x in r] for r in rounds]
+    for r in rounds:
+        for x in r:
+            built.setdefault(x, point(x))
+    memo: dict = {}
+    stepped = []
+    real = tr._track_step
+    monkeypatch.setattr(tr, "_track_step", lambda st, step, *a: stepped.append(step)
+                        or real(st, step, *a))
+    for r in rounds:
+        stepped.clear()
+        resumed = track_modes(pts(r), values=r, memo=memo)
+        pd.testing.assert_frame_equal(resumed, track_modes(pts(r), values=r), check_exact=True)
+        assert_follows_laws(resumed, xs=np.array(r))
+    # the last round's points were all seen: nothing marched again (steps
+    # stepped in the fresh comparison run only)
+    assert stepped == list(range(len(rounds[-1])))
+    # an equal copy of a point's result is not the same result: marched from it
+    memo2: dict = {}
+    track_modes(pts(xs), values=xs, memo=memo2)
+    copies = pts(xs)
+    copies[6] = {"modes": built[xs[6]][0].copy(), "vectors": built[xs[6]][1].copy()}
+    stepped.clear()
+    again = track_modes(copies, values=xs, memo=memo2)
+    assert stepped[:len(xs) - 6] == list(range(6, len(xs)))
+    pd.testing.assert_frame_equal(again, track_modes(pts(xs), values=xs), check_exact=True)
