@@ -142,8 +142,7 @@ def march(system, x0, revs: float, *, rtol: float = DEFAULT_RTOL, rhs=None, even
         raise ValueError(f"revs must be positive, got {revs}")
     x = np.asarray(x0, float).copy()
     if rhs is None:
-        def rhs(psi, y):
-            return system.state_matrix(np.array([psi]))[0] @ y
+        rhs = system.rate_function()
         renormalise = True
     else:
         renormalise = False
