@@ -288,3 +288,53 @@ def test_a_resumed_march_is_the_march_from_scratch(monkeypatch):
     again = track_modes(copies, values=xs, memo=memo2)
     assert stepped[:len(xs) - 6] == list(range(6, len(xs)))
     pd.testing.assert_frame_equal(again, track_modes(pts(xs), values=xs), check_exact=True)
+
+
+def _pair_close_reference(a0, a1, b0, b1, periodic):
+    """One pair of _flag_close_passes as a loop computes it (the scalar reference)."""
+    from tefcore.modes.tracking import _unwrap
+
+    if periodic:
+        b0n = _unwrap(b0, a0)
+        sign = 1.0 if np.isclose(b0n.imag % 1.0, b0.imag % 1.0) else -1.0
+        b1 = complex(b1.real, sign * b1.imag + (b0n.imag - sign * b0.imag))
+        b0 = b0n
+    pts = np.array([a0, a1, b0, b1])
+    sc = (0.5 + 0.5 * np.abs(pts.real).mean()) + 1j * (
+        0.5 if periodic else 1.0 + 0.5 * np.abs(pts.imag).mean())
+    x0a, x1a, x0b, x1b = (z.real / sc.real + 1j * z.imag / sc.imag for z in pts)
+    d0, dd = x0a - x0b, (x1a - x0a) - (x1b - x0b)
+    t = 0.0 if dd == 0 else float(np.clip(-(d0 * np.conj(dd)).real / abs(dd) ** 2, 0.0, 1.0))
+    return abs(d0 + t * dd) < max(abs(x1a - x0a), abs(x1b - x0b))
+
+
+@pytest.mark.parametrize("periodic", [False, True])
+def test_close_passes_of_all_pairs_at_once_are_the_pairs_one_by_one(periodic):
+    # the vectorised test of two roots passing close in a step gives, pair for
+    # pair, the flags of the scalar arithmetic it replaced -- on random steps,
+    # crossings built to pass close, Floquet frequencies mirrored, shifted by
+    # whole /rev and sitting on a k/2 lock, and a root that does not move
+    from tefcore.modes.tracking import _passes_close
+
+    rng = np.random.default_rng(11)
+    n = 4000
+    a0 = rng.normal(-1, 1, n) + 1j * rng.uniform(0, 20, n)
+    a1 = a0 + rng.normal(0, 0.3, n) + 1j * rng.normal(0, 0.5, n)
+    b0 = a1 + rng.normal(0, 0.3, n) + 1j * rng.normal(0, 0.5, n)     # starts near a's end
+    b1 = a0 + rng.normal(0, 0.3, n) + 1j * rng.normal(0, 0.5, n)     # ... and ends near its start
+    apart = rng.random(n) < 0.5                     # half: a root elsewhere, moving a little
+    b0 = np.where(apart, rng.normal(-1, 1, n) + 1j * rng.uniform(0, 20, n), b0)
+    b1 = np.where(apart, b0 + rng.normal(0, 0.3, n) + 1j * rng.normal(0, 0.5, n), b1)
+    if periodic:
+        k = rng.integers(-3, 4, n)
+        b0 = np.where(rng.random(n) < 0.3, b0.real - 1j * b0.imag, b0) + 1j * k
+        lock = rng.random(n) < 0.1
+        b0 = np.where(lock, b0.real + 0.5j * np.round(2 * b0.imag), b0)
+        a0 = np.where(rng.random(n) < 0.1, a0.real + 0.5j * np.round(2 * a0.imag), a0)
+    b1[:50] = b0[:50]                               # b does not move
+    a1[50:100] = a0[50:100] + (b1[50:100] - b0[50:100])   # parallel: dd = 0
+    got = _passes_close(a0, a1, b0, b1, periodic)
+    want = np.array([_pair_close_reference(*z, periodic) for z in zip(a0, a1, b0, b1,
+                                                                       strict=True)])
+    assert got.dtype == bool and min(want.sum(), (~want).sum()) >= 100   # both drawn
+    np.testing.assert_array_equal(got, want)
