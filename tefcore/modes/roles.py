@@ -362,12 +362,15 @@ def _moves(table: pd.DataFrame, x: str, kind) -> list:
     xs_all = t[x].to_numpy(float)
     at = {(float(v), n): i for i, (v, n) in enumerate(zip(xs_all, base, strict=True))}
     cols = {c: t[c].to_numpy() for c in _ROW_COLUMNS if c in t}
-    track = t["track"].to_numpy()
-    order = np.argsort(track, kind="stable")
-    bounds = np.flatnonzero(np.diff(track[order])) + 1
-    # the tracks in the order they first appear (as groupby(sort=False) gave them)
-    groups = sorted(np.split(order, bounds), key=lambda g: g[0])
-    for g in groups:
+    import pandas as pd
+
+    # each track's rows, the tracks in the order they first appear and rows
+    # without a track left out (as groupby("track", sort=False) gave them)
+    groups: dict = {}
+    for i, tr in enumerate(t["track"].to_numpy()):
+        if not pd.isna(tr):
+            groups.setdefault(tr, []).append(i)
+    for g in groups.values():
         names = np.array([base[i] for i in g], dtype=object)
         xs = xs_all[g]
         for i in np.flatnonzero(names[1:] != names[:-1]):

@@ -232,3 +232,62 @@ def test_warm_starts_take_every_trim_input_from_their_own_point(base, param, xs)
     if param == "flight.collective":
         got = np.deg2rad(warm.groupby("value_si")["trim_collective_deg"].first().to_numpy())
         assert np.allclose(got, sorted(xs), atol=1e-12)
+
+
+def _moves_reference(table, x, kind):
+    """The moves of names along tracks as pandas groups them (the reference
+    :func:`tefcore.modes.roles._moves` reads from columns)."""
+    from tefcore.modes.march import base_name
+    from tefcore.modes.roles import _ROW_COLUMNS
+
+    out = []
+    t = table.sort_values([x, "track"], kind="stable")
+    base = t["label"].map(base_name)
+    at = {(float(v), n): r for v, n, r in zip(t[x], base, t.index, strict=True)}
+    for _, g in t.groupby("track", sort=False):
+        names = g["label"].map(base_name).to_numpy()
+        xs = g[x].to_numpy(float)
+        for i in np.flatnonzero(names[1:] != names[:-1]):
+            a, b = names[i], names[i + 1]
+            rows = [at.get((xs[i], a)), at.get((xs[i], b)), at.get((xs[i + 1], a)),
+                    at.get((xs[i + 1], b))]
+            if None in rows:
+                continue
+            sel = t.loc[rows]
+            if kind({c: sel[c].to_numpy() for c in _ROW_COLUMNS if c in sel}):
+                out.append((xs[i], xs[i + 1], a, b))
+    return out
+
+
+@pytest.mark.parametrize("track_kind", ["int", "str"])
+def test_name_moves_read_from_columns_are_the_moves_of_the_grouped_table(track_kind):
+    # exchanges of names along tracks (exceptional or undecided), found from the
+    # table's columns read once, are those of the table grouped by track:
+    # random names swapping between two tracks, tracks as numbers or strings,
+    # rows without a track (left out as groupby leaves them), missing flags
+    from tefcore.modes.roles import _is_exceptional, _is_undecided, _moves
+
+    rng = np.random.default_rng(5)
+    rows = []
+    names = ["TEF", "blade flap 5", "blade torsion 2 (locked)", "blade flap 1"]
+    for j, x in enumerate(np.round(np.linspace(0.0, 1.0, 30), 6)):
+        perm = rng.permutation(4) if rng.random() < 0.4 else np.arange(4)
+        for tr in range(4):
+            rows.append({"x": x, "track": tr, "label": names[perm[tr]],
+                         "identity_certain": [True, False, None, np.nan][rng.integers(0, 4)]
+                         if rng.random() < 0.3 else True,
+                         "named_by_path": bool(rng.random() < 0.9),
+                         "flap_motion": rng.uniform(0, 0.05),
+                         "frequency_uncoupled": rng.uniform(10, 18),
+                         "meets": ["", "TEF", "blade flap 5, TEF", np.nan][rng.integers(0, 4)]})
+        if j % 7 == 3:
+            rows.append({**rows[-1], "track": np.nan, "label": "blade flap 1"})
+    table = pd.DataFrame(rows).sample(frac=1.0, random_state=1).reset_index(drop=True)
+    if track_kind == "str":
+        table["track"] = [t if pd.isna(t) else f"track {int(t)}" for t in table["track"]]
+    found = []
+    for kind in (_is_exceptional, _is_undecided):
+        got = _moves(table, "x", kind)
+        assert got == _moves_reference(table, "x", kind)
+        found.append(len(got))
+    assert min(found) > 0                                 # both kinds of move drawn
