@@ -100,6 +100,7 @@ def compare_models(cfg=None, options=None, *, onset: bool = True,
     """
     from ..linear.mechanism import TERMS, mechanism
     from ..linear.stability import stability
+    from ..sweeps.store import config_hash
     from .sensitivity import HEADLINES, flutter_root, headline_results
 
     cfg = cfg or load_config("mdart")
@@ -109,12 +110,14 @@ def compare_models(cfg=None, options=None, *, onset: bool = True,
     heads, roots, columns, details = [], [], {}, {}
     for name, over in options.items():
         c = cfg.with_overrides(over)
-        h = headline_results(c, headlines=wanted)
+        solved: dict = {}     # the growth headlines' points: the roots' points below
+        h = headline_results(c, headlines=wanted, solved=solved)
         bad = h.loc[h["status"] != "ok", "status"]
         heads.append({"option": name, **dict(zip(h["headline"], h["value"], strict=True)),
                       "status": "; ".join(bad) if len(bad) else "ok"})
         for mu in (0.0, 0.3):
-            res = stability(c.with_overrides({**_BASELINE, "flight.advance_ratio": mu}))
+            point = c.with_overrides({**_BASELINE, "flight.advance_ratio": mu})
+            res = solved.get(config_hash(point)) or stability(point)
             row = flutter_root(res)
             roots.append({"option": name, "advance_ratio": mu, "label": row["label"],
                           "real_part": row["real_part"],

@@ -222,7 +222,8 @@ def _onset(cfg, h: Headline, identify, xtol: float) -> tuple[float, str]:
 
 
 def headline_results(cfg=None, *, identify: Callable = flutter_root,
-                     headlines=HEADLINES, xtol: float = 1e-4) -> pd.DataFrame:
+                     headlines=HEADLINES, xtol: float = 1e-4,
+                     solved: dict | None = None) -> pd.DataFrame:
     """The headline results of one configuration.
 
     Parameters
@@ -237,6 +238,11 @@ def headline_results(cfg=None, *, identify: Callable = flutter_root,
     xtol : float
         Absolute tolerance of the onsets in the swept field (1e-4: far below the
         0.01-0.05 steps of the paper's sweeps).
+    solved : dict, optional
+        Filled with the stability result of each growth-rate headline's point
+        (solved from a cold start, as :func:`tefcore.linear.stability.stability`
+        alone would), keyed by :func:`tefcore.sweeps.store.config_hash` of its
+        configuration: for a caller that needs the same points again.
 
     Returns
     -------
@@ -252,7 +258,11 @@ def headline_results(cfg=None, *, identify: Callable = flutter_root,
         if h.is_onset:
             value, status = _onset(c, h, identify, xtol)
         else:
-            value, status = _real_part(c, identify)[0], "ok"
+            (value, res), status = _real_part(c, identify), "ok"
+            if solved is not None:
+                from ..sweeps.store import config_hash
+
+                solved[config_hash(c)] = res
         rows.append({"headline": h.name, "value": value, "unit": h.unit, "status": status})
     return pd.DataFrame(rows)
 
