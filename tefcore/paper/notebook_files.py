@@ -55,6 +55,9 @@ NOTEBOOK_SECONDS = {
     "08_assumptions": 40.2,
     "09_design_maps": 13.8,
     "10_unsteady": 64.8,
+    # missing until stop 36 (it ran last, 21 s); 10.7 s once its GIFs drew
+    # their text once (tefcore.timedomain.animation), measured at stop 36
+    "11_watch_it_flutter": 10.7,
 }
 
 #: Which paper figures each notebook reproduces.
