@@ -109,9 +109,11 @@ def test_the_shed_wake_lift_trusts_its_deep_roots_less():
 
 def test_rate_function_is_the_state_matrix_times_the_state():
     # the time march's right-hand side, A(psi) x without building A: equal to
-    # state_matrix([psi])[0] @ x to round-off, for periodic, constant and
-    # descriptor (first-order state) systems; 1e-13 relative: two solves of
-    # well-conditioned 3 x 3 mass matrices, a few hundred ulps at most
+    # state_matrix([psi])[0] @ x to round-off for a periodic system (the new
+    # arithmetic); constant and descriptor (first-order state) systems go
+    # through state_matrix itself, checked here for the dispatch only.  1e-13
+    # relative: two solves of well-conditioned 3 x 3 mass matrices, a few
+    # hundred ulps at most
     rng = np.random.default_rng(7)
     psi = 2 * np.pi * np.arange(9) / 9
     base = np.array([[2.0, 0.3, 0.0], [0.3, 1.5, 0.2], [0.0, 0.2, 1.0]])

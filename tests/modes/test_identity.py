@@ -291,3 +291,17 @@ def test_name_moves_read_from_columns_are_the_moves_of_the_grouped_table(track_k
         assert got == _moves_reference(table, "x", kind)
         found.append(len(got))
     assert min(found) > 0                                 # both kinds of move drawn
+
+
+def test_flags_read_missing_as_false_as_pandas_fillna_does():
+    # the name-move predicates read identity_certain / named_by_path from
+    # column values; missing (None, NaN, pd.NA) is False, as
+    # Series.fillna(False).astype(bool) made it
+    from tefcore.modes.roles import _flags
+
+    for values in ([True, False, None, np.nan], [1.0, 0.0, np.nan, 2.0],
+                   pd.array([True, None, False, True], dtype="boolean"),
+                   np.array([True, False, True, False])):
+        series = pd.Series(values)
+        want = series.astype(object).fillna(False).astype(bool).to_numpy()
+        np.testing.assert_array_equal(_flags(series.to_numpy()), want)

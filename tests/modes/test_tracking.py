@@ -333,8 +333,33 @@ def test_close_passes_of_all_pairs_at_once_are_the_pairs_one_by_one(periodic):
         a0 = np.where(rng.random(n) < 0.1, a0.real + 0.5j * np.round(2 * a0.imag), a0)
     b1[:50] = b0[:50]                               # b does not move
     a1[50:100] = a0[50:100] + (b1[50:100] - b0[50:100])   # parallel: dd = 0
+    if periodic:
+        # found in review: |dd|^2 as x * x instead of pow(x, 2) moved t by an
+        # ulp and flipped this pair, whose closest approach is within an ulp of
+        # its reach
+        a0[100], a1[100] = -1.6787109375 + 0.1015625j, -1.509765625 + 0.0035856833447920275j
+        b0[100], b1[100] = -2.078125 + 0.0595703125j, -1.771484375 + 0.07487474584479203j
     got = _passes_close(a0, a1, b0, b1, periodic)
     want = np.array([_pair_close_reference(*z, periodic) for z in zip(a0, a1, b0, b1,
                                                                        strict=True)])
     assert got.dtype == bool and min(want.sum(), (~want).sum()) >= 100   # both drawn
     np.testing.assert_array_equal(got, want)
+
+
+def test_a_steps_rows_keep_the_points_dtypes_and_share_no_memory():
+    # the tracked rows are a copy of the point's table with its dtypes; a
+    # column the tracking adds is refused where the point already has it
+    modes = pd.DataFrame({"mode_id": pd.array([0, 1], dtype="Int64"),
+                          "label": pd.Categorical(["A", "B"]),
+                          "frequency_per_rev": [1.0, 2.0], "real_part": [-0.1, -0.2],
+                          "flag": pd.array([True, None], dtype="boolean"),
+                          "note": pd.Series(["x", None], dtype=object)})
+    t = track_modes([modes])
+    assert str(t["mode_id"].dtype) == "Int64" and str(t["flag"].dtype) == "boolean"
+    assert isinstance(t["label_here"].dtype, pd.CategoricalDtype)
+    assert t["note"].dtype == object and t["note"].iloc[1] is None
+    modes.loc[0, "real_part"] = 123.0
+    assert t["real_part"].tolist() == [-0.1, -0.2]
+    for name in ("identity", "step", "frequency_tracked"):
+        with pytest.raises(ValueError, match=f"cannot insert {name}"):
+            track_modes([modes.assign(**{name: 1})])
