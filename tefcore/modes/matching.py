@@ -578,7 +578,7 @@ def as_point(p):
     return modes, vecs, periodic
 
 
-def unwrap_frequency(eig: complex, predicted: complex, periodic: bool) -> float:
+def unwrap_frequency(eig, predicted, periodic: bool):
     """The frequency of a root, in the representation nearest a predicted one.
 
     A Floquet exponent's frequency is known modulo 1/rev and up to its sign
@@ -590,17 +590,18 @@ def unwrap_frequency(eig: complex, predicted: complex, periodic: bool) -> float:
 
     Parameters
     ----------
-    eig : complex
-        The root, ``real_part + i frequency_per_rev`` [/rev].
-    predicted : complex
-        The root expected (its imaginary part: the frequency expected).
+    eig : complex or numpy.ndarray of complex
+        The root, ``real_part + i frequency_per_rev`` [/rev], or roots.
+    predicted : complex or numpy.ndarray of complex
+        The root expected (its imaginary part: the frequency expected), one
+        per root.
     periodic : bool
         Floquet exponent.
 
     Returns
     -------
-    float
-        The frequency [/rev].
+    float or numpy.ndarray
+        The frequency [/rev] (an array for arrays of roots).
 
     Examples
     --------
@@ -610,13 +611,12 @@ def unwrap_frequency(eig: complex, predicted: complex, periodic: bool) -> float:
     >>> unwrap_frequency(-0.5 + 0.32j, -0.5 + 20.7j, True)
     20.68
     """
-    f, p = eig.imag, predicted.imag
-    if not periodic:
-        return float(f)
-    up, down = f + round(p - f), -f + round(p + f)
-    if abs(2 * p - round(2 * p)) <= 2 * LOCK_TOL:
-        return float(up)
-    return float(up if abs(up - p) <= abs(down - p) else down)
+    f, p = np.imag(eig), np.imag(predicted)
+    if periodic:
+        up, down = f + np.round(p - f), -f + np.round(p + f)
+        at_lock = np.abs(2 * p - np.round(2 * p)) <= 2 * LOCK_TOL
+        f = np.where(at_lock | (np.abs(up - p) <= np.abs(down - p)), up, down)
+    return float(f) if np.ndim(f) == 0 else np.asarray(f, float)
 
 
 def continuous_frequency(x, f, *, span: int = 3, weight: float = 1.0,

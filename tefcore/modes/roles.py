@@ -356,14 +356,14 @@ def _moves(table: pd.DataFrame, x: str, kind) -> list:
     table took 1.1 ms, 0.6 s of a 10.8 s Fig. 13 sweep's refinement rounds
     (measured at stop 36).
     """
+    import pandas as pd
+
     out = []
     t = table.sort_values([x, "track"], kind="stable")
     base = [base_name(v) for v in t["label"]]
     xs_all = t[x].to_numpy(float)
     at = {(float(v), n): i for i, (v, n) in enumerate(zip(xs_all, base, strict=True))}
     cols = {c: t[c].to_numpy() for c in _ROW_COLUMNS if c in t}
-    import pandas as pd
-
     # each track's rows, the tracks in the order they first appear and rows
     # without a track left out (as groupby("track", sort=False) gave them)
     groups: dict = {}

@@ -215,7 +215,7 @@ def track_modes(points: Sequence, values=None, *, predict: bool = True,
         if memo is not None:
             state.saved.append(state.snapshot())
     if memo is not None:
-        memo.update(keys=keys, saved=state.saved)
+        memo.update(keys=keys, saved=state.saved, frames=state.frames)
     if not state.frames:
         return pd.DataFrame(columns=["step", "track", "label", "label_here", "identity",
                                      "mode_id", "frequency_per_rev", "real_part"])
@@ -235,16 +235,18 @@ class _March:
 
     def snapshot(self):
         # a track's eig list and vec are replaced, never changed in place
-        # (_Track.update): copying the tracks themselves is enough
+        # (_Track.update): copying the tracks themselves is enough; the rows
+        # only grow, so their count says which were there
         return ([_Track(t.label, t.eig, t.vec) for t in self.tracks], list(self.alive),
-                list(self.frames), self.prev)
+                len(self.frames), self.prev)
 
     @classmethod
-    def restored(cls, saved: list):
+    def restored(cls, saved: list, frames: list):
+        """The state after the last of `saved`, the rows so far taken from `frames`."""
         out = cls()
-        tracks, alive, frames, out.prev = saved[-1]
+        tracks, alive, n_frames, out.prev = saved[-1]
         out.tracks = [_Track(t.label, t.eig, t.vec) for t in tracks]
-        out.alive, out.frames, out.saved = list(alive), list(frames), list(saved)
+        out.alive, out.frames, out.saved = list(alive), frames[:n_frames], list(saved)
         return out
 
 
@@ -274,7 +276,7 @@ def _resume(memo, keys):
         n += 1
     if n == 0:
         return _March(), 0
-    return _March.restored(memo["saved"][:n]), n
+    return _March.restored(memo["saved"][:n], memo["frames"]), n
 
 
 def _track_step(state: _March, step: int, p, x, predict: bool) -> None:
@@ -498,10 +500,8 @@ def _passes_close(a0, a1, b0, b1, periodic) -> np.ndarray:
     """Per pair: root a moving a0 -> a1 and root b moving b0 -> b1 (linearly over
     the step) come closer than either moved (:func:`_flag_close_passes`)."""
     if periodic:
-        f, p = b0.imag, a0.imag
-        up, down = f + np.round(p - f), -f + np.round(p + f)
-        at_lock = np.abs(2 * p - np.round(2 * p)) <= 2 * LOCK_TOL
-        b0n = np.where(at_lock | (np.abs(up - p) <= np.abs(down - p)), up, down)
+        # b's start put next to a's, and b's end shifted and signed as its start
+        f, b0n = b0.imag, unwrap_frequency(b0, a0, True)
         sign = np.where(np.isclose(np.mod(b0n, 1.0), np.mod(f, 1.0)), 1.0, -1.0)
         b1 = b1.real + 1j * (sign * b1.imag + (b0n - sign * f))
         b0 = b0.real + 1j * b0n

@@ -295,6 +295,10 @@ def _scene(result, frames_per_rev, dpi, figsize, revs=ANIMATED_REVS):
     moving = [sec["body"], sec["flap"], sec["hinge"], sec["axis"], *side.values(), amp_line,
               clock]
 
+    def stage(i):
+        """The revolution whose work the panel shows at frame ``i``."""
+        return min(int(frames[i] // (2 * np.pi)), len(result.work) - 1) if work else 0
+
     def update(i):
         psi = frames[i]
         _update_section(sec, comp[3, i] / chord, comp[1, i], comp[2, i])
@@ -305,7 +309,7 @@ def _scene(result, frames_per_rev, dpi, figsize, revs=ANIMATED_REVS):
         upto = rev <= psi / (2 * np.pi) + 1e-12
         amp_line.set_data(rev[upto], logv[upto])
         if work:
-            k = min(int(psi // (2 * np.pi)), len(result.work) - 1)
+            k = stage(i)
             for bar, t in zip(work[0], work[1], strict=True):
                 bar.set_width(result.work[t].iloc[k])
             axs[1, 1].set_title(f"work over revolution {k + 1}: sum "
@@ -314,10 +318,6 @@ def _scene(result, frames_per_rev, dpi, figsize, revs=ANIMATED_REVS):
                                 fontsize="small")
         clock.set_text(f"psi = {psi / (2 * np.pi):.2f} rev")
         return moving
-
-    def stage(i):
-        """The revolution whose work the panel shows at frame ``i``."""
-        return min(int(frames[i] // (2 * np.pi)), len(result.work) - 1) if work else 0
 
     update(0)
     return fig, update, moving, len(frames), stage
