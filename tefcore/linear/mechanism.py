@@ -185,7 +185,7 @@ def _summed(parts, psi):
     """``M, C, K`` of the whole system at ``psi``: the terms' matrices added in order."""
     m = c = k = 0
     for p in parts.values():
-        mt, ct, kt = p.matrices(psi)
+        mt, ct, kt = p.matrices(psi, keep=False)
         m, c, k = m + mt, c + ct, k + kt
     return m, c, k
 
@@ -197,8 +197,8 @@ def _term_matrices(parts, psi, periodic):
     reproduction.  A term's matrices are computed once the caller has dropped
     the previous term's (it holds only what it yields)."""
     for t, p in parts.items():
-        mats = p.matrices(psi)
-        dmats = p.matrices(psi, 1) if periodic else None
+        mats = p.matrices(psi, keep=False)
+        dmats = p.matrices(psi, 1, keep=False) if periodic else None
         yield t, mats, dmats
         del mats, dmats
 

@@ -133,3 +133,31 @@ def test_rate_function_is_the_state_matrix_times_the_state():
             want = system.state_matrix(np.array([p]))[0] @ x
             np.testing.assert_allclose(f(p, x), want, rtol=1e-13,
                                        atol=1e-13 * np.abs(want).max())
+
+
+def test_matrices_without_keeping_the_coefficients_are_the_same_values():
+    # keep=False (the terms of an energy balance, evaluated once each) must
+    # give bit for bit what the kept coefficients give -- the same arithmetic
+    # -- and leave nothing on the system; a system that has its coefficients
+    # already keeps them.  The interpolant itself is checked at the samples
+    # (trigonometric interpolation returns them to round-off, 1e-13 relative)
+    psi = 2 * np.pi * np.arange(8) / 8
+    rng = np.random.default_rng(3)
+    m = np.eye(2) + 0.1 * np.cos(psi)[:, None, None] * np.array([[0, 1], [1, 0]])
+    c = 0.05 * rng.standard_normal((8, 2, 2))
+    k = np.array([[3.0, 0.2], [0.2, 5.0]]) + 0.3 * np.sin(2 * psi)[:, None, None]
+    at = np.array([0.1, 1.3, 5.9])
+    fresh = SecondOrderSystem(m, c, k)
+    for d in (0, 1, 2):
+        got = fresh.matrices(at, d, keep=False)
+        assert "_fourier" not in fresh.__dict__
+        want = SecondOrderSystem(m, c, k).matrices(at, d)
+        for g, w in zip(got, want, strict=True):
+            assert np.array_equal(g, w)
+    kept = SecondOrderSystem(m, c, k)
+    kept.matrices(at)
+    coefficients = kept.__dict__["_fourier"]
+    kept.matrices(at, keep=False)
+    assert kept.__dict__["_fourier"] is coefficients
+    for g, w in zip(kept.matrices(psi, keep=False), (m, c, k), strict=True):
+        np.testing.assert_allclose(g, w, rtol=1e-13, atol=1e-13)
