@@ -219,8 +219,8 @@ def track_modes(points: Sequence, values=None, *, predict: bool = True,
     if not state.frames:
         return pd.DataFrame(columns=["step", "track", "label", "label_here", "identity",
                                      "mode_id", "frequency_per_rev", "real_part"])
-    out = pd.concat(state.frames, ignore_index=True)
-    return out.sort_values(["step", "track"], kind="stable", ignore_index=True)
+    return _table(state.frames).sort_values(["step", "track"], kind="stable",
+                                            ignore_index=True)
 
 
 class _March:
@@ -307,7 +307,7 @@ def _track_step(state: _March, step: int, p, x, predict: bool) -> None:
         tracks[t].update(x, tracked_eig[j], col_vec[j])
     state.alive = [int(t) for t in assigned]
     state.prev = (periodic, eig, vecs)
-    state.frames.append(_step_frame(step, modes, tracked_eig, identity, assigned, tracks))
+    state.frames.append(_step_columns(step, modes, tracked_eig, identity, assigned, tracks))
 
 
 def _match_step(tracks, alive, x, predict, eig, vecs, per, prev):
@@ -349,30 +349,65 @@ def _match_step(tracks, alive, x, predict, eig, vecs, per, prev):
     return assigned, identity
 
 
-def _step_frame(step, modes, tracked_eig, identity, assigned, tracks) -> pd.DataFrame:
-    """One point's rows of the tracked table.
+def _step_columns(step, modes, tracked_eig, identity, assigned, tracks) -> tuple:
+    """One point's rows of the tracked table: ``(columns, index)``, the frame
+    :func:`_table` makes of them.
 
-    Built from its columns in one go (the modes table's columns without
-    ``label``, ``frequency_tracked`` after ``frequency_per_rev``), each a
-    copy of the point's (the table never shares memory with it) and of its
-    dtype: 0.5 of the 1.8 ms that dropping a column and inserting six took,
-    measured at stop 36.  A modes table that already has one of the columns
-    the tracking adds is refused, as the insertion refused it.
+    The columns are the modes table's without ``label``, ``frequency_tracked``
+    after ``frequency_per_rev``.  A column of a numeric numpy dtype is copied
+    here (the table never shares memory with the point); any other (text,
+    objects, pandas' own dtypes) is kept as the point's Series, whose dtype
+    the table keeps, and copied when the table is made.  A modes table that
+    already has one of the columns the tracking adds is refused, as the
+    insertion of columns refused it.
     """
-    import pandas as pd
-
     for name in ("frequency_tracked", "identity", "label_here", "track", "step"):
         if name in modes.columns:
             raise ValueError(f"cannot insert {name}, already exists")
-    cols = {"step": step, "track": assigned, "label": [tracks[t].label for t in assigned],
-            "label_here": modes["label"], "identity": identity}
-    for name in modes.columns:
+    n = len(modes)
+    # step, track, label and identity as the frame of one step was given them
+    # (a scalar, arrays, a list of text): their dtypes are inferred
+    cols = {"step": np.full(n, step, dtype=np.int64), "track": np.array(assigned),
+            "label": np.array([tracks[t].label for t in assigned], dtype=object),
+            "label_here": modes["label"], "identity": np.array(identity, dtype=object)}
+    for name, v in modes.items():
         if name == "label":
             continue
-        cols[name] = modes[name]
+        numeric = isinstance(v.dtype, np.dtype) and v.dtype != object
+        cols[name] = v.to_numpy(copy=True) if numeric else v
         if name == "frequency_per_rev":
-            cols["frequency_tracked"] = tracked_eig.imag
-    return pd.DataFrame(cols, index=modes.index, copy=True)
+            cols["frequency_tracked"] = tracked_eig.imag.copy()
+    return cols, modes.index
+
+
+def _table(steps) -> pd.DataFrame:
+    """The rows of all steps (:func:`_step_columns`) in one table, in step order.
+
+    Where every step has rows and the same columns, each column of one kind
+    (array or Series) and one dtype throughout, the columns are joined one by
+    one: arrays concatenated, Series by pandas with their dtype -- the table
+    that concatenating one frame per step gives, without making the frames
+    (0.7 of the 1.7 s the tracking took in Fig. 15's sweep, measured at stop
+    37; tested equal).  Otherwise (a dtype that changes between steps, a point
+    without roots) one frame a step, concatenated as pandas resolves them.
+    """
+    import pandas as pd
+
+    first = steps[0][0]
+    names = list(first)
+
+    def same(c):
+        kind, dtype = type(first[c]), first[c].dtype
+        return all(type(cols[c]) is kind and cols[c].dtype == dtype for cols, _ in steps)
+
+    if all(len(idx) and list(cols) == names for cols, idx in steps) and all(map(same, names)):
+        return pd.DataFrame({c: (np.concatenate([cols[c] for cols, _ in steps])
+                                 if isinstance(first[c], np.ndarray)
+                                 else pd.concat([cols[c] for cols, _ in steps],
+                                                ignore_index=True))
+                             for c in names})
+    frames = [pd.DataFrame(cols, index=idx, copy=True) for cols, idx in steps]
+    return pd.concat(frames, ignore_index=True)
 
 
 def _lock_steps(cost, shape, rows, cols, alive, prev, new, periodic, assigned,

@@ -363,3 +363,44 @@ def test_a_steps_rows_keep_the_points_dtypes_and_share_no_memory():
     for name in ("identity", "step", "frequency_tracked"):
         with pytest.raises(ValueError, match=f"cannot insert {name}"):
             track_modes([modes.assign(**{name: 1})])
+
+
+def _frames_reference(steps):
+    """The tracked table as it was made until stop 37: one frame per step, concatenated."""
+    return pd.concat([pd.DataFrame(cols, index=idx, copy=True) for cols, idx in steps],
+                     ignore_index=True)
+
+
+@pytest.mark.parametrize("case", ["numpy and text", "object column", "pandas dtypes",
+                                  "dtype changes", "a point without roots"])
+def test_the_joined_table_is_the_concatenation_of_one_frame_per_step(case):
+    # _table joins the steps' columns instead of making a frame per step; it
+    # must give what pandas gives for the frames -- values, dtypes (text
+    # inferred from the labels as a frame infers it, a column's own dtype
+    # kept) and index -- and fall back to the frames where a column's dtype
+    # changes between steps or a step has no rows
+    from tefcore.modes.tracking import _step_columns, _table, _Track
+
+    rng = np.random.default_rng(11)
+    tracks = [_Track(label=f"mode {k}") for k in range(6)]
+    steps = []
+    for step in range(7):
+        n = 0 if case == "a point without roots" and step == 3 else int(rng.integers(2, 6))
+        modes = pd.DataFrame({
+            "mode_id": np.arange(n), "label": [f"mode {k}" for k in range(n)],
+            "dominant": pd.Series(rng.choice(["flap", "torsion", None], n), dtype="str"),
+            "frequency_per_rev": rng.random(n), "real_part": -rng.random(n),
+            "neutral": rng.random(n) < 0.5})
+        if case == "object column":
+            modes["note"] = pd.Series([None if k % 2 else "x" for k in range(n)], dtype=object)
+        if case == "pandas dtypes":
+            modes["flag"] = pd.array([True, None, False, True, None][:n], dtype="boolean")
+        if case == "dtype changes":
+            modes["neutral"] = modes["neutral"].astype(float if step % 2 else bool)
+        eig = modes["real_part"].to_numpy() + 1j * modes["frequency_per_rev"].to_numpy()
+        assigned = rng.permutation(6)[:n]
+        identity = np.array(rng.choice(["clear", "start", "ambiguous"], n), dtype=object)
+        steps.append(_step_columns(step, modes, eig + 0.5j, identity, assigned, tracks))
+    got = _table(steps)
+    pd.testing.assert_frame_equal(got, _frames_reference(steps), check_exact=True)
+    assert got["frequency_tracked"].iloc[0] == steps[0][0]["frequency_tracked"][0]
