@@ -365,25 +365,32 @@ def test_a_steps_rows_keep_the_points_dtypes_and_share_no_memory():
             track_modes([modes.assign(**{name: 1})])
 
 
-def _frames_reference(steps):
-    """The tracked table as it was made until stop 37: one frame per step, concatenated."""
-    return pd.concat([pd.DataFrame(cols, index=idx, copy=True) for cols, idx in steps],
-                     ignore_index=True)
+def _step_frame_reference(step, modes, tracked_eig, identity, assigned, tracks):
+    """One step's rows as the tracking made them until stop 37: a frame per step."""
+    cols = {"step": step, "track": assigned, "label": [tracks[t].label for t in assigned],
+            "label_here": modes["label"], "identity": identity}
+    for name in modes.columns:
+        if name == "label":
+            continue
+        cols[name] = modes[name]
+        if name == "frequency_per_rev":
+            cols["frequency_tracked"] = tracked_eig.imag
+    return pd.DataFrame(cols, index=modes.index, copy=True)
 
 
 @pytest.mark.parametrize("case", ["numpy and text", "object column", "pandas dtypes",
                                   "dtype changes", "a point without roots"])
 def test_the_joined_table_is_the_concatenation_of_one_frame_per_step(case):
     # _table joins the steps' columns instead of making a frame per step; it
-    # must give what pandas gives for the frames -- values, dtypes (text
-    # inferred from the labels as a frame infers it, a column's own dtype
-    # kept) and index -- and fall back to the frames where a column's dtype
-    # changes between steps or a step has no rows
-    from tefcore.modes.tracking import _step_columns, _table, _Track
+    # must give what the frames of stop 36 concatenated gave -- values, dtypes
+    # (text inferred from the labels as a frame infers it, a column's own
+    # dtype kept) and index -- also where it falls back to frames (a column's
+    # dtype changes between steps, a step has no rows)
+    from tefcore.modes.tracking import _Track, _step_columns, _table
 
     rng = np.random.default_rng(11)
     tracks = [_Track(label=f"mode {k}") for k in range(6)]
-    steps = []
+    steps, frames = [], []
     for step in range(7):
         n = 0 if case == "a point without roots" and step == 3 else int(rng.integers(2, 6))
         modes = pd.DataFrame({
@@ -400,7 +407,9 @@ def test_the_joined_table_is_the_concatenation_of_one_frame_per_step(case):
         eig = modes["real_part"].to_numpy() + 1j * modes["frequency_per_rev"].to_numpy()
         assigned = rng.permutation(6)[:n]
         identity = np.array(rng.choice(["clear", "start", "ambiguous"], n), dtype=object)
-        steps.append(_step_columns(step, modes, eig + 0.5j, identity, assigned, tracks))
+        args = (step, modes, eig + 0.5j, identity, assigned, tracks)
+        steps.append(_step_columns(*args))
+        frames.append(_step_frame_reference(*args))
     got = _table(steps)
-    pd.testing.assert_frame_equal(got, _frames_reference(steps), check_exact=True)
+    pd.testing.assert_frame_equal(got, pd.concat(frames, ignore_index=True), check_exact=True)
     assert got["frequency_tracked"].iloc[0] == steps[0][0]["frequency_tracked"][0]
