@@ -386,7 +386,7 @@ def test_the_joined_table_is_the_concatenation_of_one_frame_per_step(case):
     # (text inferred from the labels as a frame infers it, a column's own
     # dtype kept) and index -- also where it falls back to frames (a column's
     # dtype changes between steps, a step has no rows)
-    from tefcore.modes.tracking import _Track, _step_columns, _table
+    from tefcore.modes.tracking import _step_columns, _table, _Track
 
     rng = np.random.default_rng(11)
     tracks = [_Track(label=f"mode {k}") for k in range(6)]
