@@ -339,20 +339,28 @@ def reproduce_goals():
     header("`tefcore reproduce` (once each; the peak is the largest process so far)")
     py = sys.executable
     longest = max(NOTEBOOK_SECONDS, key=NOTEBOOK_SECONDS.get)
-    res, wall, cpu, peak = _timed_command([py, "-m", "tefcore", "reproduce", "--quiet",
-                                           "--out", tempfile.mkdtemp()])
+    cmd = [py, "-m", "tefcore", "reproduce", "--quiet"]
+    # the notebooks (and the other variant's claims beside them) are what the
+    # goals were set on; the README's command also attributes every failing
+    # claim (OUT/attribution.csv), timed once on its own line
+    res, wall, cpu, peak = _timed_command(cmd + ["--no-attribution", "--out", tempfile.mkdtemp()])
     ok = res.returncode == 0
-    _, wall_1, cpu_1, _ = _timed_command([py, "-m", "tefcore", "reproduce", "--quiet", "--only",
-                                          longest, "--jobs", "1", "--out", tempfile.mkdtemp()])
+    _, wall_1, cpu_1, _ = _timed_command(cmd + ["--no-attribution", "--only", longest, "--jobs",
+                                                "1", "--out", tempfile.mkdtemp()])
     line("reproduce, all notebooks: CPU <= 60 s", f"{cpu:.0f} s", "", "", ok and cpu <= 60)
     line("  wall <= 45 s on 2 cores", f"{wall:.0f} s", "",
          f"{wall_1:.0f} s ({longest[:2]} alone)", ok and wall <= 45)
     line("  peak memory <= 600 MiB", f"{peak:.0f} MiB", "", "", peak <= 600)
     first = [n for n in NOTEBOOK_SECONDS if n[:2] <= "07"]
-    res7, wall7, cpu7, _ = _timed_command([py, "-m", "tefcore", "reproduce", "--quiet", "--only",
-                                           *first, "--out", tempfile.mkdtemp()])
+    res7, wall7, cpu7, _ = _timed_command(cmd + ["--no-attribution", "--only", *first,
+                                                 "--out", tempfile.mkdtemp()])
     line("the paper's notebooks 01-07: wall <= 20 s", f"{wall7:.0f} s", "",
          f"{cpu7 / 2:.0f} s (CPU / 2)", res7.returncode == 0 and wall7 <= 20)
+    resa, walla, cpua, peaka = _timed_command(cmd + ["--out", tempfile.mkdtemp()])
+    line("  the README's command (with attribution)", f"{walla:.0f} s wall",
+         f"{cpua:.0f} s CPU", "", None)
+    line("  its peak memory <= 600 MiB", f"{peaka:.0f} MiB", "", "",
+         resa.returncode == 0 and peaka <= 600)
 
 
 def breakdown(args):
