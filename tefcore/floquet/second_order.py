@@ -22,6 +22,7 @@ array([-0.1-1.997498j, -0.1+1.997498j])
 
 from __future__ import annotations
 
+import contextlib
 import functools
 from dataclasses import dataclass
 
@@ -91,15 +92,12 @@ class SecondOrderSystem:
         """True when the coefficients vary with azimuth (more than one sample)."""
         return self.m.shape[0] > 1
 
-    def matrices(self, psi, derivative: int = 0, *, keep: bool = True):
+    def matrices(self, psi, derivative: int = 0):
         """``M, C, K`` (or their psi-derivatives) at azimuths ``psi``, each (len(psi), n, n).
 
         Periodic coefficients are evaluated from their real Fourier
-        coefficients, computed on the first call and kept on the system;
-        ``keep=False`` does not keep them when this call computes them (a
-        system evaluated once among many, e.g. the terms of an energy
-        balance: 20 terms of 82 coordinates and states held 80 MiB of
-        coefficients, measured at stop 37).  The values are the same.
+        coefficients, computed on the first call and kept on the system
+        (within :meth:`transient_coefficients`, until the block ends).
         """
         if not self.periodic:
             psi = np.atleast_1d(psi)
@@ -109,8 +107,7 @@ class SecondOrderSystem:
                          (self.m, self.c, self.k))
         # the three stacked: one product with the cached real Fourier coefficients
         psi = np.atleast_1d(np.asarray(psi, float))
-        cached = "_fourier" in self.__dict__
-        cos_c, sin_c, k = self._fourier if keep or cached else self._fourier_coefficients()
+        cos_c, sin_c, k = self._fourier
         kp = np.outer(psi, k)
         # d^d/dpsi^d of a cos(k psi) + b sin(k psi), as cos and sin terms again
         c_part, s_part = ((cos_c, sin_c), (sin_c * k[:, None], -cos_c * k[:, None]),
@@ -120,6 +117,40 @@ class SecondOrderSystem:
         out += np.sin(kp) @ s_part          # in place: one (n_psi, 3 n^2) array less
         out = out.reshape((psi.size, 3) + self.m.shape[1:])
         return out[:, 0], out[:, 1], out[:, 2]
+
+    @contextlib.contextmanager
+    def transient_coefficients(self):
+        """A block after which the system does not keep the Fourier coefficients it computed.
+
+        For a system evaluated once among many, e.g. the terms of an energy
+        balance (:func:`tefcore.linear.mechanism.energy_decomposition`): 20
+        terms of 82 coordinates and shed-wake states kept 80 MiB of
+        coefficients, the largest process of the reproduction (measured at
+        stop 37).  Within the block the coefficients are computed once and
+        used by every evaluation; coefficients the system had before are
+        kept.  The values are those of :meth:`matrices` outside a block.
+
+        Yields
+        ------
+        SecondOrderSystem
+            The system itself.
+
+        Examples
+        --------
+        >>> psi = 2 * np.pi * np.arange(4) / 4
+        >>> m = np.eye(1) + 0.1 * np.cos(psi)[:, None, None]
+        >>> system = SecondOrderSystem(m, 0.0 * m, m)
+        >>> with system.transient_coefficients():
+        ...     mats, rates = system.matrices([0.3]), system.matrices([0.3], 1)
+        >>> "_fourier" in vars(system)
+        False
+        """
+        had = "_fourier" in self.__dict__
+        try:
+            yield self
+        finally:
+            if not had:
+                self.__dict__.pop("_fourier", None)
 
     @functools.cached_property
     def _fourier(self):

@@ -185,7 +185,8 @@ def _summed(parts, psi):
     """``M, C, K`` of the whole system at ``psi``: the terms' matrices added in order."""
     m = c = k = 0
     for p in parts.values():
-        mt, ct, kt = p.matrices(psi, keep=False)
+        with p.transient_coefficients():
+            mt, ct, kt = p.matrices(psi)
         m, c, k = m + mt, c + ct, k + kt
     return m, c, k
 
@@ -197,8 +198,12 @@ def _term_matrices(parts, psi, periodic):
     reproduction.  A term's matrices are computed once the caller has dropped
     the previous term's (it holds only what it yields)."""
     for t, p in parts.items():
-        mats = p.matrices(psi, keep=False)
-        dmats = p.matrices(psi, 1, keep=False) if periodic else None
+        # the term's Fourier coefficients for these two evaluations only
+        # (SecondOrderSystem.transient_coefficients: kept, the 20 terms of the
+        # shed wake's balance held 80 MiB at the peak)
+        with p.transient_coefficients():
+            mats = p.matrices(psi)
+            dmats = p.matrices(psi, 1) if periodic else None
         yield t, mats, dmats
         del mats, dmats
 

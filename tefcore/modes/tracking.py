@@ -354,27 +354,33 @@ def _step_columns(step, modes, tracked_eig, identity, assigned, tracks) -> tuple
     :func:`_table` makes of them.
 
     The columns are the modes table's without ``label``, ``frequency_tracked``
-    after ``frequency_per_rev``.  A column of a numeric numpy dtype is copied
-    here (the table never shares memory with the point); any other (text,
-    objects, pandas' own dtypes) is kept as the point's Series, whose dtype
-    the table keeps, and copied when the table is made.  A modes table that
-    already has one of the columns the tracking adds is refused, as the
-    insertion of columns refused it.
+    after ``frequency_per_rev``, each a copy (the table, and the march a
+    ``memo`` keeps, never share memory with the point): a numeric numpy
+    column as an array, any other (text, objects, pandas' own dtypes) as a
+    Series of its dtype, which the table keeps.  A modes table that already
+    has one of the columns the tracking adds is refused, as the insertion of
+    columns refused it, and so is one with a column name twice.
     """
     for name in ("frequency_tracked", "identity", "label_here", "track", "step"):
         if name in modes.columns:
             raise ValueError(f"cannot insert {name}, already exists")
+    if modes.columns.has_duplicates:
+        twice = sorted({str(c) for c in modes.columns[modes.columns.duplicated()]})
+        raise ValueError(f"the modes table has the column(s) {twice} more than once")
     n = len(modes)
+    label = [tracks[t].label for t in assigned]
     # step, track, label and identity as the frame of one step was given them
-    # (a scalar, arrays, a list of text): their dtypes are inferred
-    cols = {"step": np.full(n, step, dtype=np.int64), "track": np.array(assigned),
-            "label": np.array([tracks[t].label for t in assigned], dtype=object),
-            "label_here": modes["label"], "identity": np.array(identity, dtype=object)}
+    # (a scalar, arrays, a list of text; their dtypes inferred), as arrays
+    # where the step has rows (the joined table needs them so, and a frame
+    # infers the same from them)
+    cols = {"step": np.full(n, step, dtype=np.int64) if n else step,
+            "track": np.array(assigned), "label": np.array(label, dtype=object) if n else label,
+            "label_here": modes["label"].copy(), "identity": np.array(identity, dtype=object)}
     for name, v in modes.items():
         if name == "label":
             continue
         numeric = isinstance(v.dtype, np.dtype) and v.dtype != object
-        cols[name] = v.to_numpy(copy=True) if numeric else v
+        cols[name] = v.to_numpy(copy=True) if numeric else v.copy()
         if name == "frequency_per_rev":
             cols["frequency_tracked"] = tracked_eig.imag.copy()
     return cols, modes.index

@@ -135,12 +135,13 @@ def test_rate_function_is_the_state_matrix_times_the_state():
                                        atol=1e-13 * np.abs(want).max())
 
 
-def test_matrices_without_keeping_the_coefficients_are_the_same_values():
-    # keep=False (the terms of an energy balance, evaluated once each) must
-    # give bit for bit what the kept coefficients give -- the same arithmetic
-    # -- and leave nothing on the system; a system that has its coefficients
-    # already keeps them.  The interpolant itself is checked at the samples
-    # (trigonometric interpolation returns them to round-off, 1e-13 relative)
+def test_transient_coefficients_give_the_same_values_and_keep_nothing():
+    # within transient_coefficients (the terms of an energy balance, evaluated
+    # once each) the matrices must be bit for bit those of a system that keeps
+    # its coefficients -- the same arithmetic -- and nothing is left on the
+    # system after the block; a system that had its coefficients keeps them.
+    # The interpolant itself is checked at the samples (trigonometric
+    # interpolation returns them to round-off, 1e-13 relative)
     psi = 2 * np.pi * np.arange(8) / 8
     rng = np.random.default_rng(3)
     m = np.eye(2) + 0.1 * np.cos(psi)[:, None, None] * np.array([[0, 1], [1, 0]])
@@ -148,16 +149,20 @@ def test_matrices_without_keeping_the_coefficients_are_the_same_values():
     k = np.array([[3.0, 0.2], [0.2, 5.0]]) + 0.3 * np.sin(2 * psi)[:, None, None]
     at = np.array([0.1, 1.3, 5.9])
     fresh = SecondOrderSystem(m, c, k)
+    with fresh.transient_coefficients() as same:
+        assert same is fresh
+        got = [fresh.matrices(at, d) for d in (0, 1, 2)]
+    assert "_fourier" not in fresh.__dict__
     for d in (0, 1, 2):
-        got = fresh.matrices(at, d, keep=False)
-        assert "_fourier" not in fresh.__dict__
         want = SecondOrderSystem(m, c, k).matrices(at, d)
-        for g, w in zip(got, want, strict=True):
+        for g, w in zip(got[d], want, strict=True):
             assert np.array_equal(g, w)
     kept = SecondOrderSystem(m, c, k)
     kept.matrices(at)
     coefficients = kept.__dict__["_fourier"]
-    kept.matrices(at, keep=False)
+    with kept.transient_coefficients():
+        kept.matrices(at, 1)
     assert kept.__dict__["_fourier"] is coefficients
-    for g, w in zip(kept.matrices(psi, keep=False), (m, c, k), strict=True):
-        np.testing.assert_allclose(g, w, rtol=1e-13, atol=1e-13)
+    with fresh.transient_coefficients():
+        for g, w in zip(fresh.matrices(psi), (m, c, k), strict=True):
+            np.testing.assert_allclose(g, w, rtol=1e-13, atol=1e-13)

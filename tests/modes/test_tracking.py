@@ -413,3 +413,34 @@ def test_the_joined_table_is_the_concatenation_of_one_frame_per_step(case):
     got = _table(steps)
     pd.testing.assert_frame_equal(got, pd.concat(frames, ignore_index=True), check_exact=True)
     assert got["frequency_tracked"].iloc[0] == steps[0][0]["frequency_tracked"][0]
+
+
+def test_review_cases_a_memo_shares_nothing_empty_points_and_repeated_columns():
+    # found in review at stop 37: (1) a memo kept the points' text columns
+    # themselves, so a write into an earlier point showed in a resumed table;
+    # (2) points without roots gave 'label' another dtype than the frames of
+    # stop 36; (3) a column name twice was silently dropped (the frames failed)
+    def point(f):
+        return pd.DataFrame({"mode_id": [0], "label": ["a"], "frequency_per_rev": [f],
+                             "real_part": [-0.1], "note": pd.Series(["x"], dtype="str")})
+
+    pts, memo = [point(1.0), point(1.1), point(1.2)], {}
+    track_modes(pts[:2], memo=memo)
+    pts[0]["note"].array[0] = "CHANGED"
+    assert track_modes(pts, memo=memo)["note"].tolist() == ["x", "x", "x"]
+
+    empty = point(1.0).iloc[:0]
+    from tefcore.modes.tracking import _Track
+
+    want = pd.concat([_step_frame_reference(s, empty, np.zeros(0, complex),
+                                            np.zeros(0, object), np.zeros(0, int),
+                                            [_Track(label="a")]) for s in (0, 1)],
+                     ignore_index=True)
+    got = track_modes([empty, empty])
+    assert got["label"].dtype == want["label"].dtype and got["step"].dtype == want["step"].dtype
+
+    twice = point(1.0)
+    twice.insert(4, "x", [1])
+    twice.insert(5, "x", [2.0], allow_duplicates=True)
+    with pytest.raises(ValueError, match=r"column\(s\) \['x'\] more than once"):
+        track_modes([twice])
