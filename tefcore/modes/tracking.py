@@ -367,8 +367,7 @@ def _step_columns(step, modes, tracked_eig, identity, assigned, tracks) -> tuple
     if modes.columns.has_duplicates:
         twice = sorted({str(c) for c in modes.columns[modes.columns.duplicated()]})
         raise ValueError(f"the modes table has the column(s) {twice} more than once")
-    n = len(modes)
-    label = [tracks[t].label for t in assigned]
+    n, label = len(modes), [tracks[t].label for t in assigned]
     # step, track, label and identity as the frame of one step was given them
     # (a scalar, arrays, a list of text; their dtypes inferred), as arrays
     # where the step has rows (the joined table needs them so, and a frame
