@@ -6,8 +6,10 @@ point needs (numpy, scipy.linalg) but not pandas (the roots are named on
 the table's columns, and the command words the columns, tefcore.cli.text;
 the table itself is built on first use, for ``--csv``), scipy.constants (the
 unit factors are written out), scipy.integrate (only the tension integral of
-a tabulated mass uses it), scipy.interpolate (only a C81 deck read) nor
-scipy.optimize (the momentum
+a tabulated mass uses it), scipy.interpolate (only a C81 deck read),
+scipy.sparse (the blade's uncoupled field blocks are the components of a 4 x 4
+graph, found without it; a Floquet lift imports it only for repeated
+multipliers) nor scipy.optimize (the momentum
 inflow's root is a safeguarded Newton iteration, and tefcore.assignment
 solves the continuation's small assignments itself where their optimum is
 unique -- at the default point, mu = 0.3, it is).
@@ -50,5 +52,5 @@ def test_stability_imports_only_what_a_point_needs(argv):
     loaded = _modules_after(argv)
     assert {"numpy", "scipy.linalg", "tefcore.linear.stability"} <= loaded
     for name in ("pandas", "scipy.constants", "scipy.integrate", "scipy.interpolate",
-                 "scipy.optimize", "matplotlib"):
+                 "scipy.optimize", "scipy.sparse", "matplotlib"):
         assert name not in loaded, name

@@ -10,7 +10,6 @@ from dataclasses import replace
 
 import numpy as np
 import scipy.linalg
-import scipy.sparse.csgraph
 
 from ..runtime import blas_limit
 from ._accuracy import (
@@ -98,6 +97,8 @@ def _clusters(mu, scale):
     close = np.abs(mu[:, None] - mu[None, :]) <= np.maximum.outer(tol, tol)
     if np.count_nonzero(close) == mu.size:         # only the diagonal: no group (usual)
         return []
+    import scipy.sparse.csgraph  # deferred: rare (repeated roots), and 30-70 ms to import
+
     n_groups, label = scipy.sparse.csgraph.connected_components(close, directed=False)
     groups = [np.flatnonzero(label == g) for g in range(n_groups)]
     return [g for g in groups if g.size > 1]

@@ -19,7 +19,6 @@ from dataclasses import dataclass, field
 
 import numpy as np
 import scipy.linalg
-import scipy.sparse.csgraph
 
 from .beam_element import element_matrices, field_operators
 
@@ -495,6 +494,44 @@ def _dense_lowest_modes(k, m, n):
         return lam[:n], vec[:, :n]
 
 
+def _connected_components(link) -> tuple[int, np.ndarray]:
+    """Connected components of the undirected graph of a small boolean matrix.
+
+    What :func:`scipy.sparse.csgraph.connected_components` gives with
+    ``directed=False`` -- the count and each node's component, numbered in
+    the order of each component's lowest node -- for the four fields of a
+    blade section, without importing :mod:`scipy.sparse` (30-70 ms of the
+    start-up of ``tefcore stability``, measured at stop 37).
+
+    Parameters
+    ----------
+    link : array_like of bool, shape (n, n)
+        ``link[i, j]``: nodes ``i`` and ``j`` are joined (either direction).
+
+    Returns
+    -------
+    n_components : int
+    labels : numpy.ndarray of int
+        Component of each node.
+
+    Examples
+    --------
+    >>> n, labels = _connected_components(np.array([[0, 0, 1], [0, 0, 0], [0, 0, 0]], bool))
+    >>> n, labels.tolist()
+    (2, [0, 1, 0])
+    """
+    link = np.asarray(link, bool)
+    reach = link | link.T | np.eye(link.shape[0], dtype=bool)
+    while True:                     # transitive closure by squaring: log2(n) products
+        wider = (reach.astype(np.int64) @ reach.astype(np.int64)) > 0
+        if np.array_equal(wider, reach):
+            break
+        reach = wider
+    lowest = reach.argmax(axis=1)   # each node's component by its lowest node
+    roots, labels = np.unique(lowest, return_inverse=True)
+    return int(roots.size), labels.astype(np.int32)
+
+
 def _uncoupled_blocks(k, m, owner) -> list[np.ndarray]:
     """Dof sets of groups of fields that ``k`` and ``m`` do not couple.
 
@@ -509,7 +546,7 @@ def _uncoupled_blocks(k, m, owner) -> list[np.ndarray]:
     ind[np.arange(owner.size), owner] = 1.0
     # |k| + |m| summed over field pairs: nonzero where any entry couples them
     link = (ind.T @ (np.abs(k) + np.abs(m)) @ ind) > 0
-    n_blocks, comp = scipy.sparse.csgraph.connected_components(link, directed=False)
+    n_blocks, comp = _connected_components(link)
     of_dof = comp[owner]
     blocks = [np.flatnonzero(of_dof == c) for c in range(n_blocks)]
     return [b for b in blocks if b.size]

@@ -305,3 +305,23 @@ def test_blade_modes_are_cached_by_the_structure():
     assert again is not first
     np.testing.assert_array_equal(again.frequencies, first.frequencies)
     np.testing.assert_array_equal(again.modal_stiffness, first.modal_stiffness)
+
+
+def test_field_blocks_are_scipy_connected_components():
+    # the blade's uncoupled field blocks come from a small closure instead of
+    # scipy.sparse.csgraph (not imported by `tefcore stability`); it must give
+    # scipy's count and labels -- numbered by each component's lowest node,
+    # the order the blocks are solved in -- on every kind of small graph
+    # (empty, full, one-sided links, isolated nodes)
+    import scipy.sparse.csgraph
+
+    from tefcore.structure.fem import _connected_components
+
+    rng = np.random.default_rng(0)
+    for _ in range(3000):
+        n = int(rng.integers(1, 9))
+        link = rng.random((n, n)) < rng.random()
+        want = scipy.sparse.csgraph.connected_components(link, directed=False)
+        got = _connected_components(link)
+        assert got[0] == want[0]
+        np.testing.assert_array_equal(got[1], want[1])
