@@ -215,11 +215,11 @@ def track_modes(points: Sequence, values=None, *, predict: bool = True,
         if memo is not None:
             state.saved.append(state.snapshot())
     if memo is not None:
-        memo.update(keys=keys, saved=state.saved, frames=state.frames)
-    if not state.frames:
+        memo.update(keys=keys, saved=state.saved, rows=state.rows)
+    if not state.rows:
         return pd.DataFrame(columns=["step", "track", "label", "label_here", "identity",
                                      "mode_id", "frequency_per_rev", "real_part"])
-    return _table(state.frames).sort_values(["step", "track"], kind="stable",
+    return _table(state.rows).sort_values(["step", "track"], kind="stable",
                                             ignore_index=True)
 
 
@@ -229,7 +229,7 @@ class _March:
     def __init__(self):
         self.tracks: list[_Track] = []
         self.alive: list[int] = []
-        self.frames: list = []
+        self.rows: list = []                               # each step's columns
         self.prev = (False, np.zeros(0, complex), None)    # periodic, eigenvalues, vectors
         self.saved: list = []                              # a snapshot after each point
 
@@ -238,15 +238,15 @@ class _March:
         # (_Track.update): copying the tracks themselves is enough; the rows
         # only grow, so their count says which were there
         return ([_Track(t.label, t.eig, t.vec) for t in self.tracks], list(self.alive),
-                len(self.frames), self.prev)
+                len(self.rows), self.prev)
 
     @classmethod
-    def restored(cls, saved: list, frames: list):
-        """The state after the last of `saved`, the rows so far taken from `frames`."""
+    def restored(cls, saved: list, rows: list):
+        """The state after the last of `saved`, the rows so far taken from `rows`."""
         out = cls()
-        tracks, alive, n_frames, out.prev = saved[-1]
+        tracks, alive, n_rows, out.prev = saved[-1]
         out.tracks = [_Track(t.label, t.eig, t.vec) for t in tracks]
-        out.alive, out.frames, out.saved = list(alive), frames[:n_frames], list(saved)
+        out.alive, out.rows, out.saved = list(alive), rows[:n_rows], list(saved)
         return out
 
 
@@ -276,7 +276,7 @@ def _resume(memo, keys):
         n += 1
     if n == 0:
         return _March(), 0
-    return _March.restored(memo["saved"][:n], memo["frames"]), n
+    return _March.restored(memo["saved"][:n], memo["rows"]), n
 
 
 def _track_step(state: _March, step: int, p, x, predict: bool) -> None:
@@ -307,7 +307,7 @@ def _track_step(state: _March, step: int, p, x, predict: bool) -> None:
         tracks[t].update(x, tracked_eig[j], col_vec[j])
     state.alive = [int(t) for t in assigned]
     state.prev = (periodic, eig, vecs)
-    state.frames.append(_step_columns(step, modes, tracked_eig, identity, assigned, tracks))
+    state.rows.append(_step_columns(step, modes, tracked_eig, identity, assigned, tracks))
 
 
 def _match_step(tracks, alive, x, predict, eig, vecs, per, prev):
