@@ -49,6 +49,9 @@ config = None              # base configuration: a TOML file (a complete rotor, 
 overrides = {}             # dotted configuration fields applied to every option
 n_points = 6               # CG offsets of the Fig. 9 comparison (the paper's range)
 onset = True               # also find the Fig. 9 onset under each option (a minute)
+refine = False             # locate the exceptional points along the Fig. 9 comparison
+                           # (bisection, as the figure notebooks do: 62 more points,
+                           # 25 s of CPU, mostly unsteady ones)
 
 # %% tags=["nbval-ignore-output"]
 # %matplotlib inline
@@ -128,7 +131,12 @@ print(nt.clean(mech.round(3)).to_string())
 # ## Fig. 9 with and without the shed wake
 #
 # The TEF branch and the flutter root along the CG offset, quasi-steady and
-# unsteady, on the same axes.
+# unsteady, on the same axes, at the sweep's points only (`refine = False`):
+# with the shed wake a root's name is its participation label (the wake's
+# near-repeated families leave no continuation in the coupling to follow,
+# `tefcore.modes.continuation`), so bisecting where a name changes would
+# locate a change of label, not an exceptional point. Notebook 04 locates
+# those of the quasi-steady Fig. 9.
 
 # %%
 vals = nt.figure_values("fig9", n_points)
@@ -137,7 +145,7 @@ for name in ("quasi-steady", "unsteady"):
     cfg_fig9 = nt.run_config("fig9", base, OPTIONS[name])   # Fig. 9's caption, this model
     with nt.counted_warnings(f"{name}: numerical warnings"):
         runs[name] = tefcore.sweep(cfg_fig9, "flap.cg_offset", vals, point=nt.quiet_stability,
-                                   n_jobs=n_jobs, progress=False)
+                                   n_jobs=n_jobs, progress=False, refine=refine)
     nt.report_sweep("fig9", runs[name])
     fr = runs[name].table
     fr = fr[(fr["status"] == "ok") & fr["flutter_root"].fillna(False).astype(bool)
