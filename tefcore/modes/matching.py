@@ -636,12 +636,18 @@ def continuous_frequency(x, f, *, span: int = 3, weight: float = 1.0,
     change of slope, plus `weight` for each change of offset between two
     neighbours, plus `anchor` for each point not in its own convention (which
     ties the curve to the convention most of its points carry), is found by
-    dynamic programming over the whole curve.  So a stretch of points written
-    1/rev off or as the mirror image (``k - f``) is put back where its
-    neighbours say, up to ``(4 - 2 weight) / anchor`` points (8), and a
-    convention that changes for good is made continuous when the shorter side
-    has up to ``(2 - weight) / anchor`` points (4); the same points give the
-    same curve whatever order they came in.
+    dynamic programming over the whole curve (the change of slope measured
+    over the longer of its two steps, so that a whole-/rev jump costs the same
+    on a grid refined unevenly).  So a stretch of points written 1/rev off or
+    as the mirror image (``k - f``) is put back where its neighbours say, up
+    to ``(4 - 2 weight) / anchor`` points (8).  A convention that changes for
+    good with longer sides, whose points the anchor would keep, is joined after
+    (:func:`_stitched`: a step a whole number of /rev off the slope of its
+    resolved neighbours moves the rest of the curve), and the joined curve is
+    written by the whole offset in which most of the parameter range keeps its
+    own or its carried convention (:func:`_anchored`).  No step is left a
+    whole /rev off resolved neighbours; the same points give the same curve
+    whatever order they came in.
 
     Parameters
     ----------
@@ -684,7 +690,8 @@ def continuous_frequency(x, f, *, span: int = 3, weight: float = 1.0,
     carried : array_like, optional
         Per point, its frequency as continuation in the coupling carried it
         from the uncoupled root (``frequency_continued``; NaN: none).  A
-        second representation the point may take without the anchor's cost:
+        second representation the point may take without the anchor's cost
+        (preferred to its own where the two make equally smooth curves):
         where the dominant harmonic changes for good, continuation says which
         way the curve goes (measured on Fig. 14's TEF at 0.1275 R: own 9.547,
         carried 10.547, continuous with 10.677 at 0.125); it is not imposed,
@@ -722,8 +729,16 @@ def continuous_frequency(x, f, *, span: int = 3, weight: float = 1.0,
     # a representation other than the point's own convention (or the one
     # continuation carried) costs `anchor`, whatever its distance (all are the
     # same root); a change of offset between neighbours costs `weight`
-    free = (np.abs(cand - fs[:, None]) <= 1e-9) | (np.abs(cand - cs[:, None]) <= 1e-9)
-    dev = np.where(np.isfinite(cand), np.where(free, 0.0, anchor), np.inf)
+    own = np.abs(cand - fs[:, None]) <= 1e-9
+    kept = np.abs(cand - cs[:, None]) <= 1e-9
+    # where the two make equally smooth curves, the carried one (the root
+    # followed from where it comes from) is kept, not whichever the round-off
+    # of the slopes favours: the own convention costs a thousandth of the
+    # anchor where another was carried (measured: Fig. 13's blade flap 5 at
+    # 0.756-0.761 R, own 8.70 and carried 10.70 throughout, uncoupled 10.71,
+    # flipped between them with the change of the slopes' scale below)
+    dev = np.where(np.isfinite(cand), np.where(kept, 0.0, np.where(
+        own, np.where(np.isfinite(cs), 1e-3 * anchor, 0.0)[:, None], anchor)), np.inf)
     plus, minus = _offsets(cand, fs)
     # a point at a lock (frequency at k/2: both a shift and a mirror of itself)
     at_lock = np.isfinite(plus[:, 0]) & np.isfinite(minus[:, 0])
@@ -746,7 +761,11 @@ def continuous_frequency(x, f, *, span: int = 3, weight: float = 1.0,
         h0, h1 = max(xs[i - 1] - xs[i - 2], 1e-300), max(xs[i] - xs[i - 1], 1e-300)
         s0 = (cand[i - 1][None, :] - cand[i - 2][:, None]) / h0          # (z, a)
         s1 = (cand[i][None, :] - cand[i - 1][:, None]) / h1              # (a, b)
-        curv = ((s1[None, :, :] - s0[:, :, None]) * (0.5 * (h0 + h1))) ** 2
+        # the change of slope over the longer of the two steps: a whole-/rev
+        # jump costs J**2 here whatever the spacing (over their mean, a jump
+        # on a 0.02 step between 0.005 steps cost a quarter of that: measured
+        # on Fig. 9's refined sweep, the TEF written 1/rev off at 0.08-0.10)
+        curv = ((s1[None, :, :] - s0[:, :, None]) * max(h0, h1)) ** 2
         total = np.where(np.isfinite(curv), cost[:, :, None] + curv, np.inf)
         arg = np.argmin(total, axis=0)                                   # (a, b) -> z
         cost = (np.take_along_axis(total, arg[None], axis=0)[0] + dev[i][None, :]
@@ -757,8 +776,102 @@ def continuous_frequency(x, f, *, span: int = 3, weight: float = 1.0,
     for arg in reversed(back):
         choice.append(int(arg[choice[-1], choice[-2]]))
     choice = choice[::-1]
-    out[idx] = cand[np.arange(len(xs)), choice]
+    curve = cand[np.arange(len(xs)), choice]
+    stitched = _stitched(xs, curve, fs, at_lock)
+    out[idx] = curve if stitched is curve else _anchored(xs, stitched, fs, cs)
     return out
+
+
+def _stitched(xs, curve, fs, at_lock):
+    """`curve` without its whole-/rev jumps (the same object when it has none).
+
+    Step by step from the first: where a step departs from the slope of its
+    resolved neighbours (steps under 1/2 /rev: the one before, as already
+    joined, and the one after) by a whole number ``J`` of /rev, the rest of the
+    curve is moved by ``-J``.  With both neighbours the departure must be within
+    1/4 of ``J`` and they must agree within 1/4 over the step; with one (the
+    first or last step) within 0.15, the step it predicts under 0.3.  A jump
+    the dynamic programming spread over two steps through a mirror image (each
+    step about half a /rev) is joined the same way over the two, the point
+    between them rewritten by the representation of its own frequency
+    (``+-f + k``) nearest the straight line through its neighbours, which must
+    lie within 1/4 of it.  Steps next to a lock are left (at ``k/2`` the shifts
+    of a root are its mirror images).
+    """
+    out, moved = curve.copy(), False
+    h = np.diff(xs)
+    n = len(xs)
+    i = 0
+    while i < n - 1:
+        span = _jump(out, h, i, 1, at_lock)
+        if span is None and i < n - 2:
+            span = _jump(out, h, i, 2, at_lock)
+            if span is not None:
+                mid = out[i] + (out[i + 2] - span - out[i]) * h[i] / (h[i] + h[i + 1])
+                cand = np.array([fs[i + 1], -fs[i + 1]])
+                cand = cand + np.round(mid - cand)
+                best = cand[np.argmin(np.abs(cand - mid))]
+                if abs(best - mid) > 0.25:
+                    span = None
+                else:
+                    out[i + 1] = best
+                    out[i + 2:] -= span
+                    moved, i = True, i + 2
+                    continue
+        elif span is not None:
+            out[i + 1:] -= span
+            moved = True
+        i += 1
+    return out if moved else curve
+
+
+def _jump(out, h, i, width, at_lock):
+    """The whole number of /rev the `width` steps from point `i` depart from their
+    resolved neighbours' slope (None: none, or not decided; see :func:`_stitched`);
+    over two steps a departure of 0 counts (a mirror image between)."""
+    n = len(out)
+    if at_lock[max(i - 1, 0):i + width + 2].any():
+        return None
+    sides = [(out[j + 1] - out[j]) / h[j] for j in (i - 1, i + width) if 0 <= j < n - 1
+             and abs(out[j + 1] - out[j]) < 0.5]
+    if not sides:
+        return None
+    length = float(np.sum(h[i:i + width]))
+    pred = float(np.mean(sides)) * length
+    r = out[i + width] - out[i] - pred
+    if len(sides) == 2:
+        ok = abs(pred) < 0.5 and np.ptp(sides) * length < 0.25 and abs(r - round(r)) <= 0.25
+    else:
+        ok = abs(pred) < 0.3 and abs(r - round(r)) <= 0.15
+    if not ok or (width == 1 and round(r) == 0):
+        return None
+    if width == 2 and all(abs(out[j + 1] - out[j] - pred * h[j] / length) < 0.25
+                          for j in (i, i + 1)):
+        return None                 # two resolved steps: nothing to join
+    return int(round(r))
+
+
+def _anchored(xs, curve, fs, cs):
+    """The continuous `curve` moved by the whole number of /rev that writes it best.
+
+    A constant offset changes no slope; once :func:`_stitched` has joined a
+    curve whose convention changed for good, the offset kept is the one in
+    which the points of most of the parameter range are written by their own
+    convention or the carried one (`cs`): each point weighs its share of the
+    range (its half-steps), so refined points clustered near an exceptional
+    point do not outvote the rest.  Ties keep `curve`.
+    """
+    w = np.diff(np.concatenate([[xs[0]], 0.5 * (xs[1:] + xs[:-1]), [xs[-1]]]))
+    shifts = np.unique(np.round(np.concatenate([fs - curve, cs - curve])))
+    best, best_cost = 0.0, None
+    for k in np.concatenate([[0.0], shifts[np.isfinite(shifts) & (shifts != 0.0)]]):
+        kept = np.abs(curve + k - cs) <= 1e-6
+        hit = kept | (np.abs(curve + k - fs) <= 1e-6)
+        # as in the dynamic programming: own a thousandth short of the carried one
+        cost = float(np.sum(w[~hit]) + 1e-3 * np.sum(w[hit & ~kept & np.isfinite(cs)]))
+        if best_cost is None or cost < best_cost - 1e-12:
+            best, best_cost = k, cost
+    return np.round(curve + best, 9)
 
 
 def _offsets(cand, fs):
