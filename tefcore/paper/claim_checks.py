@@ -106,6 +106,12 @@ def _series(frame, mode, quantity, lo=None, hi=None, until=None, identity=True):
     """
     if quantity not in frame:
         raise _Fail(f"the result has no {quantity!r} column")
+    if quantity == "frequency_per_rev" and "frequency_tracked" in frame:
+        # the curve the panel plots: each root's frequency continuous along the
+        # sweep (the point's own Floquet convention jumps by whole /rev where
+        # its dominant harmonic changes: Fig. 9's TEF at c_cg 0.08-0.10 and
+        # from 0.23 on, docs/theory.md 9.4)
+        frame = frame.assign(frequency_per_rev=frame["frequency_tracked"])
     t = _select(frame, mode) if mode else frame
     if identity:
         points = exceptional_in_range(frame, mode, lo, hi if until is None else until)
