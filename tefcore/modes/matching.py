@@ -637,17 +637,19 @@ def continuous_frequency(x, f, *, span: int = 3, weight: float = 1.0,
     neighbours, plus `anchor` for each point not in its own convention (which
     ties the curve to the convention most of its points carry), is found by
     dynamic programming over the whole curve (the change of slope measured
-    over the longer of its two steps, so that a whole-/rev jump costs the same
-    on a grid refined unevenly).  So a stretch of points written 1/rev off or
-    as the mirror image (``k - f``) is put back where its neighbours say, up
-    to ``(4 - 2 weight) / anchor`` points (8).  A convention that changes for
-    good with longer sides, whose points the anchor would keep, is joined after
+    over the longer of its two steps, so that a whole-/rev jump on the longer
+    step costs as much on a grid refined unevenly).  So a stretch of points
+    written 1/rev off or as the mirror image (``k - f``) is put back where its
+    neighbours say, up to ``(4 - 2 weight) / anchor`` points (8 on an even
+    grid).  A convention that changes for good with longer sides, whose points
+    the anchor would keep, is joined after
     (:func:`_stitched`: a step a whole number of /rev off the slope of its
     resolved neighbours moves the rest of the curve), and the joined curve is
     written by the whole offset in which most of the parameter range keeps its
     own or its carried convention (:func:`_anchored`).  No step is left a
-    whole /rev off resolved neighbours; the same points give the same curve
-    whatever order they came in.
+    whole /rev off resolved neighbours (measured on random resolved curves and
+    on the reproduction, docs/theory.md 9.4); the same points give the same
+    curve whatever order they came in.
 
     Parameters
     ----------
@@ -676,7 +678,8 @@ def continuous_frequency(x, f, *, span: int = 3, weight: float = 1.0,
         Cost of each point written otherwise than by its own convention.  A
         whole curve rewritten by one offset changes no slope; this is what
         keeps it in the convention its points carry.  Measured on the
-        reproduction's 4079 named rows in forward flight: with 0.25, 0.1 and
+        reproduction's 4079 named rows in forward flight, before stop 38
+        joined the jumps it keeps: with 0.25, 0.1 and
         0.05, 26, 16 and 12 isolated steps of a name along one track stayed a
         whole /rev off its neighbours' (49 with the earlier rule), and 8.5, 12.5
         and 16 % of the rows were written otherwise than by their dominant
@@ -753,8 +756,11 @@ def continuous_frequency(x, f, *, span: int = 3, weight: float = 1.0,
                                          weight=weight, anchor=anchor, carried=carried[keep])
         at = np.searchsorted(x[keep], xs, side="right") - 1
         for i in np.flatnonzero(~first):
-            c = cand[i][np.isfinite(cand[i])]
-            out[idx[i]] = c[np.argmin(np.abs(c - out[keep[at[i]]]))]
+            # any shift: the joined curve may lie further from the conventions
+            # than the candidates reach (measured: a twin 1/rev off its pair)
+            target = out[keep[at[i]]]
+            c = np.array([fs[i] + np.round(target - fs[i]), -fs[i] + np.round(target + fs[i])])
+            out[idx[i]] = round(float(c[np.argmin(np.abs(c - target))]), 9)
         return out
     back = []
     for i in range(2, len(xs)):
@@ -762,9 +768,10 @@ def continuous_frequency(x, f, *, span: int = 3, weight: float = 1.0,
         s0 = (cand[i - 1][None, :] - cand[i - 2][:, None]) / h0          # (z, a)
         s1 = (cand[i][None, :] - cand[i - 1][:, None]) / h1              # (a, b)
         # the change of slope over the longer of the two steps: a whole-/rev
-        # jump costs J**2 here whatever the spacing (over their mean, a jump
-        # on a 0.02 step between 0.005 steps cost a quarter of that: measured
-        # on Fig. 9's refined sweep, the TEF written 1/rev off at 0.08-0.10)
+        # jump on the longer step costs J**2 here whatever the spacing, on the
+        # shorter more (J**2 (h_long / h_short)**2); over their mean, a jump on
+        # a 0.02 step between 0.005 steps cost a quarter of J**2 (measured on
+        # Fig. 9's refined sweep: the TEF written 1/rev off at 0.08-0.10)
         curv = ((s1[None, :, :] - s0[:, :, None]) * max(h0, h1)) ** 2
         total = np.where(np.isfinite(curv), cost[:, :, None] + curv, np.inf)
         arg = np.argmin(total, axis=0)                                   # (a, b) -> z
@@ -777,8 +784,7 @@ def continuous_frequency(x, f, *, span: int = 3, weight: float = 1.0,
         choice.append(int(arg[choice[-1], choice[-2]]))
     choice = choice[::-1]
     curve = cand[np.arange(len(xs)), choice]
-    stitched = _stitched(xs, curve, fs, at_lock)
-    out[idx] = curve if stitched is curve else _anchored(xs, stitched, fs, cs)
+    out[idx] = _anchored(xs, _stitched(xs, curve, fs, at_lock), fs, cs)
     return out
 
 
@@ -788,47 +794,68 @@ def _stitched(xs, curve, fs, at_lock):
     Step by step from the first: where a step departs from the slope of its
     resolved neighbours (steps under 1/2 /rev: the one before, as already
     joined, and the one after) by a whole number ``J`` of /rev, the rest of the
-    curve is moved by ``-J``.  With both neighbours the departure must be within
-    1/4 of ``J`` and they must agree within 1/4 over the step; with one (the
-    first or last step) within 0.15, the step it predicts under 0.3.  A jump
-    the dynamic programming spread over two steps through a mirror image (each
-    step about half a /rev) is joined the same way over the two, the point
-    between them rewritten by the representation of its own frequency
-    (``+-f + k``) nearest the straight line through its neighbours, which must
-    lie within 1/4 of it.  Steps next to a lock are left (at ``k/2`` the shifts
-    of a root are its mirror images).
+    curve is moved by ``-J``.  With both neighbours resolved they must agree
+    within 1/4 over the step, predict under 1/2 /rev for it, and the departure
+    must be within 1/4 of ``J``; with one (the first or last step, or a step
+    whose other neighbour is not resolved) the step it predicts must be under
+    0.3 and the departure within 0.15 of ``J``.  A jump the dynamic programming
+    spread over two or three steps, writing the points between them otherwise
+    than both ends (a mirror image ``k - f``, or another shift), is joined the
+    same way over the span, those points rewritten by the representation of
+    their own frequency (``+-f + k``) nearest the straight line through the
+    ends, each within 1/4 of it; a span whose points between are written as
+    an end is is a rapid change, left as it is.  Steps next to a lock are left
+    (at ``k/2`` the shifts of a root are its mirror images).
     """
     out, moved = curve.copy(), False
     h = np.diff(xs)
     n = len(xs)
-    i = 0
-    while i < n - 1:
+    for i in range(n - 1):
         span = _jump(out, h, i, 1, at_lock)
-        if span is None and i < n - 2:
-            span = _jump(out, h, i, 2, at_lock)
-            if span is not None:
-                mid = out[i] + (out[i + 2] - span - out[i]) * h[i] / (h[i] + h[i + 1])
-                cand = np.array([fs[i + 1], -fs[i + 1]])
-                cand = cand + np.round(mid - cand)
-                best = cand[np.argmin(np.abs(cand - mid))]
-                if abs(best - mid) > 0.25:
-                    span = None
-                else:
-                    out[i + 1] = best
-                    out[i + 2:] -= span
-                    moved, i = True, i + 2
-                    continue
-        elif span is not None:
+        if span is not None:
             out[i + 1:] -= span
             moved = True
-        i += 1
+            continue
+        for width in (2, 3):
+            if i + width >= n or not _bridging(out, fs, i, width):
+                continue
+            span = _jump(out, h, i, width, at_lock)
+            if span is None:
+                continue
+            end = out[i + width] - span
+            frac = np.cumsum(h[i:i + width - 1]) / np.sum(h[i:i + width])
+            line = out[i] + (end - out[i]) * frac
+            f = fs[i + 1:i + width]
+            cand = np.stack([f + np.round(line - f), -f + np.round(line + f)])
+            best = cand[np.argmin(np.abs(cand - line), axis=0), np.arange(f.size)]
+            if np.all(np.abs(best - line) <= 0.25):
+                out[i + 1:i + width] = best
+                out[i + width:] -= span
+                moved = True
+                break
     return out if moved else curve
+
+
+def _offset(value, f):
+    """``(sign, k)`` with ``value = sign f + k`` (the shift first where both hold)."""
+    up, down = value - f, value + f
+    if abs(up - round(up)) <= 1e-6:
+        return 1, round(up)
+    return (-1, round(down)) if abs(down - round(down)) <= 1e-6 else (0, 0)
+
+
+def _bridging(out, fs, i, width) -> bool:
+    """Whether every point strictly inside the span ``i .. i + width`` is written
+    with another offset (:func:`_offset`) than both ends."""
+    ends = {_offset(out[i], fs[i]), _offset(out[i + width], fs[i + width])}
+    return all(_offset(out[j], fs[j]) not in ends for j in range(i + 1, i + width))
 
 
 def _jump(out, h, i, width, at_lock):
     """The whole number of /rev the `width` steps from point `i` depart from their
     resolved neighbours' slope (None: none, or not decided; see :func:`_stitched`);
-    over two steps a departure of 0 counts (a mirror image between)."""
+    over a span of two or three a departure of 0 counts (points between written
+    as mirror images of a continuous curve)."""
     n = len(out)
     if at_lock[max(i - 1, 0):i + width + 2].any():
         return None
@@ -845,9 +872,9 @@ def _jump(out, h, i, width, at_lock):
         ok = abs(pred) < 0.3 and abs(r - round(r)) <= 0.15
     if not ok or (width == 1 and round(r) == 0):
         return None
-    if width == 2 and all(abs(out[j + 1] - out[j] - pred * h[j] / length) < 0.25
-                          for j in (i, i + 1)):
-        return None                 # two resolved steps: nothing to join
+    if width > 1 and all(abs(out[j + 1] - out[j] - pred * h[j] / length) < 0.25
+                         for j in range(i, i + width)):
+        return None                 # resolved steps: nothing to join
     return int(round(r))
 
 
