@@ -617,9 +617,9 @@ def _whole_steps(x, f):
 def test_continuous_frequency_leaves_no_whole_per_rev_step(switches, **curve):
     """Invariant: with up to three switches, anywhere (even at one point), no step
     of the curve is left a whole /rev off its resolved neighbours (measured:
-    none in 4000 such curves).  Not exact: where switches come close the whole
+    one in 12,000 such curves).  Not exact: where switches come close the
     curve may come back otherwise than the truth in a stretch between them
-    (measured: about 1 % of them), but never with a whole-/rev step."""
+    (measured: about 1 % of them), almost never with a whole-/rev step."""
     x, true, own = _resolved_curve(**curve, switches=switches)
     assume(np.all(np.abs(own - true) <= 2))
     assert _whole_steps(x, continuous_frequency(x, own)) == []
