@@ -798,14 +798,14 @@ def _stitched(xs, curve, fs, at_lock):
     within 1/4 over the step, predict under 1/2 /rev for it, and the departure
     must be within 1/4 of ``J``; at the first or last step, with its one
     neighbour, the step it predicts must be under 0.3 and the departure within
-    0.15 of ``J``; a step next to one that is not resolved is left.  A jump the dynamic programming
-    spread over two or three steps, writing the points between them otherwise
-    than both ends (a mirror image ``k - f``, or another shift), is joined the
-    same way over the span, those points rewritten by the representation of
-    their own frequency (``+-f + k``) nearest the straight line through the
-    ends, each within 1/4 of it; a span whose points between are written as
-    an end is is a rapid change, left as it is.  Steps next to a lock are left
-    (at ``k/2`` the shifts of a root are its mirror images).
+    0.15 of ``J``; a step next to one that is not resolved is left.  A jump
+    the dynamic programming spread over two or three steps, writing the points
+    between them otherwise than both ends (a mirror image ``k - f``, or another
+    shift), is joined the same way over the span, those points rewritten by the
+    representation of their own frequency (``+-f + k``) nearest the straight
+    line through the ends, each within 1/4 of it; a span whose points between
+    are written as an end is, is a rapid change, left as it is.  Steps next to
+    a lock are left (at ``k/2`` the shifts of a root are its mirror images).
     """
     out, moved = curve.copy(), False
     h = np.diff(xs)
