@@ -33,8 +33,10 @@ __all__ = ["LOCUS_CAPTION", "MARKERS", "conditions", "figure_caption", "figure_t
            "flight_condition"]
 
 #: What the plots' markers and lines mean (the same in every stability figure).
-MARKERS = ("Lines join every computed point (including points added where an identity had "
-           "to be decided); filled markers are the figure's own sweep points. A hollow "
+MARKERS = ("Lines join the computed points of one root (including points added where an "
+           "identity had to be decided); where a name moves to another root (an exceptional "
+           "point between two points) its line stops and starts again on the other root. "
+           "Filled markers are the figure's own sweep points. A hollow "
            "marker: the mode has the character (largest participation) of another mode "
            "there -- it exchanged character in a coupling. Dotted line and grey markers: "
            "its name is not certain there (a step of its continuation from zero coupling "

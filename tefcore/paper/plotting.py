@@ -334,6 +334,35 @@ def curves(name: str, table: pd.DataFrame, labels=PAPER_MODES,
     return cv[_CURVE_COLUMNS].reset_index(drop=True)
 
 
+def _runs(g: pd.DataFrame):
+    """A name's curve (rows in the order of x) as the pieces a line may join.
+
+    A line joins neighbouring points of one root only: where the name moves
+    to another root (``track`` changes: an exceptional point between the two
+    points) the line stops, and the next root's piece starts at its own point
+    -- a line across would draw one root turning into another, which is what
+    no root does.  Within a root, the points whose identity is certain and the
+    others are drawn as runs (solid, dotted) joined at their shared ends.
+
+    Yields
+    ------
+    (DataFrame, bool)
+        The rows of a run and whether its identity is certain.
+    """
+    # a row no tracking linked (no track) is a piece of its own: NaN equals nothing
+    track = pd.to_numeric(g["track"], errors="coerce").to_numpy(float)
+    certain = g["certain"].to_numpy(bool)
+    start = 0
+    for i in range(1, len(g) + 1):
+        if i < len(g) and track[i] == track[i - 1] and certain[i] == certain[start]:
+            continue
+        piece = g.iloc[start:i]
+        if i < len(g) and track[i] == track[i - 1]:
+            piece = g.iloc[start:i + 1]          # join the next run of the same root
+        yield piece, bool(certain[start])
+        start = i
+
+
 def plot_modes(ax, name: str, table: pd.DataFrame, labels=PAPER_MODES,
                quantity: str = "damping", measure: str = "decay_rate",
                reference: pd.DataFrame | None = None, label_suffix: str = "",
@@ -383,14 +412,13 @@ def plot_modes(ax, name: str, table: pd.DataFrame, labels=PAPER_MODES,
         if g.empty:
             continue
         color, marker, ls = (style or STYLE).get(lab, ("0.3", "o", "-"))
-        sure, unsure = g[g["certain"]], g[~g["certain"]]
-        if not unsure.empty and not sure.empty:      # join the two parts
-            unsure = pd.concat([sure.iloc[[-1]], unsure])
-        ax.plot(sure["x"], sure[ycol], ls=ls, color=color, lw=1.4, label=f"{lab}{label_suffix}")
-        if not unsure.empty:
-            ax.plot(unsure["x"], unsure[ycol], ls=":", color=color, lw=1.4,
-                    label=None if doubt_shown else "identity undecided (dotted)")
-            doubt_shown = True
+        ax.plot([], [], ls=ls, color=color, lw=1.4, label=f"{lab}{label_suffix}")
+        for run, certain in _runs(g):
+            if not certain and not doubt_shown:
+                ax.plot([], [], ls=":", color=color, lw=1.4,
+                        label="identity undecided (dotted)")
+                doubt_shown = True
+            ax.plot(run["x"], run[ycol], ls=ls if certain else ":", color=color, lw=1.4)
         main = g[g["refinement"] == 0]
         filled = main[main["same_character"] & main["certain"]]
         hollow = main[~main["same_character"] & main["certain"]]
