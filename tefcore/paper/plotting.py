@@ -341,26 +341,36 @@ def _runs(g: pd.DataFrame):
     to another root (``track`` changes: an exceptional point between the two
     points) the line stops, and the next root's piece starts at its own point
     -- a line across would draw one root turning into another, which is what
-    no root does.  Within a root, the points whose identity is certain and the
-    others are drawn as runs (solid, dotted) joined at their shared ends.
+    no root does.  Within a root, a segment is solid where both its points'
+    identity is certain and dotted where either's is not; consecutive
+    segments of one style make one run.  A root seen at one point only is a
+    run of that point (its marker, if it is a sweep point, shows it).
 
     Yields
     ------
     (DataFrame, bool)
-        The rows of a run and whether its identity is certain.
+        The rows of a run and whether it is drawn solid (identity certain).
     """
     # a row no tracking linked (no track) is a piece of its own: NaN equals nothing
     track = pd.to_numeric(g["track"], errors="coerce").to_numpy(float)
     certain = g["certain"].to_numpy(bool)
+    n = len(g)
     start = 0
-    for i in range(1, len(g) + 1):
-        if i < len(g) and track[i] == track[i - 1] and certain[i] == certain[start]:
-            continue
-        piece = g.iloc[start:i]
-        if i < len(g) and track[i] == track[i - 1]:
-            piece = g.iloc[start:i + 1]          # join the next run of the same root
-        yield piece, bool(certain[start])
-        start = i
+    while start < n:
+        end = start
+        while end + 1 < n and track[end + 1] == track[end]:
+            end += 1
+        if end == start:
+            yield g.iloc[start:start + 1], bool(certain[start])
+        solid = certain[start:end] & certain[start + 1:end + 1]      # per segment
+        j = start
+        while j < end:
+            k = j
+            while k + 1 < end and solid[k + 1 - start] == solid[j - start]:
+                k += 1
+            yield g.iloc[j:k + 2], bool(solid[j - start])
+            j = k + 1
+        start = end + 1
 
 
 def plot_modes(ax, name: str, table: pd.DataFrame, labels=PAPER_MODES,
