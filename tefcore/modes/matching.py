@@ -758,9 +758,7 @@ def continuous_frequency(x, f, *, span: int = 3, weight: float = 1.0,
         for i in np.flatnonzero(~first):
             # any shift: the joined curve may lie further from the conventions
             # than the candidates reach (measured: a twin 1/rev off its pair)
-            target = out[keep[at[i]]]
-            c = np.array([fs[i] + np.round(target - fs[i]), -fs[i] + np.round(target + fs[i])])
-            out[idx[i]] = round(float(c[np.argmin(np.abs(c - target))]), 9)
+            out[idx[i]] = round(unwrap_frequency(1j * fs[i], 1j * out[keep[at[i]]], True), 9)
         return out
     back = []
     for i in range(2, len(xs)):
@@ -825,9 +823,7 @@ def _stitched(xs, curve, fs, at_lock):
             end = out[i + width] - span
             frac = np.cumsum(h[i:i + width - 1]) / np.sum(h[i:i + width])
             line = out[i] + (end - out[i]) * frac
-            f = fs[i + 1:i + width]
-            cand = np.stack([f + np.round(line - f), -f + np.round(line + f)])
-            best = cand[np.argmin(np.abs(cand - line), axis=0), np.arange(f.size)]
+            best = unwrap_frequency(1j * fs[i + 1:i + width], 1j * line, True)
             if np.all(np.abs(best - line) <= 0.25):
                 out[i + 1:i + width] = best
                 out[i + width:] -= span
@@ -836,19 +832,15 @@ def _stitched(xs, curve, fs, at_lock):
     return out if moved else curve
 
 
-def _offset(value, f):
-    """``(sign, k)`` with ``value = sign f + k`` (the shift first where both hold)."""
-    up, down = value - f, value + f
-    if abs(up - round(up)) <= 1e-6:
-        return 1, round(up)
-    return (-1, round(down)) if abs(down - round(down)) <= 1e-6 else (0, 0)
-
-
 def _bridging(out, fs, i, width) -> bool:
     """Whether every point strictly inside the span ``i .. i + width`` is written
-    with another offset (:func:`_offset`) than both ends."""
-    ends = {_offset(out[i], fs[i]), _offset(out[i + width], fs[i + width])}
-    return all(_offset(out[j], fs[j]) not in ends for j in range(i + 1, i + width))
+    with another offset (:func:`_offsets`: shift or mirror image) than both ends."""
+    plus, minus = (v[:, 0] for v in _offsets(out[i:i + width + 1, None], fs[i:i + width + 1]))
+
+    def same(a, b):
+        return plus[a] == plus[b] or minus[a] == minus[b]
+
+    return not any(same(j, 0) or same(j, width) for j in range(1, width))
 
 
 def _jump(out, h, i, width, at_lock):

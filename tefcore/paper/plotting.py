@@ -354,23 +354,16 @@ def _runs(g: pd.DataFrame):
     # a row no tracking linked (no track) is a piece of its own: NaN equals nothing
     track = pd.to_numeric(g["track"], errors="coerce").to_numpy(float)
     certain = g["certain"].to_numpy(bool)
-    n = len(g)
-    start = 0
-    while start < n:
-        end = start
-        while end + 1 < n and track[end + 1] == track[end]:
-            end += 1
-        if end == start:
-            yield g.iloc[start:start + 1], bool(certain[start])
-        solid = certain[start:end] & certain[start + 1:end + 1]      # per segment
-        j = start
-        while j < end:
-            k = j
-            while k + 1 < end and solid[k + 1 - start] == solid[j - start]:
-                k += 1
-            yield g.iloc[j:k + 2], bool(solid[j - start])
-            j = k + 1
-        start = end + 1
+    piece = np.concatenate([[0], np.cumsum(~(track[1:] == track[:-1]))])
+    for r in range(piece[-1] + 1 if len(g) else 0):
+        idx = np.flatnonzero(piece == r)
+        if idx.size == 1:
+            yield g.iloc[idx], bool(certain[idx[0]])
+            continue
+        solid = certain[idx[:-1]] & certain[idx[1:]]            # per segment
+        cuts = np.flatnonzero(solid[1:] != solid[:-1]) + 1
+        for a, b in zip(np.r_[0, cuts], np.r_[cuts, solid.size], strict=True):
+            yield g.iloc[idx[a]:idx[b] + 1], bool(solid[a])
 
 
 def plot_modes(ax, name: str, table: pd.DataFrame, labels=PAPER_MODES,
