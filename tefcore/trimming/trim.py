@@ -290,7 +290,16 @@ def _initial_guess(prob, initial: TrimResult | None) -> np.ndarray:
     else:
         q0 = np.zeros((n, n_psi))
         ctl = Controls(collective=initial_collective(cfg))
-        lam = ([np.sqrt(max(model.flight.ct_sigma * prob.sigma, 1e-6) / 2)]
+        f = model.flight
+        # the mean induced inflow of momentum theory at the target thrust
+        # (Glauert in forward flight): what a uniform inflow converges to, and
+        # close to the mean of the Pitt-Peters states.  Measured on MDART at
+        # mu 0.02-0.4 against the hover value sqrt(C_T/2): 0-4 fewer Newton
+        # iterations with uniform, linear or Pitt-Peters inflow (one more once:
+        # Pitt-Peters at mu 0.1); the default model at mu 0.3: 11 -> 8, trim
+        # 9.9 -> 7.8 ms
+        lam = ([np.sqrt(max(f.ct_sigma * prob.sigma, 1e-6) / 2) if prob.hover
+                else momentum_inflow(f.ct_sigma * prob.sigma, f.advance_ratio, f.shaft_angle)]
                + [0.0] * (n_lam - 1))
     prob.base = ctl
     return np.concatenate([q0.ravel(), [getattr(ctl, k) for k in prob.ctl_names], lam])
