@@ -22,7 +22,7 @@ import numpy as np
 import pandas as pd
 
 from ..modes.roles import ModeNotFound, mode_rows
-from .claim_exceptional import exceptional_in_range, swapped, where
+from .claim_exceptional import exceptional_in_range, flutter_reading, swapped, where
 from .curve_metrics import X_SLACK, compare_curve, stability_intervals, zero_crossings
 from .figure_frames import compute_figure, figure_frame, natural_frequency_frame
 from .quantities import QUANTITY_NAMES, quantity_unit, x_to_si
@@ -580,4 +580,5 @@ def _across_exceptional_points(c: Claim, ctx: _Context, err: _Ambiguous) -> dict
     return _row(c, status="ambiguous",
                 reason=f"an exceptional point lies inside the claim's range ({places}): which "
                        f"root is {named} has no answer there, and the verdict depends on "
-                       f"it ({seen})")
+                       f"it ({seen}){flutter_reading(c, lambda alt: _checked(alt, ctx))}")
+

@@ -4,11 +4,14 @@ At an exceptional point of the family in (parameter, blade-flap coupling)
 which root carries a name has no answer (docs/theory.md 9.3).  A claim whose
 range holds one of its mode is checked both ways
 (:func:`tefcore.paper.claim_checks.validate_figure`); these are the pieces:
-which points lie in a claim's range, and a figure's table with a pair's
-names exchanged beyond them.
+which points lie in a claim's range, a figure's table with a pair's names
+exchanged beyond them, and what the flutter root says where the TEF's name
+has no answer.
 """
 
 from __future__ import annotations
+
+import dataclasses
 
 import numpy as np
 import pandas as pd
@@ -16,7 +19,7 @@ import pandas as pd
 from ..modes.roles import FLUTTER_ROOT, base_name, exceptional_points
 from .curve_metrics import X_SLACK
 
-__all__ = ["exceptional_in_range", "swapped", "where"]
+__all__ = ["exceptional_in_range", "flutter_reading", "swapped", "where"]
 
 
 def exceptional_in_range(frame, mode, lo, hi):
@@ -112,3 +115,45 @@ def swapped(frame, points) -> pd.DataFrame:
                 labels[i] = (b if base == a else a) + suffix
     frame["label"] = labels
     return frame
+
+
+#: Quantities of a root's stability: a claim on them about the TEF has a reading
+#: on the flutter root (:func:`flutter_reading`).
+STABILITY_QUANTITIES = ("real_part", "damping", "damping_ratio")
+
+
+def flutter_reading(claim, check) -> str:
+    """The same check with the flutter root in the TEF's place, for an undecided TEF.
+
+    Where an exceptional point leaves the TEF's name without an answer, the
+    question the paper's sentence is about -- does the flap flutter, and
+    where -- still has one: the flutter root (the least stable flap-induced
+    root, :func:`tefcore.modes.roles.flutter_root`) is a role decided at
+    every point.  Its verdict is told beside the claim's ``ambiguous``
+    status, never in place of it: the claim is about the TEF mode.
+
+    Parameters
+    ----------
+    claim : tefcore.paper.reference.Claim
+        An undecided claim.
+    check : callable
+        ``Claim -> row`` (a dict with ``status`` and ``computed``): the claim
+        check of the figure it belongs to.
+
+    Returns
+    -------
+    str
+        ``"; the same check on the flutter root instead (...): fail (...)"``,
+        or empty for a claim that does not name the TEF, is not about
+        stability (:data:`STABILITY_QUANTITIES`), or that the flutter root
+        does not decide either.
+    """
+    if claim.quantity not in STABILITY_QUANTITIES or "TEF" not in (claim.mode,
+                                                                  claim.other_mode):
+        return ""
+    swap = {k: FLUTTER_ROOT for k in ("mode", "other_mode") if getattr(claim, k) == "TEF"}
+    row = check(dataclasses.replace(claim, **swap))
+    if row["status"] not in ("pass", "fail"):
+        return ""
+    return (f"; the same check on the flutter root instead (the least stable flap-induced "
+            f"root, a role decided at every point): {row['status']} ({row['computed']})")

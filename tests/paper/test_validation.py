@@ -356,6 +356,25 @@ def test_claims_are_decided_on_the_points_own_names():
     assert "TEF / blade torsion 1" in row["reason"] and "0.15 and 0.2" in row["reason"]
 
 
+def test_an_undecided_tef_stability_claim_tells_what_the_flutter_root_gives():
+    # where the TEF's name has no answer the reason adds the same check on the
+    # flutter root, a role every point decides; the status stays ambiguous
+    t = exchanged(named_table())
+    c = claim(kind="threshold", mode="TEF", direction="destabilising")
+    t["flutter_root"] = t["track"] == 0          # the root that crosses zero at 0.25
+    status, row = check(c, t)
+    assert status == "ambiguous"
+    assert "on the flutter root instead" in row["reason"]
+    assert ": pass (crossings: destabilising at 0.25)" in row["reason"]
+    t["flutter_root"] = t["track"] == 3          # a flutter root stable throughout
+    status, row = check(c, t)
+    assert status == "ambiguous" and ": fail (crossings: none" in row["reason"]
+    # a claim on blade torsion 1 (the TEF's partner) gets no such reading
+    torsion = claim(kind="threshold", mode="blade torsion 1", direction="destabilising")
+    status, row = check(torsion, t)
+    assert status == "ambiguous" and "flutter root" not in row["reason"]
+
+
 def test_an_exceptional_point_outside_the_range_or_of_another_mode_decides():
     t = exchanged(named_table())
     # a trend before the exceptional point is decided

@@ -161,7 +161,8 @@ nt.savefig(fig, out, "fig08", figure="fig8",
 # blade torsion 2)". Which root carries a name has no answer only at an
 # *exceptional point*, where two roots coalesce in the plane of the swept
 # parameter and the coupling; tefcore locates them (listed below) and a claim
-# whose verdict depends on one is left without a verdict.
+# whose verdict depends on one is left without a verdict (its reason says what
+# the same check gives on the flutter root, which every point decides).
 
 # %%
 nt.report_identity("fig8", res_fig8)
