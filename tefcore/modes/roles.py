@@ -360,9 +360,15 @@ def _moves(table: pd.DataFrame, x: str, kind) -> list:
 
     out = []
     t = table.sort_values([x, "track"], kind="stable")
-    base = [base_name(v) for v in t["label"]]
+    labels = [str(v) for v in t["label"]]
+    base = [base_name(v) for v in labels]
     xs_all = t[x].to_numpy(float)
-    at = {(float(v), n): i for i, (v, n) in enumerate(zip(xs_all, base, strict=True))}
+    # a name's row at a point: of a locked pair the plain one (the less stable
+    # root, as mode_rows reads a name), not whichever came last
+    at: dict = {}
+    for i, (v, n) in enumerate(zip(xs_all, base, strict=True)):
+        if (float(v), n) not in at or labels[i] == n:
+            at[(float(v), n)] = i
     cols = {c: t[c].to_numpy() for c in _ROW_COLUMNS if c in t}
     # each track's rows, the tracks in the order they first appear and rows
     # without a track left out (as groupby("track", sort=False) gave them)
@@ -375,8 +381,8 @@ def _moves(table: pd.DataFrame, x: str, kind) -> list:
         xs = xs_all[g]
         for i in np.flatnonzero(names[1:] != names[:-1]):
             a, b = names[i], names[i + 1]
-            rows = [at.get((xs[i], a)), at.get((xs[i], b)), at.get((xs[i + 1], a)),
-                    at.get((xs[i + 1], b))]
+            # the track's own rows, and the other name's root at either point
+            rows = [g[i], at.get((xs[i], b)), at.get((xs[i + 1], a)), g[i + 1]]
             if None in rows or not kind({c: v[rows] for c, v in cols.items()}):
                 continue
             out.append((xs[i], xs[i + 1], a, b))
@@ -453,6 +459,29 @@ def _is_exceptional(rows: dict) -> bool:
         if not (max(m[0], m[2]) >= FLAP_ACTIVE and max(m[1], m[3]) >= FLAP_ACTIVE):
             return False
     return not _uncoupled_crossed(rows)
+
+
+def _is_flap_free_exchange(rows: dict) -> bool:
+    """Rows (a, b at the first point; a, b at the second) of an exchange of two
+    decided names that the flap takes no part in.
+
+    The four names decided (:func:`_decided`), the uncoupled pair in the same
+    order, and one of the two names on roots that do not move the flap on
+    either side (below :data:`tefcore.modes.continuation.FLAP_ACTIVE`): not
+    an exceptional point of the blade-flap coupling (:func:`_is_exceptional`
+    asks both to move the flap), but two blade roots whose names -- the
+    coordinate each carries, which the flap's coupling does not change --
+    changed places between the points, the blade's own modes veering
+    (measured on Fig. 12's balanced flap at mu 0.3: blade flap 5 and torsion
+    2 at 11.72 /rev, 0.01 /rev apart, flap motion 2e-3 to 5e-3, their flap
+    shares 0.65 / 0.34 at 138 and 0.41 / 0.59 at 166 ft-lb/rad).
+    """
+    if "flap_motion" not in rows or ("identity_certain" in rows
+                                     and not _decided(rows).all()):
+        return False
+    m = np.asarray(rows["flap_motion"], float)
+    moves = max(m[0], m[2]) >= FLAP_ACTIVE and max(m[1], m[3]) >= FLAP_ACTIVE
+    return not moves and not _uncoupled_crossed(rows)
 
 
 def switch_steps(table: pd.DataFrame, x: str = "value_si") -> list[tuple[float, float]]:
@@ -596,9 +625,12 @@ def undecided_steps(table: pd.DataFrame, x: str = "x") -> pd.DataFrame:
     (``identity_certain`` False on either side: a path that met an undecided
     match no step resolved and that was no coalescence, or a name given at
     the end; or ``named_by_path`` False: a root whose path brought another
-    name, named by the coordinate it carries).  The name did move between
-    roots there, with no located exceptional point to say why: a reader sees
-    it instead of a silent jump.
+    name, named by the coordinate it carries) -- or, also listed, two decided
+    names exchanged by roots the flap takes no part in (kind ``"named by
+    participation"``, :func:`_is_flap_free_exchange`: their names are the
+    coordinates they carry, and the blade's own modes veered between the
+    points).  The name did move between roots there, with no located
+    exceptional point to say why: a reader sees it instead of a silent jump.
     A claim is not withheld for it (only an exceptional point makes a claim
     ambiguous).
 
@@ -615,7 +647,8 @@ def undecided_steps(table: pd.DataFrame, x: str = "x") -> pd.DataFrame:
     -------
     pandas.DataFrame
         ``modes`` (``"A / B"``), ``x_low``, ``x_high``, ``kind``
-        (``"identity undecided"``); overlapping intervals of one pair merged.
+        (``"identity undecided"`` or ``"named by participation"``);
+        overlapping intervals of one pair and kind merged.
 
     Examples
     --------
@@ -631,10 +664,11 @@ def undecided_steps(table: pd.DataFrame, x: str = "x") -> pd.DataFrame:
     import pandas as pd
 
     rows = []
+    kinds = ((_is_undecided, "identity undecided"), (_is_flap_free_exchange,
+                                                     "named by participation"))
     if "identity_certain" in table:
-        rows = [{"modes": " / ".join(sorted((a, b))), "x_low": lo, "x_high": hi,
-                 "kind": "identity undecided"}
-                for lo, hi, a, b in _moves(table, x, _is_undecided)]
+        rows = [{"modes": " / ".join(sorted((a, b))), "x_low": lo, "x_high": hi, "kind": what}
+                for test, what in kinds for lo, hi, a, b in _moves(table, x, test)]
     return _merged(pd.DataFrame(rows, columns=["modes", "x_low", "x_high", "kind"]))
 
 

@@ -202,7 +202,9 @@ def report_identity(name: str, result) -> None:
     point, by continuation in the blade-flap coupling); printed: the
     exceptional points where two names exchange (none: every root keeps its
     name over the range), the steps where a name moves to another root with
-    its identity undecided (:func:`tefcore.modes.roles.undecided_steps`), how
+    no exceptional point located there (:func:`tefcore.modes.roles.undecided_steps`:
+    its identity undecided, or the names by participation of roots the flap
+    does not move), how
     many points the refinement added to locate the exceptional points, and
     the modes the flutter root continues from.  Nothing is returned.
 
@@ -229,12 +231,14 @@ def report_identity(name: str, result) -> None:
         print(f"  exceptional point of {e['modes']} {where(e)} ({e['kind']})")
     moved = undecided_steps(ok, x="x")
     if not moved.empty:
-        print("  names that move to another root with the identity undecided "
-              "(no exceptional point located there):")
-    for modes, g in moved.groupby("modes", sort=False):
+        print("  names that move to another root with no exceptional point located there "
+              "(the identity undecided, or names by participation of roots the flap does "
+              "not move):")
+    for (modes, kind), g in moved.groupby(["modes", "kind"], sort=False):
         steps = ", ".join(f"{lo:.4g}-{hi:.4g}" for lo, hi in zip(g["x_low"], g["x_high"],
                                                                  strict=True))
-        print(f"    {modes} at x = {steps}")
+        print(f"    {modes} at x = {steps}" + ("" if kind == "identity undecided"
+                                                 else f" ({kind})"))
     fr = ok[ok["flutter_root"].fillna(False).astype(bool)]
     if "refinement" in fr:
         fr = fr[fr["refinement"] == 0]

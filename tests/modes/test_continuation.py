@@ -152,11 +152,12 @@ def test_an_exchange_away_from_an_uncoupled_crossing_is_an_exceptional_point():
     assert exceptional_points(pd.DataFrame(rows)).empty
 
 
-def _exchange_rows(certain_at_1=(True, True), crossed=False, by_path_at_0=(True, True)):
+def _exchange_rows(certain_at_1=(True, True), crossed=False, by_path_at_0=(True, True),
+                   motion=0.5):
     """The TEF and blade flap 3 exchange tracks between x = 0 and 1; at x = 1 the
     two names' certainty as given, at x = 0 whether each name is its path's
     (``named_by_path``); the uncoupled frequencies keep their order unless
-    `crossed`."""
+    `crossed`; blade flap 3's roots move the flap by `motion`."""
     rows = []
     for x, names in [(0.0, ["blade flap 3", "TEF"]), (1.0, ["TEF", "blade flap 3"])]:
         for track, name in enumerate(names):
@@ -166,7 +167,8 @@ def _exchange_rows(certain_at_1=(True, True), crossed=False, by_path_at_0=(True,
             if crossed and x == 1.0:
                 f = 5.0 - f
             rows.append({"x": x, "track": track, "label": name, "identity_certain": sure,
-                         "flap_motion": 0.5, "frequency_uncoupled": f, "named_by_path": own})
+                         "flap_motion": 0.5 if name == "TEF" else motion,
+                         "frequency_uncoupled": f, "named_by_path": own})
     return pd.DataFrame(rows)
 
 
@@ -185,32 +187,59 @@ def test_paths_that_met_are_an_exceptional_point_not_an_undecided_step():
     assert undecided_steps(table).empty
 
 
-@pytest.mark.parametrize("certain_at_1, crossed, by_path_at_0, kind", [
-    ((True, True), False, (True, True), "names exchange"),       # decided both sides: an EP
-    ((True, False), False, (True, True), "identity undecided"),  # the TEF undecided at x = 1
-    ((False, True), False, (True, True), "identity undecided"),  # blade flap 3 undecided
-    ((True, False), True, (True, True), None),       # the uncoupled modes crossed: no jump
+@pytest.mark.parametrize("certain_at_1, crossed, by_path_at_0, motion, kind", [
+    ((True, True), False, (True, True), 0.5, "names exchange"),  # decided both sides: an EP
+    ((True, False), False, (True, True), 0.5, "identity undecided"),  # the TEF undecided at 1
+    ((False, True), False, (True, True), 0.5, "identity undecided"),  # flap 3 undecided
+    ((True, False), True, (True, True), 0.5, None),  # the uncoupled modes crossed: no jump
     # blade flap 3's name at x = 0 given by participation (its root's path was
     # another's): the paths did not exchange, so no exceptional point
-    ((True, True), False, (False, True), "identity undecided"),
+    ((True, True), False, (False, True), 0.5, "identity undecided"),
+    # decided on both sides, but blade flap 3's roots do not move the flap
+    # (Fig. 12's balanced flap: flap 5 and torsion 2, 2e-3 to 5e-3): not an
+    # exceptional point of the coupling, a move of names by participation --
+    # listed, not silent (it was neither before stop 39)
+    ((True, True), False, (True, True), 3e-3, "named by participation"),
 ])
-def test_a_name_that_moves_is_an_exceptional_point_or_an_undecided_step(certain_at_1, crossed,
-                                                                         by_path_at_0, kind):
-    """A label moves to another track in one of three ways, and is never silent:
+def test_a_name_that_moves_is_an_exceptional_point_or_an_undecided_step(
+        certain_at_1, crossed, by_path_at_0, motion, kind):
+    """A label moves to another track in one of four ways, and is never silent:
     through an exceptional point (both names decided by their paths:
     :func:`exceptional_points`), with a name undecided on a side or given by
-    participation (:func:`undecided_steps`: not an EP, since no coalescence
-    was located, but the jump is listed), or with the uncoupled modes
-    changing places (the names follow them: neither)."""
+    participation, or two decided names of roots the flap does not move
+    exchanged (:func:`undecided_steps`: not an EP, since no coalescence was
+    located, but the jump is listed), or with the uncoupled modes changing
+    places (the names follow them: neither)."""
     from tefcore.modes.roles import undecided_steps
 
-    table = _exchange_rows(certain_at_1, crossed, by_path_at_0)
+    table = _exchange_rows(certain_at_1, crossed, by_path_at_0, motion)
     ep, moved = exceptional_points(table), undecided_steps(table)
     assert (ep["kind"].tolist() + moved["kind"].tolist()) == ([kind] if kind else [])
     for found in (ep, moved):
         if len(found):
             assert found[["modes", "x_low", "x_high"]].values.tolist() == [
                 ["TEF / blade flap 3", 0.0, 1.0]]
+
+
+def test_a_move_is_judged_on_the_track_s_own_rows_beside_a_lock():
+    """Where the moving name is also a lock's second root at a point ("X" and "X
+    (locked)"), the move is judged on the row of the track that moves, not on
+    whichever row of the name came last (found at stop 39 on Fig. 12 at 186.5
+    ft-lb/rad: blade torsion 2's undecided root moved to blade flap 3, judged on
+    its decided locked partner, was neither an exceptional point nor listed)."""
+    from tefcore.modes.roles import undecided_steps
+
+    names = {0.0: ["blade torsion 2", "blade torsion 2 (locked)", "blade flap 3"],
+             1.0: ["blade flap 3", "blade torsion 2 (locked)", "blade torsion 2"]}
+    rows = [{"x": x, "track": k, "label": n, "identity_certain": not (x == 0.0 and k == 0),
+             "named_by_path": True, "flap_motion": 0.5,
+             "frequency_uncoupled": 11.3 if "torsion" in n else 2.7}
+            for x, ns in names.items() for k, n in enumerate(ns)]
+    table = pd.DataFrame(rows)
+    moved = undecided_steps(table)
+    assert moved[["modes", "x_low", "x_high", "kind"]].values.tolist() == [
+        ["blade flap 3 / blade torsion 2", 0.0, 1.0, "identity undecided"]]
+    assert exceptional_points(table).empty
 
 
 # ------------------------------------------------------------------ Floquet lock
