@@ -276,9 +276,13 @@ def fake_sweep(eps=()):
     columns = ["modes", "x_low", "x_high", "kind"]
     return SimpleNamespace(table=pd.DataFrame(rows), parameter="hub.pitch_link_stiffness",
                            exceptional_points=pd.DataFrame(
-                               [e for e in eps if e[3] != "identity undecided"], columns=columns),
+                               [e for e in eps if e[3] not in MOVED], columns=columns),
                            undecided_steps=pd.DataFrame(
-                               [e for e in eps if e[3] == "identity undecided"], columns=columns))
+                               [e for e in eps if e[3] in MOVED], columns=columns))
+
+
+#: The kinds of :func:`tefcore.modes.roles.undecided_steps`.
+MOVED = ("identity undecided", "named by participation")
 
 
 def test_sweep_summary_in_the_given_unit_with_exceptional_points():
@@ -316,6 +320,14 @@ def test_sweep_summary_names_a_step_where_a_role_s_name_moved_undecided():
         "undecided: TEF / blade flap 3 between 650 and 660" in text
     assert "exceptional points" not in text
     assert "blade flap 1 / blade lag 1" not in text
+    # a move of names by participation is said under its own kind
+    res = fake_sweep([("blade torsion 2 / blade flap 5", 450 * lb_in, 460 * lb_in,
+                       "named by participation")])
+    text = " ".join(" ".join(sweep_summary(res)).split())
+    assert ("flutter root: unstable throughout; largest real part +1.500 /rev at 800 lb/in "
+            "(TEF); named by participation of its names: blade torsion 2 / blade flap 5 "
+            "between 450 and 460") in text
+    assert "identity undecided" not in text
 
 
 def test_a_real_hover_sweep_summary(capsys, tmp_path):

@@ -429,7 +429,9 @@ def onset(x, real, neutral=None) -> tuple[str, float]:
 def _role_line(what: str, rows: pd.DataFrame, unit: tuple[str, float], names_ep,
                undecided=()) -> str:
     """One role's summary: onset, largest growth, exceptional points of its names and
-    the steps where one of its names moved with the identity undecided."""
+    the steps where one of its names moved with no exceptional point located
+    (``undecided``: ``(modes, x_low, x_high, kind)``, said under their kind,
+    :func:`tefcore.modes.roles.undecided_steps`)."""
     rows = rows[np.isfinite(rows["real_part"].to_numpy(float))]
     if rows.empty:
         return wrap(f"{what}: not at any point of the sweep")
@@ -443,8 +445,10 @@ def _role_line(what: str, rows: pd.DataFrame, unit: tuple[str, float], names_ep,
     line = (f"{what}: {text}; largest real part {top['real_part']:+.3f} /rev at "
             f"{x[i]:.4g}{(' ' + u) if u else ''}{name}")
     own = set(map(base_name, rows["label"]))
-    for found, what_kind in ((names_ep, "exceptional points"),
-                             (undecided, "identity undecided")):
+    kinds = [(names_ep, "exceptional points")] + [
+        ([e[:3] for e in undecided if e[3] == k], k)
+        for k in dict.fromkeys(e[3] for e in undecided)]
+    for found, what_kind in kinds:
         hits = [e for e in found if set(e[0].split(" / ")) & own]
         if hits:
             where = "; ".join(f"{m} " + (f"at {lo * f:.4g}" if lo == hi else
@@ -481,7 +485,7 @@ def sweep_summary(result) -> list[str]:
     real part and where (with the flutter root's name there), the
     exceptional points (:attr:`tefcore.sweeps.sweep.SweepResult.exceptional_points`)
     involving its names, and the steps where one of its names moved to
-    another root with the identity undecided
+    another root with no exceptional point located, under their kind
     (:attr:`tefcore.sweeps.sweep.SweepResult.undecided_steps`).  Values of
     the parameter are in the unit the sweep was given in.
 
@@ -503,9 +507,10 @@ def sweep_summary(result) -> list[str]:
     if "refinement" in ok:
         ok = ok[ok["refinement"] == 0]
     unit = _x_unit(t, result.parameter)
-    named, undecided = ([(m, lo, hi) for m, lo, hi in zip(e["modes"], e["x_low"], e["x_high"],
-                                                            strict=True)]
-                        for e in (result.exceptional_points, result.undecided_steps))
+    named, undecided = ([(m, lo, hi, k) for m, lo, hi, k in zip(
+        e["modes"], e["x_low"], e["x_high"], e["kind"], strict=True)]
+        for e in (result.exceptional_points, result.undecided_steps))
+    named = [e[:3] for e in named]
     head = f"{result.parameter}" + (f" in {unit[0]}" if unit[0] else "")
     lines = [f"along {head}:"]
     for what, col in (("TEF mode", "tef_branch"), ("flutter root", "flutter_root")):

@@ -363,17 +363,24 @@ def _moves(table: pd.DataFrame, x: str, kind) -> list:
     labels = [str(v) for v in t["label"]]
     base = [base_name(v) for v in labels]
     xs_all = t[x].to_numpy(float)
-    # a name's row at a point: of a locked pair the plain one (the less stable
-    # root, as mode_rows reads a name), not whichever came last
-    at: dict = {}
+    tracks = t["track"].to_numpy()
+    # a name's rows at a point (a locked pair has two), the plain one first
+    # (the less stable root, as mode_rows reads a name); a track's row at a point
+    rows_of: dict = {}
+    on_track: dict = {}
     for i, (v, n) in enumerate(zip(xs_all, base, strict=True)):
-        if (float(v), n) not in at or labels[i] == n:
-            at[(float(v), n)] = i
+        here = rows_of.setdefault((float(v), n), [])
+        if labels[i] == n:
+            here.insert(0, i)
+        else:
+            here.append(i)
+        if not pd.isna(tracks[i]):
+            on_track[(tracks[i], float(v))] = i
     cols = {c: t[c].to_numpy() for c in _ROW_COLUMNS if c in t}
     # each track's rows, the tracks in the order they first appear and rows
     # without a track left out (as groupby("track", sort=False) gave them)
     groups: dict = {}
-    for i, tr in enumerate(t["track"].to_numpy()):
+    for i, tr in enumerate(tracks):
         if not pd.isna(tr):
             groups.setdefault(tr, []).append(i)
     for g in groups.values():
@@ -381,12 +388,32 @@ def _moves(table: pd.DataFrame, x: str, kind) -> list:
         xs = xs_all[g]
         for i in np.flatnonzero(names[1:] != names[:-1]):
             a, b = names[i], names[i + 1]
-            # the track's own rows, and the other name's root at either point
-            rows = [g[i], at.get((xs[i], b)), at.get((xs[i + 1], a)), g[i + 1]]
+            rows = [g[i], *_partner(rows_of, on_track, tracks, base, xs[i], xs[i + 1], a, b),
+                    g[i + 1]]
             if None in rows or not kind({c: v[rows] for c, v in cols.items()}):
                 continue
             out.append((xs[i], xs[i + 1], a, b))
     return out
+
+
+def _partner(rows_of, on_track, tracks, base, x1, x2, a, b):
+    """The rows of name `b` at `x1` and `a` at `x2` a track's move ``a -> b`` is judged with.
+
+    The track that made the opposite move (``b -> a``) where there is one, so
+    that both tracks of an exchange judge it on the same four rows (found in
+    review at stop 39: beside a lock, the plain row of a name on a track that
+    never moved made the partner's judgment an exceptional point and the
+    moving track's an undecided step); else each name's row there, the
+    plain one of a locked pair.
+    """
+    import pandas as pd
+
+    for j in rows_of.get((x2, a), ()):
+        k = on_track.get((tracks[j], x1)) if not pd.isna(tracks[j]) else None
+        if k is not None and base[k] == b:
+            return k, j
+    first = [rows_of.get((x, n), [None])[0] for x, n in ((x1, b), (x2, a))]
+    return first[0], first[1]
 
 
 #: The columns :func:`_moves` gives its ``kind`` (those present in the table).
@@ -463,18 +490,19 @@ def _is_exceptional(rows: dict) -> bool:
 
 def _is_flap_free_exchange(rows: dict) -> bool:
     """Rows (a, b at the first point; a, b at the second) of an exchange of two
-    decided names that the flap takes no part in.
+    decided names, one of them on roots the flap does not move.
 
     The four names decided (:func:`_decided`), the uncoupled pair in the same
-    order, and one of the two names on roots that do not move the flap on
-    either side (below :data:`tefcore.modes.continuation.FLAP_ACTIVE`): not
-    an exceptional point of the blade-flap coupling (:func:`_is_exceptional`
-    asks both to move the flap), but two blade roots whose names -- the
-    coordinate each carries, which the flap's coupling does not change --
-    changed places between the points, the blade's own modes veering
-    (measured on Fig. 12's balanced flap at mu 0.3: blade flap 5 and torsion
-    2 at 11.72 /rev, 0.01 /rev apart, flap motion 2e-3 to 5e-3, their flap
-    shares 0.65 / 0.34 at 138 and 0.41 / 0.59 at 166 ft-lb/rad).
+    order, and one of the names on roots below
+    :data:`tefcore.modes.continuation.FLAP_ACTIVE` on both sides: no
+    exceptional point of the blade-flap coupling (there the two roots share
+    one shape, flap and all: :func:`_is_exceptional` asks both names to move
+    the flap on a side), and that name is the coordinate its flap-free root
+    carries (participation, the final naming).  With neither name moving the
+    flap, the blade's own modes veered between the points (measured on Fig.
+    12's balanced flap at mu 0.3: blade flap 5 and torsion 2 at 11.72 /rev,
+    0.01 /rev apart, flap motion 2e-3 to 5e-3, their flap shares 0.65 / 0.34
+    at 138 and 0.41 / 0.59 at 166 ft-lb/rad).
     """
     if "flap_motion" not in rows or ("identity_certain" in rows
                                      and not _decided(rows).all()):
@@ -626,10 +654,10 @@ def undecided_steps(table: pd.DataFrame, x: str = "x") -> pd.DataFrame:
     match no step resolved and that was no coalescence, or a name given at
     the end; or ``named_by_path`` False: a root whose path brought another
     name, named by the coordinate it carries) -- or, also listed, two decided
-    names exchanged by roots the flap takes no part in (kind ``"named by
-    participation"``, :func:`_is_flap_free_exchange`: their names are the
-    coordinates they carry, and the blade's own modes veered between the
-    points).  The name did move between roots there, with no located
+    names exchanged where one of them is on roots the flap does not move
+    (kind ``"named by participation"``, :func:`_is_flap_free_exchange`: that
+    name is the coordinate its root carries; with both flap-free, the blade's
+    own modes veered between the points).  The name did move between roots there, with no located
     exceptional point to say why: a reader sees it instead of a silent jump.
     A claim is not withheld for it (only an exceptional point makes a claim
     ambiguous).

@@ -143,17 +143,21 @@ def flutter_reading(claim, check) -> str:
     Returns
     -------
     str
-        ``"; the same check on the flutter root instead (...): fail (...)"``,
-        or empty for a claim that does not name the TEF, is not about
-        stability (:data:`STABILITY_QUANTITIES`), or that the flutter root
-        does not decide either.
+        ``"; the same check on the flutter root instead (...): fail (...)"``
+        (what it computed, or why it could not), or empty for a claim that
+        does not name the TEF with a stability quantity
+        (:data:`STABILITY_QUANTITIES`), or that the flutter root does not
+        decide either.
     """
-    if claim.quantity not in STABILITY_QUANTITIES or "TEF" not in (claim.mode,
-                                                                  claim.other_mode):
+    quantity = {"mode": claim.quantity, "other_mode": claim.other_quantity or claim.quantity}
+    swap = {k: FLUTTER_ROOT for k in ("mode", "other_mode")
+            if getattr(claim, k) == "TEF" and quantity[k] in STABILITY_QUANTITIES}
+    if not swap:
         return ""
-    swap = {k: FLUTTER_ROOT for k in ("mode", "other_mode") if getattr(claim, k) == "TEF"}
     row = check(dataclasses.replace(claim, **swap))
-    if row["status"] not in ("pass", "fail"):
+    # what was computed, or why nothing was (no flap-induced root in the sweep)
+    detail = row["computed"] or row["reason"]
+    if row["status"] not in ("pass", "fail") or not detail:
         return ""
     return (f"; the same check on the flutter root instead (the least stable flap-induced "
-            f"root, a role decided at every point): {row['status']} ({row['computed']})")
+            f"root, a role decided at every point): {row['status']} ({detail})")

@@ -84,10 +84,11 @@ STATUS_MEANINGS = {
     "ambiguous": "which root carries the claim's mode has no answer, and that only where a "
                  "located exceptional point — a coalescence of two roots in the plane of the "
                  "swept parameter and the blade-flap coupling — lies inside the claim's "
-                 "range and the verdict differs with the choice of names there; the reason "
-                 "names it (its two modes and where) and, for a claim on the TEF's "
-                 "stability, what the same check gives on the flutter root (the least stable "
-                 "flap-induced root, which every point decides).",
+                 "range and the verdict is not the same with the names exchanged there (or "
+                 "there are too many such points to try each choice); the reason names it "
+                 "(its two modes and where) and, for a claim on the TEF's stability, what "
+                 "the same check gives on the flutter root (the least stable flap-induced "
+                 "root, which every point decides).",
     "not reproducible": "tefcore cannot check the statement: it compares with data tefcore "
                         "does not have (wind-tunnel tests, other analyses, the paper's "
                         "tables), its digitised points all lie outside the computed range, "

@@ -237,10 +237,11 @@ class SweepResult:
 
     @property
     def undecided_steps(self) -> pd.DataFrame:
-        """Where a name moves to another root with its identity undecided.
+        """Where a name moves to another root with no exceptional point located there.
 
         See :func:`tefcore.modes.roles.undecided_steps` (``x_low``, ``x_high``
-        in SI values of the parameter): no exceptional point was located there.
+        in SI values of the parameter; ``kind`` ``"identity undecided"`` or
+        ``"named by participation"``).
         """
         t = self.table[self.table["status"] == "ok"]
         return undecided_steps(t, x="value_si")

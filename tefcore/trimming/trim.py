@@ -292,7 +292,8 @@ def _initial_guess(prob, initial: TrimResult | None) -> np.ndarray:
         ctl = Controls(collective=initial_collective(cfg))
         f = model.flight
         # the mean induced inflow of momentum theory at the target thrust
-        # (Glauert in forward flight): what a uniform inflow converges to, and
+        # (Glauert in forward flight; with a prescribed collective at the
+        # ct_sigma field all the same): what a uniform inflow converges to, and
         # close to the mean of the Pitt-Peters states.  Measured on MDART at
         # mu 0.02-0.4 against the hover value sqrt(C_T/2): 0-4 fewer Newton
         # iterations with uniform, linear or Pitt-Peters inflow (one more once:
@@ -398,8 +399,9 @@ def _result(prob, newton, history) -> TrimResult:
 #: The factorised Newton matrix is re-evaluated when the residual falls by less
 #: than this factor in an iteration (Broyden's updates in between).  Measured on
 #: MDART, mu = 0.1 .. 0.35, balanced and imbalanced flap, momentum and dynamic
-#: inflow: a cold trim takes one Jacobian and 9-11 residuals (two and 6-8 with
-#: 0.1 and no updates), 15 % less time.
+#: inflow: a cold trim took one Jacobian and 9-11 residuals (two and 6-8 with
+#: 0.1 and no updates), 15 % less time -- from the hover inflow; from the
+#: momentum inflow (stop 39) one Jacobian and 7 residuals at mu = 0.3.
 REFRESH_RATIO = 0.5
 
 #: The same without Broyden's updates (the shed-wake states' Schur-complement

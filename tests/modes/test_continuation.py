@@ -240,6 +240,19 @@ def test_a_move_is_judged_on_the_track_s_own_rows_beside_a_lock():
     assert moved[["modes", "x_low", "x_high", "kind"]].values.tolist() == [
         ["blade flap 3 / blade torsion 2", 0.0, 1.0, "identity undecided"]]
     assert exceptional_points(table).empty
+    # the lock's second root is the one that moves, its plain partner stays on
+    # its track: both tracks of the exchange judge it on the same rows (found in
+    # review: the flap 3 track read the plain torsion 2 of the track that never
+    # moved, decided, and called the same step an exceptional point)
+    names = {0.0: ["blade torsion 2 (locked)", "blade torsion 2", "blade flap 3"],
+             1.0: ["blade flap 3", "blade torsion 2", "blade torsion 2 (locked)"]}
+    rows = [{"x": x, "track": k, "label": n, "identity_certain": not (x == 0.0 and k == 0),
+             "named_by_path": True, "flap_motion": 0.5,
+             "frequency_uncoupled": 11.3 if "torsion" in n else 2.7}
+            for x, ns in names.items() for k, n in enumerate(ns)]
+    table = pd.DataFrame(rows)
+    assert undecided_steps(table)["kind"].tolist() == ["identity undecided"]
+    assert exceptional_points(table).empty
 
 
 # ------------------------------------------------------------------ Floquet lock

@@ -369,6 +369,9 @@ def test_an_undecided_tef_stability_claim_tells_what_the_flutter_root_gives():
     t["flutter_root"] = t["track"] == 3          # a flutter root stable throughout
     status, row = check(c, t)
     assert status == "ambiguous" and ": fail (crossings: none" in row["reason"]
+    t["flutter_root"] = False                    # no flap-induced root: says so, not "fail ()"
+    status, row = check(c, t)
+    assert status == "ambiguous" and ": fail (no flap-induced root in the sweep)" in row["reason"]
     # a claim on blade torsion 1 (the TEF's partner) gets no such reading
     torsion = claim(kind="threshold", mode="blade torsion 1", direction="destabilising")
     status, row = check(torsion, t)
