@@ -657,8 +657,9 @@ def undecided_steps(table: pd.DataFrame, x: str = "x") -> pd.DataFrame:
     names exchanged where one of them is on roots the flap does not move
     (kind ``"named by participation"``, :func:`_is_flap_free_exchange`: that
     name is the coordinate its root carries; with both flap-free, the blade's
-    own modes veered between the points).  The name did move between roots there, with no located
-    exceptional point to say why: a reader sees it instead of a silent jump.
+    own modes veered between the points).  The name did move between roots
+    there, with no located exceptional point to say why: a reader sees it
+    instead of a silent jump.
     A claim is not withheld for it (only an exceptional point makes a claim
     ambiguous).
 

@@ -202,11 +202,11 @@ def report_identity(name: str, result) -> None:
     point, by continuation in the blade-flap coupling); printed: the
     exceptional points where two names exchange (none: every root keeps its
     name over the range), the steps where a name moves to another root with
-    no exceptional point located there (:func:`tefcore.modes.roles.undecided_steps`:
-    its identity undecided, or the names by participation of roots the flap
-    does not move), how
-    many points the refinement added to locate the exceptional points, and
-    the modes the flutter root continues from.  Nothing is returned.
+    no exceptional point located there
+    (:func:`tefcore.modes.roles.undecided_steps`: its identity undecided, or
+    the names by participation of roots the flap does not move), how many
+    points the refinement added to locate the exceptional points, and the
+    modes the flutter root continues from.  Nothing is returned.
 
     Parameters
     ----------
