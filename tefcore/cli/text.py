@@ -507,10 +507,10 @@ def sweep_summary(result) -> list[str]:
     if "refinement" in ok:
         ok = ok[ok["refinement"] == 0]
     unit = _x_unit(t, result.parameter)
-    named, undecided = ([(m, lo, hi, k) for m, lo, hi, k in zip(
-        e["modes"], e["x_low"], e["x_high"], e["kind"], strict=True)]
-        for e in (result.exceptional_points, result.undecided_steps))
-    named = [e[:3] for e in named]
+    named = list(result.exceptional_points[["modes", "x_low", "x_high"]].itertuples(
+        index=False, name=None))
+    undecided = list(result.undecided_steps[["modes", "x_low", "x_high", "kind"]].itertuples(
+        index=False, name=None))
     head = f"{result.parameter}" + (f" in {unit[0]}" if unit[0] else "")
     lines = [f"along {head}:"]
     for what, col in (("TEF mode", "tef_branch"), ("flutter root", "flutter_root")):

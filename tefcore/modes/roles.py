@@ -347,10 +347,11 @@ def _switches(table: pd.DataFrame, x: str):
 
 
 def _moves(table: pd.DataFrame, x: str, kind) -> list:
-    """``(x_before, x_after, a, b)`` where a track's name changes ``a -> b``, the
-    other name is there at both points (the pair exchanged, not a lock forming)
-    and ``kind(rows)`` holds (rows: a, b at the first point; a, b at the second,
-    as a dict of the columns' values; :data:`_ROW_COLUMNS`).
+    """``(x_before, x_after, a, b, what)`` where a track's name changes ``a -> b``,
+    the other name is there at both points (the pair exchanged, not a lock
+    forming) and ``what = kind(rows)`` is true (rows: a, b at the first point;
+    a, b at the second, as a dict of the columns' values; :data:`_ROW_COLUMNS`
+    -- chosen by :func:`_partner`).
 
     The columns are read once: picking each candidate's four rows from the
     table took 1.1 ms, 0.6 s of a 10.8 s Fig. 13 sweep's refinement rounds
@@ -390,9 +391,9 @@ def _moves(table: pd.DataFrame, x: str, kind) -> list:
             a, b = names[i], names[i + 1]
             rows = [g[i], *_partner(rows_of, on_track, tracks, base, xs[i], xs[i + 1], a, b),
                     g[i + 1]]
-            if None in rows or not kind({c: v[rows] for c, v in cols.items()}):
-                continue
-            out.append((xs[i], xs[i + 1], a, b))
+            what = None if None in rows else kind({c: v[rows] for c, v in cols.items()})
+            if what:
+                out.append((xs[i], xs[i + 1], a, b, what))
     return out
 
 
@@ -481,11 +482,16 @@ def _is_exceptional(rows: dict) -> bool:
     """
     if "identity_certain" in rows and not _decided(rows).all():
         return False
-    if "flap_motion" in rows:
-        m = np.asarray(rows["flap_motion"], float)
-        if not (max(m[0], m[2]) >= FLAP_ACTIVE and max(m[1], m[3]) >= FLAP_ACTIVE):
-            return False
+    if "flap_motion" in rows and not _both_move_the_flap(rows):
+        return False
     return not _uncoupled_crossed(rows)
+
+
+def _both_move_the_flap(rows: dict) -> bool:
+    """Each of the two names' roots moves the flap (:data:`FLAP_ACTIVE`) on one side at
+    least (rows: a, b at the first point; a, b at the second)."""
+    m = np.asarray(rows["flap_motion"], float)
+    return max(m[0], m[2]) >= FLAP_ACTIVE and max(m[1], m[3]) >= FLAP_ACTIVE
 
 
 def _is_flap_free_exchange(rows: dict) -> bool:
@@ -507,9 +513,7 @@ def _is_flap_free_exchange(rows: dict) -> bool:
     if "flap_motion" not in rows or ("identity_certain" in rows
                                      and not _decided(rows).all()):
         return False
-    m = np.asarray(rows["flap_motion"], float)
-    moves = max(m[0], m[2]) >= FLAP_ACTIVE and max(m[1], m[3]) >= FLAP_ACTIVE
-    return not moves and not _uncoupled_crossed(rows)
+    return not _both_move_the_flap(rows) and not _uncoupled_crossed(rows)
 
 
 def switch_steps(table: pd.DataFrame, x: str = "value_si") -> list[tuple[float, float]]:
@@ -534,7 +538,7 @@ def switch_steps(table: pd.DataFrame, x: str = "value_si") -> list[tuple[float, 
     list of (float, float)
         The steps ``(x_before, x_after)``, sorted, without repeats.
     """
-    return sorted({(a, b) for a, b, _, _ in _switches(table, x)})
+    return sorted({(a, b) for a, b, *_ in _switches(table, x)})
 
 
 def exceptional_points(table: pd.DataFrame, x: str = "x") -> pd.DataFrame:
@@ -565,7 +569,7 @@ def exceptional_points(table: pd.DataFrame, x: str = "x") -> pd.DataFrame:
     import pandas as pd
 
     rows = [{"modes": " / ".join(sorted((a, b))), "x_low": lo, "x_high": hi,
-             "kind": "names exchange"} for lo, hi, a, b in _switches(table, x)]
+             "kind": "names exchange"} for lo, hi, a, b, _ in _switches(table, x)]
     if "meets" in table:
         met = table[table["meets"].fillna("").astype(str) != ""]
         for _, r in met.iterrows():
@@ -693,12 +697,19 @@ def undecided_steps(table: pd.DataFrame, x: str = "x") -> pd.DataFrame:
     import pandas as pd
 
     rows = []
-    kinds = ((_is_undecided, "identity undecided"), (_is_flap_free_exchange,
-                                                     "named by participation"))
     if "identity_certain" in table:
         rows = [{"modes": " / ".join(sorted((a, b))), "x_low": lo, "x_high": hi, "kind": what}
-                for test, what in kinds for lo, hi, a, b in _moves(table, x, test)]
+                for lo, hi, a, b, what in _moves(table, x, _undecided_kind)]
     return _merged(pd.DataFrame(rows, columns=["modes", "x_low", "x_high", "kind"]))
+
+
+def _undecided_kind(rows: dict) -> str | None:
+    """The kind of :func:`undecided_steps` a move is, or None (rows as :func:`_moves`)."""
+    if _is_undecided(rows):
+        return "identity undecided"
+    if _is_flap_free_exchange(rows):
+        return "named by participation"
+    return None
 
 
 def _merged(out: pd.DataFrame) -> pd.DataFrame:

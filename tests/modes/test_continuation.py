@@ -221,6 +221,16 @@ def test_a_name_that_moves_is_an_exceptional_point_or_an_undecided_step(
                 ["TEF / blade flap 3", 0.0, 1.0]]
 
 
+def _lock_rows(at_0, at_1):
+    """Three tracks at x = 0 and 1 carrying the names given; track 0's name
+    undecided at x = 0, every other decided; all roots move the flap."""
+    return pd.DataFrame([
+        {"x": x, "track": k, "label": n, "identity_certain": not (x == 0.0 and k == 0),
+         "named_by_path": True, "flap_motion": 0.5,
+         "frequency_uncoupled": 11.3 if "torsion" in n else 2.7}
+        for x, names in ((0.0, at_0), (1.0, at_1)) for k, n in enumerate(names)])
+
+
 def test_a_move_is_judged_on_the_track_s_own_rows_beside_a_lock():
     """Where the moving name is also a lock's second root at a point ("X" and "X
     (locked)"), the move is judged on the row of the track that moves, not on
@@ -229,13 +239,8 @@ def test_a_move_is_judged_on_the_track_s_own_rows_beside_a_lock():
     its decided locked partner, was neither an exceptional point nor listed)."""
     from tefcore.modes.roles import undecided_steps
 
-    names = {0.0: ["blade torsion 2", "blade torsion 2 (locked)", "blade flap 3"],
-             1.0: ["blade flap 3", "blade torsion 2 (locked)", "blade torsion 2"]}
-    rows = [{"x": x, "track": k, "label": n, "identity_certain": not (x == 0.0 and k == 0),
-             "named_by_path": True, "flap_motion": 0.5,
-             "frequency_uncoupled": 11.3 if "torsion" in n else 2.7}
-            for x, ns in names.items() for k, n in enumerate(ns)]
-    table = pd.DataFrame(rows)
+    table = _lock_rows(["blade torsion 2", "blade torsion 2 (locked)", "blade flap 3"],
+                       ["blade flap 3", "blade torsion 2 (locked)", "blade torsion 2"])
     moved = undecided_steps(table)
     assert moved[["modes", "x_low", "x_high", "kind"]].values.tolist() == [
         ["blade flap 3 / blade torsion 2", 0.0, 1.0, "identity undecided"]]
@@ -244,13 +249,8 @@ def test_a_move_is_judged_on_the_track_s_own_rows_beside_a_lock():
     # its track: both tracks of the exchange judge it on the same rows (found in
     # review: the flap 3 track read the plain torsion 2 of the track that never
     # moved, decided, and called the same step an exceptional point)
-    names = {0.0: ["blade torsion 2 (locked)", "blade torsion 2", "blade flap 3"],
-             1.0: ["blade flap 3", "blade torsion 2", "blade torsion 2 (locked)"]}
-    rows = [{"x": x, "track": k, "label": n, "identity_certain": not (x == 0.0 and k == 0),
-             "named_by_path": True, "flap_motion": 0.5,
-             "frequency_uncoupled": 11.3 if "torsion" in n else 2.7}
-            for x, ns in names.items() for k, n in enumerate(ns)]
-    table = pd.DataFrame(rows)
+    table = _lock_rows(["blade torsion 2 (locked)", "blade torsion 2", "blade flap 3"],
+                       ["blade flap 3", "blade torsion 2", "blade torsion 2 (locked)"])
     assert undecided_steps(table)["kind"].tolist() == ["identity undecided"]
     assert exceptional_points(table).empty
 
