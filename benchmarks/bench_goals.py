@@ -153,6 +153,26 @@ def commands_median(a, b, runs=5):
             statistics.median([x / y for x, y in zip(ta, tb, strict=True)]))
 
 
+def two_at_once(cmd, twin, runs=3):
+    """Wall time [s] of a command alone and with its twin (the same work, its own
+    output) running beside it, medians of ``runs``: the machine's own parallel
+    efficiency, which no code changes (two cores that share caches, memory
+    bandwidth or a hyperthreaded core go slower each when both work; measured
+    at stop 40: a 40-point sweep's evaluation 1.83 s alone, 2.17 s each)."""
+    alone, both = [], []
+    for _ in range(runs):
+        t0 = time.perf_counter()
+        subprocess.run(cmd, check=True, capture_output=True, cwd=tempfile.gettempdir())
+        alone.append(time.perf_counter() - t0)
+        t0 = time.perf_counter()
+        procs = [subprocess.Popen(c, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+                                  cwd=tempfile.gettempdir()) for c in (cmd, twin)]
+        for proc in procs:
+            proc.wait()
+        both.append(time.perf_counter() - t0)
+    return statistics.median(alone), statistics.median(both)
+
+
 def point_floor(system, tr, repeat):
     """The least a point could cost in numpy [ms]: one residual and one exact Jacobian
     (a Newton step from a converged start), the LU of the Newton matrix, the step
@@ -290,6 +310,20 @@ def goals(args):
          f"{warm['wall_s']:.2f} s",
          f"{serial['wall_s']:.2f} s ({serial['wall_s'] / warm['wall_s']:.2f} x)",
          f"{serial['wall_s'] / 2:.2f} s (1/2)")
+    pair = [[*sweep_cmd[:-2], os.path.join(tempfile.mkdtemp(), "s.csv"), "--jobs", "1"]
+            for _ in range(2)]
+    alone, both = two_at_once(*pair)
+    eff = alone / both
+    # what --jobs 2 could reach on this machine: the part that is not the
+    # points' evaluation stays serial, and the evaluation runs on two
+    # processes that each go 1/eff times slower than one alone
+    fixed = max(t_j1 - serial["wall_s"], 0.0)
+    bound = t_j1 / (fixed + serial["wall_s"] / (2 * eff))
+    line("  two --jobs 1 sweeps at once, each", f"{both:.2f} s", f"{alone:.2f} s alone",
+         f"{bound:.2f} x (bound)")
+    print(f"    (two processes at once go {eff:.2f} times as fast each as one alone; with "
+          f"{fixed:.2f} s of the command outside the points, --jobs 2 can reach "
+          f"{bound:.2f} x here)", flush=True)
 
     from tefcore.sweeps.maps import stability_map
 
