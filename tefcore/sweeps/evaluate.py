@@ -636,8 +636,9 @@ def decode_complex(d) -> np.ndarray:
     return np.asarray(d["re"], float) + 1j * np.asarray(d["im"], float)
 
 
-#: Points of a warm-start chain: the values, in the order of their SI values, are
-#: cut into consecutive chains of this many points, each one job in which every
+#: Most points of a warm-start chain: the values, in the order of their SI values,
+#: are cut into an even number of consecutive chains of at most this many points
+#: (:func:`_even_chains`: lengths differing by one at most), each one job in which every
 #: point starts its trim from the previous point's (:func:`tefcore.linear.stability.stability`,
 #: ``warm_start``; point functions without that keyword are evaluated one by
 #: one).  The chains depend on the values alone, so fresh, resumed and parallel
