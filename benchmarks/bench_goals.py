@@ -155,10 +155,12 @@ def commands_median(a, b, runs=5):
 
 def two_at_once(cmd, twin, runs=3):
     """Wall time [s] of a command alone and with its twin (the same work, its own
-    output) running beside it, medians of ``runs``: the machine's own parallel
-    efficiency, which no code changes (two cores that share caches, memory
-    bandwidth or a hyperthreaded core go slower each when both work; measured
-    at stop 40: a 40-point sweep's evaluation 1.83 s alone, 2.17 s each)."""
+    output) running beside it, medians of ``runs`` of the whole commands: the
+    machine's own parallel efficiency, which no code changes (two cores that
+    share caches, memory bandwidth or a hyperthreaded core go slower each when
+    both work; measured at stop 40: the 40-point sweep 3.17 s alone, 3.36 s
+    each beside its twin; its evaluation alone, timed inside, 1.83 s and
+    2.16-2.17 s)."""
     alone, both = [], []
     for _ in range(runs):
         t0 = time.perf_counter()
@@ -291,7 +293,7 @@ def goals(args):
     kw = dict(progress=False, refine=False)
     serial = sweep(cfg03, "actuator.stiffness", values, n_jobs=1, **kw).timing
     # a warm pool: started and its worker ready before the sweep (a 40-point
-    # sweep is 5 chains, below MIN_COLD_CHAINS, so a sweep alone does not start
+    # sweep is 6 chains, below MIN_COLD_CHAINS, so a sweep alone does not start
     # one; until stop 31 this line timed two serial runs and read 1.02 x)
     worker_pool(1)
     t_ready = time.perf_counter()
@@ -314,15 +316,17 @@ def goals(args):
             for _ in range(2)]
     alone, both = two_at_once(*pair)
     eff = alone / both
-    # what --jobs 2 could reach on this machine: the part that is not the
-    # points' evaluation stays serial, and the evaluation runs on two
-    # processes that each go 1/eff times slower than one alone
+    # what --jobs 2 could reach on this machine, an estimate: the part that
+    # is not the points' evaluation stays serial, and the evaluation runs on
+    # two processes that each go 1/eff times slower than one alone (eff from
+    # whole commands, the evaluation timed in this warm process; a fork's own
+    # cost left out)
     fixed = max(t_j1 - serial["wall_s"], 0.0)
     bound = t_j1 / (fixed + serial["wall_s"] / (2 * eff))
     line("  two --jobs 1 sweeps at once, each", f"{both:.2f} s", f"{alone:.2f} s alone",
-         f"{bound:.2f} x (bound)")
+         f"{bound:.2f} x (estimate)")
     print(f"    (two processes at once go {eff:.2f} times as fast each as one alone; with "
-          f"{fixed:.2f} s of the command outside the points, --jobs 2 can reach "
+          f"{fixed:.2f} s of the command outside the points, --jobs 2 can reach about "
           f"{bound:.2f} x here)", flush=True)
 
     from tefcore.sweeps.maps import stability_map

@@ -313,7 +313,7 @@ def run_serial(jobs):
 
 #: Fewest chains of a cold pool worth worker processes.  A worker is ready
 #: (spawned, the solver imported) 0.7-1 s after it is started, while a chain of
-#: 8 points takes ~0.15 s at mu = 0.3: below ~10 chains the caller has done them
+#: up to 8 points takes ~0.15 s at mu = 0.3: below ~10 chains the caller has done them
 #: all before a cold worker could take one (measured: a 40-point sweep, 0.7 s of
 #: points, ran wholly in the caller and the command took 0.27 s longer for
 #: starting the pool).  A pool already started takes any two chains.
@@ -454,7 +454,7 @@ def worker_pool(n_workers: int):
 
 def start_pool_for(n_points: int, n_jobs: int) -> None:
     """Start the worker pool now for a sweep of `n_points` on `n_jobs` processes, if it
-    will use one (:func:`min_chains` chains or more; `n_jobs` as in
+    will use one (:func:`min_chains` warm-start chains or more, :func:`chains`; `n_jobs` as in
     :func:`run_joblib`): spawned workers start and import while the caller
     loads and checks its inputs (the command does); forked ones are copies of
     the caller as it is now.
@@ -466,7 +466,7 @@ def start_pool_for(n_points: int, n_jobs: int) -> None:
     n_jobs : int
         Processes at work, the caller included (negative: all the cores).
     """
-    if n_jobs != 1 and n_points >= min_chains() * WARM_CHAIN:
+    if n_jobs != 1 and len(_even_chains(range(n_points), WARM_CHAIN)) >= min_chains():
         worker_pool(n_jobs - 1 if n_jobs > 1 else max(1, (os.cpu_count() or 2) - 1))
 
 
@@ -676,7 +676,7 @@ def chains(cfg, parameter, values, keys, records, args_of, length=WARM_CHAIN):
     args_of : callable
         ``i -> args`` of :func:`evaluate_point` (after ``index``) for value ``i``.
     length : int, optional
-        Points per chain.
+        Most points per chain.
 
     Returns
     -------
@@ -704,18 +704,37 @@ def chains(cfg, parameter, values, keys, records, args_of, length=WARM_CHAIN):
     return jobs
 
 
-def _even_chains(order: list, length: int) -> list:
+def _even_chains(order, length: int) -> list:
     """`order` cut into an even number of consecutive runs of at most `length`,
     their lengths differing by one at most (one run where `length` holds them all).
 
     Two processes (the caller and one worker, ``--jobs 2`` on two cores) then
     share the chains evenly: 40 points in runs of 8 were five chains, three
-    for one process and two for the other, so the pair finished in 3/5 of the
-    serial time at best (measured: the evaluation 1.06 s against 1.75 s
-    serial); six runs of 7 and 6 leave each three.  The cut depends on the
-    number of values alone, never on the processes, so that fresh, resumed and
-    parallel sweeps start every point from the same neighbour.
+    for one process and two for the other; six runs of 6 and 7 leave each
+    three (measured, the two cuts interleaved in five pairs of the command
+    ``tefcore sweep actuator.stiffness --range "60 ft-lb/rad" "160 ft-lb/rad" 40
+    --jobs 2``: the evaluation 1.33 s with the five chains, 1.10 s with the
+    six, medians).  The cost: where ``ceil(n / length)`` is odd, one chain, so
+    one cold start, more -- also serially (a 40-point sweep at mu = 0.3: 167
+    trim iterations against 163).  The cut depends on the number of values
+    alone, never on the processes, so that fresh, resumed and parallel sweeps
+    of the same values start every point from the same neighbour; a sweep of
+    other values (one more, say) is cut anew.
+
+    Parameters
+    ----------
+    order : sequence
+        The values' indices in SI order.
+    length : int
+        Most points in a run, at least 1 (1: every value a run of its own).
+
+    Returns
+    -------
+    list
+        The runs, slices of `order`.
     """
+    if length <= 1:
+        return [order[i:i + 1] for i in range(len(order))]
     n = len(order)
     if n <= length:
         return [order] if order else []

@@ -123,3 +123,26 @@ def test_chains_are_an_even_number_of_runs_of_near_equal_length(n):
         assert len(runs) <= -(-n // evaluate.WARM_CHAIN) + 1
     else:
         assert len(runs) == (1 if n else 0)
+    # a point function without warm starts: every value a chain of its own
+    assert evaluate._even_chains(order, 1) == [[i] for i in order]
+
+
+def test_a_sweeps_chains_are_the_even_cut_of_its_values_fresh_or_resumed():
+    # chains() itself: 40 values (given in reverse) are six chains of 6-7 in SI
+    # order, whatever order they came in; with records present (a resumed
+    # sweep) each chain is a prefix of the same cut, its recorded points
+    # recomputed only as warm starts (keep False), and a chain with nothing
+    # missing is no job.  With five chains of 8 (the cut before) or a cut that
+    # followed the given order, this fails.
+    xs = [0.01 * k for k in range(40)][::-1]
+    keys = [f"k{i}" for i in range(len(xs))]
+    jobs = evaluate.chains(MDART, PARAM, xs, keys, {}, lambda i: ("args", i))
+    assert [len(j) for j in jobs] == [6, 7, 7, 6, 7, 7]
+    by_value = [[xs[i] for i, _, _ in j] for j in jobs]
+    assert [x for j in by_value for x in j] == sorted(xs)
+    assert all(keep for j in jobs for _, _, keep in j)
+    # resumed: the first chain done, the second done up to its 4th point
+    done = {keys[i]: {} for i, _, _ in jobs[0]} | {keys[i]: {} for i, _, _ in jobs[1][:4]}
+    again = evaluate.chains(MDART, PARAM, xs, keys, done, lambda i: ("args", i))
+    assert [[i for i, _, _ in j] for j in again] == [[i for i, _, _ in j] for j in jobs[1:]]
+    assert [keep for _, _, keep in again[0]] == [False] * 4 + [True] * 3
