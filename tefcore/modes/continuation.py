@@ -37,14 +37,27 @@ from .tracking import follow_root
 if TYPE_CHECKING:
     import pandas as pd
 
-__all__ = ["FIRST_STEPS", "FLAP_ACTIVE", "MIN_STEP", "PATH_MIN_ROOT", "PATH_RTOL",
-           "ContinuedRoots", "HomotopySamples", "MeetingRows", "continue_roots",
+__all__ = ["FIRST_STEPS", "FIRST_STEPS_CONSTANT", "FLAP_ACTIVE", "MIN_STEP", "PATH_MIN_ROOT",
+           "PATH_RTOL", "ContinuedRoots", "HomotopySamples", "MeetingRows", "continue_roots",
            "coupling_homotopy", "path_shapes", "positive_roots", "root_solver", "tef_root",
            "visible_roots", "zero_coupling_names"]
 
-#: Equal steps of ``eps`` the continuation starts with (each step's end is one
-#: eigenproblem); a step whose matches are not all decided is halved.
+#: Equal steps of ``eps`` the continuation starts with in forward flight (each
+#: step's end is one eigenproblem); a step whose matches are not all decided is
+#: halved.  (One step of the whole coupling was measured no faster there: at mu
+#: 0.3 the first step is halved anyway, the roots near k/2 and the TEF mixing
+#: with the blade modes near its frequency.)
 FIRST_STEPS = 2
+
+#: The same with constant coefficients (hover): the whole coupling in one
+#: step, halved where it is not decided.  MDART's hover point is decided in one
+#: step: one step of the march and no eigenproblem on the path instead of two
+#: and one, 7.4 against 8.2 ms a point (interleaved medians of 15).  Where the
+#: step is halved, it costs one step of the march more and saves nothing:
+#: measured on the hover figures' sweeps with their refinement points (Figs. 8
+#: and 16a, 37 points), 61 eigenproblems on the paths against 72 and 155 steps
+#: of the march against 143 -- about even -- and the same tables, row for row.
+FIRST_STEPS_CONSTANT = 1
 
 #: The lift of a path step trusts a root down to ``|mu| = 1e-9`` and a relative
 #: round-off of 1e-3 (:func:`tefcore.floquet.floquet_motions`; the point's own
@@ -571,7 +584,7 @@ ContinuedRoots.meetings = property(_meetings_table, doc=(
 
 
 def continue_roots(system: SecondOrderSystem, labels, final=None, *, basis=None,
-                   final_labels=None, final_shares=None, first_steps: int = FIRST_STEPS,
+                   final_labels=None, final_shares=None, first_steps: int | None = None,
                    min_step: float = MIN_STEP, n_steps: int = 72) -> ContinuedRoots:
     """Name every root of the coupled system by the uncoupled mode it continues from.
 
@@ -643,7 +656,9 @@ def continue_roots(system: SecondOrderSystem, labels, final=None, *, basis=None,
         `final_labels`' assignment over all roots, in which a root sharing a
         coordinate with a flap root can be left the second one it carries.
     first_steps : int, optional
-        ``1 / first_steps`` is the first and the longest step of ``eps``.
+        ``1 / first_steps`` is the first and the longest step of ``eps``
+        (default :data:`FIRST_STEPS` for Floquet roots,
+        :data:`FIRST_STEPS_CONSTANT` with constant coefficients).
     min_step : float, optional
         Smallest step of ``eps``.
     n_steps : int, optional
@@ -679,6 +694,8 @@ def continue_roots(system: SecondOrderSystem, labels, final=None, *, basis=None,
         res0 = _solve(system, n, 0.0, n_steps, participation=True)
         return _by_participation(res0, n, labels, basis, final, final_labels)
     homotopy = HomotopySamples(system, n_steps) if per else None
+    if first_steps is None:
+        first_steps = FIRST_STEPS if per else FIRST_STEPS_CONSTANT
     res0 = _solve(system, n, 0.0, n_steps, participation=True, homotopy=homotopy)
     frac0 = coordinate_shares(res0.participation, n)
     vec0 = path_shapes(basis, res0, n, per, n_steps)
