@@ -581,4 +581,3 @@ def _across_exceptional_points(c: Claim, ctx: _Context, err: _Ambiguous) -> dict
                 reason=f"an exceptional point lies inside the claim's range ({places}): which "
                        f"root is {named} has no answer there, and the verdict depends on "
                        f"it ({seen}){flutter_reading(c, lambda alt: _checked(alt, ctx))}")
-

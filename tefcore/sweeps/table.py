@@ -109,21 +109,6 @@ def _cached_points(records: dict, order: list, cache: dict, frames: dict | None)
     return out
 
 
-def _frames(records: dict, order: list, cache: dict | None) -> dict:
-    """Each record's modes table: the one its tracking point holds where the
-    refinement rounds built it from this very result (:func:`_cached_points`),
-    else built now (measured on a 40-point sweep: 40 tables built twice, 13 ms
-    of the ~0.25 s the command spends after its points)."""
-    held = (cache or {}).get("points", {})
-    out = {}
-    for k in order:
-        have = held.get(k)
-        r = records[k]
-        out[k] = (have[2]["modes"] if have is not None and have[0] is r["modes"]
-                  and have[1] is r.get("vectors") else pd.DataFrame(r["modes"]))
-    return out
-
-
 def _same_points(a, b) -> bool:
     """Whether two keys of :func:`_tracked` are the same records' results."""
     return (len(a[0]) == len(b[0])
@@ -209,7 +194,12 @@ def build_table(parameter, values, keys, records, cache=None):
     index_of = dict(main)
     index_of.update({k: n + r for r, k in enumerate(extra)})
     order = ok_in_order({k: records[k] for k in index_of})
-    frames = _frames(records, order, cache)
+    # each record's modes table: with a cache, the one its tracking point holds
+    # (built once per record result by the refinement rounds; building all of
+    # them again took 13 ms of a 40-point sweep's ~0.25 s after its points)
+    frames = ({k: p["modes"] for k, p in zip(order, _cached_points(records, order, cache, None),
+                                             strict=True)} if cache is not None
+              else {k: pd.DataFrame(records[k]["modes"]) for k in order})
     tracked = _tracked(records, order, cache, frames).drop(columns="value_si")
     tracked.insert(0, "key", np.asarray(order, dtype=object)[tracked.pop("step").to_numpy(int)])
     all_keys = list(keys) + extra
