@@ -255,6 +255,9 @@ def calibrate_multiple_load_path(cfg):
 
 def _main() -> int:
     from ..config.io import load_config
+    from ..runtime import apply_defaults
+
+    apply_defaults()            # the process is tefcore's (tefcore.runtime)
 
     base = load_config("mdart")
     fit = calibrate_torsion(base)

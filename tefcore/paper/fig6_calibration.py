@@ -346,7 +346,10 @@ def neglected_centrifugal(cfg) -> pd.DataFrame:
 
 
 def _main() -> int:
+    from ..runtime import apply_defaults
     from ..units import from_si
+
+    apply_defaults()            # the process is tefcore's (tefcore.runtime)
 
     fit = calibrate_reflected_inertia()
     lb = from_si(fit["reflected_inertia"], "lb*in^2", "inertia")
