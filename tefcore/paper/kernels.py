@@ -114,14 +114,34 @@ class WarmKernel:
         from jupyter_core.utils import run_sync
 
         self._run_sync = run_sync
-        self.km = AsyncKernelManager(kernel_name=kernel_name)
+        self._folder = None
+        self.km = AsyncKernelManager(kernel_name=kernel_name, **self._transport())
         self.notebooks = 0
-        run_sync(self.km.start_kernel)(extra_arguments=list(extra_arguments))
         try:
+            run_sync(self.km.start_kernel)(extra_arguments=list(extra_arguments))
             self._execute(_SNAPSHOT.format(imports=WARM_IMPORTS), "warm-up")
         except Exception:
             self.shutdown()
             raise
+
+    def _transport(self) -> dict:
+        """The kernel's channels: Unix sockets in a private folder where there are any.
+
+        Over TCP the client picks five free ports and the kernel binds them a
+        second later; a port taken in between (by another kernel's connections:
+        the reproduction starts two kernels at once) stops the kernel's thread
+        on it with a traceback on the reproduction's stderr (seen once, the
+        heartbeat's: ``ZMQError: Address already in use``).  Unix sockets are
+        files in a folder only this kernel uses (short: a socket's path is
+        limited to about 100 characters), removed on :meth:`shutdown`.
+        """
+        import os
+        import tempfile
+
+        if os.name != "posix":
+            return {}
+        self._folder = tempfile.mkdtemp(prefix="tefcore-kernel-")
+        return {"transport": "ipc", "connection_file": os.path.join(self._folder, "k.json")}
 
     def _execute(self, code: str, what: str) -> None:
         """Run `code`, its reply awaited while the kernel lives (a kernel stopped on
@@ -177,5 +197,12 @@ class WarmKernel:
 
     def shutdown(self) -> None:
         """Stop the kernel (now: nothing of it is needed any more)."""
-        if self.km.has_kernel:
-            self._run_sync(self.km.shutdown_kernel)(now=True)
+        try:
+            if self.km.has_kernel:
+                self._run_sync(self.km.shutdown_kernel)(now=True)
+        finally:
+            if self._folder is not None:
+                import shutil
+
+                shutil.rmtree(self._folder, ignore_errors=True)
+                self._folder = None

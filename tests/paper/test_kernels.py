@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import os
 from pathlib import Path
 
 import pytest
@@ -41,14 +42,22 @@ def test_a_notebook_cannot_see_anothers_state(tmp_path):
         "warnings.warn('still only a warning')\n"
         f"open({str(tmp_path / 'pid2')!r}, 'w').write(str(os.getpid()))")
     kernel = WarmKernel(rp.KERNEL_NAME)
+    folder = kernel._folder
     try:
         runs = [rp.execute_notebook(nb.stem, nb, tmp_path, {}, kernel=kernel, export=False)
                 for nb in (first, second)]
+        if os.name == "posix":
+            # its channels are Unix sockets in its own folder: no TCP port that
+            # another process could take between choosing and binding it
+            assert kernel.km.transport == "ipc"
+            assert sorted(p.name for p in Path(folder).iterdir()) == \
+                ["k-ipc-1", "k-ipc-2", "k-ipc-3", "k-ipc-4", "k-ipc-5", "k.json"]
     finally:
         kernel.shutdown()
     assert [r.status for r in runs] == ["ok", "ok"], [r.error for r in runs]
     # one kernel process ran both: the test exercised the reuse
     assert (tmp_path / "pid1").read_text() == (tmp_path / "pid2").read_text()
+    assert folder is None or not Path(folder).exists()     # nothing left behind
 
 
 def test_a_failing_notebook_fails_alone(tmp_path):
