@@ -1,0 +1,59 @@
+"""Saved figures: the PNG and its caption, and in a notebook the cell shows that PNG once."""
+
+from __future__ import annotations
+
+import base64
+import json
+
+import matplotlib
+import pytest
+
+matplotlib.use("agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+from tefcore.paper.plotting import savefig, show_saved  # noqa: E402
+
+
+def test_savefig_writes_the_png_and_its_caption_and_leaves_the_figure_alone(tmp_path):
+    fig, ax = plt.subplots()
+    ax.plot([0, 1], [1, 0])
+    try:
+        assert savefig(fig, tmp_path, "f", figure="fig9", caption="c") is None
+        png = (tmp_path / "f.png").read_bytes()
+        assert png.startswith(b"\x89PNG") and b"Software" not in png   # reproducible bytes
+        assert json.loads((tmp_path / "f.json").read_text()) == {"caption": "c",
+                                                                   "figure": "fig9"}
+        # outside a notebook nothing is shown and the figure stays pyplot's
+        assert show_saved(fig, png) is False
+        assert plt.fignum_exists(fig.number)
+    finally:
+        plt.close(fig)
+
+
+def test_in_a_notebook_the_cell_shows_the_saved_png_once(tmp_path):
+    # the inline backend would draw the figure again at the end of the cell
+    # (its own PNG, with a Software tag): the cell's one image output must be
+    # the saved file, byte for byte, with the backend's text
+    nbformat = pytest.importorskip("nbformat")
+    pytest.importorskip("papermill")
+    from tefcore.paper import reproduce as rp
+
+    code = ("import matplotlib.pyplot as plt\n"
+            "from tefcore.paper.plotting import savefig\n"
+            "fig, ax = plt.subplots(figsize=(4, 3))\n"
+            "ax.plot([0, 1, 2], [1, 3, 2])\n"
+            f"open({str(tmp_path / 'repr.txt')!r}, 'w').write(repr(fig))\n"
+            f"savefig(fig, {str(tmp_path)!r}, 'shown')")
+    nb = nbformat.v4.new_notebook(cells=[nbformat.v4.new_code_cell(code)])
+    nb.metadata["kernelspec"] = {"name": rp.KERNEL_NAME, "display_name": "Python 3",
+                                 "language": "python"}
+    src = tmp_path / "nb.ipynb"
+    nbformat.write(nb, str(src))
+    run = rp.execute_notebook("nb", src, tmp_path, {}, export=False)
+    assert run.status == "ok", run.error
+    outputs = nbformat.read(str(tmp_path / "notebooks" / "nb.ipynb"), 4).cells[0].outputs
+    images = [o for o in outputs if "image/png" in o.get("data", {})]
+    assert len(images) == 1
+    assert base64.b64decode(images[0].data["image/png"]) == (tmp_path / "shown.png").read_bytes()
+    assert images[0].data["text/plain"] == (tmp_path / "repr.txt").read_text()
+    assert images[0].data["text/plain"].startswith("<Figure size ")
