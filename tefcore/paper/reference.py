@@ -557,6 +557,34 @@ def load_claims(root=None, include_examples: bool = False) -> list[Claim]:
     files = sorted(root.glob("*.toml")) + sorted((root / "curves").glob("*.toml"))
     if not files:
         raise ReferenceDataError(f"{root}: no reference data (claims.toml) found")
+    # read once while no file of the folder changes: the figures, the claim
+    # checks and the attribution ask for the claims many times (40 times in
+    # one lever of the attribution, 35 ms each, measured); a Claim is frozen
+    key = (str(root.resolve()), include_examples)
+    signature = _signature(root)
+    held = _LOADED.get(key)
+    if held is not None and held[0] == signature:
+        return list(held[1])
+    claims = _read_claims(files, include_examples)
+    _LOADED[key] = (signature, tuple(claims))
+    return claims
+
+
+#: Claims read so far: (folder, include_examples) -> (its files' signature, claims).
+_LOADED: dict = {}
+
+
+def _signature(root: Path) -> tuple:
+    """Every file under `root` with its size and modification time."""
+    out = []
+    for p in sorted(root.rglob("*")):
+        st = p.stat()
+        if p.is_file():
+            out.append((str(p), st.st_size, st.st_mtime_ns))
+    return tuple(out)
+
+
+def _read_claims(files, include_examples: bool) -> list[Claim]:
     claims, seen = [], {}
     for path in files:
         if path.parent.name == "curves":

@@ -457,3 +457,16 @@ def test_required_fields_have_no_default():
     assert {"rotor.radius", "rotor.chord", "rotor.n_blades", "rotor.rotor_speed",
             "rotor.root_offset", "rotor.root_cutout", "flap.overhang"} <= required  # fmt: skip
     assert all(p.default is not REQUIRED for p in SECTIONS["model"].PARAMS)
+
+
+def test_a_packaged_configuration_is_parsed_once_and_cannot_be_changed():
+    # load_config hands out the configuration it parsed before: safe only
+    # because a Config is frozen and its arrays are read-only
+    a, b = load_config("mdart"), load_config("mdart")
+    assert a is b
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        a.blade = None
+    with pytest.raises(ValueError, match="read-only"):
+        a.blade.mass[0] = 1.0
+    assert a.with_overrides({"flap.mass": 2 * a.flap.mass}) is not a
+    assert load_config("mdart-fig6") is not a

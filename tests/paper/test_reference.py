@@ -220,3 +220,22 @@ def test_user_adds_a_curve_without_code(tmp_path):
     (root / "curves" / "mine.toml").write_text(side.replace('name = "TEF"', 'name = "TEF2"'))
     with pytest.raises(ReferenceDataError, match=r"mine.toml: dataset 1.*'TEF2' not in mine.csv"):
         load_claims(root)
+
+
+def test_claims_are_read_again_when_a_file_changes_and_never_shared_as_a_list(tmp_path):
+    # load_claims keeps what it read while no file of the folder changes
+    root = tmp_path / "ref"
+    shutil.copytree(reference_dir(), root)
+    first = load_claims(root)
+    first.append("a caller's own list")                 # not the cache's
+    again = load_claims(root)
+    assert [c.id for c in again] == [c.id for c in first[:-1]]
+    text = (root / "claims.toml").read_text(encoding="utf-8")
+    old = again[0].statement
+    (root / "claims.toml").write_text(text.replace(old, old + " (edited)", 1), encoding="utf-8")
+    assert load_claims(root)[0].statement == old + " (edited)"
+    # a new curve file is seen too
+    assert len(load_claims(root, include_examples=True)) > len(load_claims(root))
+    shutil.copy(root / "curves" / "SYNTHETIC_example_fig8.toml", root / "curves" / "copy.toml")
+    with pytest.raises(ReferenceDataError, match="duplicate id"):
+        load_claims(root, include_examples=True)
