@@ -223,3 +223,22 @@ def test_reproduce_only_writes_a_row_for_every_failing_claim(tmp_path, monkeypat
         flipped = rows["within_plausible"].eq("True") & rows["confirmed"].eq("True")
         assert flipped.any() or "none" in set(rows["assumption"]), cid
     assert "Why we differ" in (out / "report.md").read_text(encoding="utf-8")
+
+
+def test_notebooks_with_one_base_share_each_moved_configuration(tmp_path):
+    # a move can be a re-calibration of the torsion (0.5 s): made once per base
+    # configuration and setting, whichever notebook's claim asks (the
+    # notebooks' bases are equal but distinct objects)
+    moved = []
+    lever = SimpleNamespace(move=lambda cfg, t: moved.append((cfg, t)) or
+                            cfg.with_overrides({"flap.mass": (1 + t) * cfg.flap.mass}))
+    base = load_config("mdart")
+    settings = {"04": RunSettings(base.with_overrides({})),
+                "05": RunSettings(base.with_overrides({})),
+                "07": RunSettings(base.with_overrides({"flap.cg_offset": 0.1}))}
+    task = srch._Task(lever, settings, tmp_path)
+    a = task.config("04", 0.5)
+    assert task.config("05", 0.5) is a and len(moved) == 1
+    assert task.config("07", 0.5).flap.cg_offset == 0.1 and len(moved) == 2
+    assert task.config("04", -0.5) is not a and len(moved) == 3
+    assert task.config("05", None) is settings["05"].base and len(moved) == 3
