@@ -110,10 +110,17 @@ def test_the_command_applies_the_settings():
     # trimmed and faulted back at every point: 56 s of CPU, 11 s of it system
     # time, against 42 s and 0.2 s for the same claims)
     ("tefcore.paper.variants", ["no-such-command"]),
+    # the calibration scripts, stopped at their first configuration
+    ("tefcore.paper.calibration", []),
+    ("tefcore.paper.fig6_calibration", []),
 ])
 def test_the_solver_processes_tefcore_starts_apply_the_settings(module, argv):
     got = run_python(f"""
     import json, runpy, sys
+    import tefcore.config.io as io
+    def refuse(*args, **kw):
+        raise ValueError("stopped by the test")
+    io.loads_config = refuse
     sys.argv = ["{module}", *{argv!r}]
     try:
         runpy.run_module("{module}", run_name="__main__", alter_sys=True)

@@ -86,6 +86,10 @@ TIMEOUT = 120.0
 #: Seconds between checks that the kernel still lives while a warm-up or reset runs.
 POLL_S = 0.5
 
+#: Longest path of a kernel's Unix socket (``sun_path`` holds 108 bytes on Linux,
+#: 104 on macOS, the terminating zero included).
+_SOCKET_PATH_MAX = 100
+
 #: In the kernel: the state after the warm-up (rcParams, warnings filters, numpy's print
 #: options and error handling).
 _start_state = None
@@ -115,8 +119,12 @@ class WarmKernel:
 
         self._run_sync = run_sync
         self._folder = None
-        self.km = AsyncKernelManager(kernel_name=kernel_name, **self._transport())
         self.notebooks = 0
+        try:
+            self.km = AsyncKernelManager(kernel_name=kernel_name, **self._transport())
+        except Exception:
+            self._remove_folder()
+            raise
         try:
             run_sync(self.km.start_kernel)(extra_arguments=list(extra_arguments))
             self._execute(_SNAPSHOT.format(imports=WARM_IMPORTS), "warm-up")
@@ -132,16 +140,33 @@ class WarmKernel:
         the reproduction starts two kernels at once) stops the kernel's thread
         on it with a traceback on the reproduction's stderr (seen once, the
         heartbeat's: ``ZMQError: Address already in use``).  Unix sockets are
-        files in a folder only this kernel uses (short: a socket's path is
-        limited to about 100 characters), removed on :meth:`shutdown`.
+        files in a folder only this kernel uses, removed on :meth:`shutdown`
+        (left behind only by a process killed outright).  A socket's path is
+        limited to about 100 characters: where the temporary folder's is too
+        long (``TMPDIR``), ``/tmp``; where that is too, TCP.
         """
         import os
         import tempfile
 
         if os.name != "posix":
             return {}
-        self._folder = tempfile.mkdtemp(prefix="tefcore-kernel-")
-        return {"transport": "ipc", "connection_file": os.path.join(self._folder, "k.json")}
+        for where in (None, "/tmp"):
+            try:
+                folder = tempfile.mkdtemp(prefix="tefcore-kernel-", dir=where)
+            except OSError:
+                continue
+            if len(os.path.join(folder, "k-ipc-5")) <= _SOCKET_PATH_MAX:
+                self._folder = folder
+                return {"transport": "ipc", "connection_file": os.path.join(folder, "k.json")}
+            os.rmdir(folder)
+        return {}
+
+    def _remove_folder(self) -> None:
+        if self._folder is not None:
+            import shutil
+
+            shutil.rmtree(self._folder, ignore_errors=True)
+            self._folder = None
 
     def _execute(self, code: str, what: str) -> None:
         """Run `code`, its reply awaited while the kernel lives (a kernel stopped on
@@ -201,8 +226,4 @@ class WarmKernel:
             if self.km.has_kernel:
                 self._run_sync(self.km.shutdown_kernel)(now=True)
         finally:
-            if self._folder is not None:
-                import shutil
-
-                shutil.rmtree(self._folder, ignore_errors=True)
-                self._folder = None
+            self._remove_folder()

@@ -226,15 +226,19 @@ def savefig(fig, output_dir, stem: str, figure: str = "", caption: str = "") -> 
 def show_saved(fig, png: bytes) -> bool:
     """Show `png`, the figure as saved, as a notebook's output of `fig`, and close `fig`.
 
-    Only under matplotlib's inline backend (a Jupyter kernel): there the
-    backend draws every open figure again when the cell ends, with the
-    settings :func:`savefig` used (``bbox_inches="tight"``, the figure's dpi
-    and facecolor), so the saved PNG is that picture.  The output carries
-    the same ``text/plain`` as the backend's (``repr(fig)``,
-    ``<Figure size 880x352 with 2 Axes>``), which nbval compares.  Closed,
-    the figure is no longer pyplot's, but it can still be saved or drawn.
-    Drawing a figure is 0.15-0.7 s in the notebooks (0.5-0.7 s a root-locus
-    figure, measured), about once for each of their 29 saved figures.
+    Only in a Jupyter kernel under matplotlib's inline backend: there the
+    backend draws every open figure again when the cell ends (at the
+    figure's dpi, ``bbox_inches="tight"``), which is the work this saves --
+    0.15-0.7 s a figure in the notebooks (0.5-0.7 s a root-locus figure,
+    measured), about once for each of their 29 saved figures.  The output
+    is the saved file, drawn at ``savefig.dpi`` (110 in the notebooks,
+    :func:`deterministic_matplotlib`), shown at the size the backend's own
+    picture had (``figure.dpi``, 80: width and height in the output's
+    metadata), so the cell looks as before, sharper; its ``text/plain`` is
+    the backend's (``repr(fig)``, ``<Figure size 880x352 with 2 Axes>``),
+    which nbval compares.  Closed, the figure is no longer pyplot's (a
+    pyplot call after it in the same cell starts a new figure, as in the
+    next cell), but it can still be saved or drawn.
 
     Parameters
     ----------
@@ -246,23 +250,32 @@ def show_saved(fig, png: bytes) -> bool:
     Returns
     -------
     bool
-        Whether it was shown (False outside the inline backend: nothing done).
+        Whether it was shown (False outside a kernel with the inline backend:
+        nothing done; e.g. a script started from a notebook, which inherits
+        the backend through ``MPLBACKEND`` but has no kernel to show it).
     """
     import sys
 
     if "matplotlib_inline.backend_inline" not in sys.modules:
         return False
     import matplotlib
+    from IPython import get_ipython
 
-    if "inline" not in matplotlib.get_backend():
+    if "inline" not in matplotlib.get_backend() or \
+            getattr(get_ipython(), "kernel", None) is None:
         return False
     import base64
 
     import matplotlib.pyplot as plt
     from IPython.display import display
 
+    saved_dpi = matplotlib.rcParams["savefig.dpi"]
+    scale = 1.0 if saved_dpi == "figure" else fig.dpi / float(saved_dpi)
+    # the PNG's size in pixels: its IHDR chunk (bytes 16-24, big-endian)
+    width, height = (int.from_bytes(png[i:i + 4], "big") for i in (16, 20))
     display({"image/png": base64.b64encode(png).decode("ascii"), "text/plain": repr(fig)},
-            raw=True)
+            metadata={"image/png": {"width": round(width * scale),
+                                    "height": round(height * scale)}}, raw=True)
     plt.close(fig)
     return True
 

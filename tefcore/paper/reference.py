@@ -24,6 +24,7 @@ import math
 import re
 from dataclasses import dataclass, field, replace
 from pathlib import Path
+from stat import S_ISREG
 
 import pandas as pd
 
@@ -557,9 +558,13 @@ def load_claims(root=None, include_examples: bool = False) -> list[Claim]:
     files = sorted(root.glob("*.toml")) + sorted((root / "curves").glob("*.toml"))
     if not files:
         raise ReferenceDataError(f"{root}: no reference data (claims.toml) found")
-    # read once while no file of the folder changes: the figures, the claim
-    # checks and the attribution ask for the claims many times (40 times in
-    # one lever of the attribution, 35 ms each, measured); a Claim is frozen
+    # read once while no file of the folder changes (size or modification
+    # time): the figures, the claim checks and the attribution ask for the
+    # claims many times (40 times in one lever of the attribution, 35 ms
+    # each, measured).  A Claim is frozen, and nothing changes its dicts or
+    # points (they are shared).  Not seen: a CSV a sidecar names outside
+    # the folder, and the packaged MDART rotor speed a curve in Hz or rad/s
+    # is converted with -- both read again in a new process
     key = (str(root.resolve()), include_examples)
     signature = _signature(root)
     held = _LOADED.get(key)
@@ -578,8 +583,11 @@ def _signature(root: Path) -> tuple:
     """Every file under `root` with its size and modification time."""
     out = []
     for p in sorted(root.rglob("*")):
-        st = p.stat()
-        if p.is_file():
+        try:
+            st = p.stat()
+        except OSError:         # a dangling link, a file removed meanwhile: not data
+            continue
+        if S_ISREG(st.st_mode):
             out.append((str(p), st.st_size, st.st_mtime_ns))
     return tuple(out)
 

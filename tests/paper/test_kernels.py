@@ -96,3 +96,27 @@ def test_a_kernel_stopped_while_it_works_ends_the_wait(tmp_path):
             kernel.shutdown()
         except Exception:  # stopped already
             pass
+
+
+@pytest.mark.skipif(os.name != "posix", reason="Unix sockets")
+def test_a_long_temporary_folder_does_not_stop_the_warm_kernel(tmp_path, monkeypatch):
+    # a Unix socket's path holds about 100 characters: a TMPDIR longer than
+    # that made the kernel fail to start ("File name too long") and every
+    # notebook fall back to a kernel of its own
+    import tempfile
+
+    long_dir = tmp_path / ("x" * 100)
+    long_dir.mkdir()
+    monkeypatch.setenv("TMPDIR", str(long_dir))
+    monkeypatch.setattr(tempfile, "tempdir", None)
+    kernel = WarmKernel.__new__(WarmKernel)      # the transport alone, no kernel started
+    kernel._folder = None
+    try:
+        got = kernel._transport()
+        assert got.get("transport") in (None, "ipc")
+        if got:
+            assert len(str(Path(kernel._folder) / "k-ipc-5")) <= 100
+            assert not str(kernel._folder).startswith(str(long_dir))
+    finally:
+        kernel._remove_folder()
+    assert list(long_dir.iterdir()) == []              # nothing left in the long folder

@@ -234,6 +234,12 @@ def test_claims_are_read_again_when_a_file_changes_and_never_shared_as_a_list(tm
     old = again[0].statement
     (root / "claims.toml").write_text(text.replace(old, old + " (edited)", 1), encoding="utf-8")
     assert load_claims(root)[0].statement == old + " (edited)"
+    # a curve's CSV alone edited is seen, and a dangling link is not data
+    (root / "dangling").symlink_to(root / "nowhere")
+    example = [c for c in load_claims(root, include_examples=True) if c.example][0]
+    csv = next((root / "curves").glob("*.csv"))
+    csv.write_text(csv.read_text(encoding="utf-8") + "\n", encoding="utf-8")
+    assert [c for c in load_claims(root, include_examples=True) if c.example][0] is not example
     # a new curve file is seen too
     assert len(load_claims(root, include_examples=True)) > len(load_claims(root))
     shutil.copy(root / "curves" / "SYNTHETIC_example_fig8.toml", root / "curves" / "copy.toml")
