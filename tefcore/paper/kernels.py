@@ -29,7 +29,7 @@ that a notebook sees no name of another and that results are unchanged).
 
 from __future__ import annotations
 
-__all__ = ["RESET", "WARM_IMPORTS", "KernelError", "WarmKernel"]
+__all__ = ["RESET", "WARM_IMPORTS", "KernelError", "WarmKernel", "remove_stale_folders"]
 
 #: Modules every notebook imports: loaded once per kernel, bound to no user name.
 WARM_IMPORTS = ("numpy", "scipy.linalg", "scipy.optimize", "scipy.sparse.csgraph", "pandas",
@@ -90,6 +90,12 @@ POLL_S = 0.5
 #: 104 on macOS, the terminating zero included).
 _SOCKET_PATH_MAX = 100
 
+#: A warm kernel's socket folder: ``<prefix><pid of the process that started it>-<random>``.
+_FOLDER_PREFIX = "tefcore-kernel-"
+
+#: What a warm kernel's socket folder holds: its connection file and five sockets.
+_FOLDER_FILES = frozenset({"k.json", *(f"k-ipc-{i}" for i in range(1, 6))})
+
 #: In the kernel: the state after the warm-up (rcParams, warnings filters, numpy's print
 #: options and error handling).
 _start_state = None
@@ -140,10 +146,11 @@ class WarmKernel:
         the reproduction starts two kernels at once) stops the kernel's thread
         on it with a traceback on the reproduction's stderr (seen once, the
         heartbeat's: ``ZMQError: Address already in use``).  Unix sockets are
-        files in a folder only this kernel uses, removed on :meth:`shutdown`
-        (left behind only by a process killed outright).  A socket's path is
-        limited to about 100 characters: where the temporary folder's is too
-        long (``TMPDIR``), ``/tmp``; where that is too, TCP.
+        files in a folder only this kernel uses, removed on :meth:`shutdown`;
+        a process killed outright leaves it, and the next warm kernel removes
+        it (:func:`remove_stale_folders`).  A socket's path is limited to about
+        100 characters: where the temporary folder's is too long (``TMPDIR``),
+        ``/tmp``; where that is too, TCP.
         """
         import os
         import tempfile
@@ -152,7 +159,8 @@ class WarmKernel:
             return {}
         for where in (None, "/tmp"):
             try:
-                folder = tempfile.mkdtemp(prefix="tefcore-kernel-", dir=where)
+                remove_stale_folders(where)
+                folder = tempfile.mkdtemp(prefix=f"{_FOLDER_PREFIX}{os.getpid()}-", dir=where)
             except OSError:
                 continue
             if len(os.path.join(folder, "k-ipc-5")) <= _SOCKET_PATH_MAX:
@@ -227,3 +235,55 @@ class WarmKernel:
                 self._run_sync(self.km.shutdown_kernel)(now=True)
         finally:
             self._remove_folder()
+
+
+def remove_stale_folders(where=None) -> int:
+    """Remove the socket folders of warm kernels whose process is gone.
+
+    A reproduction killed outright (``kill -9``) cannot remove its kernels'
+    folders (:meth:`WarmKernel.shutdown` does otherwise); its kernels exit by
+    themselves (:mod:`tefcore.paper.kernel_guard`).  A folder is removed when
+    it is this user's, named for a process that no longer runs, and holds
+    nothing but a kernel's connection file and sockets.
+
+    Parameters
+    ----------
+    where : path, optional
+        The folder to look in (default: the temporary folder).
+
+    Returns
+    -------
+    int
+        How many folders were removed.
+    """
+    import os
+    import shutil
+    import tempfile
+    from pathlib import Path
+
+    removed = 0
+    for folder in Path(where or tempfile.gettempdir()).glob(f"{_FOLDER_PREFIX}*-*"):
+        pid = folder.name[len(_FOLDER_PREFIX):].split("-", 1)[0]
+        try:
+            if (not pid.isdigit() or folder.is_symlink() or not folder.is_dir()
+                    or folder.stat().st_uid != os.getuid() or _running(int(pid))
+                    or not {p.name for p in folder.iterdir()} <= _FOLDER_FILES):
+                continue
+        except OSError:           # gone meanwhile, or not ours to read
+            continue
+        shutil.rmtree(folder, ignore_errors=True)
+        removed += not folder.exists()
+    return removed
+
+
+def _running(pid: int) -> bool:
+    """Whether a process `pid` exists (signal 0: no signal sent)."""
+    import os
+
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except PermissionError:       # another user's
+        return True
+    return True

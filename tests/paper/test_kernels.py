@@ -120,3 +120,32 @@ def test_a_long_temporary_folder_does_not_stop_the_warm_kernel(tmp_path, monkeyp
     finally:
         kernel._remove_folder()
     assert list(long_dir.iterdir()) == []              # nothing left in the long folder
+
+
+@pytest.mark.skipif(os.name != "posix", reason="Unix sockets")
+def test_the_folders_of_a_killed_reproduction_are_removed_by_the_next(tmp_path):
+    # kill -9 leaves a warm kernel's socket folder; the next warm kernel removes
+    # those of processes that are gone, and nothing else
+    import subprocess
+    import sys
+
+    from tefcore.paper.kernels import remove_stale_folders
+
+    gone = subprocess.run([sys.executable, "-c", "import os; print(os.getpid())"],
+                          capture_output=True, text=True, check=True)
+    dead = int(gone.stdout)
+
+    def folder(name, files=("k.json", "k-ipc-1", "k-ipc-5")):
+        (tmp_path / name).mkdir()
+        for f in files:
+            (tmp_path / name / f).write_text("")
+        return tmp_path / name
+
+    stale = folder(f"tefcore-kernel-{dead}-abc123")
+    live = folder(f"tefcore-kernel-{os.getpid()}-def456")          # this process's
+    other = folder(f"tefcore-kernel-{dead}-ghi789", files=("k.json", "notes.txt"))
+    unnamed = folder("tefcore-kernel-xyz")                            # no process in its name
+    assert remove_stale_folders(tmp_path) == 1
+    assert not stale.exists()
+    assert live.exists() and other.exists() and unnamed.exists()
+    assert remove_stale_folders(tmp_path) == 0
