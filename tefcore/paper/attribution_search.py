@@ -225,7 +225,6 @@ class _Task:
         self.lever, self.settings_of = lever, settings_of
         self.cache = FigureCache(folder)
         self.configs: dict = {}
-        self.bases: dict = {}
         self.checks: dict = {}
 
     def config(self, notebook, where):
@@ -234,22 +233,17 @@ class _Task:
             return base
         # keyed by the base's fields, not its notebook: the notebooks share
         # one base configuration unless their parameters differ, and a move
-        # can be a whole re-calibration of the torsion (0.5 s; 27 moves for 14
+        # can be a whole re-calibration of the torsion (0.5 s; 27 moves for 7
         # settings in the lift slope's task, measured)
-        key = (self._base_key(notebook), where)
+        from ..sweeps.store import config_hash
+
+        key = (config_hash(base), where)
         if key not in self.configs:
             try:
                 self.configs[key] = self.lever.move(base, where)
             except ValueError as err:
                 self.configs[key] = err
         return self.configs[key]
-
-    def _base_key(self, notebook) -> str:
-        if notebook not in self.bases:
-            from ..sweeps.store import config_hash
-
-            self.bases[notebook] = config_hash(self.settings_of[notebook].base)
-        return self.bases[notebook]
 
     def check(self, claims, notebook, where, refine=False) -> dict:
         """Claim id -> (status, computed value); ``"not admitted"`` for a refused configuration."""

@@ -261,12 +261,14 @@ def remove_stale_folders(where=None) -> int:
     import tempfile
     from pathlib import Path
 
+    import psutil
+
     removed = 0
     for folder in Path(where or tempfile.gettempdir()).glob(f"{_FOLDER_PREFIX}*-*"):
         pid = folder.name[len(_FOLDER_PREFIX):].split("-", 1)[0]
         try:
             if (not pid.isdigit() or folder.is_symlink() or not folder.is_dir()
-                    or folder.stat().st_uid != os.getuid() or _running(int(pid))
+                    or folder.stat().st_uid != os.getuid() or psutil.pid_exists(int(pid))
                     or not {p.name for p in folder.iterdir()} <= _FOLDER_FILES):
                 continue
         except OSError:           # gone meanwhile, or not ours to read
@@ -275,15 +277,3 @@ def remove_stale_folders(where=None) -> int:
         removed += not folder.exists()
     return removed
 
-
-def _running(pid: int) -> bool:
-    """Whether a process `pid` exists (signal 0: no signal sent)."""
-    import os
-
-    try:
-        os.kill(pid, 0)
-    except ProcessLookupError:
-        return False
-    except PermissionError:       # another user's
-        return True
-    return True

@@ -207,9 +207,9 @@ def savefig(fig, output_dir, stem: str, figure: str = "", caption: str = "") -> 
     ``;`` does not suppress the result).  Both files are written atomically.
 
     In a notebook (matplotlib's inline backend) the cell shows the PNG just
-    written, as the backend would show the figure (the same image and text),
-    and the figure is closed so that the backend does not draw it a second
-    time at the end of the cell (:func:`show_saved`).
+    written, at the size and with the text the backend would show the figure
+    with, and the figure is closed so that the backend does not draw it a
+    second time at the end of the cell (:func:`show_saved`).
     """
     out = Path(output_dir)
     buf = io.BytesIO()
