@@ -232,6 +232,12 @@ def goals(args):
     line("mu = 0.3 point <= 0.15 x peer (rtol 1e-8)", f"{t_point:.1f} ms",
          f"{t_peer8:.0f} ms ({t_point / t_peer8:.3f} x)",
          f"{t_floor:.1f} ms ({t_floor / t_peer8:.3f} x)", t_point <= 0.15 * t_peer8)
+    if t_floor > 0.15 * t_peer8:
+        # the floor leaves out the naming by continuation (at least one more
+        # Floquet solve at zero coupling and the path steps): no implementation
+        # of this point's work reaches the goal where even the floor is above it
+        print(f"    (the goal, {0.15 * t_peer8:.1f} ms, is below the floor measured here: "
+              "not reachable on this machine)", flush=True)
     line("  the same against the peer at rtol 1e-10", f"{t_point:.1f} ms",
          f"{t_peer10:.0f} ms ({t_point / t_peer10:.3f} x)", "", t_point <= 0.15 * t_peer10)
     t_cold = median_ms(lambda: stability(cfg03), repeat, setup=blade._MODES_CACHE.clear)
@@ -327,7 +333,8 @@ def goals(args):
          f"{bound:.2f} x (estimate)")
     print(f"    (two processes at once go {eff:.2f} times as fast each as one alone; with "
           f"{fixed:.2f} s of the command outside the points, --jobs 2 can reach about "
-          f"{bound:.2f} x here)", flush=True)
+          f"{bound:.2f} x here{'' if bound >= 1.6 else ': the goal is not reachable here'})",
+          flush=True)
 
     from tefcore.sweeps.maps import stability_map
 
