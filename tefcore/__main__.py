@@ -1,7 +1,7 @@
 """``python -m tefcore`` is the ``tefcore`` command."""
 
-from .cli import main
+from .cli import entry_point
 
 __all__: list[str] = []
 
-raise SystemExit(main())
+raise SystemExit(entry_point())

@@ -54,3 +54,40 @@ def test_stability_imports_only_what_a_point_needs(argv):
     for name in ("pandas", "scipy.constants", "scipy.integrate", "scipy.interpolate",
                  "scipy.optimize", "scipy.sparse", "matplotlib"):
         assert name not in loaded, name
+
+
+def test_the_program_exits_without_the_final_collection():
+    # `python -m tefcore` (and the installed script) end in gc.freeze(): the
+    # interpreter's last collections would walk every object numpy, scipy and
+    # pandas made (0.1-0.2 s, tefcore.cli.entry_point).  The exit handlers
+    # still run -- this one reports the frozen count -- and the output is whole.
+    code = ("import atexit, gc, runpy, sys\n"
+            "atexit.register(lambda: sys.stderr.write(f'frozen {gc.get_freeze_count()}\\n'))\n"
+            "sys.argv = ['tefcore', 'stability', '--set', 'flight.advance_ratio=0']\n"
+            "runpy.run_module('tefcore', run_name='__main__', alter_sys=True)\n")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
+    assert out.returncode == 0, out.stderr
+    frozen = int(out.stderr.split("frozen")[-1])
+    assert frozen > 10_000          # numpy and scipy alone leave ~10^5 tracked objects
+    assert "TEF" in out.stdout and out.stdout.endswith("\n")
+
+
+def test_main_leaves_the_collector_alone(tmp_path):
+    # main() is what tests and programs call in their own process: freezing
+    # there would keep their cyclic garbage for good
+    import gc
+
+    from tefcore.cli import main
+
+    before = gc.get_freeze_count()
+    assert main(["c81", "example", "--out", str(tmp_path / "deck.c81")]) == 0
+    assert gc.get_freeze_count() == before
+
+
+def test_the_installed_script_is_the_program():
+    import tomllib
+    from pathlib import Path
+
+    pyproject = Path(__file__).resolve().parents[1] / "pyproject.toml"
+    scripts = tomllib.loads(pyproject.read_text())["project"]["scripts"]
+    assert scripts["tefcore"] == "tefcore.cli:entry_point"

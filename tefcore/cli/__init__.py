@@ -33,7 +33,7 @@ from ..safe_io import atomic_output, check_output_file
 from .common import load
 from .maps import cmd_map
 
-__all__ = ["build_parser", "main"]
+__all__ = ["build_parser", "entry_point", "main"]
 
 #: ``tefcore --help``: what the command is, and where the details are.
 DESCRIPTION = """\
@@ -431,6 +431,40 @@ def main(argv: list[str] | None = None) -> int:
     return run_command(body, prog="tefcore")
 
 
+def entry_point() -> int:
+    """The ``tefcore`` program: :func:`main`, then an exit without the final garbage collection.
+
+    A process that has imported numpy, scipy and pandas spends 0.1-0.2 s
+    when it exits in the interpreter's last collections, which walk every
+    object those modules made, although the memory goes back with the process
+    (measured: ``python -c "import tefcore.sweeps.sweep"`` 0.79 s, 0.61 s with
+    ``gc.freeze()`` at its end; ``tefcore stability`` 0.81 times the wall time,
+    interleaved medians of 11).  Once the command has returned -- its output
+    files written and closed (:mod:`tefcore.safe_io`), its worker pools and
+    kernels shut down -- this flushes the standard streams and moves every
+    object out of the collector's reach (``gc.freeze``).  The exit handlers
+    still run (loky's pool, temporary folders, coverage); objects left in
+    reference cycles are not finalized, as the interpreter does not promise
+    at exit anyway.  :func:`main` itself, which tests and programs call in
+    their own process, leaves the collector alone.
+
+    Returns
+    -------
+    int
+        The exit status of :func:`main`.
+    """
+    import gc
+
+    status = main()
+    for stream in (sys.stdout, sys.stderr):
+        try:
+            stream.flush()
+        except (OSError, ValueError):     # closed or gone: nothing left to flush
+            pass
+    gc.freeze()
+    return status
+
+
 def _show_warning(message, category, filename, lineno, file=None, line=None) -> None:
     """A warning as one line, ``tefcore: warning: <Category>: <message>``."""
     text = " ".join(str(message).split())
@@ -438,4 +472,4 @@ def _show_warning(message, category, filename, lineno, file=None, line=None) -> 
 
 
 if __name__ == "__main__":
-    raise SystemExit(main())
+    raise SystemExit(entry_point())
