@@ -37,6 +37,8 @@ def test_a_notebook_cannot_see_anothers_state(tmp_path):
         "assert 'secret' not in globals() and 'np' not in globals()\n"
         "import os, warnings\nimport numpy as np\nimport matplotlib\n"
         "assert np.get_printoptions()['precision'] == 8\n"
+        # the warm-up's imports stay out of the collector's reach (frozen)
+        "import gc\nassert gc.get_freeze_count() > 10_000\n"
         "assert np.geterr()['divide'] == 'warn'\n"
         "assert matplotlib.rcParams['lines.linewidth'] != 9.0\n"
         "warnings.warn('still only a warning')\n"
