@@ -195,3 +195,88 @@ def test_both_settings_can_be_turned_off():
     print(json.dumps({"inside": seen[0], "after": blas_threads()}))
     """, TEFCORE_BLAS_THREADS="default", TEFCORE_MALLOC_TRIM="default")
     assert got == {"inside": UNTOUCHED, "after": UNTOUCHED}
+
+
+# --------------------------------------------------------------- the kernels
+
+BLAS_KERNELS = """
+from threadpoolctl import threadpool_info
+def blas_kernels():
+    return sorted({lib.get("architecture") or "" for lib in threadpool_info()
+                   if lib["internal_api"] == "openblas"})
+"""
+HASWELL = runtime.BLAS_CORETYPES["Haswell"] <= runtime._cpu_flags()
+needs_haswell = pytest.mark.skipif(not HASWELL, reason="no AVX2 and FMA here (or no "
+                                   "/proc/cpuinfo): OpenBLAS's Haswell kernels do not run")
+
+
+def kernels_in(code: str, **env) -> dict:
+    """``code`` in a fresh interpreter without an ``OPENBLAS_CORETYPE`` of its own
+    (unless given): it prints one JSON line, returned parsed."""
+    base = {k: v for k, v in os.environ.items() if k != "OPENBLAS_CORETYPE"}
+    out = subprocess.run([sys.executable, "-c", BLAS_KERNELS + textwrap.dedent(code)],
+                         env=dict(base, **env), capture_output=True, text=True, check=True)
+    return json.loads(out.stdout.strip().splitlines()[-1])
+
+
+@needs_haswell
+def test_the_command_pins_the_kernels_before_blas_loads():
+    # what `tefcore ...` does first (apply_defaults before it imports numpy):
+    # OpenBLAS loads the pinned kernels, and a process it starts inherits them
+    got = kernels_in("""
+    import json, os, subprocess, sys
+    from tefcore.runtime import apply_defaults
+    apply_defaults()
+    import numpy, scipy.linalg
+    child = subprocess.run([sys.executable, "-c", "import os; print(os.environ.get("
+                            "'OPENBLAS_CORETYPE'))"], capture_output=True, text=True).stdout
+    print(json.dumps([blas_kernels(), child.strip()]))
+    """)
+    assert got == [["Haswell"], "Haswell"]
+
+
+@needs_haswell
+def test_a_kernel_set_outside_wins():
+    got = kernels_in("""
+    import json
+    from tefcore.runtime import pin_blas_kernel
+    print(json.dumps(pin_blas_kernel()))
+    """, OPENBLAS_CORETYPE="Sandybridge")
+    assert got == "Sandybridge"
+
+
+def test_no_kernel_is_pinned_once_blas_is_loaded_or_when_turned_off():
+    got = kernels_in("""
+    import json, os
+    import numpy
+    from tefcore.runtime import pin_blas_kernel
+    late = pin_blas_kernel()
+    print(json.dumps([late, os.environ.get("OPENBLAS_CORETYPE")]))
+    """)
+    assert got == [None, None]
+    got = kernels_in("""
+    import json, os
+    from tefcore.runtime import pin_blas_kernel
+    print(json.dumps([pin_blas_kernel(), os.environ.get("OPENBLAS_CORETYPE")]))
+    """, TEFCORE_BLAS_CORETYPE="default")
+    assert got == [None, None]
+
+
+def test_an_unknown_kernel_is_a_clear_error(monkeypatch):
+    monkeypatch.setenv("TEFCORE_BLAS_CORETYPE", "Zen9")
+    with pytest.raises(ValueError, match=r"TEFCORE_BLAS_CORETYPE = 'Zen9': expected 'default' "
+                                         r"or one of Haswell, SkylakeX"):
+        runtime.pin_blas_kernel()
+
+
+def test_the_test_suite_runs_the_pinned_kernels():
+    # conftest.py pins them before anything imports numpy: the notebooks'
+    # committed outputs were computed with them (tefcore.runtime)
+    from threadpoolctl import threadpool_info
+
+    wanted = os.environ.get("OPENBLAS_CORETYPE")
+    if not wanted:
+        pytest.skip("nothing pinned here (another processor, or turned off)")
+    got = {lib.get("architecture") for lib in threadpool_info()
+           if lib["internal_api"] == "openblas"}
+    assert got <= {wanted}

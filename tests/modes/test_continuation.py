@@ -405,7 +405,12 @@ def test_a_root_that_does_not_move_the_flap_is_never_the_flap_mode():
     participation labels gave 'TEF (locked)' and 'blade flap 4 (locked)',
     leaving 'TEF' to the second real root of blade flap 1's lock at 1 /rev
     (flap motion 1e-4), which kept it as a root that does not move the flap
-    (measured).  The flap mode is the pair that moves the flap."""
+    (measured).  The flap mode is the pair that moves the flap.  Which of the
+    pair's two roots is named what round-off decides: with OpenBLAS's SkylakeX
+    kernels the march decides both ('TEF', 'TEF (locked)'); with its Haswell
+    kernels (pinned by tefcore.runtime) it leaves both undecided and names the
+    second 'blade flap 4 (locked)' -- both roots move the flap, 0.49 of their
+    motion (measured at stop 42).  Either way the TEF is the pair's."""
     from tefcore.linear.stability import stability
     from tefcore.modes.continuation import FLAP_ACTIVE
     from tefcore.paper.figures import figure_config
@@ -415,11 +420,14 @@ def test_a_root_that_does_not_move_the_flap_is_never_the_flap_mode():
     res = stability(cfg)
     m = res.modes
     motion = res.identity.flap_motion
-    tef = np.flatnonzero(m["label"].map(lambda x: x.startswith("TEF")).to_numpy())
-    assert tef.size == 2
+    labels = m["label"].to_numpy()
+    tef = np.flatnonzero([x.startswith("TEF") for x in labels])
+    assert tef.size >= 1
     assert np.all(motion[tef] >= FLAP_ACTIVE)
-    assert sorted(np.round(m["frequency_per_rev"].to_numpy()[tef], 6)) == [5.0, 5.0]
-    assert "blade flap 1 (locked)" in set(m["label"])
+    assert np.all(np.round(m["frequency_per_rev"].to_numpy()[tef], 6) == 5.0)
+    # the root that took 'TEF' before: flap 1's lock at 1 /rev, which does not move the flap
+    lock = np.flatnonzero(labels == "blade flap 1 (locked)")
+    assert lock.size == 1 and motion[lock[0]] < FLAP_ACTIVE
 
 
 def test_continuous_frequency_puts_back_a_stretch_written_one_per_rev_off():
