@@ -39,18 +39,22 @@ import sys
 import tempfile
 import time
 
-import numpy as np
-import scipy.integrate
-import scipy.linalg
+from tefcore.runtime import pin_blas_kernel
 
-from tefcore.config.io import load_config
-from tefcore.floquet import floquet_modes
-from tefcore.linear.stability import linear_system, stability
-from tefcore.model.coupled import coupled_model
-from tefcore.paper.notebook_files import NOTEBOOK_SECONDS
-from tefcore.runtime import apply_defaults
-from tefcore.structure import blade
-from tefcore.trimming.trim import initial_collective, trim
+pin_blas_kernel()       # the kernels the commands it times run (tefcore.runtime), before numpy
+
+import numpy as np  # noqa: E402
+import scipy.integrate  # noqa: E402
+import scipy.linalg  # noqa: E402
+
+from tefcore.config.io import load_config  # noqa: E402
+from tefcore.floquet import floquet_modes  # noqa: E402
+from tefcore.linear.stability import linear_system, stability  # noqa: E402
+from tefcore.model.coupled import coupled_model  # noqa: E402
+from tefcore.paper.notebook_files import NOTEBOOK_SECONDS  # noqa: E402
+from tefcore.runtime import apply_defaults  # noqa: E402
+from tefcore.structure import blade  # noqa: E402
+from tefcore.trimming.trim import initial_collective, trim  # noqa: E402
 
 TWO_PI = 2 * np.pi
 

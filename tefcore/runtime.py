@@ -30,9 +30,10 @@ machine:
   EPYC whose environment sets ``OPENBLAS_CORETYPE=Haswell``): three cells of
   notebooks 05 and 06 and one test, every claim's status the same.
   :func:`pin_blas_kernel` sets ``OPENBLAS_CORETYPE`` before BLAS is loaded
-  where nothing has set it and the processor runs those kernels (Linux: the
-  flags they need in ``/proc/cpuinfo``; Haswell's, AVX2 and FMA, are on
-  every x86-64 server of the last decade), so tefcore's own processes -- the
+  where nothing has set it and the processor runs those kernels -- on Linux,
+  which lists the flags they need in ``/proc/cpuinfo`` (Haswell's, AVX2 and
+  FMA, are on every x86-64 server of the last decade); elsewhere nothing is
+  pinned -- so tefcore's own processes -- the
   ``tefcore`` command and what it starts, the test suite and its notebook
   kernels -- give the same bits on such machines.  An ``OPENBLAS_CORETYPE``
   set outside wins; a process that loaded numpy first, another BLAS (MKL,
@@ -69,8 +70,8 @@ import platform
 import sys
 import threading
 
-__all__ = ["apply_defaults", "blas_limit", "defaults_applied", "keep_freed_memory",
-           "limit_blas_threads", "pin_blas_kernel", "worker_init"]
+__all__ = ["BLAS_CORETYPES", "apply_defaults", "blas_limit", "coretype_name", "defaults_applied",
+           "keep_freed_memory", "limit_blas_threads", "pin_blas_kernel", "worker_init"]
 
 #: ``mallopt`` parameter numbers (glibc ``malloc.h``).
 _M_TRIM_THRESHOLD, _M_MMAP_THRESHOLD = -1, -3
@@ -261,6 +262,35 @@ def _cpu_flags() -> frozenset:
     return frozenset()
 
 
+def coretype_name(value: str) -> str:
+    """The kernel of :data:`BLAS_CORETYPES` that `value` names, read without case (as OpenBLAS).
+
+    Parameters
+    ----------
+    value : str
+        A kernel's name (``TEFCORE_BLAS_CORETYPE``).
+
+    Returns
+    -------
+    str
+
+    Raises
+    ------
+    ValueError
+        For a kernel not in :data:`BLAS_CORETYPES`, naming the variable.
+
+    Examples
+    --------
+    >>> coretype_name("haswell"), sorted(BLAS_CORETYPES[coretype_name("haswell")])
+    ('Haswell', ['avx2', 'fma'])
+    """
+    for name in BLAS_CORETYPES:
+        if name.lower() == value.strip().lower():
+            return name
+    raise ValueError(f"TEFCORE_BLAS_CORETYPE = {value!r}: expected 'default' or one of "
+                     f"{', '.join(sorted(BLAS_CORETYPES))}")
+
+
 def pin_blas_kernel() -> str | None:
     """Pin OpenBLAS's kernels (``OPENBLAS_CORETYPE``) before BLAS is loaded.
 
@@ -283,16 +313,18 @@ def pin_blas_kernel() -> str | None:
 
     Examples
     --------
+    Once numpy is loaded (as here) nothing is pinned any more; only a value
+    set outside is reported:
+
     >>> import os
-    >>> pin_blas_kernel() in (None, os.environ.get("OPENBLAS_CORETYPE"))
+    >>> import numpy
+    >>> pin_blas_kernel() == (os.environ.get("OPENBLAS_CORETYPE") or None)
     True
     """
     value = os.environ.get("TEFCORE_BLAS_CORETYPE", _DEFAULT_BLAS_CORETYPE)
     if value == "default":
         return None
-    if value not in BLAS_CORETYPES:
-        raise ValueError(f"TEFCORE_BLAS_CORETYPE = {value!r}: expected 'default' or one of "
-                         f"{', '.join(sorted(BLAS_CORETYPES))}")
+    value = coretype_name(value)
     if os.environ.get("OPENBLAS_CORETYPE"):
         return os.environ["OPENBLAS_CORETYPE"]
     if "numpy" in sys.modules or "scipy" in sys.modules or \

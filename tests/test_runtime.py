@@ -213,7 +213,8 @@ needs_haswell = pytest.mark.skipif(not HASWELL, reason="no AVX2 and FMA here (or
 def kernels_in(code: str, **env) -> dict:
     """``code`` in a fresh interpreter without an ``OPENBLAS_CORETYPE`` of its own
     (unless given): it prints one JSON line, returned parsed."""
-    base = {k: v for k, v in os.environ.items() if k != "OPENBLAS_CORETYPE"}
+    base = {k: v for k, v in os.environ.items()
+            if k not in ("OPENBLAS_CORETYPE", "TEFCORE_BLAS_CORETYPE")}
     out = subprocess.run([sys.executable, "-c", BLAS_KERNELS + textwrap.dedent(code)],
                          env=dict(base, **env), capture_output=True, text=True, check=True)
     return json.loads(out.stdout.strip().splitlines()[-1])
@@ -235,7 +236,6 @@ def test_the_command_pins_the_kernels_before_blas_loads():
     assert got == [["Haswell"], "Haswell"]
 
 
-@needs_haswell
 def test_a_kernel_set_outside_wins():
     got = kernels_in("""
     import json
@@ -275,9 +275,37 @@ def test_the_test_suite_runs_the_pinned_kernels():
     from threadpoolctl import threadpool_info
 
     wanted = os.environ.get("OPENBLAS_CORETYPE")
-    if not wanted and (not HASWELL or os.environ.get("TEFCORE_BLAS_CORETYPE") == "default"):
+    asked = os.environ.get("TEFCORE_BLAS_CORETYPE", "Haswell")
+    if not wanted and (asked == "default" or
+                       not runtime.BLAS_CORETYPES[runtime.coretype_name(asked)]
+                       <= runtime._cpu_flags()):
         pytest.skip("nothing to pin here (another processor, or turned off)")
     assert wanted, "conftest.py pinned no kernel: was numpy imported before it?"
     got = {(lib.get("architecture") or "").lower() for lib in threadpool_info()
            if lib["internal_api"] == "openblas"}
     assert got <= {wanted.lower()}
+
+
+@needs_haswell
+def test_conftest_pins_the_kernels_before_anything_loads_blas():
+    # the root conftest.py as pytest runs it first, in a process where nothing set
+    # the kernel: the BLAS loaded after it is the pinned one (the suite's own check
+    # above sees this machine's environment, which may have set it already)
+    from pathlib import Path
+
+    conftest = Path(__file__).resolve().parents[1] / "conftest.py"
+    got = kernels_in(f"""
+    import json, runpy
+    runpy.run_path({str(conftest)!r})
+    import numpy, scipy.linalg
+    print(json.dumps(blas_kernels()))
+    """)
+    assert got == ["Haswell"]
+
+
+def test_kernel_names_are_read_without_case(monkeypatch):
+    # OpenBLAS reads OPENBLAS_CORETYPE without case; so does the setting
+    monkeypatch.setenv("TEFCORE_BLAS_CORETYPE", "skylakex")
+    monkeypatch.setenv("OPENBLAS_CORETYPE", "Haswell")      # set outside: no pin here
+    assert runtime.pin_blas_kernel() == "Haswell"
+    assert runtime.coretype_name("HASWELL") == "Haswell"

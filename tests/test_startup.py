@@ -91,3 +91,15 @@ def test_the_installed_script_is_the_program():
     pyproject = Path(__file__).resolve().parents[1] / "pyproject.toml"
     scripts = tomllib.loads(pyproject.read_text())["project"]["scripts"]
     assert scripts["tefcore"] == "tefcore.cli:entry_point"
+
+
+def test_the_program_runs_without_a_stderr():
+    # pythonw and some launchers start a process with sys.stderr None: the exit
+    # must not fail on flushing it
+    code = ("import runpy, sys\n"
+            "sys.stderr = None\n"
+            "sys.argv = ['tefcore', 'stability', '--set', 'flight.advance_ratio=0']\n"
+            "runpy.run_module('tefcore', run_name='__main__', alter_sys=True)\n")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
+    assert out.returncode == 0, out.stderr
+    assert "TEF" in out.stdout

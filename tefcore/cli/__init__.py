@@ -457,6 +457,8 @@ def entry_point() -> int:
 
     status = main()
     for stream in (sys.stdout, sys.stderr):
+        if stream is None:                # pythonw and some launchers: no stream at all
+            continue
         try:
             stream.flush()
         except (OSError, ValueError):     # closed or gone: nothing left to flush
