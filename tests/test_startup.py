@@ -56,16 +56,22 @@ def test_stability_imports_only_what_a_point_needs(argv):
         assert name not in loaded, name
 
 
+def _program(prelude: str) -> subprocess.CompletedProcess:
+    """``python -m tefcore stability`` (hover) in a fresh process, after `prelude`."""
+    code = ("import runpy, sys\n" + prelude +
+            "sys.argv = ['tefcore', 'stability', '--set', 'flight.advance_ratio=0']\n"
+            "runpy.run_module('tefcore', run_name='__main__', alter_sys=True)\n")
+    return subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
+
+
 def test_the_program_exits_without_the_final_collection():
     # `python -m tefcore` (and the installed script) end in gc.freeze(): the
     # interpreter's last collections would walk every object numpy, scipy and
     # pandas made (0.1-0.2 s, tefcore.cli.entry_point).  The exit handlers
     # still run -- this one reports the frozen count -- and the output is whole.
-    code = ("import atexit, gc, runpy, sys\n"
-            "atexit.register(lambda: sys.stderr.write(f'frozen {gc.get_freeze_count()}\\n'))\n"
-            "sys.argv = ['tefcore', 'stability', '--set', 'flight.advance_ratio=0']\n"
-            "runpy.run_module('tefcore', run_name='__main__', alter_sys=True)\n")
-    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
+    out = _program("import atexit, gc\n"
+                   "atexit.register(lambda: sys.stderr.write("
+                   "f'frozen {gc.get_freeze_count()}\\n'))\n")
     assert out.returncode == 0, out.stderr
     frozen = int(out.stderr.split("frozen")[-1])
     assert frozen > 10_000          # numpy and scipy alone leave ~10^5 tracked objects
@@ -96,10 +102,6 @@ def test_the_installed_script_is_the_program():
 def test_the_program_runs_without_a_stderr():
     # pythonw and some launchers start a process with sys.stderr None: the exit
     # must not fail on flushing it
-    code = ("import runpy, sys\n"
-            "sys.stderr = None\n"
-            "sys.argv = ['tefcore', 'stability', '--set', 'flight.advance_ratio=0']\n"
-            "runpy.run_module('tefcore', run_name='__main__', alter_sys=True)\n")
-    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
+    out = _program("sys.stderr = None\n")
     assert out.returncode == 0, out.stderr
     assert "TEF" in out.stdout
