@@ -51,7 +51,7 @@ from tefcore.config.io import load_config  # noqa: E402
 from tefcore.floquet import floquet_modes  # noqa: E402
 from tefcore.linear.stability import linear_system, stability  # noqa: E402
 from tefcore.model.coupled import coupled_model  # noqa: E402
-from tefcore.paper.notebook_files import NOTEBOOK_SECONDS  # noqa: E402
+from tefcore.paper.run.notebook_files import NOTEBOOK_SECONDS  # noqa: E402
 from tefcore.runtime import apply_defaults  # noqa: E402
 from tefcore.structure import blade  # noqa: E402
 from tefcore.trimming.trim import initial_collective, trim  # noqa: E402

@@ -24,7 +24,7 @@ import time
 import numpy as np
 
 from tefcore.linear.stability import stability
-from tefcore.paper.figures import figure_config
+from tefcore.paper.figures.catalogue import figure_config
 from tefcore.runtime import apply_defaults
 from tefcore.sweeps.sweep import sweep
 

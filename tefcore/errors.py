@@ -7,7 +7,7 @@ Every error tefcore raises on purpose is one of
   argument.  The named subclasses are :class:`tefcore.aero.c81.C81FormatError`
   (a malformed C81 deck, with file, line and column),
   :class:`tefcore.aero.c81.C81RangeError` (inputs outside a C81 table),
-  :class:`tefcore.paper.reference_files.ReferenceDataError` (the paper's reference
+  :class:`tefcore.paper.claims.files.ReferenceDataError` (the paper's reference
   data) and :class:`SweepFileError` (a sweep file that cannot be resumed);
 * :class:`TefcoreError` subclasses that are not input errors:
   :class:`tefcore.trimming.trim.TrimError` (the trim did not converge),

@@ -45,7 +45,7 @@ PACKAGE_DIR = Path(tefcore.__file__).resolve().parent
 #: not import each other.  The package's face (``tefcore/__init__.py``) lazily
 #: exports names from every layer (PEP 562) and is exempt.
 LAYERS = (
-    ("_version", "units", "errors", "runtime", "fourier", "assignment"),  # no tefcore imports
+    ("_version", "units", "errors", "runtime", "fourier", "assignment", "faces"),  # no imports
     ("provenance", "safe_io"),            # files, fingerprints
     ("config",),                          # the configuration: data, no physics
     ("structure", "aero", "floquet"),     # blade and hub; section airloads; Floquet theory
@@ -56,6 +56,17 @@ LAYERS = (
     ("paper",),                           # the paper's figures, claims, notebooks
     ("cli",),                             # the command (text: what it prints; watch)
     ("__main__",),                        # python -m tefcore
+)
+
+#: The paper layer's rooms and single-module homes, bottom up (``tefcore.paper.<home>``):
+#: the same rule one level down -- a module imports its own room and the homes
+#: below, never a peer or a home above.
+PAPER_LAYERS = (
+    ("calibration", "figures"),          # the stated frequencies; the figures as analyses
+    ("claims",),                         # the paper's statements and their checks
+    ("attribution", "fig6_calibration", "explorer", "summaries"),
+    ("explorer_app", "notebook_tools"),  # the web page; the notebooks' vocabulary
+    ("run",),                            # reproduce, report, batches, the subcommands
 )
 
 #: Most lines of code in one module (documentation aside): a page of screens.
@@ -88,15 +99,15 @@ LONG_FUNCTIONS: dict[str, str] = {
     "tefcore.modes.tracking._lock_steps":
         "the plane rule of a Floquet lock: entering, within and leaving a k/2 lock are "
         "three cases of one decision on the same cost and shape matrices",
-    "tefcore.paper.batch.batch":
+    "tefcore.paper.run.batch.batch":
         "the batch's lifecycle in order: plan, skip or refuse stale runs, one pool, "
         "records, report; each branch is a documented outcome of the command",
-    "tefcore.paper.batch_report.comparison":
+    "tefcore.paper.run.batch_report.comparison":
         "one table of the runs side by side: a column per setting, claim score and "
         "headline, each with its own missing-value rule",
-    "tefcore.paper.batch_spec._check_values":
+    "tefcore.paper.run.batch_spec._check_values":
         "one check per notebook parameter, each naming the parameter and its allowed values",
-    "tefcore.paper.batch_state.changes":
+    "tefcore.paper.run.batch_state.changes":
         "one comparison per recorded input of a run (parameters, configuration file, "
         "version, code, notebook cells, reference data), each worded for the user",
     "tefcore.structure.blade.multiple_load_path_model":
@@ -272,6 +283,35 @@ def layer_violations(graph=None) -> list[str]:
     return out
 
 
+def paper_home(module: str) -> tuple[int, str] | None:
+    """``(rank in PAPER_LAYERS, room or module)`` of a paper module; None for the face."""
+    parts = module.split(".")
+    if parts[:2] != ["tefcore", "paper"] or len(parts) == 2:
+        return None
+    for rank, homes in enumerate(PAPER_LAYERS):
+        if parts[2] in homes:
+            return rank, parts[2]
+    raise AssertionError(f"{module}: {parts[2]!r} is on no layer of PAPER_LAYERS")
+
+
+def paper_layer_violations() -> list[str]:
+    """Imports inside the paper layer that do not run down its rooms."""
+    out = []
+    for m in MODULES:
+        here = paper_home(m)
+        if here is None:
+            continue
+        for target, _, line in _imports(m):
+            there = paper_home(target) if target in MODULES else None
+            if there is None or there[1] == here[1]:
+                continue
+            if there[0] >= here[0]:
+                kind = "a peer" if there[0] == here[0] else "a room above"
+                out.append(f"{m}: imports {target}, {kind} ({there[1]!r} on paper layer "
+                           f"{there[0]}, {here[1]!r} on paper layer {here[0]}) (line {line})")
+    return out
+
+
 def all_violations() -> list[str]:
     out = []
     for m in MODULES:
@@ -400,9 +440,9 @@ def _check(violations: list[str]) -> None:
 
 def test_the_graph_sees_function_level_and_relative_imports():
     # the checks below are only as good as the graph: tefcore.cli imports
-    # tefcore.paper.commands inside a function, relatively (.paper)
+    # tefcore.paper.run.commands inside a function, relatively (.paper)
     graph = import_graph()
-    assert "tefcore.paper.commands" in graph["tefcore.cli"]
+    assert "tefcore.paper.run.commands" in graph["tefcore.cli"]
     assert "tefcore.config.configuration" in graph["tefcore.config.io"]
 
 
@@ -422,13 +462,13 @@ def test_the_checks_find_planted_violations(monkeypatch):
         "from ..units import to_si as _to_si\n"
         "from .. import floquet as fq\n"
         "def f():\n"
-        "    from ..paper import reproduce\n"
+        "    from ..paper.run import reproduce\n"
         "    return fq._private\n"))
     found = private_violations() + layer_violations()
     assert any("planted: imports private tefcore.sweeps.sweep._evaluate" in v for v in found)
     assert any("planted: reads private tefcore.floquet._private" in v for v in found)
     assert any("planted: imports tefcore.units.to_si as private _to_si" in v for v in found)
-    assert any("planted: imports tefcore.paper.reproduce, a layer above" in v for v in found)
+    assert any("planted: imports tefcore.paper.run.reproduce, a layer above" in v for v in found)
 
 
 def test_the_layer_check_finds_a_backward_import(monkeypatch):
@@ -450,6 +490,52 @@ def test_the_layer_check_finds_a_backward_import(monkeypatch):
         "tefcore.floquet.planted: imports tefcore.structure.fem, a peer ('structure' on "
         "layer 3, 'floquet' on layer 3) (line 1)",
     ]
+
+
+def test_the_paper_layer_is_in_rooms():
+    assert not paper_layer_violations(), "\n".join(paper_layer_violations())
+
+
+def test_the_room_check_finds_a_backward_import(monkeypatch):
+    # a figure module reading the claims (a room above) and a claims module
+    # reading the figures (below: allowed)
+    planted = {
+        "tefcore.paper.figures.planted": "from ..claims.reference import load_claims\n",
+        "tefcore.paper.claims.planted": "from ..figures.catalogue import FIGURES\n",
+    }
+    for name, code in planted.items():
+        monkeypatch.setitem(MODULES, name, PACKAGE_DIR / "planted.py")
+        monkeypatch.setitem(TREES, name, ast.parse(code))
+    found = [v for v in paper_layer_violations() if "planted" in v]
+    assert found == [
+        "tefcore.paper.figures.planted: imports tefcore.paper.claims.reference, a room above "
+        "('claims' on paper layer 1, 'figures' on paper layer 0) (line 1)"]
+
+
+def test_every_paper_module_is_in_a_room():
+    homes = {m.split(".")[2] for m in MODULES if m.startswith("tefcore.paper.")}
+    assert homes == {h for layer in PAPER_LAYERS for h in layer}
+    flat = [p for p in (PACKAGE_DIR / "paper").glob("*.py") if p.name != "__init__.py"]
+    assert len(flat) <= 12, sorted(p.name for p in flat)
+
+
+def test_no_face_name_is_also_a_module_of_its_package():
+    # importing a submodule binds its name in the package: a face name equal to
+    # a module's name would be the function or the module depending on what
+    # was imported first
+    for m in MODULES:
+        if _is_package(m):
+            clash = _lazy_targets_names(m) & {s.rsplit(".", 1)[1] for s in MODULES
+                                              if "." in s and s.rsplit(".", 1)[0] == m}
+            assert not clash, f"{m}: face names that are modules: {sorted(clash)}"
+
+
+def _lazy_targets_names(module: str) -> set[str]:
+    for node in TREES[module].body:
+        if isinstance(node, ast.Assign) and any(
+                isinstance(t, ast.Name) and t.id == "API" for t in node.targets):
+            return {k.value for k in node.value.keys if isinstance(k, ast.Constant)}
+    return set()
 
 
 def test_every_folder_and_root_module_is_on_a_layer():

@@ -14,7 +14,7 @@ from pathlib import Path
 
 import pytest
 
-from tefcore.paper import reproduce as rp
+from tefcore.paper.run import reproduce as rp
 from tefcore.sweeps.sweep import sweep
 from tests.sweeps.test_sweep import MDART, PARAM, XS, ToyPoint, run
 

@@ -37,7 +37,8 @@ def test_the_packaged_data_files_are_in_the_package_data():
 
     data = PYPROJECT["tool"]["setuptools"]["package-data"]
     for package, rel in (("tefcore", "data/mdart.toml"), ("tefcore", "data/mdart-fig6.toml"),
-                         ("tefcore.paper", "variants.toml"),
-                         ("tefcore.paper", "departures.toml")):
+                         ("tefcore.paper.claims", "variants.toml"),
+                         ("tefcore.paper.run", "templates/report.html.j2"),
+                         ("tefcore.paper.attribution", "departures.toml")):
         assert (ROOT / package.replace(".", "/") / rel).is_file(), rel
         assert any(fnmatch.fnmatch(rel, pat) for pat in data[package]), rel

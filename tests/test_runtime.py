@@ -109,7 +109,7 @@ def test_the_command_applies_the_settings():
     # usage error stops it right after the settings (without them the heap was
     # trimmed and faulted back at every point: 56 s of CPU, 11 s of it system
     # time, against 42 s and 0.2 s for the same claims)
-    ("tefcore.paper.variants", ["no-such-command"]),
+    ("tefcore.paper.run.variant_runs", ["no-such-command"]),
     # the calibration scripts, stopped at their first configuration
     ("tefcore.paper.calibration", []),
     ("tefcore.paper.fig6_calibration", []),

@@ -2,7 +2,7 @@
 
 Subcommands: ``modes``, ``fanplot``, ``stability``, ``sweep``, ``map``,
 ``mechanism``, ``simulate``, ``c81 example|check``, and from the paper layer
-(:mod:`tefcore.paper.commands`) ``reproduce`` (executes the notebooks and
+(:mod:`tefcore.paper.run.commands`) ``reproduce`` (executes the notebooks and
 writes the claims report) and ``notebooks`` (lists them, copies them for
 editing); ``tefcore --help`` lists them and ``tefcore SUBCOMMAND --help``
 describes one.
@@ -399,7 +399,7 @@ def build_parser() -> argparse.ArgumentParser:
              "MDART flap (GENERATED data, not test data).", cmd_c81_example, common=False)
     q.add_argument("--out", default=None, help="output file (default: the packaged "
                                                 "tefcore/data/example_flap_generated.c81)")
-    from ..paper.commands import add_commands  # reproduce, notebooks: the paper layer
+    from ..paper.run.commands import add_commands  # reproduce, notebooks: the paper layer
 
     add_commands(sub, formatter_class=_HelpFormatter)
     return parser

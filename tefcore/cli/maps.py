@@ -58,7 +58,7 @@ def _map_plot(res, cfg, path) -> None:
     import matplotlib
 
     matplotlib.use("Agg")
-    from ..paper.plotting import field_axis
+    from ..paper.figures.plotting import field_axis
 
     (x_label, x_unit), (y_label, y_unit) = field_axis(res.x_field), field_axis(res.y_field)
     ax = res.plot(x_unit=x_unit, x_label=x_label, y_unit=y_unit, y_label=y_label)

@@ -27,8 +27,8 @@ from dataclasses import dataclass
 import pandas as pd
 
 from ..modes.roles import flutter_root
-from .figure_runs import base_config
-from .plotting import PAPER_MODES, STYLE, legend_below
+from .figures.plotting import PAPER_MODES, STYLE, legend_below
+from .figures.runs import base_config
 
 __all__ = ["SLIDERS", "RootMap", "draw_root_map", "explore", "explorer_config", "explorer_state",
            "root_map"]

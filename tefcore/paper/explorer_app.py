@@ -277,7 +277,7 @@ def _layout(widgets, w):
 def _page_base(config, overrides):
     from ..config.io import load_config
     from ..config.text_input import parse_overrides
-    from .figure_runs import base_config
+    from .figures.runs import base_config
 
     if config == "mdart" and not overrides:
         return base_config()

@@ -34,8 +34,8 @@ import scipy.optimize
 
 from ..config.io import load_config
 from ..model.flap import flap_natural_frequency, flap_properties
-from .figures import flap_response_figure
-from .reference import load_claims
+from .claims.reference import load_claims
+from .figures.responses import flap_response_figure
 
 __all__ = ["CONFLICT_POINTS", "FIG6_CLAIM", "FLAP_INERTIA_SCALE", "calibrate_reflected_inertia",
            "conflict_table", "conflict_text", "default_conflict_configs", "fig6_ratio",
@@ -84,7 +84,7 @@ def fig6_ratio(cfg) -> float:
     ----------
     cfg : tefcore.config.configuration.Config
         Base configuration (Fig. 6's flight condition and input are applied,
-        :func:`tefcore.paper.figures.flap_response_figure`).
+        :func:`tefcore.paper.figures.responses.flap_response_figure`).
 
     Returns
     -------
@@ -178,7 +178,7 @@ def calibrate_reflected_inertia(cfg=None, target_deg: float | None = None,
 
 def _least_stable(cfg) -> dict:
     """The least stable root of a stability point: name, frequency, real part, flutter root."""
-    from .figure_runs import quiet_stability
+    from .figures.runs import quiet_stability
 
     m = quiet_stability(cfg).modes
     top = m.loc[m["real_part"].idxmax()]

@@ -4,13 +4,13 @@ The notebooks (``tefcore notebooks --copy DIR`` gives editable copies) import
 this module as ``nt`` so that a reader sees one vocabulary; the functions live
 where they belong and are re-exported here:
 
-* running a figure -- :mod:`tefcore.paper.figure_runs` (:func:`base_config`,
-  :func:`run_config`, :func:`figure_values`, :func:`quiet_stability` -- the point
+* running a figure -- :mod:`tefcore.paper.figures.runs` (:func:`base_config`,
+  :func:`run_config`, :func:`quiet_stability` -- the point
   function the notebooks' sweeps use --,
   :func:`natural_frequencies`, :func:`section_aero`);
-* plotting -- :mod:`tefcore.paper.plotting` (:func:`plot_modes`,
+* plotting -- :mod:`tefcore.paper.figures.plotting` (:func:`plot_modes`,
   :func:`plot_root_locus`, :func:`plot_participation`, :func:`legend_below`,
-  :func:`savefig`) and :mod:`tefcore.paper.captions` (:func:`figure_title`,
+  :func:`savefig`) and :mod:`tefcore.paper.figures.captions` (:func:`figure_title`,
   :func:`figure_caption`, :func:`conditions`);
 * printed summaries for checked cells -- :mod:`tefcore.paper.summaries`
   (:func:`mode_summary`, :func:`sign_changes`, :func:`report_identity`,
@@ -37,7 +37,11 @@ import pandas as pd
 
 from ..runtime import apply_defaults
 from ..safe_io import atomic_output
-from .captions import (
+from .attribution.departures import departures_text, show_departures
+from .claims.validation import figure_values
+from .claims.variants import apply_variant
+from .explorer import explore
+from .figures.captions import (
     LOCUS_CAPTION,
     MARKERS,
     conditions,
@@ -45,18 +49,8 @@ from .captions import (
     figure_title,
     flight_condition,
 )
-from .departures import departures_text, show_departures
-from .explorer import explore
-from .figure_runs import (
-    base_config,
-    figure_values,
-    natural_frequencies,
-    quiet_stability,
-    run_config,
-    section_aero,
-    variant_key,
-)
-from .plotting import (
+from .figures.catalogue import variant_key
+from .figures.plotting import (
     AXES,
     MEASURES,
     PAPER_MODES,
@@ -70,6 +64,13 @@ from .plotting import (
     plot_root_locus,
     savefig,
     x_values,
+)
+from .figures.runs import (
+    base_config,
+    natural_frequencies,
+    quiet_stability,
+    run_config,
+    section_aero,
 )
 from .summaries import (
     claims_table,
@@ -86,7 +87,6 @@ from .summaries import (
     sign_changes,
     unsteadiness,
 )
-from .variants import apply_variant
 
 __all__ = ["AXES", "LOCUS_CAPTION", "MARKERS", "MEASURES", "PAPER_MODES", "STYLE", "base_config",
            "check_and_save", "claims_table", "clean", "conditions", "counted_warnings", "curves",
@@ -173,7 +173,7 @@ def check_and_save(out, results: dict, *, cfg=None, variants=None, tables=None) 
     cfg : tefcore.config.configuration.Config, optional
         Base configuration of runs the validation adds; on a packaged variant
         other than the default (``mdart-fig6``) its calibration claims are
-        tagged and its recorded statuses used (:func:`tefcore.paper.variants.apply_variant`).
+        tagged and its recorded statuses used (:func:`tefcore.paper.claims.variants.apply_variant`).
     variants : dict, optional
         Figure -> ``{variant_key(overrides): result}`` of runs already made.
     tables : dict, optional

@@ -27,12 +27,12 @@ import pandas as pd
 from ..aero.unsteady import theodorsen_function
 from ..linear.mechanism import mechanism
 from ..modes.roles import exceptional_points, undecided_steps
-from . import validation
-from .claim_exceptional import where
-from .curve_metrics import zero_crossings
-from .figure_runs import run_config
-from .figures import FIGURES, figure_config
-from .plotting import AXES, PAPER_MODES, curves, x_values
+from .claims import validation
+from .claims.curves import zero_crossings
+from .claims.exceptional import where
+from .figures.catalogue import FIGURES, figure_config
+from .figures.plotting import AXES, PAPER_MODES, curves, x_values
+from .figures.runs import run_config
 
 __all__ = ["claims_table", "clean", "counted_warnings", "explain", "format_value",
            "mechanism_summary", "mode_summary", "reference_curves", "report_identity",
@@ -109,14 +109,14 @@ def mode_summary(name: str, table: pd.DataFrame | None, labels=PAPER_MODES,
         Modes (columns), in order: ``"TEF"`` is the TEF branch.
     measure : {"decay_rate", "damping_ratio"}
         Damping measure: ``-Re(s)/Omega`` [1/rev] or ``zeta`` [%]
-        (:data:`tefcore.paper.plotting.MEASURES`).
+        (:data:`tefcore.paper.figures.plotting.MEASURES`).
     quantity : {"damping", "frequency"}
         Which value fills the table (frequency in /rev).
     digits : int
         Decimals kept.
     natural : pandas.DataFrame, optional
         Curves of blade natural frequencies
-        (:func:`tefcore.paper.figure_runs.natural_frequencies`) to tabulate
+        (:func:`tefcore.paper.figures.runs.natural_frequencies`) to tabulate
         instead of the sweep's roots.
 
     Returns
@@ -162,7 +162,7 @@ def sign_changes(name: str, table: pd.DataFrame, label: str = "TEF",
                  measure: str = "decay_rate") -> list:
     """Where a mode's damping changes sign, in the paper's x units.
 
-    The zero crossings (:func:`tefcore.paper.curve_metrics.zero_crossings`)
+    The zero crossings (:func:`tefcore.paper.claims.curves.zero_crossings`)
     of the mode's real part, linearly interpolated between the figure's own
     points (points added by refinement left out): e.g. Fig. 9b's TEF mode
     "becomes unstable after a flap CG offset of 0.26 flap chord".
@@ -387,7 +387,7 @@ def report_sweep(name: str, result) -> None:
 def claims_table(name: str, result, cfg=None, variants=None, others=None) -> pd.DataFrame:
     """The paper's claims about one figure, checked against its result.
 
-    :func:`tefcore.paper.validation.validate_figure`, with a fresh index.
+    :func:`tefcore.paper.claims.validation.validate_figure`, with a fresh index.
 
     Parameters
     ----------
@@ -405,7 +405,7 @@ def claims_table(name: str, result, cfg=None, variants=None, others=None) -> pd.
 
     Raises
     ------
-    tefcore.paper.reference_files.ReferenceDataError
+    tefcore.paper.claims.files.ReferenceDataError
         Without usable reference data (never an empty "0 of 0" table).
     """
     return validation.validate_figure(name, result, cfg=cfg, variants=variants,

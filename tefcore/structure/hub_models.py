@@ -7,7 +7,7 @@ specific to the second: the closed forms of its torsion load paths and of the
 pitch-link kinematics (:func:`kinematic_pitch_ratio`,
 :func:`pitch_flap_delta3`) and its static response to a pitch input
 (:func:`pitch_input_response`).  The comparison of both hubs that notebook 01
-shows is in the paper layer (:mod:`tefcore.paper.hub_comparison`).
+shows is in the paper layer (:mod:`tefcore.paper.attribution.hub_comparison`).
 
 Examples
 --------

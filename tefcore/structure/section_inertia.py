@@ -330,7 +330,7 @@ def check_section_inertia(cfg) -> None:
 
     Cost: a few dozen flops per station (no assembly); called where the blade
     and the coupled model are assembled, and by the batch file's checks before
-    anything runs (:mod:`tefcore.paper.batch_spec`).
+    anything runs (:mod:`tefcore.paper.run.batch_spec`).
 
     Parameters
     ----------

@@ -616,7 +616,7 @@ def test_table_model_with_the_wake_stays_in_range_near_reverse_flow():
 
 
 def test_compare_models_tables():
-    from tefcore.paper.model_comparison import compare_models
+    from tefcore.paper.attribution.model_comparison import compare_models
 
     options = {"quasi-steady": {"model.aero": "quasi_steady"},
                "unsteady": {"model.aero": "unsteady"}}

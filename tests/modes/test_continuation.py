@@ -318,7 +318,7 @@ def test_the_tef_frequency_of_a_real_sweep_falls_without_shifts_or_mirrors():
     (measured).  Before continuation the tracked frequency *rose* to 33.68 (the
     mirror of the root, shifted) and the point values jumped by 1 /rev; a wrong
     unwrapping or a TEF name on another root breaks the monotonic fall."""
-    from tefcore.paper.figures import figure_config
+    from tefcore.paper.figures.catalogue import figure_config
 
     cfg = figure_config("fig9").with_overrides({"flap.overhang": 0.1})
     xs = [float(x) for x in np.round(np.linspace(0.0, 0.4, 11), 2)]
@@ -344,7 +344,7 @@ def test_a_root_that_does_not_move_the_flap_keeps_its_own_coordinate():
     took 'blade flap 4 (locked)' beside the flutter root's 'blade flap 4'
     (measured).  The names must run on from 0.20 R, each given once."""
     from tefcore.linear.stability import stability
-    from tefcore.paper.figures import figure_config
+    from tefcore.paper.figures.catalogue import figure_config
 
     base = figure_config("fig14", load_config("mdart-fig6"))
     named = {}
@@ -387,7 +387,7 @@ def _named(cfg, first_steps=None, monkeypatch=None):
 ])
 def test_the_adaptive_march_names_the_roots_as_a_fine_march_does(figure, field, value, tef,
                                                                  monkeypatch):
-    from tefcore.paper.figures import figure_config
+    from tefcore.paper.figures.catalogue import figure_config
 
     cfg = figure_config(figure).with_overrides({field: value})
     coarse = _named(cfg)
@@ -413,7 +413,7 @@ def test_a_root_that_does_not_move_the_flap_is_never_the_flap_mode():
     motion (measured at stop 42).  Either way the TEF is the pair's."""
     from tefcore.linear.stability import stability
     from tefcore.modes.continuation import FLAP_ACTIVE
-    from tefcore.paper.figures import figure_config
+    from tefcore.paper.figures.catalogue import figure_config
 
     cfg = figure_config("fig12").with_overrides(
         {"actuator.stiffness": "75.98681691423332 N*m/rad"})
@@ -499,7 +499,7 @@ def test_the_carried_frequency_is_the_same_root_continued_across_a_harmonic_swit
     to round-off) and continuous across the switch (within 0.2 /rev: the
     neighbours' steps are 0.13)."""
     from tefcore.linear.stability import stability
-    from tefcore.paper.figures import figure_config
+    from tefcore.paper.figures.catalogue import figure_config
 
     cfg = figure_config("fig14")
     rows = []
@@ -709,7 +709,7 @@ def test_the_second_roots_of_two_locks_are_named_once_each():
     named both roots at 1 /rev and the flap's second root 'blade flap 1
     (locked)' (measured); each name is given once, the flap's pair TEF."""
     from tefcore.linear.stability import stability
-    from tefcore.paper.figures import figure_config
+    from tefcore.paper.figures.catalogue import figure_config
 
     m = stability(figure_config("fig12").with_overrides(
         {"actuator.stiffness": "56.12662612983142 N*m/rad"})).modes
@@ -740,7 +740,7 @@ def test_the_names_do_not_depend_on_round_off_where_a_lock_forms(monkeypatch, fi
     from tefcore.floquet import floquet_motions
     from tefcore.linear.stability import stability
     from tefcore.modes import continuation
-    from tefcore.paper.figures import figure_config
+    from tefcore.paper.figures.catalogue import figure_config
 
     cfg = figure_config(figure).with_overrides({field: value})
     plain = stability(cfg).modes
@@ -769,7 +769,7 @@ def test_a_lock_at_zero_coupling_is_named_from_its_own_mode():
     -0.48).  At zero coupling blade and flap are apart: a lock is one mode's,
     and the names there are exact."""
     from tefcore.linear.stability import stability
-    from tefcore.paper.figures import figure_config
+    from tefcore.paper.figures.catalogue import figure_config
 
     cfg = figure_config("fig12").with_overrides({"actuator.stiffness": "110 ft-lb/rad"})
     m = stability(cfg).modes.set_index("label")
@@ -794,7 +794,7 @@ def test_zero_coupling_names_follow_the_roots_not_their_order():
     from tefcore.model.coupled import coupled_model
     from tefcore.modes import continuation
     from tefcore.modes.labels import coordinate_shares
-    from tefcore.paper.figures import figure_config
+    from tefcore.paper.figures.catalogue import figure_config
 
     cfg = figure_config("fig9").with_overrides({"flap.cg_offset": 0.33})
     system = stability(cfg).system
@@ -845,7 +845,7 @@ def test_the_homotopy_by_block_elimination_is_the_homotopy(eps):
     could hide."""
     from tefcore.linear.stability import stability
     from tefcore.modes.continuation import HomotopySamples, coupling_homotopy
-    from tefcore.paper.figures import figure_config
+    from tefcore.paper.figures.catalogue import figure_config
 
     system = stability(figure_config("fig9").with_overrides({"flap.cg_offset": 0.36})).system
     samples = HomotopySamples(system, 72)
@@ -874,7 +874,7 @@ def test_a_root_named_by_participation_carries_no_other_path_s_frequency():
     name is not its path's (``named_by_path`` False) and it has no continued
     frequency; the roots named by their own paths keep theirs."""
     from tefcore.linear.stability import stability
-    from tefcore.paper.figures import figure_config
+    from tefcore.paper.figures.catalogue import figure_config
 
     res = stability(figure_config("fig13").with_overrides({"flap.midspan": 0.71875}))
     m, c = res.modes, res.identity

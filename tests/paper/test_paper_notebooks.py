@@ -11,11 +11,12 @@ from pathlib import Path
 import nbformat
 import pytest
 
-from tefcore.paper import notebook_files as nbf
-from tefcore.paper.captions import figure_caption, figure_title
-from tefcore.paper.departures import departures_text, load_departures
-from tefcore.paper.figure_runs import run_config
-from tefcore.paper.figures import FIGURES, response_config
+from tefcore.paper.run import notebook_files as nbf
+from tefcore.paper.attribution.departures import departures_text, load_departures
+from tefcore.paper.figures.captions import figure_caption, figure_title
+from tefcore.paper.figures.catalogue import FIGURES
+from tefcore.paper.figures.responses import response_config
+from tefcore.paper.figures.runs import run_config
 
 jupytext = pytest.importorskip("jupytext")
 

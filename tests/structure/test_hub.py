@@ -416,7 +416,7 @@ def test_hub_comparison_for_the_notebook():
     import matplotlib
 
     matplotlib.use("Agg")
-    from tefcore.paper.hub_comparison import compare_hub_models, plot_hub_models
+    from tefcore.paper.attribution.hub_comparison import compare_hub_models, plot_hub_models
 
     c = compare_hub_models(speed_ratios=[0.5, 1.0], figures=("fig3",), collectives_deg=[0, 6])
     assert set(c.fan["hub_model"]) == {"equivalent", "multiple_load_path"}

@@ -17,7 +17,7 @@ from numpy.testing import assert_allclose
 from tefcore.config.io import load_config
 from tefcore.model.coupled import coupled_model
 from tefcore.model.flap import flap_properties
-from tefcore.paper.figures import FIGURES, figure_config
+from tefcore.paper.figures.catalogue import FIGURES, figure_config
 from tefcore.structure.blade import blade_model, element_nodes, pitch_function, rotor_units
 from tefcore.structure.section_inertia import (
     check_coupled_mass,

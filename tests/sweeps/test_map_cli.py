@@ -69,7 +69,7 @@ def _plotted(monkeypatch):
 
 def test_map_plot_uses_the_notebooks_axis_labels(toy, monkeypatch):
     """The PNG's axes were the raw field names (``flap.cg_offset``)."""
-    from tefcore.paper.plotting import FIELD_AXES
+    from tefcore.paper.figures.plotting import FIELD_AXES
 
     axes = _plotted(monkeypatch)
     assert main([*MAP, "--png", "m.png"]) == 0

@@ -229,7 +229,7 @@ def test_heavily_damped_root_resolved_by_raising_the_sub_intervals():
     # on Fig. 14's 0.22 R span; with the re-derived blade K = 4 is off by
     # 1.4e-4 /rev here, among the largest of the figures' extreme points, measured.)
     from tefcore.linear.stability import periodic_state_matrix
-    from tefcore.paper.figures import figure_config
+    from tefcore.paper.figures.catalogue import figure_config
 
     cfg = figure_config("fig13").with_overrides({"flap.midspan": 0.90})
     tr = stability(cfg).trim_result

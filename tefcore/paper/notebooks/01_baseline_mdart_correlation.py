@@ -187,7 +187,7 @@ print(nt.mode_summary("fig4", res_fig4.table, labels=("blade lag 1",), measure=d
 # is stated), the branched hub adds little pitch-lag coupling.
 
 # %%
-from tefcore.paper.hub_comparison import compare_hub_models, plot_hub_models
+from tefcore.paper.attribution.hub_comparison import compare_hub_models, plot_hub_models
 
 hubs = compare_hub_models(base, n_jobs=n_jobs)
 wide = hubs.modes.pivot_table(index="mode", columns="hub_model", values="frequency_per_rev",
@@ -225,7 +225,7 @@ nt.savefig(fig, out, "hub_models",
 # ## Validation: the paper's claims for these figures
 #
 # Each row is one statement of the paper, checked against the computed
-# results by `tefcore.paper.validation` (`pass`, `fail`, or `not reproducible` when
+# results by `tefcore.paper.claims.validation` (`pass`, `fail`, or `not reproducible` when
 # the statement needs data we do not have). The full table, with the
 # statement, the expected and computed values and the reason, is saved to
 # `claims.csv`.
@@ -246,7 +246,7 @@ claims = nt.check_and_save(out, results, cfg=claims_cfg, variants=variants, tabl
 # %% [markdown]
 # ## Where the compact model departs from UMARC, and what that may shift
 #
-# One text for all notebooks (`tefcore/paper/departures.toml`): what holds for every
+# One text for all notebooks (`tefcore/paper/attribution/departures.toml`): what holds for every
 # figure, then what matters most for this notebook's.
 
 # %%

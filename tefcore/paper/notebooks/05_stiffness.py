@@ -239,7 +239,7 @@ print("TEF damping changes sign at:", nt.sign_changes("fig12", res_fig12.table,
 # ## Validation: the paper's claims for these figures
 #
 # Each row is one statement of the paper, checked against the computed
-# results by `tefcore.paper.validation` (`pass`, `fail`, or `not reproducible` when
+# results by `tefcore.paper.claims.validation` (`pass`, `fail`, or `not reproducible` when
 # the statement needs data we do not have). The full table, with the
 # statement, the expected and computed values and the reason, is saved to
 # `claims.csv`.
@@ -260,7 +260,7 @@ claims = nt.check_and_save(out, results, cfg=claims_cfg, variants=variants, tabl
 # %% [markdown]
 # ## Where the compact model departs from UMARC, and what that may shift
 #
-# One text for all notebooks (`tefcore/paper/departures.toml`): what holds for every
+# One text for all notebooks (`tefcore/paper/attribution/departures.toml`): what holds for every
 # figure, then what matters most for this notebook's.
 
 # %%

@@ -26,7 +26,7 @@
 # 2. shows the assumed blade (frequencies where soft-inplane bearingless blades
 #    have them, torsion calibrated to the four frequencies the text states);
 # 3. computes four **headline results** and re-computes them with every assumed
-#    property at the two ends of its plausible range (`tefcore.paper.sensitivity`):
+#    property at the two ends of its plausible range (`tefcore.paper.attribution.sensitivity`):
 #
 # * `fig9_onset`: the flap CG offset c_cg/c_f where the TEF flutter root turns
 #   unstable, mu = 0.3, c_b/c_f = 0.29 (paper: 0.26);
@@ -58,7 +58,7 @@ overrides = {}             # dotted configuration fields applied over each figur
 n_points = None            # None: the paper's sweep values; int: that many, evenly, same range
 values = {}                # explicit sweep values per figure, e.g. {"fig8": [0.0, 0.25, 0.5]}
 damping_measure = "decay_rate"  # "decay_rate" (-Re(s)/Omega) or "damping_ratio" (%)
-assumptions = None         # None: every assumption of tefcore.paper.sensitivity.ASSUMPTIONS, or a
+assumptions = None         # None: every assumption of tefcore.paper.attribution.sensitivity.ASSUMPTIONS, or a
                            # list of their names, e.g. ["flap mass", "flap inertia"]
 
 # %% tags=["nbval-ignore-output"]
@@ -157,7 +157,7 @@ for cg in (0.0, 0.33):
 # the text states held fixed.
 
 # %%
-from tefcore.paper import sensitivity as sens
+from tefcore.paper.attribution import sensitivity as sens
 
 chosen = [a for a in sens.ASSUMPTIONS if assumptions is None or a.name in assumptions]
 pd.set_option("display.max_colwidth", 110)
@@ -202,11 +202,11 @@ nt.savefig(fig, out, "tornado",
 # c_cg/c_f = 0.33, falling from 17.5 /rev at c_cg = 0) lies among blade flap 4,
 # flap 5 and torsion 2 (7.3-11.8 /rev). The first table keeps the lowest n modes
 # (`model.n_modes`), the second the six lowest plus one of those three at a time
-# (`tefcore.paper.modal_truncation`), at the paper's imbalanced flap
+# (`tefcore.paper.attribution.modal_truncation`), at the paper's imbalanced flap
 # (c_cg/c_f = 0.33, c_b/c_f = 0.29) in hover.
 
 # %%
-from tefcore.paper import modal_truncation as mt
+from tefcore.paper.attribution import modal_truncation as mt
 
 trunc = mt.truncation_table(cfg)
 print("flutter root in hover versus the lowest modes retained:")

@@ -61,7 +61,7 @@ import pandas as pd
 
 import tefcore
 from tefcore.paper import notebook_tools as nt
-from tefcore.paper.model_comparison import OPTIONS, compare_models
+from tefcore.paper.attribution.model_comparison import OPTIONS, compare_models
 from tefcore.aero.unsteady import fitted_wake, theodorsen_function
 
 out = nt.setup_notebook(output_dir)
@@ -91,7 +91,7 @@ print(nt.clean(table_c.round(4)).to_string(index=False))
 # %% [markdown]
 # ## The imbalanced flap under each option
 #
-# `tefcore.paper.model_comparison.compare_models` finds, for each option, the
+# `tefcore.paper.attribution.model_comparison.compare_models` finds, for each option, the
 # Fig. 9 onset (the CG offset where the flutter root turns unstable at
 # mu = 0.3) and the flutter root's growth rate at the imbalanced baseline in
 # hover and at mu = 0.3, and breaks the mu = 0.3 growth rate into the work of
