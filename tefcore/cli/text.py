@@ -47,7 +47,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from ..config.text_input import field_param
-from ..modes.roles import base_name
+from ..modes.names import base_name, pair_labels
 from ..units import from_si
 
 if TYPE_CHECKING:
@@ -449,7 +449,7 @@ def _role_line(what: str, rows: pd.DataFrame, unit: tuple[str, float], names_ep,
         ([e[:3] for e in undecided if e[3] == k], k)
         for k in dict.fromkeys(e[3] for e in undecided)]
     for found, what_kind in kinds:
-        hits = [e for e in found if set(e[0].split(" / ")) & own]
+        hits = [e for e in found if set(pair_labels(e[0])) & own]
         if hits:
             where = "; ".join(f"{m} " + (f"at {lo * f:.4g}" if lo == hi else
                                            f"between {lo * f:.4g} and {hi * f:.4g}")

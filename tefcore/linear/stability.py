@@ -28,6 +28,7 @@ from ..model.coupled import coupled_model
 from ..model.jacobian import jacobian_blocks
 from ..modes.continuation import continue_roots
 from ..modes.labels import coordinate_shares, label_modes, tracking_shapes
+from ..modes.names import base_name, mode_kind
 from ..modes.roles import named_columns
 from ..runtime import blas_limit
 from ..trimming.trim import TrimResult, initial_collective, trim
@@ -386,13 +387,13 @@ def _modes_columns(model, keep, periodic):
     shapes = tracking_shapes(model.tracking_basis(), keep, n)
     labels = label_modes(frac, model.labels, keep.frequencies, keep.damping_rates, shapes,
                          periodic=periodic)
-    kinds = [lab.split()[1] if lab.startswith("blade") else "TEF" for lab in model.labels]
+    kinds = [mode_kind(lab) for lab in model.labels]
     columns = {
         "mode_id": np.arange(len(labels)),
         "label": np.array(labels, dtype=object),
         "dominant": np.array(labels, dtype=object),
-        "kind": [lab.split()[1] if lab.startswith("blade") else "TEF" for lab in labels],
-        "coordinate_share": [frac[model.labels.index(lab.split(" (")[0]), j]
+        "kind": [mode_kind(lab) for lab in labels],
+        "coordinate_share": [frac[model.labels.index(base_name(lab)), j]
                              for j, lab in enumerate(labels)],
         "frequency_per_rev": keep.frequencies,
         "real_part": keep.damping_rates,

@@ -31,7 +31,8 @@ from ..floquet import floquet_motions
 from ..floquet.second_order import STATE_MIN_RATE, SecondOrderSystem, periodic_modes
 from .final_names import flap_free_by_participation, free_labels, second_roots_of_locks
 from .labels import coordinate_shares, label_modes, tracking_shapes, trajectory_shapes
-from .march import FLAP_ACTIVE, March, base_name, compact_basis, flap_share, lock_matrix
+from .march import FLAP_ACTIVE, March, compact_basis, flap_share, lock_matrix
+from .names import base_name, is_locked, locked_name, pair_text
 from .tracking import follow_root
 
 if TYPE_CHECKING:
@@ -371,7 +372,7 @@ def zero_coupling_names(frac, labels, freqs, rates, shapes, periodic=False):
     out = [named[col[j]] if j in col else "" for j in range(freqs.size)]
     fallback = None
     for b, a in second.items():
-        name = base_name(out[a]) + " (locked)"
+        name = locked_name(out[a])
         if name in out:
             # more roots than coordinates: the pair's plain root is itself a
             # '(locked)' extra; the second root keeps the labels' own name
@@ -759,7 +760,7 @@ def _own_paths(origin, paths, certain, eig, periodic):
                         for o, p in zip(origin, paths, strict=True)])
     carried = np.full(len(origin), np.nan)
     if periodic:
-        own = certain & by_path & np.array([not o.endswith(" (locked)") for o in origin])
+        own = certain & by_path & np.array([not is_locked(o) for o in origin])
         carried[own] = eig.imag[own]
     return by_path, carried
 
@@ -783,7 +784,7 @@ def _renamed_meetings(march, names) -> MeetingRows:
     rows: dict = {}                        # the first meeting of each pair
     for m in march.meetings:
         a, b = (final.get(p, n) for n, p in m["paths"].items())
-        pair = " / ".join(sorted((a, b)))
+        pair = pair_text(a, b)
         if a != b and pair not in rows:
             rows[pair] = (m["eps"], pair, m["gap"], m["mac"])
     # from columns, not records: a third of the cost (0.2 against 0.7 ms a point)
@@ -816,7 +817,7 @@ def _by_participation(res0, n, labels, basis, final, final_labels) -> ContinuedR
                                  periodic=res0.shapes is not None)
     held = dict(zip(names0, res0.exponents, strict=True))
     names = [str(x) for x in final_labels]
-    uncoupled = np.array([held.get(x, held.get(x.removesuffix(" (locked)"), np.nan))
+    uncoupled = np.array([held.get(x, held.get(base_name(x), np.nan))
                           for x in names], complex)
     return ContinuedRoots(origin=names, certain=np.zeros(len(names), bool),
                           uncoupled=uncoupled,

@@ -13,7 +13,8 @@ from __future__ import annotations
 import numpy as np
 
 from ..assignment import linear_sum_assignment
-from .march import FLAP_ACTIVE, base_name, same_lock
+from .march import FLAP_ACTIVE, same_lock
+from .names import base_name, is_locked, is_tef, locked_name
 
 __all__ = ["flap_free_by_participation", "free_labels", "second_roots_of_locks"]
 
@@ -65,14 +66,14 @@ def free_labels(carried, motion, shares, labels, eig=None):
     for j in np.flatnonzero(free):
         own = blade[int(np.argmax(shares[:len(blade), j]))]
         k = holder.get(own)
-        if base_name(out[j]) == labels[-1] and k is not None and free[k]:
-            second = f"{own} (locked)"
+        if is_tef(out[j]) and k is not None and free[k]:
+            second = locked_name(own)
             if eig is not None and same_lock(eig, j, k) and second not in holder:
                 holder.pop(out[j], None)
                 out[j] = second
                 holder[second] = j
             continue
-        if out[j] == own or out[j].endswith("(locked)") or k is None or free[k]:
+        if out[j] == own or is_locked(out[j]) or k is None or free[k]:
             continue
         out[j], out[k] = own, out[j]            # the moving root's label only a fallback
         holder[own], holder[out[k]] = j, k
@@ -92,7 +93,7 @@ def _one_plain_per_lock(out, free, eig):
     """
     for name in sorted(set(out)):
         same = [j for j in np.flatnonzero(free) if out[j] == name]
-        if len(same) < 2 or not name.endswith(" (locked)"):
+        if len(same) < 2 or not is_locked(name):
             continue
         plain = base_name(name)
         k = next((i for i, x in enumerate(out) if x == plain), None)
@@ -138,11 +139,11 @@ def second_roots_of_locks(names, paths, eig):
         if names.count(name) == 1 and paths[i]:
             continue
         partners = [p for p in range(len(names)) if same_lock(eig, i, p)
-                    and not names[p].endswith("(locked)") and names[p] != name]
+                    and not is_locked(names[p]) and names[p] != name]
         if not partners:
             continue
         p = min(partners, key=lambda q: abs(eig[q].real - eig[i].real))
-        second = f"{base_name(names[p])} (locked)"
+        second = locked_name(names[p])
         if second not in names:
             names[i] = second
             renamed[i] = True

@@ -19,6 +19,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..assignment import linear_sum_assignment
+from .names import locked_name
 
 __all__ = ["coordinate_shares", "label_modes", "tracking_shapes", "trajectory_shapes"]
 
@@ -81,9 +82,9 @@ def label_modes(frac, labels, freqs, rates, disp, periodic: bool = False):
             # less damped root (the one that matters for stability) after the
             # coordinate, deterministically
             if rates[j] > rates[best]:
-                out[j], out[best] = out[best], out[best] + " (locked)"
+                out[j], out[best] = out[best], locked_name(out[best])
             else:
-                out[j] = out[best] + " (locked)"
+                out[j] = locked_name(out[best])
     return out
 
 

@@ -27,8 +27,9 @@ from .matching import (
     mac,
     relative_distance,
 )
+from .names import base_name, is_locked, locked_name, pair_text
 
-__all__ = ["FLAP_ACTIVE", "March", "base_name", "compact_basis", "exchanges", "flap_share",
+__all__ = ["FLAP_ACTIVE", "March", "compact_basis", "exchanges", "flap_share",
            "lock_matrix", "regrets", "same_lock"]
 
 
@@ -111,26 +112,6 @@ def _modulus2(z):
     if not np.iscomplexobj(z):
         return z * z
     return z.real * z.real + z.imag * z.imag
-
-
-def base_name(name) -> str:
-    """A root's name without the suffix of a locked pair's second root.
-
-    Parameters
-    ----------
-    name : object
-        ``"blade flap 1 (locked)"``, ``"TEF"``, ...
-
-    Returns
-    -------
-    str
-
-    Examples
-    --------
-    >>> base_name("blade flap 1 (locked)")
-    'blade flap 1'
-    """
-    return str(name).removesuffix(" (locked)")
 
 
 #: An eigenvalue match is clear by distance alone when the predicted root is at
@@ -586,7 +567,7 @@ class March:
             # figures: undecided pairs at MAC 0.18-0.8 or 0.1-0.6 apart, and
             # coalescing pairs at MAC 0.97, 0.03 apart)
             if shape >= COALESCED_MAC and gap <= COALESCED_DISTANCE:
-                self.meetings.append({"eps": eps, "origins": " / ".join(pair),
+                self.meetings.append({"eps": eps, "origins": pair_text(*pair),
                                       "gap": gap, "mac": shape,
                                       "paths": {self._base(r): int(self.pid[r]),
                                                 self._base(other): int(self.pid[other])}})
@@ -596,7 +577,7 @@ class March:
         # the TEF path ended where its lock closed, and 'TEF (locked)' went on)
         names = set(origin)
         for c in cols:
-            if origin[c].endswith(" (locked)") and base_name(origin[c]) not in names:
+            if is_locked(origin[c]) and base_name(origin[c]) not in names:
                 names.add(base_name(origin[c]))
                 origin[c] = base_name(origin[c])
         assigned = np.isin(np.arange(eig.size), cols)
@@ -613,7 +594,7 @@ class March:
                 # named ' (locked)', which no later pass renamed: a root named '')
                 origin[c], doubt[c], last[c] = "", True, eig[c]
                 continue
-            origin[c] = base_name(origin[near]) + " (locked)"
+            origin[c] = locked_name(origin[near])
             start[c], doubt[c], last[c] = start[near], doubt[near], eig[c]
             locked[[c, near]] = True
         self.before = (self.eps, last)

@@ -45,13 +45,13 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from .continuation import FLAP_ACTIVE
-from .march import base_name
+from .names import TEF_NAME, base_name, is_tef, locked_name, mode_kind, pair_labels, pair_text
 
 if TYPE_CHECKING:
     import pandas as pd
 
 __all__ = ["FLUTTER_PARTICIPATION", "FLUTTER_ROOT", "RATE_RESOLUTION", "ModeNotFound",
-           "assign_roles", "base_name", "exceptional_points", "flap_induced", "flutter_root",
+           "assign_roles", "exceptional_points", "flap_induced", "flutter_root",
            "mode_rows", "name_roots", "named_columns", "switch_steps", "uncoupled_relation",
            "undecided_steps"]
 
@@ -108,7 +108,7 @@ def flap_induced(modes: pd.DataFrame) -> np.ndarray:
 
 def _induced(sigma, held, labels, motion) -> np.ndarray:
     """:func:`flap_induced` on the columns' arrays."""
-    own = np.array([base_name(x) == "TEF" for x in labels], bool)
+    own = np.array([is_tef(x) for x in labels], bool)
     moves = motion >= FLAP_ACTIVE
     raised = sigma - held
     with np.errstate(invalid="ignore"):      # NaN: no uncoupled root, not induced
@@ -233,7 +233,7 @@ def named_columns(columns: dict, continued, shares=None, coordinates=None) -> di
     rates = np.asarray(cols["real_part"], float)
     origin = _plain_name_to_less_stable(origin, rates)
     cols["label"] = np.array(origin, dtype=object)
-    cols["kind"] = np.array([o.split()[1] if o.startswith("blade") else "TEF" for o in origin],
+    cols["kind"] = np.array([mode_kind(o) for o in origin],
                             dtype=object)
     if shares is not None:
         names = list(coordinates)
@@ -246,7 +246,7 @@ def named_columns(columns: dict, continued, shares=None, coordinates=None) -> di
     pairs = (continued.meeting_origins() if hasattr(continued, "meeting_origins")
              else [str(x) for x in continued.meetings["origins"]])
     for pair in pairs:
-        a, b = pair.split(" / ")
+        a, b = pair_labels(pair)
         met.setdefault(a, []).append(b)
         met.setdefault(b, []).append(a)
     by_path = getattr(continued, "by_path", None)
@@ -287,7 +287,7 @@ def _plain_name_to_less_stable(names, rates):
             names[idx[0]] = x
         if len(idx) == 2:
             lo, hi = sorted(idx, key=lambda i: -rates[i])
-            names[lo], names[hi] = x, x + " (locked)"
+            names[lo], names[hi] = x, locked_name(x)
     return names
 
 
@@ -312,7 +312,7 @@ def assign_roles(table: pd.DataFrame, threshold: float = FLUTTER_PARTICIPATION) 
         by continuation.
     """
     ok = (table["status"] == "ok").to_numpy()
-    tef = ok & (table["label"].astype(str).to_numpy() == "TEF")
+    tef = ok & (table["label"].astype(str).to_numpy() == TEF_NAME)
     table["tef_branch"] = tef
     certain = (table["identity_certain"].fillna(False).astype(bool).to_numpy()
                if "identity_certain" in table else np.ones(len(table), bool))
@@ -568,13 +568,13 @@ def exceptional_points(table: pd.DataFrame, x: str = "x") -> pd.DataFrame:
     """
     import pandas as pd
 
-    rows = [{"modes": " / ".join(sorted((a, b))), "x_low": lo, "x_high": hi,
+    rows = [{"modes": pair_text(a, b), "x_low": lo, "x_high": hi,
              "kind": "names exchange"} for lo, hi, a, b, _ in _switches(table, x)]
     if "meets" in table:
         met = table[table["meets"].fillna("").astype(str) != ""]
         for _, r in met.iterrows():
             for other in str(r["meets"]).split(", "):
-                rows.append({"modes": " / ".join(sorted((base_name(r["label"]), other))),
+                rows.append({"modes": pair_text(base_name(r["label"]), other),
                              "x_low": float(r[x]), "x_high": float(r[x]),
                              "kind": "paths meet"})
     out = _merged(pd.DataFrame(rows, columns=["modes", "x_low", "x_high", "kind"]))
@@ -627,7 +627,7 @@ def uncoupled_relation(table: pd.DataFrame, modes: str, lo: float, hi: float,
     """
     if "frequency_uncoupled" not in table:
         return ""
-    a, b = modes.split(" / ")
+    a, b = pair_labels(modes)
     at = table[(table[x] >= lo) & (table[x] <= hi)]
     label = at["label"].astype(str)
     f = [at.loc[label == m, "frequency_uncoupled"].to_numpy(float) for m in (a, b)]
@@ -698,7 +698,7 @@ def undecided_steps(table: pd.DataFrame, x: str = "x") -> pd.DataFrame:
 
     rows = []
     if "identity_certain" in table:
-        rows = [{"modes": " / ".join(sorted((a, b))), "x_low": lo, "x_high": hi, "kind": what}
+        rows = [{"modes": pair_text(a, b), "x_low": lo, "x_high": hi, "kind": what}
                 for lo, hi, a, b, what in _moves(table, x, _undecided_kind)]
     return _merged(pd.DataFrame(rows, columns=["modes", "x_low", "x_high", "kind"]))
 

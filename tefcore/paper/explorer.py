@@ -26,6 +26,7 @@ from dataclasses import dataclass
 
 import pandas as pd
 
+from ..modes.names import base_name
 from ..modes.roles import flutter_root
 from .figures.plotting import PAPER_MODES, STYLE, legend_below
 from .figures.runs import base_config
@@ -194,7 +195,7 @@ def draw_root_map(fig, state: RootMap, trail=(), title: str = ""):
     ax.set_ylabel("real part Re(s)/Ω [1/rev]  (> 0 unstable)")
     names, values, colors = [], [], []
     if not m.empty:
-        base = m["label"].astype(str).str.removesuffix(" (locked)")
+        base = m["label"].map(base_name)
         for lab in PAPER_MODES:
             if lab == "TEF" and state.tef is not None:
                 names.append("TEF root")

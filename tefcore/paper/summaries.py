@@ -26,6 +26,7 @@ import pandas as pd
 
 from ..aero.unsteady import theodorsen_function
 from ..linear.mechanism import mechanism
+from ..modes.names import base_name
 from ..modes.roles import exceptional_points, undecided_steps
 from .claims import validation
 from .claims.curves import zero_crossings
@@ -245,7 +246,7 @@ def report_identity(name: str, result) -> None:
     if fr.empty:
         print("  no flutter root (no flap-induced root)")
         return
-    counts = fr["label"].astype(str).str.removesuffix(" (locked)").value_counts()
+    counts = fr["label"].map(base_name).value_counts()
     counts = counts.sort_index().sort_values(ascending=False, kind="stable")
     print("  the flutter root continues from "
           + ", ".join(f"{lab} ({n} of {len(fr)} points)" for lab, n in counts.items()))
@@ -321,8 +322,7 @@ def unsteadiness(name: str, result, base=None) -> None:
     """
     cfg = figure_config(name, base)
     t = result.table
-    own_label = t["dominant" if "dominant" in t else "label"].astype(str).str.removesuffix(
-        " (locked)")
+    own_label = t["dominant" if "dominant" in t else "label"].map(base_name)
     own = t[(t["status"] == "ok") & (own_label == "TEF")]
     if own.empty:
         print(f"{name}: no TEF mode in the sweep")

@@ -519,7 +519,7 @@ def fan_data(cfg, speed_ratios, n_modes: int | None = None,
     Returns
     -------
     pandas.DataFrame
-        Columns ``speed_ratio, rotor_speed_rpm, mode, label,
+        Columns ``speed_ratio, rotor_speed_rpm, mode, label, family,
         frequency_per_rev, frequency_hz``.
     """
     beam = blade_model(cfg, collective)
@@ -532,7 +532,8 @@ def fan_data(cfg, speed_ratios, n_modes: int | None = None,
         omega = cfg.rotor.rotor_speed * r
         for j, (lab, f) in enumerate(zip(m.labels, m.frequencies, strict=False)):
             rows.append({"speed_ratio": float(r), "rotor_speed_rpm": omega * 30 / np.pi,
-                         "mode": j + 1, "label": lab, "frequency_per_rev": float(f),
+                         "mode": j + 1, "label": lab, "family": m.families[j],
+                         "frequency_per_rev": float(f),
                          "frequency_hz": float(f * omega / (2 * np.pi))})
     import pandas as pd  # only where the table is built
 
@@ -568,7 +569,7 @@ def fan_plot(cfg, speed_ratios=None, n_modes: int | None = None, ax=None):
         _, ax = plt.subplots(figsize=(6, 5))
     styles = {"flap": "-", "lag": "--", "torsion": "-.", "axial": ":"}
     for lab, g in df.groupby("label", sort=False):
-        ax.plot(g["rotor_speed_rpm"], g["frequency_hz"], styles[lab.split()[0]], label=lab)
+        ax.plot(g["rotor_speed_rpm"], g["frequency_hz"], styles[g["family"].iloc[0]], label=lab)
     rpm = np.array([0.0, df["rotor_speed_rpm"].max()])
     for k in range(1, 9):
         ax.plot(rpm, k * rpm / 60, color="0.8", lw=0.7, zorder=0)

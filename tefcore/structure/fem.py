@@ -414,6 +414,12 @@ class BladeModes:
     beam: BeamModel = field(repr=False)
     cache: dict = field(default_factory=dict, repr=False, compare=False)
 
+    @property
+    def families(self) -> list[str]:
+        """Each mode's family (``"flap"``, ``"lag"``, ``"torsion"``, ``"axial"``): the
+        field carrying most of its kinetic energy, the word its label starts with."""
+        return [FIELD_GROUPS[int(np.argmax(f))] for f in self.fractions]
+
     def shapes(self, x) -> dict[str, np.ndarray]:
         """Mode shapes (displacements, slopes, curvatures, twist) at ``x``."""
         x = np.asarray(x, float)
@@ -620,8 +626,8 @@ def beam_modes(beam: BeamModel, n_modes: int = 9, speed_ratio: float = 1.0) -> B
     full[f] = vec
     labels, fractions = classify(full, beam.mass, owner)
     # scale: dominant field's translational (or twist) dofs peak at +1
-    for j, lab in enumerate(labels):
-        idx = np.flatnonzero((owner == FIELD_GROUPS.index(lab.split()[0])) & ~slopes)
+    for j in range(len(labels)):
+        idx = np.flatnonzero((owner == int(np.argmax(fractions[j]))) & ~slopes)
         k_max = idx[np.argmax(np.abs(full[idx, j]))]
         full[:, j] /= full[k_max, j]
     mm = full.T @ beam.mass @ full

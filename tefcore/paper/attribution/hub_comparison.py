@@ -124,7 +124,8 @@ def plot_hub_models(comparison: HubComparison, cfg=None):
     for ax, hub in zip(axes[0], HUB_MODELS, strict=False):
         df = comparison.fan[comparison.fan["hub_model"] == hub]
         for lab, g in df.groupby("label", sort=False):
-            ax.plot(g["rotor_speed_rpm"], g["frequency_hz"], styles[lab.split()[0]], label=lab)
+            ax.plot(g["rotor_speed_rpm"], g["frequency_hz"], styles[g["family"].iloc[0]],
+                    label=lab)
         rpm = np.array([0.0, df["rotor_speed_rpm"].max()])
         for k in range(1, 9):
             ax.plot(rpm, k * rpm / 60, color="0.8", lw=0.7, zorder=0)

@@ -19,6 +19,7 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
+from ...modes.names import pair_labels
 from ...modes.roles import ModeNotFound, mode_rows
 from ..figures.catalogue import variant_key
 from ..figures.frames import compute_figure, figure_frame, natural_frequency_frame
@@ -538,7 +539,7 @@ def _across_exceptional_points(c: Claim, ctx: _Context, err: _Ambiguous) -> dict
     places = "; ".join(f"{p['modes']} {where(p)} ({p['kind']})" for _, p in points)
     # the names whose roots meet there (a claim about blade flap 1 relative to
     # the TEF depends on the TEF's name, not on blade flap 1's)
-    met = list(dict.fromkeys(m for _, p in points for m in str(p["modes"]).split(" / ")))
+    met = list(dict.fromkeys(m for _, p in points for m in pair_labels(p["modes"])))
     named = " or ".join(repr(m) for m in met) if met else repr(c.mode)
     if len(set(statuses)) == 1 and statuses[0] != "ambiguous":
         row = outcomes[0]

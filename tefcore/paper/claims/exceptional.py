@@ -16,7 +16,8 @@ import dataclasses
 import numpy as np
 import pandas as pd
 
-from ...modes.roles import FLUTTER_ROOT, base_name, exceptional_points
+from ...modes.names import base_name, is_locked, locked_name, pair_labels
+from ...modes.roles import FLUTTER_ROOT, exceptional_points
 from .curves import X_SLACK
 
 __all__ = ["exceptional_in_range", "flutter_reading", "swapped", "where"]
@@ -53,7 +54,7 @@ def exceptional_in_range(frame, mode, lo, hi):
     a = np.nanmin(x) if lo is None else lo
     b = np.nanmax(x) if hi is None else hi
     tol = X_SLACK * max(abs(a), abs(b), 1e-300)
-    named = np.array([base_name(mode) in m.split(" / ") for m in eps["modes"]], bool)
+    named = np.array([base_name(mode) in pair_labels(m) for m in eps["modes"]], bool)
     # names exchange strictly between two points (an open bracket); paths
     # meet at a point (closed, to the x slack)
     at = (eps["kind"] == "paths meet").to_numpy()
@@ -106,13 +107,14 @@ def swapped(frame, points) -> pd.DataFrame:
     labels = frame["label"].astype(object).to_numpy().copy()
     x = frame["x"].to_numpy(float)
     for e in points:
-        a, b = e["modes"].split(" / ")
+        a, b = pair_labels(e["modes"])
         where = x == e["x_low"] if e["kind"] == "paths meet" else x >= e["x_high"]
         for i in np.flatnonzero(where):
             name = str(labels[i])
-            base, suffix = base_name(name), name[len(base_name(name)):]
+            base = base_name(name)
             if base in (a, b):
-                labels[i] = (b if base == a else a) + suffix
+                other = b if base == a else a
+                labels[i] = locked_name(other) if is_locked(name) else other
     frame["label"] = labels
     return frame
 

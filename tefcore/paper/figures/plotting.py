@@ -27,6 +27,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
+from ...modes.names import base_name
 from ...safe_io import atomic_output, atomic_write_text
 from ...units import from_si
 
@@ -340,7 +341,7 @@ def x_values(name: str, table: pd.DataFrame) -> np.ndarray:
 
 
 def _base_label(s: pd.Series) -> pd.Series:
-    return s.astype(str).str.removesuffix(" (locked)")
+    return s.map(base_name)
 
 
 def curves(name: str, table: pd.DataFrame, labels=PAPER_MODES,
