@@ -18,9 +18,13 @@ where they belong and are re-exported here:
 * the shared departures text -- :func:`show_departures`;
 * the interactive root map -- :func:`explore`.
 
-Only the notebook's own frame is defined here: :func:`setup_notebook` (its
+Defined here are the notebook's own frame -- :func:`setup_notebook` (its
 first cell), :func:`save_csv` and :func:`check_and_save` (its last: the
-paper's claims checked, printed and saved with the notebook's tables).
+paper's claims checked, printed and saved with the notebook's tables) -- and
+the three views every stability figure gets after its sweep:
+:func:`damping_figure` (the paper's damping panel), :func:`which_root` (the
+identity report and the root locus) and :func:`damping_summary` (the printed
+table and where the TEF branch changes sign).
 
 Examples
 --------
@@ -89,7 +93,7 @@ from .summaries import (
 )
 
 __all__ = ["AXES", "LOCUS_CAPTION", "MARKERS", "MEASURES", "PAPER_MODES", "STYLE", "base_config",
-           "check_and_save", "claims_table", "clean", "conditions", "counted_warnings", "curves",
+           "check_and_save", "claims_table", "damping_figure", "damping_summary", "clean", "conditions", "counted_warnings", "curves",
            "departures_text", "deterministic_matplotlib", "explain", "explore",
            "figure_caption", "figure_title", "figure_values", "flight_condition",
            "format_value", "legend_below", "locus_figure",
@@ -97,7 +101,8 @@ __all__ = ["AXES", "LOCUS_CAPTION", "MARKERS", "MEASURES", "PAPER_MODES", "STYLE
            "plot_participation", "plot_root_locus", "quiet_stability", "reference_curves",
            "report_identity", "report_sweep", "run_config",
            "save_csv", "savefig", "section_aero", "setup_notebook", "show_claims",
-           "show_departures", "sign_changes", "unsteadiness", "variant_key", "x_values"]
+           "show_departures", "sign_changes", "unsteadiness", "variant_key", "which_root",
+           "x_values"]
 
 
 def setup_notebook(output_dir) -> Path:
@@ -196,3 +201,69 @@ def check_and_save(out, results: dict, *, cfg=None, variants=None, tables=None) 
     print(sorted(p.name for p in written + sorted(Path(out).glob("*.png"))))
     return claims
 
+
+
+def _stem(name: str) -> str:
+    """The file stem of a figure's PNG: ``fig08`` for ``fig8``, ``fig16a`` kept."""
+    number = name.removeprefix("fig")
+    digits = "".join(ch for ch in number if ch.isdigit())
+    return f"fig{int(digits):02d}{number[len(digits):]}"
+
+
+def damping_figure(name: str, result, cfg, output_dir, measure: str,
+                   what: str = "Damping of the blade modes and the TEF branch") -> None:
+    """The paper's damping panel of a stability figure, saved as ``OUTPUT/figNN.png``.
+
+    The tracked modes' damping against the swept field on the paper's axes, the
+    paper's digitised curves where the reference data has them, the figure's
+    title and caption written from ``cfg``.
+
+    Parameters
+    ----------
+    name : str
+        The paper figure (``"fig15"``).
+    result : tefcore.sweeps.sweep.SweepResult
+        Its sweep.
+    cfg : tefcore.config.configuration.Config
+        The configuration it ran (:func:`run_config`).
+    output_dir : path
+        The notebook's output folder.
+    measure : str
+        ``"decay_rate"`` or ``"damping_ratio"``.
+    what : str, optional
+        What the panel shows, for the caption.
+    """
+    import matplotlib.pyplot as plt
+
+    fig, ax = plt.subplots(figsize=(6.4, 4.4))
+    plot_modes(ax, name, result.table, measure=measure, reference=reference_curves(name))
+    ax.set_title(figure_title(name, cfg, width=110), fontsize="medium")
+    legend_below(ax)
+    savefig(fig, output_dir, _stem(name), figure=name,
+            caption=figure_caption(name, cfg, what))
+
+
+def which_root(name: str, result, cfg, output_dir, labels=PAPER_MODES) -> None:
+    """Which root is which along a figure's sweep: the identity report and the root locus.
+
+    Prints :func:`report_identity` (the TEF branch and the flutter root, where
+    names exchange) and saves :func:`locus_figure` of the modes ``labels`` as
+    ``OUTPUT/figNN_locus.png``.
+    """
+    report_identity(name, result)
+    fig = locus_figure(name, result.table, labels=labels)
+    savefig(fig, output_dir, _stem(name) + "_locus", figure=name,
+            caption=figure_caption(name, cfg, LOCUS_CAPTION, markers=False))
+
+
+def damping_summary(name: str, result, measure: str, labels=None) -> None:
+    """Print the tracked modes' damping along a sweep and where the TEF branch changes sign.
+
+    ``labels``: the modes of the table (default: :func:`mode_summary`'s).
+    """
+    print("damping (" + measure + ") of the tracked modes "
+          "(NaN: that track is absent at this x, e.g. after a locked pair unlocks):")
+    more = {} if labels is None else {"labels": labels}
+    print(mode_summary(name, result.table, measure=measure, **more).to_string())
+    changes = sign_changes(name, result.table, measure=measure)
+    print("TEF damping changes sign at:", changes or "nowhere in the range")

@@ -222,16 +222,9 @@ nt.savefig(fig, out, "fig06", figure="fig6",
 # %% [markdown]
 # ## Validation: the paper's claims for these figures
 #
-# Each row is one statement of the paper, checked against the computed
-# results by `tefcore.paper.claims.validation` (`pass`, `fail`, or `not reproducible` when
-# the statement needs data we do not have). The full table, with the
-# statement, the expected and computed values and the reason, is saved to
-# `claims.csv`.
-#
-# The results of this notebook are in `output_dir`: the tidy sweep tables
-# (`*_modes.csv`: one row per point and tracked mode, with the trim), the
-# figures (`*.png`) and the claims table (`claims.csv`), which
-# `tefcore reproduce` collects into its report.
+# Each row is one statement of the paper checked against these results, as in
+# [notebook 03](03_overhang.ipynb#Validation:-the-paper's-claims-for-these-figures);
+# the tables, the figures and `claims.csv` are in `output_dir`.
 
 # %%
 claims = nt.check_and_save(out, results, cfg=claims_cfg, variants=variants, tables={

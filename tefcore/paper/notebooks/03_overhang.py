@@ -130,14 +130,7 @@ results["fig8"] = res_fig8
 nt.report_sweep("fig8", res_fig8)
 
 # %%
-fig, ax = plt.subplots(figsize=(6.4, 4.4))
-nt.plot_modes(ax, "fig8", res_fig8.table, measure=damping_measure,
-              reference=nt.reference_curves("fig8"))
-ax.set_title(nt.figure_title("fig8", cfg_fig8, width=110), fontsize="medium")
-nt.legend_below(ax)
-nt.savefig(fig, out, "fig08", figure="fig8",
-           caption=nt.figure_caption("fig8", cfg_fig8,
-                                     "Damping of the blade modes and the TEF branch"));
+nt.damping_figure("fig8", res_fig8, cfg_fig8, out, measure=damping_measure)
 
 # %% [markdown]
 # ### Which root is which
@@ -165,18 +158,10 @@ nt.savefig(fig, out, "fig08", figure="fig8",
 # the same check gives on the flutter root, which every point decides).
 
 # %%
-nt.report_identity("fig8", res_fig8)
-fig = nt.locus_figure("fig8", res_fig8.table)
-nt.savefig(fig, out, "fig08_locus", figure="fig8",
-           caption=nt.figure_caption("fig8", cfg_fig8, nt.LOCUS_CAPTION, markers=False));
+nt.which_root("fig8", res_fig8, cfg_fig8, out)
 
 # %%
-print("damping (" + damping_measure + ") of the tracked modes "
-      "(NaN: that track is absent at this x, e.g. after a locked pair unlocks):")
-summary = nt.mode_summary("fig8", res_fig8.table, measure=damping_measure)
-print(summary.to_string())
-changes = nt.sign_changes("fig8", res_fig8.table, measure=damping_measure)
-print("TEF damping changes sign at:", changes or "nowhere in the range")
+nt.damping_summary("fig8", res_fig8, measure=damping_measure)
 
 # %% [markdown]
 # ### Why: the growth rate as work done by each term

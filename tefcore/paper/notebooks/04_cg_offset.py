@@ -94,18 +94,10 @@ nt.savefig(fig, out, "fig09", figure="fig9",
 # [notebook 03, *Which root is which*](03_overhang.ipynb#Which-root-is-which).
 
 # %%
-nt.report_identity("fig9", res_fig9)
-fig = nt.locus_figure("fig9", res_fig9.table)
-nt.savefig(fig, out, "fig09_locus", figure="fig9",
-           caption=nt.figure_caption("fig9", cfg_fig9, nt.LOCUS_CAPTION, markers=False));
+nt.which_root("fig9", res_fig9, cfg_fig9, out)
 
 # %%
-print("damping (" + damping_measure + ") of the tracked modes "
-      "(NaN: that track is absent at this x, e.g. after a locked pair unlocks):")
-summary = nt.mode_summary("fig9", res_fig9.table, measure=damping_measure)
-print(summary.to_string())
-changes = nt.sign_changes("fig9", res_fig9.table, measure=damping_measure)
-print("TEF damping changes sign at:", changes or "nowhere in the range")
+nt.damping_summary("fig9", res_fig9, measure=damping_measure)
 
 # %%
 print("TEF frequency [/rev] versus CG offset:")
@@ -172,16 +164,9 @@ explorer = nt.explore(base, interactive=interactive, cg_offset=0.33, overhang=0.
 # %% [markdown]
 # ## Validation: the paper's claims for these figures
 #
-# Each row is one statement of the paper, checked against the computed
-# results by `tefcore.paper.claims.validation` (`pass`, `fail`, or `not reproducible` when
-# the statement needs data we do not have). The full table, with the
-# statement, the expected and computed values and the reason, is saved to
-# `claims.csv`.
-#
-# The results of this notebook are in `output_dir`: the tidy sweep tables
-# (`*_modes.csv`: one row per point and tracked mode, with the trim), the
-# figures (`*.png`) and the claims table (`claims.csv`), which
-# `tefcore reproduce` collects into its report.
+# Each row is one statement of the paper checked against these results, as in
+# [notebook 03](03_overhang.ipynb#Validation:-the-paper's-claims-for-these-figures);
+# the tables, the figures and `claims.csv` are in `output_dir`.
 
 # %%
 claims = nt.check_and_save(out, results, cfg=claims_cfg, variants=variants, tables={

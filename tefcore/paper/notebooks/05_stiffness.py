@@ -99,18 +99,10 @@ nt.savefig(fig, out, "fig10", figure="fig10",
 # [notebook 03, *Which root is which*](03_overhang.ipynb#Which-root-is-which).
 
 # %%
-nt.report_identity("fig10", res_fig10)
-fig = nt.locus_figure("fig10", res_fig10.table, labels=modes_fig10)
-nt.savefig(fig, out, "fig10_locus", figure="fig10",
-           caption=nt.figure_caption("fig10", cfg_fig10, nt.LOCUS_CAPTION, markers=False));
+nt.which_root("fig10", res_fig10, cfg_fig10, out, labels=modes_fig10)
 
 # %%
-print("damping (" + damping_measure + ") of the tracked modes "
-      "(NaN: that track is absent at this x, e.g. after a locked pair unlocks):")
-summary = nt.mode_summary("fig10", res_fig10.table, measure=damping_measure, labels=modes_fig10)
-print(summary.to_string())
-changes = nt.sign_changes("fig10", res_fig10.table, measure=damping_measure)
-print("TEF damping changes sign at:", changes or "nowhere in the range")
+nt.damping_summary("fig10", res_fig10, measure=damping_measure, labels=modes_fig10)
 
 # %% [markdown]
 # ## Figure 11: blade torsional stiffness (GJ factor)
@@ -147,18 +139,10 @@ nt.savefig(fig, out, "fig11", figure="fig11",
                                      "modes and the TEF branch"));
 
 # %%
-nt.report_identity("fig11", res_fig11)
-fig = nt.locus_figure("fig11", res_fig11.table, labels=modes_fig11)
-nt.savefig(fig, out, "fig11_locus", figure="fig11",
-           caption=nt.figure_caption("fig11", cfg_fig11, nt.LOCUS_CAPTION, markers=False));
+nt.which_root("fig11", res_fig11, cfg_fig11, out, labels=modes_fig11)
 
 # %%
-print("damping (" + damping_measure + ") of the tracked modes "
-      "(NaN: that track is absent at this x, e.g. after a locked pair unlocks):")
-summary = nt.mode_summary("fig11", res_fig11.table, measure=damping_measure, labels=modes_fig11)
-print(summary.to_string())
-changes = nt.sign_changes("fig11", res_fig11.table, measure=damping_measure)
-print("TEF damping changes sign at:", changes or "nowhere in the range")
+nt.damping_summary("fig11", res_fig11, measure=damping_measure, labels=modes_fig11)
 
 # %%
 for name, nat in (("fig10", nat_fig10), ("fig11", nat_fig11)):
@@ -238,16 +222,9 @@ print("TEF damping changes sign at:", nt.sign_changes("fig12", res_fig12.table,
 # %% [markdown]
 # ## Validation: the paper's claims for these figures
 #
-# Each row is one statement of the paper, checked against the computed
-# results by `tefcore.paper.claims.validation` (`pass`, `fail`, or `not reproducible` when
-# the statement needs data we do not have). The full table, with the
-# statement, the expected and computed values and the reason, is saved to
-# `claims.csv`.
-#
-# The results of this notebook are in `output_dir`: the tidy sweep tables
-# (`*_modes.csv`: one row per point and tracked mode, with the trim), the
-# figures (`*.png`) and the claims table (`claims.csv`), which
-# `tefcore reproduce` collects into its report.
+# Each row is one statement of the paper checked against these results, as in
+# [notebook 03](03_overhang.ipynb#Validation:-the-paper's-claims-for-these-figures);
+# the tables, the figures and `claims.csv` are in `output_dir`.
 
 # %%
 claims = nt.check_and_save(out, results, cfg=claims_cfg, variants=variants, tables={

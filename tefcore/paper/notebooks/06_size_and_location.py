@@ -72,32 +72,17 @@ results["fig13"] = res_fig13
 nt.report_sweep("fig13", res_fig13)
 
 # %%
-fig, ax = plt.subplots(figsize=(6.4, 4.4))
-nt.plot_modes(ax, "fig13", res_fig13.table, measure=damping_measure,
-              reference=nt.reference_curves("fig13"))
-ax.set_title(nt.figure_title("fig13", cfg_fig13, width=110), fontsize="medium")
-nt.legend_below(ax)
-nt.savefig(fig, out, "fig13", figure="fig13",
-           caption=nt.figure_caption("fig13", cfg_fig13,
-                                     "Damping of the blade modes and the TEF branch"));
+nt.damping_figure("fig13", res_fig13, cfg_fig13, out, measure=damping_measure)
 
 # %% [markdown]
 # **Which root is which**: the TEF branch and the flutter root, as defined in
 # [notebook 03, *Which root is which*](03_overhang.ipynb#Which-root-is-which).
 
 # %%
-nt.report_identity("fig13", res_fig13)
-fig = nt.locus_figure("fig13", res_fig13.table)
-nt.savefig(fig, out, "fig13_locus", figure="fig13",
-           caption=nt.figure_caption("fig13", cfg_fig13, nt.LOCUS_CAPTION, markers=False));
+nt.which_root("fig13", res_fig13, cfg_fig13, out)
 
 # %%
-print("damping (" + damping_measure + ") of the tracked modes "
-      "(NaN: that track is absent at this x, e.g. after a locked pair unlocks):")
-summary = nt.mode_summary("fig13", res_fig13.table, measure=damping_measure)
-print(summary.to_string())
-changes = nt.sign_changes("fig13", res_fig13.table, measure=damping_measure)
-print("TEF damping changes sign at:", changes or "nowhere in the range")
+nt.damping_summary("fig13", res_fig13, measure=damping_measure)
 
 # %% [markdown]
 # ## Figure 14: flap length
@@ -115,28 +100,13 @@ results["fig14"] = res_fig14
 nt.report_sweep("fig14", res_fig14)
 
 # %%
-fig, ax = plt.subplots(figsize=(6.4, 4.4))
-nt.plot_modes(ax, "fig14", res_fig14.table, measure=damping_measure,
-              reference=nt.reference_curves("fig14"))
-ax.set_title(nt.figure_title("fig14", cfg_fig14, width=110), fontsize="medium")
-nt.legend_below(ax)
-nt.savefig(fig, out, "fig14", figure="fig14",
-           caption=nt.figure_caption("fig14", cfg_fig14,
-                                     "Damping of the blade modes and the TEF branch"));
+nt.damping_figure("fig14", res_fig14, cfg_fig14, out, measure=damping_measure)
 
 # %%
-nt.report_identity("fig14", res_fig14)
-fig = nt.locus_figure("fig14", res_fig14.table)
-nt.savefig(fig, out, "fig14_locus", figure="fig14",
-           caption=nt.figure_caption("fig14", cfg_fig14, nt.LOCUS_CAPTION, markers=False));
+nt.which_root("fig14", res_fig14, cfg_fig14, out)
 
 # %%
-print("damping (" + damping_measure + ") of the tracked modes "
-      "(NaN: that track is absent at this x, e.g. after a locked pair unlocks):")
-summary = nt.mode_summary("fig14", res_fig14.table, measure=damping_measure)
-print(summary.to_string())
-changes = nt.sign_changes("fig14", res_fig14.table, measure=damping_measure)
-print("TEF damping changes sign at:", changes or "nowhere in the range")
+nt.damping_summary("fig14", res_fig14, measure=damping_measure)
 
 # %% [markdown]
 # ## Figure 15: flap chord
@@ -155,28 +125,13 @@ results["fig15"] = res_fig15
 nt.report_sweep("fig15", res_fig15)
 
 # %%
-fig, ax = plt.subplots(figsize=(6.4, 4.4))
-nt.plot_modes(ax, "fig15", res_fig15.table, measure=damping_measure,
-              reference=nt.reference_curves("fig15"))
-ax.set_title(nt.figure_title("fig15", cfg_fig15, width=110), fontsize="medium")
-nt.legend_below(ax)
-nt.savefig(fig, out, "fig15", figure="fig15",
-           caption=nt.figure_caption("fig15", cfg_fig15,
-                                     "Damping of the blade modes and the TEF branch"));
+nt.damping_figure("fig15", res_fig15, cfg_fig15, out, measure=damping_measure)
 
 # %%
-nt.report_identity("fig15", res_fig15)
-fig = nt.locus_figure("fig15", res_fig15.table)
-nt.savefig(fig, out, "fig15_locus", figure="fig15",
-           caption=nt.figure_caption("fig15", cfg_fig15, nt.LOCUS_CAPTION, markers=False));
+nt.which_root("fig15", res_fig15, cfg_fig15, out)
 
 # %%
-print("damping (" + damping_measure + ") of the tracked modes "
-      "(NaN: that track is absent at this x, e.g. after a locked pair unlocks):")
-summary = nt.mode_summary("fig15", res_fig15.table, measure=damping_measure)
-print(summary.to_string())
-changes = nt.sign_changes("fig15", res_fig15.table, measure=damping_measure)
-print("TEF damping changes sign at:", changes or "nowhere in the range")
+nt.damping_summary("fig15", res_fig15, measure=damping_measure)
 
 # %% [markdown]
 # **What the paper concludes** (conclusion 5): with a mass-imbalanced flap,
@@ -190,16 +145,9 @@ print("TEF damping changes sign at:", changes or "nowhere in the range")
 # %% [markdown]
 # ## Validation: the paper's claims for these figures
 #
-# Each row is one statement of the paper, checked against the computed
-# results by `tefcore.paper.claims.validation` (`pass`, `fail`, or `not reproducible` when
-# the statement needs data we do not have). The full table, with the
-# statement, the expected and computed values and the reason, is saved to
-# `claims.csv`.
-#
-# The results of this notebook are in `output_dir`: the tidy sweep tables
-# (`*_modes.csv`: one row per point and tracked mode, with the trim), the
-# figures (`*.png`) and the claims table (`claims.csv`), which
-# `tefcore reproduce` collects into its report.
+# Each row is one statement of the paper checked against these results, as in
+# [notebook 03](03_overhang.ipynb#Validation:-the-paper's-claims-for-these-figures);
+# the tables, the figures and `claims.csv` are in `output_dir`.
 
 # %%
 claims = nt.check_and_save(out, results, cfg=claims_cfg, variants=variants, tables={

@@ -116,32 +116,17 @@ results["fig17"] = res_fig17
 nt.report_sweep("fig17", res_fig17)
 
 # %%
-fig, ax = plt.subplots(figsize=(6.4, 4.4))
-nt.plot_modes(ax, "fig17", res_fig17.table, measure=damping_measure,
-              reference=nt.reference_curves("fig17"))
-ax.set_title(nt.figure_title("fig17", cfg_fig17, width=110), fontsize="medium")
-nt.legend_below(ax)
-nt.savefig(fig, out, "fig17", figure="fig17",
-           caption=nt.figure_caption("fig17", cfg_fig17,
-                                     "Damping of the blade modes and the TEF branch"));
+nt.damping_figure("fig17", res_fig17, cfg_fig17, out, measure=damping_measure)
 
 # %% [markdown]
 # **Which root is which**: the TEF branch and the flutter root, as defined in
 # [notebook 03, *Which root is which*](03_overhang.ipynb#Which-root-is-which).
 
 # %%
-nt.report_identity("fig17", res_fig17)
-fig = nt.locus_figure("fig17", res_fig17.table)
-nt.savefig(fig, out, "fig17_locus", figure="fig17",
-           caption=nt.figure_caption("fig17", cfg_fig17, nt.LOCUS_CAPTION, markers=False));
+nt.which_root("fig17", res_fig17, cfg_fig17, out)
 
 # %%
-print("damping (" + damping_measure + ") of the tracked modes "
-      "(NaN: that track is absent at this x, e.g. after a locked pair unlocks):")
-summary = nt.mode_summary("fig17", res_fig17.table, measure=damping_measure)
-print(summary.to_string())
-changes = nt.sign_changes("fig17", res_fig17.table, measure=damping_measure)
-print("TEF damping changes sign at:", changes or "nowhere in the range")
+nt.damping_summary("fig17", res_fig17, measure=damping_measure)
 
 # %% [markdown]
 # **What the paper concludes** (conclusions 2 and 6): torsion-flap flutter of a
@@ -153,16 +138,9 @@ print("TEF damping changes sign at:", changes or "nowhere in the range")
 # %% [markdown]
 # ## Validation: the paper's claims for these figures
 #
-# Each row is one statement of the paper, checked against the computed
-# results by `tefcore.paper.claims.validation` (`pass`, `fail`, or `not reproducible` when
-# the statement needs data we do not have). The full table, with the
-# statement, the expected and computed values and the reason, is saved to
-# `claims.csv`.
-#
-# The results of this notebook are in `output_dir`: the tidy sweep tables
-# (`*_modes.csv`: one row per point and tracked mode, with the trim), the
-# figures (`*.png`) and the claims table (`claims.csv`), which
-# `tefcore reproduce` collects into its report.
+# Each row is one statement of the paper checked against these results, as in
+# [notebook 03](03_overhang.ipynb#Validation:-the-paper's-claims-for-these-figures);
+# the tables, the figures and `claims.csv` are in `output_dir`.
 
 # %%
 claims = nt.check_and_save(out, results, cfg=claims_cfg, variants=variants, tables={
