@@ -15,14 +15,6 @@ found that way is fixed and kept as a test (as ``flexbeam.mass = 5e-324`` in
 
 from hypothesis import settings
 
-from tefcore.runtime import pin_blas_kernel
-
-# the same OpenBLAS kernels on every machine that runs them, in this process and
-# in the notebook kernels nbval starts (before anything imports numpy; the
-# notebooks' committed outputs depend on them at a few decisions that round-off
-# tips: tefcore.runtime)
-pin_blas_kernel()
-
 collect_ignore_glob = ["tefcore/paper/notebooks/*.py"]
 
 settings.register_profile("fixed", derandomize=True)

@@ -39,10 +39,6 @@ import sys
 import tempfile
 import time
 
-from tefcore.runtime import pin_blas_kernel
-
-pin_blas_kernel()       # the kernels the commands it times run (tefcore.runtime), before numpy
-
 import numpy as np  # noqa: E402
 import scipy.integrate  # noqa: E402
 import scipy.linalg  # noqa: E402

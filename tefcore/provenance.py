@@ -9,6 +9,10 @@ this module gives the others:
   refers to and that the computation reads (the C81 deck when
   ``model.aero_model = "c81"``), by the SHA-256 of their content: editing a
   deck in place changes its digest although its path does not change;
+* :func:`numerical_environment` -- the versions of tefcore, numpy, scipy and
+  the BLAS library with the kernels it runs: recorded beside a stored result,
+  never a reason to refuse one (verdicts are decided with margins above the
+  round-off these change; a resumed run says when they differ);
 * :func:`model_stamp` -- a fingerprint of tefcore's numerical code: the
   SHA-256 of the source of every module of the package except those that
   only present or store results (:data:`PRESENTATION_MODULES`).  Any change
@@ -40,6 +44,8 @@ __all__ = [
     "input_digests",
     "input_files",
     "model_stamp",
+    "environment_note",
+    "numerical_environment",
 ]
 
 #: Modules of the solver that cannot change a computed point (command line,
@@ -161,3 +167,66 @@ def describe_digest(digest: str | None) -> str:
     algo, _, hexa = digest.partition(":")
     return f"{algo} {hexa[:12]}" if hexa else digest[:16]
 
+
+
+def numerical_environment() -> dict[str, str]:
+    """The numerical stack this process computes with: versions and BLAS kernels.
+
+    Returns
+    -------
+    dict
+        ``tefcore``, ``numpy``, ``scipy`` (versions) and ``blas`` (each BLAS
+        library loaded: its implementation, version and the kernels it chose
+        for this processor, e.g. ``"openblas 0.3.31 SkylakeX"``; the user's
+        ``OPENBLAS_CORETYPE`` shows here when set).
+
+    Examples
+    --------
+    >>> env = numerical_environment()
+    >>> sorted(env), env["blas"] != ""
+    (['blas', 'numpy', 'scipy', 'tefcore'], True)
+    """
+    import numpy
+    import scipy
+    import scipy.linalg  # noqa: F401  (loads scipy's BLAS, so that it is listed)
+    from threadpoolctl import threadpool_info
+
+    from ._version import __version__
+
+    blas = sorted({" ".join(str(lib.get(k) or "") for k in ("internal_api", "version",
+                                                            "architecture")).strip()
+                   for lib in threadpool_info() if lib.get("user_api") == "blas"})
+    return {"tefcore": __version__, "numpy": numpy.__version__, "scipy": scipy.__version__,
+            "blas": "; ".join(blas) or "unknown"}
+
+
+def environment_note(path, then, now) -> str | None:
+    """What changed in the numerical stack since a stored result was computed, or None.
+
+    Parameters
+    ----------
+    path : path-like
+        The stored file (for the message).
+    then, now : dict or None
+        :func:`numerical_environment` recorded in its header, and this run's.
+
+    Returns
+    -------
+    str or None
+        One line naming each part that differs, then and now; None when the
+        header recorded none (older files) or nothing differs.
+
+    Examples
+    --------
+    >>> print(environment_note("s.jsonl", {"numpy": "2.3.0"}, {"numpy": "2.4.6"}))  # doctest: +NORMALIZE_WHITESPACE
+    resuming s.jsonl: its points were computed with numpy 2.3.0 (now 2.4.6); the names and
+    verdicts do not depend on it, values may differ in the last digits
+    """
+    if not isinstance(then, dict) or not then:
+        return None
+    changed = [f"{k} {then.get(k)} (now {now.get(k)})" for k in sorted(set(then) | set(now))
+               if then.get(k) != now.get(k)]
+    if not changed:
+        return None
+    return (f"resuming {path}: its points were computed with {', '.join(changed)}; "
+            "the names and verdicts do not depend on it, values may differ in the last digits")

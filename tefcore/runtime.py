@@ -1,9 +1,8 @@
-"""Process settings: many small numerical problems fast, and the same bits on every machine.
+"""Process settings: many small numerical problems fast.
 
 tefcore solves thousands of small problems (matrices of a few hundred rows).
 Two process-wide defaults of the numerical stack are tuned for large
-problems and cost time here, and a third makes the round-off depend on the
-machine:
+problems and cost time here:
 
 * BLAS threads (``TEFCORE_BLAS_THREADS``, default ``1``; ``default`` leaves
   them alone).  On two cores a threaded OpenBLAS took 320 ms for one
@@ -19,26 +18,13 @@ machine:
   time per mu = 0.3 stability point, 59 ms against 36 ms per point.  The
   cost is that up to the threshold of freed memory stays with the process.
 
-* OpenBLAS's kernels (``TEFCORE_BLAS_CORETYPE``, default ``Haswell``;
-  ``default`` leaves OpenBLAS to choose).  OpenBLAS picks its kernels by the
-  processor it finds, and the kernels differ in round-off.  A few of the
-  reproduction's decisions sit where round-off tips them -- which root of a
-  lock is named which, a lock's frequency written 3.5 or 4.5 /rev, one more
-  name undecided between two points -- and so the notebooks' printed
-  results differed between a machine running OpenBLAS's SkylakeX kernels
-  (those of stop 41's outputs) and one running its Haswell kernels (an AMD
-  EPYC whose environment sets ``OPENBLAS_CORETYPE=Haswell``): three cells of
-  notebooks 05 and 06 and one test, every claim's status the same.
-  :func:`pin_blas_kernel` sets ``OPENBLAS_CORETYPE`` before BLAS is loaded
-  where nothing has set it and the processor runs those kernels -- on Linux,
-  which lists the flags they need in ``/proc/cpuinfo`` (Haswell's, AVX2 and
-  FMA, are on every x86-64 server of the last decade); elsewhere nothing is
-  pinned -- so tefcore's own processes -- the
-  ``tefcore`` command and what it starts, the test suite and its notebook
-  kernels -- give the same bits on such machines.  An ``OPENBLAS_CORETYPE``
-  set outside wins; a process that loaded numpy first, another BLAS (MKL,
-  Accelerate) or another processor is left as it is, and its results may
-  differ in the last bits and, at those decisions, in a name.
+tefcore never chooses the BLAS kernels: OpenBLAS picks them by the processor
+it finds, or by the user's own ``OPENBLAS_CORETYPE``.  Kernels differ in
+round-off; no verdict of tefcore depends on it (every decision on a computed
+number has a margin above the solver's accuracy, docs/theory.md 9.1, and the
+test suite checks the claims under nudges far below engineering meaning).
+What a stored result was computed with is recorded
+(:func:`tefcore.provenance.numerical_environment`).
 
 ``import tefcore`` changes none of them.  All are applied by
 :func:`apply_defaults` where tefcore owns the process: the ``tefcore``
@@ -70,21 +56,14 @@ import platform
 import sys
 import threading
 
-__all__ = ["BLAS_CORETYPES", "apply_defaults", "blas_limit", "coretype_name", "defaults_applied",
-           "keep_freed_memory", "limit_blas_threads", "pin_blas_kernel", "worker_init"]
+__all__ = ["apply_defaults", "blas_limit", "defaults_applied", "keep_freed_memory",
+           "limit_blas_threads", "worker_init"]
 
 #: ``mallopt`` parameter numbers (glibc ``malloc.h``).
 _M_TRIM_THRESHOLD, _M_MMAP_THRESHOLD = -1, -3
 #: Largest mmap threshold glibc accepts on 64-bit systems (32 MiB).
 _MMAP_THRESHOLD_MAX = 32 * 2**20
 _DEFAULT_BLAS_THREADS = "1"
-_DEFAULT_BLAS_CORETYPE = "Haswell"
-#: The processor flags (``/proc/cpuinfo``) each pinnable OpenBLAS kernel needs.
-BLAS_CORETYPES = {
-    "SkylakeX": frozenset({"avx2", "fma", "avx512f", "avx512cd", "avx512bw", "avx512dq",
-                           "avx512vl"}),
-    "Haswell": frozenset({"avx2", "fma"}),
-}
 _DEFAULT_MALLOC_TRIM = str(128 * 2**20)
 
 _state = threading.local()
@@ -250,100 +229,13 @@ def keep_freed_memory(value: str) -> bool:
                 and libc.mallopt(_M_MMAP_THRESHOLD, min(threshold, _MMAP_THRESHOLD_MAX)))
 
 
-def _cpu_flags() -> frozenset:
-    """The processor's flags from ``/proc/cpuinfo`` (empty where there is none)."""
-    try:
-        with open("/proc/cpuinfo", encoding="ascii", errors="replace") as f:
-            for line in f:
-                if line.startswith("flags"):
-                    return frozenset(line.partition(":")[2].split())
-    except OSError:
-        pass
-    return frozenset()
-
-
-def coretype_name(value: str) -> str:
-    """The kernel of :data:`BLAS_CORETYPES` that `value` names, read without case (as OpenBLAS).
-
-    Parameters
-    ----------
-    value : str
-        A kernel's name (``TEFCORE_BLAS_CORETYPE``).
-
-    Returns
-    -------
-    str
-
-    Raises
-    ------
-    ValueError
-        For a kernel not in :data:`BLAS_CORETYPES`, naming the variable.
-
-    Examples
-    --------
-    >>> coretype_name("haswell"), sorted(BLAS_CORETYPES[coretype_name("haswell")])
-    ('Haswell', ['avx2', 'fma'])
-    """
-    for name in BLAS_CORETYPES:
-        if name.lower() == value.strip().lower():
-            return name
-    raise ValueError(f"TEFCORE_BLAS_CORETYPE = {value!r}: expected 'default' or one of "
-                     f"{', '.join(sorted(BLAS_CORETYPES))}")
-
-
-def pin_blas_kernel() -> str | None:
-    """Pin OpenBLAS's kernels (``OPENBLAS_CORETYPE``) before BLAS is loaded.
-
-    The kernel is ``TEFCORE_BLAS_CORETYPE`` (module docstring): set in this
-    process's environment, and so in every process it starts, when none is
-    set yet, neither numpy nor scipy is imported and the processor has the
-    flags the kernel needs (:data:`BLAS_CORETYPES`).
-
-    Returns
-    -------
-    str or None
-        The kernel OpenBLAS will load (``OPENBLAS_CORETYPE``, also one the
-        user set), or None where nothing is pinned: ``default``, BLAS already
-        loaded, or a processor without the flags.
-
-    Raises
-    ------
-    ValueError
-        For a kernel not in :data:`BLAS_CORETYPES`, naming the variable.
-
-    Examples
-    --------
-    Once numpy is loaded (as here) nothing is pinned any more; only a value
-    set outside is reported:
-
-    >>> import os
-    >>> import numpy
-    >>> pin_blas_kernel() == (os.environ.get("OPENBLAS_CORETYPE") or None)
-    True
-    """
-    value = os.environ.get("TEFCORE_BLAS_CORETYPE", _DEFAULT_BLAS_CORETYPE)
-    if value == "default":
-        return None
-    value = coretype_name(value)
-    if os.environ.get("OPENBLAS_CORETYPE"):
-        return os.environ["OPENBLAS_CORETYPE"]
-    if "numpy" in sys.modules or "scipy" in sys.modules or \
-            not BLAS_CORETYPES[value] <= _cpu_flags():
-        return None
-    os.environ["OPENBLAS_CORETYPE"] = value
-    return value
-
-
 def apply_defaults() -> None:
     """Apply the settings to this process, from the environment.
 
     For processes tefcore owns: the ``tefcore`` command, the workers of a
     parallel sweep, the notebooks (their set-up cell).  Calling it again
-    re-reads the environment.  ``TEFCORE_BLAS_THREADS``,
-    ``TEFCORE_MALLOC_TRIM`` and ``TEFCORE_BLAS_CORETYPE`` (module docstring)
-    set or turn off each; the kernels are pinned only where BLAS is not yet
-    loaded (the command, which applies the settings before it imports numpy,
-    and what it starts; :func:`pin_blas_kernel`).
+    re-reads the environment.  ``TEFCORE_BLAS_THREADS`` and
+    ``TEFCORE_MALLOC_TRIM`` (module docstring) set or turn off each.
 
     Raises
     ------
@@ -352,7 +244,6 @@ def apply_defaults() -> None:
     """
     global _process_applied
     _process_applied = False
-    pin_blas_kernel()        # before limit_blas_threads, which loads BLAS
     limit_blas_threads(os.environ.get("TEFCORE_BLAS_THREADS", _DEFAULT_BLAS_THREADS))
     keep_freed_memory(os.environ.get("TEFCORE_MALLOC_TRIM", _DEFAULT_MALLOC_TRIM))
     _process_applied = True

@@ -205,26 +205,22 @@ def blas_kernels():
     return sorted({lib.get("architecture") or "" for lib in threadpool_info()
                    if lib["internal_api"] == "openblas"})
 """
-HASWELL = runtime.BLAS_CORETYPES["Haswell"] <= runtime._cpu_flags()
-needs_haswell = pytest.mark.skipif(not HASWELL, reason="no AVX2 and FMA here (or no "
-                                   "/proc/cpuinfo): OpenBLAS's Haswell kernels do not run")
 
 
 def kernels_in(code: str, **env) -> dict:
     """``code`` in a fresh interpreter without an ``OPENBLAS_CORETYPE`` of its own
     (unless given): it prints one JSON line, returned parsed."""
-    base = {k: v for k, v in os.environ.items()
-            if k not in ("OPENBLAS_CORETYPE", "TEFCORE_BLAS_CORETYPE")}
+    base = {k: v for k, v in os.environ.items() if k != "OPENBLAS_CORETYPE"}
     out = subprocess.run([sys.executable, "-c", BLAS_KERNELS + textwrap.dedent(code)],
                          env=dict(base, **env), capture_output=True, text=True, check=True)
     return json.loads(out.stdout.strip().splitlines()[-1])
 
 
-@needs_haswell
-def test_the_command_pins_the_kernels_before_blas_loads():
+def test_the_command_leaves_the_kernels_to_openblas_and_the_user():
     # what `tefcore ...` does first (apply_defaults before it imports numpy):
-    # OpenBLAS loads the pinned kernels, and a process it starts inherits them
-    got = kernels_in("""
+    # OpenBLAS loads the kernels it picks for this processor, the same as a
+    # plain interpreter does, and a process it starts inherits no setting
+    code = """
     import json, os, subprocess, sys
     from tefcore.runtime import apply_defaults
     apply_defaults()
@@ -232,80 +228,28 @@ def test_the_command_pins_the_kernels_before_blas_loads():
     child = subprocess.run([sys.executable, "-c", "import os; print(os.environ.get("
                             "'OPENBLAS_CORETYPE'))"], capture_output=True, text=True).stdout
     print(json.dumps([blas_kernels(), child.strip()]))
-    """)
-    assert got == [["Haswell"], "Haswell"]
-
-
-def test_a_kernel_set_outside_wins():
-    got = kernels_in("""
+    """
+    plain = kernels_in("""
     import json
-    from tefcore.runtime import pin_blas_kernel
-    print(json.dumps(pin_blas_kernel()))
-    """, OPENBLAS_CORETYPE="Sandybridge")
-    assert got == "Sandybridge"
-
-
-def test_no_kernel_is_pinned_once_blas_is_loaded_or_when_turned_off():
-    got = kernels_in("""
-    import json, os
-    import numpy
-    from tefcore.runtime import pin_blas_kernel
-    late = pin_blas_kernel()
-    print(json.dumps([late, os.environ.get("OPENBLAS_CORETYPE")]))
-    """)
-    assert got == [None, None]
-    got = kernels_in("""
-    import json, os
-    from tefcore.runtime import pin_blas_kernel
-    print(json.dumps([pin_blas_kernel(), os.environ.get("OPENBLAS_CORETYPE")]))
-    """, TEFCORE_BLAS_CORETYPE="default")
-    assert got == [None, None]
-
-
-def test_an_unknown_kernel_is_a_clear_error(monkeypatch):
-    monkeypatch.setenv("TEFCORE_BLAS_CORETYPE", "Zen9")
-    with pytest.raises(ValueError, match=r"TEFCORE_BLAS_CORETYPE = 'Zen9': expected 'default' "
-                                         r"or one of Haswell, SkylakeX"):
-        runtime.pin_blas_kernel()
-
-
-def test_the_test_suite_runs_the_pinned_kernels():
-    # conftest.py pins them before anything imports numpy: the notebooks'
-    # committed outputs were computed with them (tefcore.runtime)
-    from threadpoolctl import threadpool_info
-
-    wanted = os.environ.get("OPENBLAS_CORETYPE")
-    asked = os.environ.get("TEFCORE_BLAS_CORETYPE", "Haswell")
-    if not wanted and (asked == "default" or
-                       not runtime.BLAS_CORETYPES[runtime.coretype_name(asked)]
-                       <= runtime._cpu_flags()):
-        pytest.skip("nothing to pin here (another processor, or turned off)")
-    assert wanted, "conftest.py pinned no kernel: was numpy imported before it?"
-    got = {(lib.get("architecture") or "").lower() for lib in threadpool_info()
-           if lib["internal_api"] == "openblas"}
-    assert got <= {wanted.lower()}
-
-
-@needs_haswell
-def test_conftest_pins_the_kernels_before_anything_loads_blas():
-    # the root conftest.py as pytest runs it first, in a process where nothing set
-    # the kernel: the BLAS loaded after it is the pinned one (the suite's own check
-    # above sees this machine's environment, which may have set it already)
-    from pathlib import Path
-
-    conftest = Path(__file__).resolve().parents[1] / "conftest.py"
-    got = kernels_in(f"""
-    import json, runpy
-    runpy.run_path({str(conftest)!r})
     import numpy, scipy.linalg
     print(json.dumps(blas_kernels()))
     """)
-    assert got == ["Haswell"]
+    assert kernels_in(code) == [plain, "None"]
+    # a user's own choice is respected (Sandybridge runs on every x86-64 with AVX)
+    if plain:
+        chosen = kernels_in(code, OPENBLAS_CORETYPE="Sandybridge")
+        assert chosen[1] == "Sandybridge"
 
 
-def test_kernel_names_are_read_without_case(monkeypatch):
-    # OpenBLAS reads OPENBLAS_CORETYPE without case; so does the setting
-    monkeypatch.setenv("TEFCORE_BLAS_CORETYPE", "skylakex")
-    monkeypatch.setenv("OPENBLAS_CORETYPE", "Haswell")      # set outside: no pin here
-    assert runtime.pin_blas_kernel() == "Haswell"
-    assert runtime.coretype_name("HASWELL") == "Haswell"
+def test_nothing_in_the_package_or_its_tools_sets_the_kernel():
+    # the product never chooses a user's BLAS kernel: no assignment to the
+    # variable anywhere in the package, the test set-up or the tools
+    from pathlib import Path
+
+    root = Path(__file__).resolve().parents[1]
+    files = [*root.joinpath("tefcore").rglob("*.py"), root / "conftest.py",
+             *root.joinpath("tools").glob("*.py"), *root.joinpath("benchmarks").glob("*.py")]
+    setting = [str(f.relative_to(root)) for f in files
+               if "environ[\"OPENBLAS_CORETYPE\"] =" in f.read_text(encoding="utf-8")
+               or "setdefault(\"OPENBLAS_CORETYPE\"" in f.read_text(encoding="utf-8")]
+    assert not setting

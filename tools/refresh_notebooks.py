@@ -32,14 +32,8 @@ import time
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
-from tefcore.runtime import pin_blas_kernel
-
-# the kernels the notebooks' outputs are computed with, as in the test suite and
-# the command (tefcore.runtime), before anything here loads BLAS
-pin_blas_kernel()
-
-import jupytext  # noqa: E402
-import nbformat  # noqa: E402
+import jupytext
+import nbformat
 import papermill  # noqa: E402
 
 NB_DIR = Path(__file__).resolve().parent.parent / "tefcore" / "paper" / "notebooks"

@@ -49,7 +49,7 @@ import warnings
 from .._version import __version__
 from ..config.configuration import Config
 from ..errors import SweepFileError
-from ..provenance import input_digests, model_stamp
+from ..provenance import input_digests, model_stamp, numerical_environment
 from .store import JsonLinesStore, check_provenance, config_hash
 
 __all__ = ["BOUNDARY_FORMAT", "BOUNDARY_VERSION", "BoundaryFile", "boundary_header",
@@ -93,7 +93,8 @@ def boundary_header(cfg: Config, x_field: str, y_field: str, point_name: str) ->
     return {"format": BOUNDARY_FORMAT, "version": BOUNDARY_VERSION, "x_field": x_field,
             "y_field": y_field, "config_hash": config_hash(cfg, exclude=[x_field, y_field]),
             "inputs": input_digests(cfg), "tefcore_version": __version__,
-            "model_stamp": model_stamp(), "point": point_name,
+            "model_stamp": model_stamp(), "environment": numerical_environment(),
+            "point": point_name,
             "created": datetime.datetime.now(datetime.UTC).isoformat(timespec="seconds")}
 
 

@@ -76,7 +76,13 @@ import numpy as np
 
 from ..config.configuration import SECTIONS, Config
 from ..errors import SweepFileError
-from ..provenance import describe_digest, input_digests, model_stamp
+from ..provenance import (
+    describe_digest,
+    environment_note,
+    input_digests,
+    model_stamp,
+    numerical_environment,
+)
 from ..safe_io import FileLock, atomic_write_text, check_output_file, open_append, write_error
 
 __all__ = ["FORMAT", "FORMAT_VERSION", "RECORD_MODE_COLUMNS", "JsonLinesStore", "SweepFile",
@@ -240,7 +246,7 @@ def sweep_header(cfg: Config, parameter: str, chash: str, point_name: str) -> di
     return {"format": FORMAT, "version": FORMAT_VERSION, "parameter": parameter,
             "config_hash": chash, "inputs": input_digests(cfg),
             "tefcore_version": __version__, "model_stamp": model_stamp(),
-            "point": point_name,
+            "environment": numerical_environment(), "point": point_name,
             "created": datetime.datetime.now(datetime.UTC).isoformat(timespec="seconds")}
 
 
@@ -285,6 +291,11 @@ def check_provenance(path, head: dict, header: dict, restart: str) -> None:
                 f"cannot resume {path}: its points were computed by another {name} "
                 f"({head.get(what)!r} then, {header[what]!r} now) and may be stale; "
                 f"{restart}")
+    # the numerical stack (numpy, scipy, BLAS kernels) is recorded, never refused:
+    # no name or verdict depends on its round-off
+    note = environment_note(path, head.get("environment"), header.get("environment", {}))
+    if note:
+        warnings.warn(note, UserWarning, stacklevel=4)
 
 
 def _check_header(path, head, header: dict) -> None:

@@ -74,6 +74,23 @@ def test_resume_refuses_another_model_code(tmp_path):
     assert res.n_computed == 2
 
 
+def test_resume_says_when_the_numerical_stack_differs_and_goes_on(tmp_path):
+    # another numpy or BLAS kernel changes the last digits, never a name or a
+    # verdict: the header records it and a resumed run says so, reusing the points
+    from tefcore.provenance import numerical_environment
+
+    out = tmp_path / "s.jsonl"
+    run(XS[:2], out=out)
+    head = json.loads(out.read_text().splitlines()[0])
+    assert head["environment"] == numerical_environment()
+    then = dict(head["environment"], blas="openblas 0.3.20 Sandybridge")
+    rewrite_header(out, environment=then)
+    with pytest.warns(UserWarning, match=r"computed with blas openblas 0\.3\.20 Sandybridge "
+                                         r"\(now "):
+        res = run(XS[:2], out=out)
+    assert res.n_loaded == 2 and res.n_computed == 0
+
+
 def test_resume_refuses_a_version_1_file_that_recorded_no_inputs(tmp_path):
     out = tmp_path / "s.jsonl"
     run(XS[:2], out=out)
