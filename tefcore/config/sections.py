@@ -35,6 +35,7 @@ from .settings import (
 __all__ = [
     "BLADE_PROPERTIES",
     "MACH_MAX",
+    "MODE_FAMILIES",
     "ActuatorConfig",
     "BladeConfig",
     "FlapConfig",
@@ -42,6 +43,7 @@ __all__ = [
     "HubConfig",
     "ModelConfig",
     "RotorConfig",
+    "mode_family_counts",
 ]
 
 #: Largest Mach number of the thin-airfoil aerodynamics
@@ -435,6 +437,37 @@ class FlightConfig(Section):
     )  # fmt: skip
 
 
+#: The blade's mode families a basis can hold (the structure's labels).
+MODE_FAMILIES = ("flap", "lag", "torsion", "axial")
+
+
+def mode_family_counts(text: str) -> dict[str, int]:
+    """The family counts of ``model.mode_families``: ``"flap 5, lag 2"`` -> ``{"flap": 5, ...}``.
+
+    Raises
+    ------
+    ValueError
+        Naming the field, the part that is wrong and the form expected.
+
+    Examples
+    --------
+    >>> mode_family_counts("flap 5, lag 2, torsion 2")
+    {'flap': 5, 'lag': 2, 'torsion': 2}
+    >>> mode_family_counts("")
+    {}
+    """
+    counts: dict[str, int] = {}
+    for part in (p.strip() for p in str(text).split(",") if p.strip()):
+        words = part.split()
+        if (len(words) != 2 or words[0] not in MODE_FAMILIES or not words[1].isdigit()
+                or int(words[1]) < 1 or words[0] in counts):
+            raise ValueError(f"model.mode_families = {text!r}: {part!r} is not '<family> <count>' "
+                             f"with a family of {', '.join(MODE_FAMILIES)} (once each) and a "
+                             "count from 1, e.g. 'flap 5, lag 2, torsion 2'")
+        counts[words[0]] = int(words[1])
+    return counts
+
+
 @settings_section("model")
 class ModelConfig(Section):
     """Discretisation and aerodynamic model choices.
@@ -447,6 +480,11 @@ class ModelConfig(Section):
     PARAMS = (
         Param("n_elements", "dimensionless", 20, "[2, 200]", "Beam finite elements.", "int"),
         Param("n_modes", "dimensionless", 9, "[1, 60]", "Coupled modes retained.", "int"),
+        Param("mode_families", "dimensionless", "", "",
+              "Blade modes of each family the basis holds at every point, e.g. 'flap 5, "
+              "lag 2, torsion 2' (families: flap, lag, torsion, axial): the lowest modes of "
+              "each family, then the lowest others up to n_modes; empty: the n_modes "
+              "lowest at each point, whose families can change along a sweep.", "str"),
         Param("aero_model", "dimensionless", "thin_airfoil", "", "Section aerodynamics.", "str",
               choices=("thin_airfoil", "c81")),
         Param("c81_deck", "dimensionless", "", "", "C81 table file (aero_model = 'c81'); "
@@ -479,6 +517,11 @@ class ModelConfig(Section):
     )  # fmt: skip
 
     def _validate(self) -> None:
+        counts = mode_family_counts(self.mode_families)
+        if sum(counts.values()) > self.n_modes:
+            raise ValueError(f"model.mode_families = {self.mode_families!r} holds "
+                             f"{sum(counts.values())} modes, more than model.n_modes = "
+                             f"{self.n_modes}; raise n_modes or hold fewer")
         if self.aero_model == "c81" and not self.c81_deck:
             raise ValueError("model.c81_deck must name a deck when model.aero_model = 'c81'")
         if self.aero_model == "c81" and not os.path.isfile(self.c81_deck):

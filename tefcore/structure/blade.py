@@ -16,6 +16,7 @@ from collections.abc import Mapping
 import numpy as np
 
 from ..config.configuration import SECTIONS
+from ..config.sections import mode_family_counts
 from ..runtime import blas_limit
 from .branched import BranchedBeam, Component, Coupling, Joint, assemble_branched
 from .fem import (
@@ -485,12 +486,13 @@ def blade_modes(cfg, n_modes: int | None = None, collective: float = 0.0,
     >>> bool(f["lag 1"] < 1.0 < f["flap 1"] < 1.2)
     True
     """
-    key = (structural_key(cfg), n_modes or cfg.model.n_modes, float(collective),
-           float(speed_ratio), n_elements or cfg.model.n_elements)
+    families = mode_family_counts(cfg.model.mode_families) if n_modes is None else {}
+    key = (structural_key(cfg), n_modes or cfg.model.n_modes, tuple(families.items()),
+           float(collective), float(speed_ratio), n_elements or cfg.model.n_elements)
     modes = _MODES_CACHE.get(key)
     if modes is None:
         beam = blade_model(cfg, collective, n_elements)
-        modes = beam_modes(beam, n_modes or cfg.model.n_modes, speed_ratio)
+        modes = beam_modes(beam, n_modes or cfg.model.n_modes, speed_ratio, families)
         _MODES_CACHE[key] = modes
         while len(_MODES_CACHE) > MODES_CACHE_SIZE:
             _MODES_CACHE.popitem(last=False)

@@ -84,3 +84,43 @@ def test_mesh_convergence_of_mdart_modes(mdart):
     a = blade_modes(mdart, n_modes=6, n_elements=20).frequencies
     b = blade_modes(mdart, n_modes=6, n_elements=40).frequencies
     assert_allclose(a, b, rtol=1e-3)
+
+
+# ---------------------------------------------------------------- the basis holds its families
+
+def test_the_basis_holds_torsion_2_where_it_passes_lag_3(mdart):
+    # the stiffer the blade in torsion, the higher torsion 2: from GJ x1.15 it lies
+    # above lag 3 (12.33 /rev), and the nine lowest modes would trade it for lag 3.
+    # The basis holds the families of the baseline's nine lowest at every GJ
+    from tefcore.structure.blade import blade_modes
+
+    base = set(blade_modes(mdart).labels)
+    for gj in (0.75, 1.15, 1.5, 2.0):
+        m = blade_modes(mdart.with_overrides({"blade.gj_scale": gj}))
+        assert set(m.labels) == base, gj
+        assert list(m.frequencies) == sorted(m.frequencies)
+    lowest = blade_modes(mdart.with_overrides({"blade.gj_scale": 2.0,
+                                               "model.mode_families": ""}))
+    assert "torsion 2" not in lowest.labels and "lag 3" in lowest.labels
+
+
+def test_more_modes_keep_the_families_and_fill_with_the_lowest(mdart):
+    from tefcore.structure.blade import blade_modes
+
+    m = blade_modes(mdart.with_overrides({"model.n_modes": 12, "blade.gj_scale": 2.0}))
+    # the nine held, then the three lowest others: lag 3, flap 6 and flap 7
+    # (torsion 2 at 16.2 /rev is held although flap 6 at 15.1 lies below it)
+    assert sorted(m.labels) == sorted(["lag 1", "lag 2", "lag 3", "flap 1", "flap 2", "flap 3",
+                                       "flap 4", "flap 5", "flap 6", "flap 7", "torsion 1",
+                                       "torsion 2"])
+
+
+@pytest.mark.parametrize("families, n_modes, match", [
+    ("flap 5, lag 2, torsion 2", 6, r"holds 9 modes, more than model\.n_modes = 6"),
+    ("flap 5, bend 2", 9, r"'bend 2' is not '<family> <count>'"),
+    ("flap 0", 9, r"'flap 0' is not"),
+    ("flap 2, flap 3", 9, r"once each"),
+])
+def test_a_family_basis_that_cannot_be_held_is_refused(mdart, families, n_modes, match):
+    with pytest.raises(ValueError, match=match):
+        mdart.with_overrides({"model.mode_families": families, "model.n_modes": n_modes})
