@@ -25,10 +25,10 @@ machine:
   reproduction's decisions sit where round-off tips them -- which root of a
   lock is named which, a lock's frequency written 3.5 or 4.5 /rev, one more
   name undecided between two points -- and so the notebooks' printed
-  results differed between a machine running OpenBLAS's SkylakeX kernels
-  (those of stop 41's outputs) and one running its Haswell kernels (an AMD
-  EPYC whose environment sets ``OPENBLAS_CORETYPE=Haswell``): three cells of
-  notebooks 05 and 06 and one test, every claim's status the same.
+  results differ between a machine running OpenBLAS's SkylakeX kernels
+  and one running its Haswell kernels (an AMD EPYC whose environment sets
+  ``OPENBLAS_CORETYPE=Haswell``): three cells of notebooks 05 and 06 and
+  one test, every claim's status the same.
   :func:`pin_blas_kernel` sets ``OPENBLAS_CORETYPE`` before BLAS is loaded
   where nothing has set it and the processor runs those kernels -- on Linux,
   which lists the flags they need in ``/proc/cpuinfo`` (Haswell's, AVX2 and
