@@ -25,7 +25,7 @@ REPO = Path(__file__).resolve().parents[1]
 PACKAGE = Path(tefcore.__file__).resolve().parent
 
 #: What the history of the work looks like in text: a numbered milestone, a
-#: numbered work item, a note that something was found in a review, "this week".
+#: numbered work item, a note of what a review turned up, a week of the calendar.
 PIECES = (
     "[Ss]" + "tops? [0-9]+",
     "[Ii]" + "ssues? #?[0-9]+",
