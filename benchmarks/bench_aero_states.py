@@ -1,4 +1,4 @@
-"""Cost of a stability point with each aerodynamic option (issue 17), MDART.
+"""Cost of a stability point with each aerodynamic option, MDART.
 
 Run: ``python benchmarks/bench_aero_states.py [repeats]``.  For hover and
 mu = 0.3 with the imbalanced flap (``c_cg/c_f = 0.33``) it prints, per option

@@ -14,7 +14,7 @@ Accuracy is ``||Phi - Phi_ref||_F / ||Phi_ref||_F`` against tefcore's RK4 with
 32 times the steps (error 32^4 ~ 1e6 times smaller; it agrees with a 2304-step
 Magnus reference to 5e-10). Prints both medians (of ``REPEAT`` timed runs after
 a warm-up), the speed-up and the accuracies; then the same comparison for the
-Magnus option at 72 steps. Target (issue 4): speed-up >= 50.
+Magnus option at 72 steps. Target: speed-up >= 50.
 """
 
 import statistics

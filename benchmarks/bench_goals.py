@@ -1,4 +1,4 @@
-"""The speed goals of issue 25, each measured with its peer, its floor, the load and a verdict.
+"""tefcore's speed goals, each measured with its peer, its floor, the load and a verdict.
 
 Run: ``python benchmarks/bench_goals.py [--quick] [--reproduce] [--repeat N]``.
 
@@ -10,13 +10,13 @@ machine's load average at that moment (``os.getloadavg``): on a shared 2-core
 machine the figures are only comparable when it stays low.  Speed is measured
 here, never in a timed test.
 
-Goals (issue 25):
+Goals:
 
 * a mu = 0.3 point <= 0.15 x the peer: scipy's ``solve_ivp`` (DOP853)
   integrating the monodromy matrix of the same linearised system -- MDART at
   mu = 0.3, 9 blade modes and the flap, 20 states -- all ``n^2`` columns as one
   vectorised ODE, ``A(psi)`` from precomputed Fourier coefficients of ``M, C, K``,
-  ``rtol = 1e-8`` (the issue's peer; ``1e-10`` printed too);
+  ``rtol = 1e-8`` (the peer; ``1e-10`` printed too);
 * a hover point <= 3 ms;
 * ``tefcore stability`` <= 1.6 x and ``tefcore --version`` <= 0.6 x the wall
   time of ``python -c "import numpy, scipy.linalg"`` (interleaved, medians of
@@ -158,7 +158,7 @@ def two_at_once(cmd, twin, runs=3):
     output) running beside it, medians of ``runs`` of the whole commands: the
     machine's own parallel efficiency, which no code changes (two cores that
     share caches, memory bandwidth or a hyperthreaded core go slower each when
-    both work; measured at stop 40: the 40-point sweep 3.17 s alone, 3.36 s
+    both work; measured: the 40-point sweep 3.17 s alone, 3.36 s
     each beside its twin; its evaluation alone, timed inside, 1.83 s and
     2.16-2.17 s)."""
     alone, both = [], []
@@ -234,7 +234,7 @@ def goals(args):
     base = load_config("mdart")
     cfg03 = base.with_overrides({"flight.advance_ratio": 0.3})
     hover = base.with_overrides({"flight.advance_ratio": 0.0})
-    print(f"issue 25 goals, MDART (9 blade modes + TEF), medians of {repeat} runs "
+    print(f"speed goals, MDART (9 blade modes + TEF), medians of {repeat} runs "
           f"unless stated; load average when measured in its own column")
     header("a point")
 
@@ -279,7 +279,7 @@ def goals(args):
     line("hover point <= 3 ms", f"{t_hover:.1f} ms", "", f"{t_hfloor:.1f} ms",
          t_hover <= 3.0)
 
-    # Floquet alone against the peer at matched exponent accuracy (issue 15: >= 10 x)
+    # Floquet alone against the peer at matched exponent accuracy (goal: >= 10 x)
     n = system.n_dof
     ref = floquet_modes(system.state_matrix, n_steps=32 * 72, method="magnus",
                         shift_states=slice(0, n), atol=None).exponents
@@ -321,7 +321,7 @@ def goals(args):
     serial = sweep(cfg03, "actuator.stiffness", values, n_jobs=1, **kw).timing
     # a warm pool: started and its worker ready before the sweep (a 40-point
     # sweep is 6 chains, below MIN_COLD_CHAINS, so a sweep alone does not start
-    # one; until stop 31 this line timed two serial runs and read 1.02 x)
+    # one, and this line would time two serial runs)
     worker_pool(1)
     t_ready = time.perf_counter()
     while not pool_ready() and time.perf_counter() - t_ready < 60:

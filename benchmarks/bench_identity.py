@@ -1,4 +1,4 @@
-"""Cost of identity by continuation (issue 22): a point and a sweep, with and without.
+"""Cost of identity by continuation: a point and a sweep, with and without.
 
 Run: ``python benchmarks/bench_identity.py [--repeat N]``.
 

@@ -4,7 +4,7 @@ Run: ``python benchmarks/bench_modes.py``. Prints the median and quartiles of
 several repeats of assembly + eigenanalysis + labelling, and the split, for
 the equivalent hub and the multiple-load-path hub (three joined beams, pitch
 link and snubber; the pitch link couples the flap-lag and torsion blocks).
-Target (issue 2): median <= 20 ms for the equivalent hub.
+Target: median <= 20 ms for the equivalent hub.
 """
 
 import statistics

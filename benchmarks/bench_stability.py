@@ -5,7 +5,7 @@ mu = 0.3 point (9 blade modes + TEF) it prints medians of 15 runs (after one
 second of warm-up runs), with min and max, of
 
 * trim + Floquet: trim, linearisation and Floquet (eigen)analysis of a coupled
-  model built beforehand -- what issue 4's targets name (hover <= 10 ms,
+  model built beforehand -- what the targets name (hover <= 10 ms,
   mu = 0.3 <= 50 ms);
 * the cold point: the same from the configuration alone, i.e. with the
   finite-element blade modes and the coupled model built first (what a

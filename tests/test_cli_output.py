@@ -1,4 +1,4 @@
-"""What the command prints fits 100 columns and says which root matters (issue 22, UI points).
+"""What the command prints fits 100 columns and says which root matters.
 
 ``tefcore stability``: one row per root with a note marking the unstable
 roots and the flutter root, a legend, a sentence naming the flutter root;
@@ -21,7 +21,7 @@ from tefcore.cli import main
 from tefcore.cli.text import LEGEND, UNCERTAIN_LEGEND, WIDTH, onset, sweep_summary
 from tests.sweeps.test_sweep import MODES, ToyPoint
 
-#: The issue's flutter point: MDART in forward flight with an imbalanced flap
+#: A flutter point: MDART in forward flight with an imbalanced flap
 #: (measured: one flap-induced root at about +3 /rev).
 FLUTTER = ["-s", "flight.advance_ratio=0.3", "-s", "flap.overhang=0.29",
            "-s", "flap.cg_offset=0.36"]
@@ -61,7 +61,8 @@ def flutter_point(tmp_path_factory):
 
 
 def test_stability_fits_100_columns_and_marks_the_flutter_root(flutter_point):
-    """The issue: 178-character table lines and a 413-character trim line."""
+    """No line is longer than 100 columns (unwrapped, the table's lines take 178 and the
+    trim's 413)."""
     lines, rows, table = flutter_point
     assert fits(lines), max(lines, key=len)
     flutter = table[table["flutter_root"] & (table["real_part"] > 0)]
@@ -193,7 +194,7 @@ def test_mechanism_defaults_to_the_unstable_flutter_root(capsys, tmp_path, flutt
 
 
 def test_mechanism_mode_flutter_and_tef_are_kept(capsys, tmp_path):
-    """Done-when of the issue: --mode flutter decomposes the unstable root (about +3 /rev)."""
+    """--mode flutter decomposes the unstable root (about +3 /rev)."""
     lines, total = mechanism_run(capsys, tmp_path, ["--mode", "flutter", *FLUTTER])
     assert not lines[0].startswith("decomposing")        # asked for: nothing to announce
     assert 2.0 < total < 4.0

@@ -1,5 +1,5 @@
 """The command line: one clear line for tefcore's errors, no traceback, honest exit status,
-outputs checked before computing (issue 13, findings 2, 7, 9, 10)."""
+outputs checked before computing."""
 
 import subprocess
 import sys
@@ -30,11 +30,11 @@ def toy_default_point(monkeypatch):
     return point
 
 
-# ------------------------------------------------------------------ finding 2
+# ------------------------------------------------------------------ outputs first
 
 
 def test_a_bad_csv_destination_fails_before_computing(tmp_path, monkeypatch, capsys):
-    """Finding 2: ``--csv nodir/x.csv`` computed every point, then died with OSError."""
+    """``--csv nodir/x.csv`` fails before any point is computed, not with an OSError after."""
     calls = []
     monkeypatch.setattr(tefcore.linear.stability, "stability", lambda cfg, **kw: calls.append(cfg))
     out = tmp_path / "s.jsonl"
@@ -52,18 +52,18 @@ def test_modes_csv_destination_checked_first(tmp_path, capsys):
     assert "is a folder" in one_error_line(capsys)
 
 
-# ------------------------------------------------------------------ finding 7 (units)
+# ------------------------------------------------------------------ units
 
 
 def test_a_dimensionless_field_refuses_an_angle(capsys):
-    """Finding 7: ``-s "flight.ct_sigma=5 deg"`` was accepted as 0.0873."""
+    """``-s "flight.ct_sigma=5 deg"`` is refused, not read as 0.0873."""
     assert main(["modes", "-s", "flight.ct_sigma=5 deg"]) == 2
     err = one_error_line(capsys)
     assert "flight.ct_sigma" in err and "'deg' is an angle" in err and "pure number" in err
 
 
 def test_a_dimensional_field_needs_its_unit_on_the_command_line(capsys):
-    """Finding 7: ``-s hub.pitch_link_stiffness=800`` was 800 N/m without a word."""
+    """``-s hub.pitch_link_stiffness=800`` is refused, not read as 800 N/m."""
     assert main(["modes", "-s", "hub.pitch_link_stiffness=800"]) == 2
     err = one_error_line(capsys)
     assert "hub.pitch_link_stiffness = 800 needs a unit" in err and "lb/in" in err
@@ -93,7 +93,7 @@ def test_sweep_range_and_values_take_units(tmp_path, toy_default_point, capsys):
     assert "force_per_length" in one_error_line(capsys) and toy_default_point.calls == calls
 
 
-# ------------------------------------------------------------------ finding 9 (tracebacks)
+# ------------------------------------------------------------------ no tracebacks
 
 
 def test_a_missing_config_file_is_one_line(tmp_path, capsys):
@@ -123,7 +123,7 @@ def test_an_override_without_equals_is_one_line(capsys):
 
 
 def test_c81_check_of_a_non_utf8_file_names_the_line(tmp_path, capsys):
-    """Finding 9: a non-UTF-8 byte gave a UnicodeDecodeError traceback without file or line."""
+    """A non-UTF-8 byte is one line naming the file's line, not a UnicodeDecodeError."""
     lines = example_deck_path().read_bytes().split(b"\n")
     lines[14] = lines[14][:10] + b"\xb2" + lines[14][11:]    # latin-1 superscript two
     bad = tmp_path / "bad.c81"
@@ -136,7 +136,7 @@ def test_c81_check_of_a_non_utf8_file_names_the_line(tmp_path, capsys):
 
 
 def test_broken_pipe_ends_quietly():
-    """Finding 9: ``tefcore modes | head -1`` ended with a BrokenPipeError traceback."""
+    """``tefcore modes | head -1`` ends quietly (status 141), without a BrokenPipeError."""
     proc = subprocess.Popen([sys.executable, "-m", "tefcore", "modes"],
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE)
     proc.stdout.close()                         # the reader went away before any output
@@ -144,11 +144,11 @@ def test_broken_pipe_ends_quietly():
     assert proc.wait(timeout=120) == 141 and err == ""
 
 
-# ------------------------------------------------------------------ finding 10 (exit status)
+# ------------------------------------------------------------------ exit status
 
 
 def test_sweep_exits_nonzero_when_points_failed(tmp_path, monkeypatch, capsys):
-    """Finding 10: ``tefcore sweep`` exited 0 when every point failed."""
+    """``tefcore sweep`` exits non-zero when points failed."""
     monkeypatch.setattr(tefcore.sweeps.sweep, "default_point", lambda: ToyPoint(fail_at=[0.0, 0.1]))
     csv = tmp_path / "s.csv"
     assert main(["sweep", "flap.cg_offset", "--values", "0.0", "0.1", "0.2", "--csv", str(csv),

@@ -1,4 +1,4 @@
-"""Usage errors of every subcommand: one line, exit status 2, never a traceback (issue 24, item 5).
+"""Usage errors of every subcommand: one line, exit status 2, never a traceback.
 
 Every subcommand of :func:`tefcore.cli.build_parser` (walked from the parser
 itself, so a new subcommand is covered without editing this file) is driven
@@ -81,7 +81,7 @@ def test_a_missing_argument_is_one_usage_line(path, capsys):
 
 
 def test_map_with_a_range_cut_short_names_what_is_missing(capsys):
-    """The probe of the issue: a Python traceback (argparse's usage of tuple metavars), exit 1."""
+    """One usage line, exit 2, not a traceback from argparse's usage of tuple metavars."""
     assert main(["map", "flap.cg_offset", "0", "0.4", "5", "flap.overhang", "0", "0.4"]) == 2
     one_usage_line(capsys, "map: the following arguments are required: Y_NUM",
                    "tefcore map --help")

@@ -1,5 +1,4 @@
-"""The command's warnings are one line each, and what a user reads is not noise
-(issue 24, item 6)."""
+"""The command's warnings are one line each, and what a user reads is not noise."""
 
 import pandas as pd
 
@@ -9,7 +8,7 @@ from tests.linear.test_stability_signal import XFOIL
 
 
 def test_clipped_c81_inputs_are_one_warning_line(capsys):
-    """The issue: ~80 raw C81RangeWarning blocks (two lines each) per point."""
+    """One line per point, not ~80 raw C81RangeWarning blocks (two lines each)."""
     deck = XFOIL.model.c81_deck
     assert main(["stability", "-s", "model.aero_model=c81", "-s",
                  f"model.c81_deck={deck}"]) == 0
@@ -21,7 +20,7 @@ def test_clipped_c81_inputs_are_one_warning_line(capsys):
 
 
 def test_a_real_part_below_the_resolution_is_printed_neutral(monkeypatch, capsys, tmp_path):
-    """The issue: a sign that means nothing (-0.0000), unflagged."""
+    """A sign that means nothing (-0.0000) is flagged neutral."""
     res = tefcore.linear.stability.stability(XFOIL.with_overrides(
         {"model.aero_model": "thin_airfoil"}))
     modes = res.modes.copy()

@@ -1,5 +1,4 @@
-"""Every OS error from the command line names the path and what was being done
-(issue 24, item 4).
+"""Every OS error from the command line names the path and what was being done.
 
 A full disk is met for real: the command runs in a child process whose
 largest file is limited (``RLIMIT_FSIZE``, with ``SIGXFSZ`` ignored), so a
@@ -41,7 +40,7 @@ def one_error_line(err: str) -> str:
 
 
 def test_a_full_disk_while_appending_a_sweep_point_names_the_file(tmp_path):
-    """The issue's probe: ``tefcore: error: [Errno 28] No space left on device``, no path."""
+    """A full disk names the file, not a bare ``[Errno 28] No space left on device``."""
     r = run_limited(["sweep", "flap.cg_offset", "--values", "0", "0.1", "--quiet",
                      "--out", "s.jsonl", "--csv", "s.csv"], tmp_path)
     assert r.returncode == 2
@@ -83,7 +82,7 @@ def test_atomic_output_names_the_file_when_the_disk_is_full(tmp_path, monkeypatc
     (lambda p: p.symlink_to(p.parent / "nowhere.c81"), "No such file or directory"),
 ])
 def test_c81_check_of_a_folder_or_a_dangling_link_names_it(tmp_path, capsys, make, reason):
-    """The issue: a raw ``[Errno 21] Is a directory: 'adir'`` line."""
+    """A folder or a dangling link is named, not a raw ``[Errno 21] Is a directory``."""
     target = tmp_path / "deck.c81"
     make(target)
     assert main(["c81", "check", str(target)]) == 1

@@ -1,4 +1,4 @@
-"""Outputs are atomic, never written through a link, and locked (issue 13, findings 1, 3, 4).
+"""Outputs are atomic, never written through a link, and locked.
 
 The sweeps use the fast synthetic point function of ``test_sweep`` (``ToyPoint``).
 """
@@ -25,11 +25,11 @@ def lines(path):
     return [json.loads(x) for x in Path(path).read_text().splitlines()]
 
 
-# ------------------------------------------------------------------ links (finding 1)
+# ------------------------------------------------------------------ links
 
 
 def test_sweep_does_not_write_through_a_planted_temp_link(tmp_path):
-    """Finding 1: ``ln -s victim.txt s.jsonl.tmp`` made the sweep overwrite victim.txt."""
+    """``ln -s victim.txt s.jsonl.tmp`` does not make the sweep overwrite victim.txt."""
     victim = tmp_path / "victim.txt"
     victim.write_text("precious\n")
     (tmp_path / "s.jsonl.tmp").symlink_to(victim)
@@ -95,7 +95,7 @@ def test_output_destinations_are_checked(tmp_path, make, match):
         check_output_file(target, "--csv")
 
 
-# ------------------------------------------------------------------ reproduce (finding 3)
+# ------------------------------------------------------------------ reproduce
 
 
 def _fake_reproduce(monkeypatch):
@@ -137,9 +137,9 @@ def _tree(folder: Path) -> list[str]:
 @pytest.mark.parametrize("out", [".", "output", "tefcore/paper/notebooks", "tefcore",
                                  "tefcore/paper/notebooks/.."])
 def test_reproduce_refuses_any_folder_in_a_source_checkout(fake_repo, out):
-    """Issue 24, item 2: ``--out .`` in the repository root was accepted (8 entries written):
-    the check looked for tracked files, and none of the output names are tracked since the
-    notebooks moved to tefcore/paper/notebooks/."""
+    """``--out .`` in the repository root is refused: looking for tracked files alone is
+    not enough, as none of the output names are tracked (the notebooks live in
+    tefcore/paper/notebooks/)."""
     repo, src = fake_repo
     before = _tree(repo)
     with pytest.raises(OSError, match=r"inside the tefcore source checkout .*repo"):
@@ -178,7 +178,7 @@ def test_reproduce_never_writes_over_copied_source_notebooks(tmp_path, monkeypat
 
 
 def test_reproduce_refuses_the_filesystem_root(capsys):
-    """Issue 24, item 2: ``--out /`` was accepted."""
+    """``--out /`` is refused."""
     from tefcore.cli import main
 
     with pytest.raises(OSError, match="filesystem root"):
@@ -204,7 +204,7 @@ def test_reproduce_refuses_a_folder_with_tracked_outputs(fake_repo, tmp_path):
     assert rp.check_reproduce_folder(out / "output", ["04_cg_offset"]) == out / "output"
 
 
-# ------------------------------------------------------------------ one writer (finding 4)
+# ------------------------------------------------------------------ one writer
 
 
 SLOW_SWEEP = """
@@ -223,7 +223,7 @@ sweep(MDART, PARAM, XS[:6], point=SlowPoint(), out={out!r}, progress=False)
 
 
 def test_a_second_sweep_of_the_same_file_fails_clearly(tmp_path):
-    """Finding 4: two sweeps on one --out file wrote duplicate records."""
+    """Two sweeps on one --out file: the second fails at once, no duplicate records."""
     out = tmp_path / "s.jsonl"
     script = tmp_path / "slow.py"
     script.write_text(textwrap.dedent(SLOW_SWEEP).format(repo=str(REPO), out=str(out)))

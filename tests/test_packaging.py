@@ -1,4 +1,4 @@
-"""Packaging metadata in the current fields (issue 24, item 7).
+"""Packaging metadata in the current fields.
 
 ``python -m build`` warned that the TOML-table ``project.license`` and the
 license classifiers are deprecated (setuptools >= 77, PEP 639): the license

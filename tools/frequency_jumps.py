@@ -10,8 +10,8 @@ track, agreeing within 1/4 over the step and predicting under 1/2 /rev for it)
 by a whole number of /rev (within 0.3, not 0) is a convention jump left in the
 curve.  The slope is per unit of
 the parameter, so an unevenly refined grid does not read a steep stretch as a
-jump (until stop 38 a step was compared with its neighbours' sizes, which
-counted Fig. 9's TEF falling 0.8 /rev over a 0.02 step between 0.005 steps).
+jump (comparing a step with its neighbours' sizes would count Fig. 9's TEF
+falling 0.8 /rev over a 0.02 step between 0.005 steps).
 Printed per figure table and in total, one column per folder, with the first
 few steps of the last folder.  Used to measure the rule of
 :func:`tefcore.modes.matching.continuous_frequency` (docs/theory.md 9.4).

@@ -18,7 +18,7 @@ exact Jacobian both see it) and recomputing Fig. 6 and the conflict points of
   chordwise ``l`` per radian at ``zeta`` above the elastic axis (|kappa| <~ 0.5
   in a 1.2 in thick section), ``kappa = 1/n`` for a part turning ``n`` times as
   fast as the flap (``kappa = 1``: turning with it, as if the flap itself were
-  heavier -- the issue's scaled flap inertia);
+  heavier -- :data:`tefcore.paper.fig6_calibration.FLAP_INERTIA_SCALE`);
 * first moment of parts sliding chordwise, ``S_a = I_a / l``: couples the flap
   with the lag (``cos Theta``) and flap (``sin Theta``) accelerations and, through
   the centrifugal field, with lag displacement (zero for a push-pull pair).
@@ -103,7 +103,7 @@ def main():
                                 first_moment=sign * s_rotor))
     scaled = load_config("mdart").with_overrides({"flap.inertia_cg": 3.5 * 0.24 * 0.0254**2
                                                   / 0.3048 * 0.45359237})
-    rows.append(measure(scaled, "mdart with flap.inertia_cg x 3.5 (issue 23's measurement)"))
+    rows.append(measure(scaled, "mdart with flap.inertia_cg x 3.5 (reaches Fig. 6 too)"))
     with pd.option_context("display.width", 250, "display.max_colwidth", 60):
         print(pd.DataFrame(rows).to_string(index=False))
 

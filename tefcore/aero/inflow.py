@@ -100,8 +100,8 @@ def _momentum_root(ct: float, mu: float, lam_fs: float, lo: float, hi: float,
     (the usual way of solving the momentum equation, Johnson, *Helicopter
     Theory*, sec. 4.1.1), kept inside a bracket that shrinks by the sign of
     ``g`` and bisected whenever a Newton step would leave it: the same root a
-    bracketing solver finds (``scipy.optimize.brentq`` gave it to 1e-14 until
-    stop 35; tests/aero/test_inflow.py compares the two), without importing
+    bracketing solver finds (``scipy.optimize.brentq`` agrees to 1e-14;
+    tests/aero/test_inflow.py compares the two), without importing
     :mod:`scipy.optimize` (0.15-0.2 s of a one-point command, measured with
     ``python -X importtime``).  ``ValueError`` when ``g`` has one sign at both
     ends.

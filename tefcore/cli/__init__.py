@@ -350,7 +350,7 @@ def build_parser() -> argparse.ArgumentParser:
              epilog="example:\n  tefcore map flap.cg_offset 0 0.3 7 flap.overhang 0 0.4 5 "
                     "--png map.png")
     # one positional per item: argparse cannot format the usage of a positional
-    # with a tuple metavar (nargs=3), it failed with a TypeError (issue 24)
+    # with a tuple metavar (nargs=3): its help raises a TypeError
     p.add_argument("x_field", help="dotted field on the x axis, e.g. flap.cg_offset")
     p.add_argument("x_start", metavar="X_START", help="first x value (a number or 'value unit')")
     p.add_argument("x_stop", metavar="X_STOP", help="last x value")

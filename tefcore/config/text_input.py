@@ -1,6 +1,6 @@
 """Values given as text (command line, TOML files) and the rule that dimensional ones carry a unit.
 
-The units rules (README, "Units"):
+The units rules (docs/guide.md, "Units"):
 
 * A **dimensionless** field (``flight.ct_sigma``, ``flap.overhang``, the
   counts) takes a bare number; a unit with a dimension is refused, angles

@@ -125,8 +125,8 @@ class SecondOrderSystem:
         For a system evaluated once among many, e.g. the terms of an energy
         balance (:func:`tefcore.linear.mechanism.energy_decomposition`): 20
         terms of 82 coordinates and shed-wake states kept 80 MiB of
-        coefficients, the largest process of the reproduction (measured at
-        stop 37).  Within the block the coefficients are computed once and
+        coefficients, the largest process of the reproduction (measured).
+        Within the block the coefficients are computed once and
         used by every evaluation; coefficients the system had before are
         kept.  The values are those of :meth:`matrices` outside a block.
 
@@ -184,7 +184,7 @@ class SecondOrderSystem:
         K`` from their Fourier coefficients by two vector products, then
         ``q** = -M^-1 (K q + C q*)`` by one solve (with first-order states, the
         descriptor rows of :meth:`state_matrix` at that azimuth).  A fifth of
-        the cost of ``state_matrix([psi])[0] @ x`` (measured at stop 36 with
+        the cost of ``state_matrix([psi])[0] @ x`` (measured with
         MDART's 10 coordinates: 0.02 against 0.1 ms a call), equal to it to
         round-off (tested).
 

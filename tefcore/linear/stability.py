@@ -139,7 +139,7 @@ class StabilityResult:
 
         Built on demand: a command that prints the roots (``tefcore
         stability``) reads the columns and never imports pandas (0.15 s of
-        its start, measured at stop 35 with ``python -X importtime``).
+        its start, measured with ``python -X importtime``).
         """
         if self._modes is None:
             import pandas as pd

@@ -345,8 +345,7 @@ def zero_coupling_names(frac, labels, freqs, rates, shapes, periodic=False):
     # two locks can share a folded frequency (measured on MDART at mu 0.3,
     # c_cg 0.33: blade flap 1's at 0.5 / 2.5 /rev and flap 2's at 2.5 /rev;
     # MAC 1.00 within flap 2's pair, 0.17 within flap 1's, 0.007 across), and
-    # pairing in index order made the names depend on the roots' order
-    # (found in review)
+    # pairing in index order would make the names depend on the roots' order;
     # alike: MAC of the shapes plus the overlap of the coordinate shares (a
     # lock's two roots carry one coordinate), each in [0, 1]
     unit = shapes / np.maximum(np.linalg.norm(shapes, axis=0, keepdims=True), 1e-300)

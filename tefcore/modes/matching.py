@@ -678,8 +678,8 @@ def continuous_frequency(x, f, *, span: int = 3, weight: float = 1.0,
         Cost of each point written otherwise than by its own convention.  A
         whole curve rewritten by one offset changes no slope; this is what
         keeps it in the convention its points carry.  Measured on the
-        reproduction's 4079 named rows in forward flight, before stop 38
-        joined the jumps it keeps: with 0.25, 0.1 and
+        reproduction's 4079 named rows in forward flight, before the jumps it
+        keeps are joined (:func:`continuous_frequency`): with 0.25, 0.1 and
         0.05, 26, 16 and 12 isolated steps of a name along one track stayed a
         whole /rev off its neighbours' (49 with the earlier rule), and 8.5, 12.5
         and 16 % of the rows were written otherwise than by their dominant

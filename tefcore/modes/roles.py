@@ -227,7 +227,7 @@ def named_columns(columns: dict, continued, shares=None, coordinates=None) -> di
         raise ValueError(f"the modes table is named already (has {present})")
     # a root no path explains (and no final naming placed: constant
     # coefficients, or no labels at full coupling) keeps the coordinate it
-    # carries, not an empty name (which read as kind 'TEF'; found in review)
+    # carries, not an empty name (which would read as kind 'TEF')
     origin = [o if o else str(d)
               for o, d in zip(continued.origin, cols["label"], strict=True)]
     rates = np.asarray(cols["real_part"], float)
@@ -354,8 +354,8 @@ def _moves(table: pd.DataFrame, x: str, kind) -> list:
     -- chosen by :func:`_partner`).
 
     The columns are read once: picking each candidate's four rows from the
-    table took 1.1 ms, 0.6 s of a 10.8 s Fig. 13 sweep's refinement rounds
-    (measured at stop 36).
+    table takes 1.1 ms, 0.6 s of a 10.8 s Fig. 13 sweep's refinement rounds
+    (measured).
     """
     import pandas as pd
 
@@ -401,10 +401,10 @@ def _partner(rows_of, on_track, tracks, base, x1, x2, a, b):
     """The rows of name `b` at `x1` and `a` at `x2` a track's move ``a -> b`` is judged with.
 
     The track that made the opposite move (``b -> a``) where there is one, so
-    that both tracks of an exchange judge it on the same four rows (found in
-    review at stop 39: beside a lock, the plain row of a name on a track that
-    never moved made the partner's judgment an exceptional point and the
-    moving track's an undecided step); else each name's row there, the
+    that both tracks of an exchange judge it on the same four rows (beside a
+    lock, the plain row of a name on a track that never moved would make the
+    partner's judgment an exceptional point and the moving track's an
+    undecided step); else each name's row there, the
     plain one of a locked pair.
     """
     import pandas as pd

@@ -562,7 +562,7 @@ def _passes_close(a0, a1, b0, b1, periodic) -> np.ndarray:
     still = (ddr == 0) & (ddi == 0)
     # |dd|^2 as the scalar code took it, libm's pow: an array's ** 2 is x * x,
     # which differs in the last bit for 0.08 % of inputs and can flip a pass
-    # within an ulp of its reach (found in review)
+    # within an ulp of its reach
     den = np.array([math.pow(v, 2.0) for v in np.hypot(ddr, ddi).tolist()])
     with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
         t = np.clip(-(d0r * ddr + d0i * ddi) / den, 0.0, 1.0)

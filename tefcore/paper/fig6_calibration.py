@@ -48,7 +48,7 @@ FIG6_CLAIM = "fig6-response-15pct-above-input"
 #: Column of :func:`conflict_table`: the flap system's inertia over the built flap's (mdart).
 _INERTIA = "flap-system inertia / mdart's"
 
-#: Factor on the flap's own inertia that also reaches Fig. 6 (1.156 x; issue 23's measurement).
+#: Factor on the flap's own inertia that also reaches Fig. 6 (1.156 x, measured).
 FLAP_INERTIA_SCALE = 3.5
 
 #: The stability points of the conflict (:func:`conflict_table`): name -> overrides.
@@ -198,7 +198,7 @@ def default_conflict_configs() -> dict:
 
     The scale is :data:`FLAP_INERTIA_SCALE`.
 
-    The third reaches Fig. 6 the way issue 23 first measured it, by a heavier
+    The third reaches Fig. 6 another way, by a heavier
     flap: the added inertia then turns with the flap (its propeller moment and
     its coupling to torsion grow), which is not the flap that is built
     (docs/theory.md 4.1a).

@@ -507,7 +507,7 @@ def _connected_components(link) -> tuple[int, np.ndarray]:
     ``directed=False`` -- the count and each node's component, numbered in
     the order of each component's lowest node -- for the four fields of a
     blade section, without importing :mod:`scipy.sparse` (30-70 ms of the
-    start-up of ``tefcore stability``, measured at stop 37).
+    start-up of ``tefcore stability``, measured).
 
     Parameters
     ----------

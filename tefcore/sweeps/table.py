@@ -66,16 +66,16 @@ def _tracked(records: dict, order: list, cache: dict | None = None,
     `cache`: a dict the caller keeps between calls (a sweep's refinement
     rounds, then its table).  The last tracking is reused when the points are
     the very same records' results at the same values -- the final round of
-    refinement adds nothing, and the table tracked them again (0.2 s of a
-    40-point sweep, measured at stop 35).  The test is by identity of each
+    refinement adds nothing, and tracking them again for the table would
+    cost 0.2 s of a 40-point sweep (measured).  The test is by identity of each
     record's ``modes`` and ``vectors`` (held by the cache, so never reused by
     other objects) and equality of the values.  Otherwise each record's point
     is built once (its modes table and decoded vectors), and the march of
     :func:`~tefcore.modes.tracking.track_modes` resumes after the points
     before the first one added (its ``memo``): a refinement round adds
     midpoints, and the steps before the first of them are tracked as before
-    (measured at stop 36 on notebook 06's sweeps: 1.0 s of decoding and 4.2 s
-    of tracking over 28 rounds before).
+    (measured on notebook 06's sweeps: without the cache, 1.0 s of decoding
+    and 4.2 s of tracking over 28 rounds).
     """
     values = [float(records[k]["value_si"]) for k in order]
     key = ([records[k]["modes"] for k in order], [records[k].get("vectors") for k in order],

@@ -284,8 +284,8 @@ def _scene(result, frames_per_rev, dpi, figsize, revs=ANIMATED_REVS):
     s = result.summary
     # the title and caption are still (drawn once, with the background); only
     # the azimuth moves, a short text of its own: drawn with the wrapped
-    # caption in every frame, the text took 13 of the 18.5 s notebook 11 spent
-    # on its two GIFs (measured at stop 36, 167 frames each)
+    # caption in every frame, the text takes 13 of the 18.5 s notebook 11
+    # spends on its two GIFs (measured, 167 frames each)
     fig.suptitle(f"{cfg.name}: {s['mode']} ({s['start']}), Floquet "
                  f"{s['growth_floquet_per_rev']:+.3f} /rev\n{caption}", fontsize="medium")
     clock = axs[0, 0].text(0.02, 0.97, " ", transform=axs[0, 0].transAxes, ha="left",

@@ -401,7 +401,7 @@ def _result(prob, newton, history) -> TrimResult:
 #: MDART, mu = 0.1 .. 0.35, balanced and imbalanced flap, momentum and dynamic
 #: inflow: a cold trim took one Jacobian and 9-11 residuals (two and 6-8 with
 #: 0.1 and no updates), 15 % less time -- from the hover inflow; from the
-#: momentum inflow (stop 39) one Jacobian and 7 residuals at mu = 0.3.
+#: momentum inflow one Jacobian and 7 residuals at mu = 0.3.
 REFRESH_RATIO = 0.5
 
 #: The same without Broyden's updates (the shed-wake states' Schur-complement

@@ -1,4 +1,4 @@
-"""Aerodynamic states in the rotor model (issue 17, phase 2): shed wake and dynamic inflow.
+"""Aerodynamic states in the rotor model: shed wake and dynamic inflow.
 
 Limits and published cases at the rotor level:
 

@@ -31,8 +31,7 @@ from tefcore.cli import main as tefcore_main
 HAVE_FLAP_AERO = importlib.util.find_spec("tefcore.aero.thin_airfoil") is not None
 needs_flap_aero = pytest.mark.skipif(
     not HAVE_FLAP_AERO,
-    reason="tefcore.aero.thin_airfoil (ThinAirfoilFlap, section_loads) does not exist yet; "
-           "it is written concurrently (issue 3)")
+    reason="tefcore.aero.thin_airfoil (ThinAirfoilFlap, section_loads) is not importable")
 
 # A small blade deck, hand-written in fixed 7-column fields (line numbers in
 # the comments are those of the file).
@@ -837,7 +836,7 @@ def test_grid_edge_after_rad_deg_round_trip_is_not_out_of_range():
         table.static_coefficients(np.radians(-5.0), 0.5, np.radians(np.array([-2.0, 2.0])))
 
 
-# ------------------------------------------------------------------ issue 13: hostile files
+# ------------------------------------------------------------------ hostile files
 
 
 def shipped_lines():
@@ -849,7 +848,8 @@ def title_index(lines):
 
 
 def test_non_utf8_bytes_are_a_format_error_with_line_and_column(tmp_path):
-    """Issue 13, finding 9: 148 of 500 byte mutations gave a bare UnicodeDecodeError."""
+    """A non-UTF-8 byte is a C81FormatError naming its line and column, not a
+    bare UnicodeDecodeError (which 148 of 500 byte mutations of the deck would give)."""
     lines = shipped_lines()
     lines[20] = b"   -6.0 \xff" + lines[20][9:]
     path = tmp_path / "bad.c81"
@@ -861,14 +861,16 @@ def test_non_utf8_bytes_are_a_format_error_with_line_and_column(tmp_path):
 
 @pytest.mark.parametrize("count", ["²", "٣", "-1", "1e3"])
 def test_counts_are_ascii_integers(count):
-    """Issue 13, finding 9: a '²' count raised ValueError from int() without file or line."""
+    """A count that is not an ASCII integer is refused naming its line and column (int()
+    reads '٣' as 3 and refuses '²' with a bare ValueError)."""
     text = replace_line(TOY_FREE, 1, "TOY".ljust(30) + f" 2 3 2 3 2 {count}")
     err = parse_error(text)
     assert (err.line, err.column) == (1, 42) and "integer count" in err.reason
 
 
 def test_a_huge_count_is_refused_before_allocating():
-    """Issue 13, finding 10: a count of 10^7 in a 3-line file took 9.7 s and 1.2 GB."""
+    """A count of 10^7 in a 3-line file is refused at once (allocating it takes 9.7 s
+    and 1.2 GB)."""
     import tracemalloc
 
     text = "BIG".ljust(30) + " 10000000 3 2 3 2 3\n           0.0    0.5\n    0.0    0.0    0.0\n"
@@ -883,7 +885,7 @@ def test_a_huge_count_is_refused_before_allocating():
 
 
 def test_a_lost_decimal_point_warns_naming_the_number(tmp_path):
-    """Issue 13, finding 10: '.01000' typed as '01000' was read as 1000 without a word."""
+    """'.01000' typed as '01000' reads as 1000: a warning names the number."""
     lines = shipped_lines()
     k = next(i for i, ln in enumerate(lines) if b".01000" in ln)
     lines[k] = lines[k].replace(b" .01000", b" 01000", 1)

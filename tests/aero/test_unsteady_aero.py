@@ -274,7 +274,7 @@ def test_balanced_flap_converges_to_generalised_theodorsen(chord_ratio, overhang
 
 
 def test_hinge_moment_of_balanced_flap_at_flap_mode_frequency():
-    # MDART flap (E = 0.35, o = 0.29) at the flap mode's k = 0.26 (issue 17):
+    # MDART flap (E = 0.35, o = 0.29) at the flap mode's reduced frequency k = 0.26:
     # the circulatory hinge moment per unit delta is multiplied by C(0.26) = 0.687 - 0.184 i.
     model = UnsteadyFlapAirfoil(0.35, 0.29, n_states=8, compressibility=False)
     kw = dict(axis=0.25, U=FLOW["velocity"], chord=FLOW["chord"], rho=FLOW["density"])

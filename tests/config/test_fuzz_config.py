@@ -1,7 +1,7 @@
 """Fuzzing configuration input: overrides and TOML documents give a Config or a ValueError.
 
-Issue 13, finding 9 (a 400-digit integer in TOML raised OverflowError) and
-finding 7 (units): the command-line overrides (``--set name=value``) and TOML
+A 400-digit integer in TOML meets an OverflowError, and a unit a field
+does not take is refused: the command-line overrides (``--set name=value``) and TOML
 documents -- mutations of the shipped MDART file and arbitrary TOML tables --
 must end in a validated :class:`~tefcore.config.configuration.Config` or a ``ValueError``.
 """

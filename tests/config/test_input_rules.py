@@ -1,6 +1,5 @@
 """Input rules: paths relative to their TOML file, units where text is read, bounded
-parsers, and a Mach limit that agrees with the advance-ratio range (issue 13,
-findings 6, 7, 9, 10)."""
+parsers, and a Mach limit that agrees with the advance-ratio range."""
 
 import re
 import shutil
@@ -27,7 +26,7 @@ def set_line(text, key, line):
     return new
 
 
-# ------------------------------------------------------------------ finding 6 (paths)
+# ------------------------------------------------------------------ paths
 
 
 def c81_toml(deck: str) -> str:
@@ -36,7 +35,7 @@ def c81_toml(deck: str) -> str:
 
 
 def test_a_relative_c81_deck_is_relative_to_its_toml_file(tmp_path, monkeypatch):
-    """Finding 6: the deck was looked up from the working directory."""
+    """The deck is looked up beside the TOML file, not in the working directory."""
     folder = tmp_path / "study"
     folder.mkdir()
     shutil.copyfile(example_deck_path(), folder / "deck.c81")
@@ -60,7 +59,7 @@ def test_an_absolute_deck_path_is_kept(tmp_path):
     assert load_config(tmp_path / "cfg.toml").model.c81_deck == str(example_deck_path())
 
 
-# ------------------------------------------------------------------ finding 7 (units)
+# ------------------------------------------------------------------ units
 
 
 @pytest.mark.parametrize("field, value", [
@@ -68,7 +67,7 @@ def test_an_absolute_deck_path_is_kept(tmp_path):
     ("flight.advance_ratio", "0.3 1/rad"),
 ])
 def test_dimensionless_fields_refuse_units_with_a_dimension(field, value):
-    """Finding 7: ``flight.ct_sigma = "5 deg"`` was accepted as 0.0873."""
+    """``flight.ct_sigma = "5 deg"`` is refused, not read as 0.0873."""
     with pytest.raises(ValueError, match=re.escape(field)):
         MDART.with_overrides({field: value})
 
@@ -78,7 +77,7 @@ def test_pure_number_units_are_fine_for_dimensionless_fields():
 
 
 def test_in_toml_a_dimensional_field_needs_its_unit():
-    """Finding 7: a bare number for a dimensional field was silently SI."""
+    """A bare number for a dimensional field is refused, not silently SI."""
     text = set_line(TOML, "pitch_link_stiffness", "pitch_link_stiffness = 800")
     with pytest.raises(ValueError, match=r"hub\.pitch_link_stiffness = 800 needs a unit"):
         from tefcore.config.io import loads_config
@@ -116,7 +115,7 @@ def test_angle_fields_take_angles_only():
         MDART.with_overrides({"rotor.lift_slope": "5.7 deg"})
 
 
-# ------------------------------------------------------------------ finding 9 (no crashes)
+# ------------------------------------------------------------------ no crashes
 
 
 @pytest.mark.parametrize("unit", [
@@ -124,7 +123,7 @@ def test_angle_fields_take_angles_only():
     "(" * 30 + "m" + ")" * 30, "m^2.5", "m^" + "9" * 400, "ft" * 200,
 ])
 def test_unit_strings_fail_with_value_errors_only(unit):
-    """Finding 9: '800 lb/in^99999999999' raised ZeroDivisionError/OverflowError."""
+    """'800 lb/in^99999999999' is a ValueError, not ZeroDivisionError/OverflowError."""
     with pytest.raises(ValueError):
         parse_unit(unit, "force_per_length")
     with pytest.raises(ValueError):
@@ -139,7 +138,7 @@ def test_units_within_the_limits_still_work():
 @pytest.mark.parametrize("text", ["n_blades = " + "9" * 400, "radius = {value = 1" + "0" * 400
                                   + ', unit = "ft"}'])
 def test_a_400_digit_integer_in_toml_is_a_field_error(text):
-    """Finding 9: a 400-digit integer raised OverflowError."""
+    """A 400-digit integer is a field error, not an OverflowError."""
     from tefcore.config.io import loads_config
 
     key = text.split(" =")[0]
@@ -148,11 +147,12 @@ def test_a_400_digit_integer_in_toml_is_a_field_error(text):
         loads_config(bad)
 
 
-# ------------------------------------------------------------------ finding 10 (Mach)
+# ------------------------------------------------------------------ Mach
 
 
 def test_the_advance_ratio_range_agrees_with_the_tip_mach_limit():
-    """Finding 10: mu = 0.6 was allowed but always failed with a Mach array dump."""
+    """mu = 0.6 is refused naming the tip Mach number, not accepted to fail later with a
+    Mach array dump."""
     with pytest.raises(ValueError, match=r"flight\.advance_ratio = 0\.6 .*tip.*Mach .*1\.000"
                                          r".*at most 0\.5838"):
         MDART.with_overrides({"flight.advance_ratio": 0.6})

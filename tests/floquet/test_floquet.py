@@ -569,7 +569,7 @@ def test_max_sub_validation(bad):
 
 
 # --------------------------------------------------------------------------
-# accuracy control (issue 13, finding 8)
+# accuracy control
 
 HEAVY_24 = np.array([-24.0 + 0j, -0.1 + 1.3j, -0.1 - 1.3j])
 
@@ -588,8 +588,8 @@ def heavy_periodic_system():
 
 
 def test_default_rk4_controls_its_error_on_a_heavily_damped_root():
-    """Finding 8: RK4 at its default 144 steps put a -24 /rev root at about -23.4
-    (h lambda = 1.05: one-step factor 0.360 against e^-1.05 = 0.351) without a word.
+    """RK4 at a fixed 144 steps (its default) puts a -24 /rev root at about -23.4
+    (h lambda = 1.05: one-step factor 0.360 against e^-1.05 = 0.351).
     With the step-doubling control the steps double until the estimate meets
     1e-3 + 1e-3 |sigma| = 0.025 for that root."""
     with warnings.catch_warnings():
@@ -601,7 +601,7 @@ def test_default_rk4_controls_its_error_on_a_heavily_damped_root():
     assert res.n_steps == 4 * DEFAULT_N_STEPS
     est = res.error_estimates[np.argmin(res.exponents.real)]
     assert abs(got[0].real + 24) <= 4 * est.real          # the estimate is honest
-    # without the control: the old answer, 0.6 /rev off
+    # without the control: the fixed-step answer, 0.6 /rev off
     old = floquet_modes(heavy_periodic_system(), atol=None)
     assert old.n_steps == DEFAULT_N_STEPS and old.error_estimates is None
     assert abs(old.exponents.real.min() + 24) > 0.5
@@ -698,8 +698,8 @@ def test_balanced_exponential_of_odd_stacks():
     row and column (nothing to
     balance there), one 1x1 matrix and an empty stack as before; non-finite
     input, or a finite complex entry whose modulus overflows, gives NaN of the
-    same shape and dtype (found in review: ``|a|`` overflowed and the balancing
-    raised)."""
+    same shape and dtype (``|a|`` overflows there, and the balancing must not
+    raise)."""
     from tefcore.floquet._propagators import expm_batch
 
     rng = np.random.default_rng(7)

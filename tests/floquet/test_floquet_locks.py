@@ -286,13 +286,13 @@ def test_lock_detection():
 
 @pytest.mark.parametrize("overrides, label, frequency, real_part", [
     # a heavily damped root at a 1/2 /rev lock of an imbalanced, heavy flap: the
-    # lift at K = 8 (chosen before solving) gave 0.4958 /rev, -7.5834 /rev; K = 4
-    # and K = 16 agree on 0.49999, -7.59005 (found by a differential review of the
-    # speed work against the old code, which jumped to K = 16 here)
+    # lift at K = 8 (chosen before solving) gives 0.4958 /rev, -7.5834 /rev; K = 4
+    # and K = 16 agree on 0.49999, -7.59005 (the lifting must reach them, not
+    # stop at K = 8)
     ({"flight.advance_ratio": 0.35, "flap.cg_offset": 0.4, "flap.mass": 0.6,
       "actuator.stiffness": "60 ft-lb/rad"}, "blade flap 4", 0.5, -7.59005),
     # the TEF root of an over-balanced flap at its 2 /rev lock: 2.0409, -7.0185 at
-    # K = 8 against 2.000021, -6.98165 (old code and K = 16)
+    # K = 8 against 2.000021, -6.98165 (K = 16)
     ({"flight.advance_ratio": 0.3, "flap.overhang": 0.45, "flap.cg_offset": 0.2}, "TEF",
      2.0, -6.98165),
 ])
@@ -304,7 +304,7 @@ def test_nearly_defective_locked_pair_gets_a_finer_lift(overrides, label, freque
     # floquet_modes doubles K while a resolved root's first-order bound
     # eps ||Z|| kappa / |mu| exceeds LIFT_RTOL.  Gates: 1e-4 /rev in frequency and
     # 2e-3 /rev in real part, a tenth of what the K = 8 lift was off by, and
-    # above the 2e-5 /rev by which the K = 16 results differ from K = 4 / old code
+    # above the 2e-5 /rev by which the K = 16 results differ from K = 4
     from tefcore.linear.stability import stability
 
     # the root is the one carrying that coordinate (its participation label,

@@ -1,5 +1,5 @@
 """What a point says beside its numbers: clipped C81 inputs once, real parts below the
-solver's resolution as neutral (issue 24, item 6)."""
+solver's resolution as neutral."""
 
 import warnings
 
@@ -26,7 +26,7 @@ def recorded(func, *args, **kw):
 
 
 def test_clipped_c81_inputs_are_one_warning_per_point():
-    """The issue: ~80 raw C81RangeWarning blocks per point."""
+    """One warning per point, not ~80 raw C81RangeWarning blocks."""
     _, caught = recorded(stability, XFOIL)
     assert len(caught) == 1
     clipped = caught[0].message.clipped
@@ -49,8 +49,8 @@ def test_every_root_carries_its_resolution():
     err = modes["real_part_error"].to_numpy(float)
     assert np.isfinite(err).all() and (err > 0).all()
     assert (modes["neutral"] == (modes["real_part"].abs() <= err)).all()
-    # the issue's "blade axial 1": a real part of -3.1e-5 /rev (measured; the issue's
-    # -3e-8 was not reproduced), resolved to about 4e-11: a small true damping, not neutral
+    # "blade axial 1": a real part of -3.1e-5 /rev (measured), resolved to about
+    # 4e-11: a small true damping, not neutral
     axial = modes[modes["label"] == "blade axial 1"].iloc[0]
     assert abs(axial["real_part"]) > 1e3 * axial["real_part_error"]
     assert not axial["neutral"]

@@ -175,8 +175,8 @@ def _exchange_rows(certain_at_1=(True, True), crossed=False, by_path_at_0=(True,
 def test_paths_that_met_are_an_exceptional_point_not_an_undecided_step():
     """Where two paths met (a coalescence located on the way from zero coupling)
     both names are undecided at that point; the names' move into it is that
-    exceptional point ('paths meet'), not listed again as undecided (found in
-    review: the same pair printed under both)."""
+    exceptional point ('paths meet'), not listed again as undecided (the same
+    pair must not print under both)."""
     from tefcore.modes.roles import undecided_steps
 
     table = _exchange_rows((False, False))
@@ -198,7 +198,7 @@ def test_paths_that_met_are_an_exceptional_point_not_an_undecided_step():
     # decided on both sides, but blade flap 3's roots do not move the flap
     # (Fig. 12's balanced flap: flap 5 and torsion 2, 2e-3 to 5e-3): not an
     # exceptional point of the coupling, a move of names by participation --
-    # listed, not silent (it was neither before stop 39)
+    # listed, not silent
     ((True, True), False, (True, True), 3e-3, "named by participation"),
 ])
 def test_a_name_that_moves_is_an_exceptional_point_or_an_undecided_step(
@@ -234,9 +234,9 @@ def _lock_rows(at_0, at_1):
 def test_a_move_is_judged_on_the_track_s_own_rows_beside_a_lock():
     """Where the moving name is also a lock's second root at a point ("X" and "X
     (locked)"), the move is judged on the row of the track that moves, not on
-    whichever row of the name came last (found at stop 39 on Fig. 12 at 186.5
-    ft-lb/rad: blade torsion 2's undecided root moved to blade flap 3, judged on
-    its decided locked partner, was neither an exceptional point nor listed)."""
+    whichever row of the name came last (Fig. 12 at 186.5 ft-lb/rad: blade
+    torsion 2's undecided root moves to blade flap 3; judged on its decided
+    locked partner, it would be neither an exceptional point nor listed)."""
     from tefcore.modes.roles import undecided_steps
 
     table = _lock_rows(["blade torsion 2", "blade torsion 2 (locked)", "blade flap 3"],
@@ -246,9 +246,9 @@ def test_a_move_is_judged_on_the_track_s_own_rows_beside_a_lock():
         ["blade flap 3 / blade torsion 2", 0.0, 1.0, "identity undecided"]]
     assert exceptional_points(table).empty
     # the lock's second root is the one that moves, its plain partner stays on
-    # its track: both tracks of the exchange judge it on the same rows (found in
-    # review: the flap 3 track read the plain torsion 2 of the track that never
-    # moved, decided, and called the same step an exceptional point)
+    # its track: both tracks of the exchange judge it on the same rows (read
+    # from the plain torsion 2 of the track that never moved, decided, the flap
+    # 3 track would call the same step an exceptional point)
     table = _lock_rows(["blade torsion 2 (locked)", "blade torsion 2", "blade flap 3"],
                        ["blade flap 3", "blade torsion 2", "blade torsion 2 (locked)"])
     assert undecided_steps(table)["kind"].tolist() == ["identity undecided"]
@@ -313,10 +313,10 @@ def test_continuous_frequency_recovers_a_falling_curve_from_its_floquet_conventi
 
 
 def test_the_tef_frequency_of_a_real_sweep_falls_without_shifts_or_mirrors():
-    """The issue's case: Fig. 9 at overhang 0.1 (mu 0.3).  The flap's uncoupled
+    """Fig. 9 at overhang 0.1 (mu 0.3).  The flap's uncoupled
     frequency falls with the CG offset, so the TEF's does too: 21.77 -> 9.32 /rev
-    (measured).  Before continuation the tracked frequency *rose* to 33.68 (the
-    mirror of the root, shifted) and the point values jumped by 1 /rev; a wrong
+    (measured).  Without continuation the tracked frequency *rises* to 33.68 (the
+    mirror of the root, shifted) and the point values jump by 1 /rev; a wrong
     unwrapping or a TEF name on another root breaks the monotonic fall."""
     from tefcore.paper.figures.catalogue import figure_config
 
@@ -410,7 +410,7 @@ def test_a_root_that_does_not_move_the_flap_is_never_the_flap_mode():
     kernels the march decides both ('TEF', 'TEF (locked)'); with its Haswell
     kernels (pinned by tefcore.runtime) it leaves both undecided and names the
     second 'blade flap 4 (locked)' -- both roots move the flap, 0.49 of their
-    motion (measured at stop 42).  Either way the TEF is the pair's."""
+    motion (measured).  Either way the TEF is the pair's."""
     from tefcore.linear.stability import stability
     from tefcore.modes.continuation import FLAP_ACTIVE
     from tefcore.paper.figures.catalogue import figure_config
@@ -468,9 +468,9 @@ def test_continuous_frequency_takes_the_carried_curve_where_the_convention_chang
     11.07-11.16 throughout (the same roots: whole /rev apart).  A Floquet
     frequency is continuous along a root: the known answer is the carried
     curve.  Without it the curve is continuous too, a whole number of /rev
-    from it (until stop 38 the for-good change, 3 points on one side and 5 on
-    the other, was kept as a jump of 0.97 /rev: the anchor priced each point
-    written otherwise)."""
+    from it (the for-good change, 3 points on one side and 5 on the other, is
+    not kept as a jump of 0.97 /rev, as an anchor pricing each point written
+    otherwise would keep it)."""
     x = np.array([0.0, 0.034907, 0.069813, 0.10472, 0.122173, 0.126536, 0.128718, 0.129809])
     own = np.array([12.07097, 12.083995, 12.10925, 11.13705, 11.149683, 11.152629, 11.154067,
                     11.154778])
@@ -542,8 +542,8 @@ def test_continuous_frequency_takes_a_repeated_parameter_value_without_a_jump():
 
 
 
-# Fig. 9's TEF (mu 0.3, overhang 0.29) as notebook 04's refined sweep computed it
-# (stop 37): c_cg/c_f, the dominant-harmonic convention and the frequency the
+# Fig. 9's TEF (mu 0.3, overhang 0.29) as notebook 04's refined sweep computes it
+# (stored): c_cg/c_f, the dominant-harmonic convention and the frequency the
 # continuation in eps carried, at 60 points 0.005-0.04 apart
 _FIG9_X = np.array([
     0, 0.005, 0.01, 0.015, 0.02, 0.04, 0.045, 0.05, 0.055, 0.06, 0.08, 0.085, 0.0875, 0.08875,
@@ -573,11 +573,12 @@ def test_continuous_frequency_joins_fig9s_tef_across_its_harmonic_switches():
     is 1/rev below the falling curve at 0.08-0.10 and from 0.23 on (the steps
     there are -2.0 over 0.02 and -1.23 over 0.01 where the neighbouring steps
     give -1.0 and -0.24).  The continuous curve is the convention 1/rev up
-    there and falls at every step, in any order of the points.  The rule before
-    stop 38 kept three whole-/rev steps (13.87 at 0.08, 12.96 -> 13.50 at
-    0.10 -> 0.11, 10.37 -> 9.14 at 0.22 -> 0.23): a 1/rev jump over a 0.02 step
-    between 0.005 steps cost it a quarter of what it costs on a uniform grid,
-    and a convention changed for good on long sides was kept as a jump."""
+    there and falls at every step, in any order of the points.  Measuring the
+    change of slope over the mean of its two steps, and without the stitching,
+    three whole-/rev steps stay (13.87 at 0.08, 12.96 -> 13.50 at 0.10 -> 0.11,
+    10.37 -> 9.14 at 0.22 -> 0.23): a 1/rev jump over a 0.02 step between 0.005
+    steps costs a quarter of what it costs on a uniform grid, and a convention
+    changed for good on long sides stays a jump (docs/theory.md 9.4)."""
     up = ((_FIG9_X >= 0.08) & (_FIG9_X <= 0.1)) | (_FIG9_X >= 0.23)
     true = _FIG9_OWN + up
     got = continuous_frequency(_FIG9_X, _FIG9_OWN, carried=_FIG9_CARRIED)
@@ -597,7 +598,7 @@ def test_continuous_frequency_joins_a_convention_changed_for_good_on_long_sides(
     """A frequency falling from 10.3 to 10.05 /rev over 21 points whose dominant
     harmonic drops by 1/rev for good at the eleventh (10 points on each side):
     one root, so one continuous curve -- not a jump kept because either side is
-    long (the rule before stop 38 kept it)."""
+    long."""
     x = np.linspace(0.0, 1.0, 21)
     true = 10.3 - 0.25 * x
     own = true - (x > 0.5)
@@ -638,8 +639,7 @@ def test_continuous_frequency_recovers_a_curve_whose_harmonic_switches_once(swit
     """Invariant: a resolved frequency (steps under 0.04 /rev) whose dominant
     harmonic switches by one or two /rev for good anywhere along it comes back
     as the same curve up to one whole offset -- every step the true one.
-    (Measured: 4000 such curves, none missed; the rule before stop 38 kept the
-    switch as a jump wherever both sides had more than 4 points.)"""
+    (Measured: 4000 such curves, none missed.)"""
     x, true, own = _resolved_curve(**curve, switches=[switch])
     got = continuous_frequency(x, own)
     np.testing.assert_allclose(np.diff(got), np.diff(true), atol=1e-9)
@@ -786,8 +786,8 @@ def test_a_lock_at_zero_coupling_is_named_from_its_own_mode():
 def test_zero_coupling_names_follow_the_roots_not_their_order():
     """MDART at mu 0.3, c_cg 0.33, zero coupling: four roots at 1/2 /rev folded
     -- blade flap 1's lock (0.5 and 2.5 /rev) and blade flap 2's (both at
-    2.5) -- and pairing them in index order named a flap 2 root 'blade flap
-    1' in 16 of the 24 orders of those four (found in review).  Pairs are
+    2.5) -- and pairing them in index order would name a flap 2 root 'blade
+    flap 1' in 16 of the 24 orders of those four.  Pairs are
     the most alike roots (shape MAC plus overlap of coordinate shares), so
     every order of the roots gives each root the same name."""
     from tefcore.linear.stability import stability
@@ -818,8 +818,8 @@ def test_zero_coupling_names_follow_the_roots_not_their_order():
 
 def test_a_root_no_path_explains_keeps_the_coordinate_it_carries():
     # a root the march could not place (origin '') where no final naming
-    # runs (constant coefficients) kept the empty name and read as kind 'TEF'
-    # (found in review): it takes the coordinate it carries, uncertain
+    # runs (constant coefficients) would keep the empty name and read as kind
+    # 'TEF': it takes the coordinate it carries, uncertain
     table = pd.DataFrame({"mode_id": [0, 1], "label": ["blade flap 1", "blade lag 1"],
                           "frequency_per_rev": [1.1, 0.7], "real_part": [-0.3, -0.05]})
     continued = SimpleNamespace(origin=["blade flap 1", ""], certain=np.array([True, False]),

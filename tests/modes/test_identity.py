@@ -204,8 +204,8 @@ def test_warm_started_sweep_is_the_same_in_every_run(tmp_path):
 
 @pytest.mark.parametrize("base, param, xs", [
     # a prescribed collective is not a trim unknown: a warm start that carried the
-    # previous point's controls over kept the neighbour's collective (Fig. 16's
-    # hover sweep came out flat, every point equal to the first: found in review)
+    # previous point's controls over would keep the neighbour's collective (Fig.
+    # 16's hover sweep would come out flat, every point equal to the first)
     ({"flight.advance_ratio": 0.0, "flight.collective": 0.0}, "flight.collective",
      [0.0, 0.05, 0.1, 0.15]),
     ({"flight.advance_ratio": 0.3, "flight.collective": 0.1}, "flight.collective",

@@ -334,9 +334,8 @@ def test_close_passes_of_all_pairs_at_once_are_the_pairs_one_by_one(periodic):
     b1[:50] = b0[:50]                               # b does not move
     a1[50:100] = a0[50:100] + (b1[50:100] - b0[50:100])   # parallel: dd = 0
     if periodic:
-        # found in review: |dd|^2 as x * x instead of pow(x, 2) moved t by an
-        # ulp and flipped this pair, whose closest approach is within an ulp of
-        # its reach
+        # |dd|^2 as x * x instead of pow(x, 2) moves t by an ulp and flips
+        # this pair, whose closest approach is within an ulp of its reach
         a0[100], a1[100] = -1.6787109375 + 0.1015625j, -1.509765625 + 0.0035856833447920275j
         b0[100], b1[100] = -2.078125 + 0.0595703125j, -1.771484375 + 0.07487474584479203j
     got = _passes_close(a0, a1, b0, b1, periodic)
@@ -366,7 +365,7 @@ def test_a_steps_rows_keep_the_points_dtypes_and_share_no_memory():
 
 
 def _step_frame_reference(step, modes, tracked_eig, identity, assigned, tracks):
-    """One step's rows as the tracking made them until stop 37: a frame per step."""
+    """One step's rows as a frame per step: the reference the joined columns must equal."""
     cols = {"step": step, "track": assigned, "label": [tracks[t].label for t in assigned],
             "label_here": modes["label"], "identity": identity}
     for name in modes.columns:
@@ -382,7 +381,7 @@ def _step_frame_reference(step, modes, tracked_eig, identity, assigned, tracks):
                                   "dtype changes", "a point without roots"])
 def test_the_joined_table_is_the_concatenation_of_one_frame_per_step(case):
     # _table joins the steps' columns instead of making a frame per step; it
-    # must give what the frames of stop 36 concatenated gave -- values, dtypes
+    # must give what one frame per step concatenated gives -- values, dtypes
     # (text inferred from the labels as a frame infers it, a column's own
     # dtype kept) and index -- also where it falls back to frames (a column's
     # dtype changes between steps, a step has no rows)
@@ -416,10 +415,10 @@ def test_the_joined_table_is_the_concatenation_of_one_frame_per_step(case):
 
 
 def test_review_cases_a_memo_shares_nothing_empty_points_and_repeated_columns():
-    # found in review at stop 37: (1) a memo kept the points' text columns
-    # themselves, so a write into an earlier point showed in a resumed table;
-    # (2) points without roots gave 'label' another dtype than the frames of
-    # stop 36; (3) a column name twice was silently dropped (the frames failed)
+    # three cases: (1) a memo must not keep the points' text columns
+    # themselves, or a write into an earlier point shows in a resumed table;
+    # (2) points without roots give 'label' the dtype one frame per step gives;
+    # (3) a column name twice fails, as the frames do, and is not dropped
     def point(f):
         return pd.DataFrame({"mode_id": [0], "label": ["a"], "frequency_per_rev": [f],
                              "real_part": [-0.1], "note": pd.Series(["x"], dtype="str")})

@@ -1,6 +1,6 @@
 """The notebooks as reviewable sources, their shared text, titles from the parameters used.
 
-Issue 14, item 2: jupytext percent sources paired with the executed
+Jupytext percent sources paired with the executed
 notebooks (a pair out of sync fails here), the departures text written once,
 figure titles and captions built from the configuration actually analysed.
 """
@@ -11,12 +11,12 @@ from pathlib import Path
 import nbformat
 import pytest
 
-from tefcore.paper.run import notebook_files as nbf
 from tefcore.paper.attribution.departures import departures_text, load_departures
 from tefcore.paper.figures.captions import figure_caption, figure_title
 from tefcore.paper.figures.catalogue import FIGURES
 from tefcore.paper.figures.responses import response_config
 from tefcore.paper.figures.runs import run_config
+from tefcore.paper.run import notebook_files as nbf
 
 jupytext = pytest.importorskip("jupytext")
 
@@ -101,6 +101,6 @@ def test_title_and_caption_follow_overrides(name):
 
 def test_every_notebook_has_a_measured_time_for_the_schedule():
     # tefcore reproduce starts the longest notebook first; a notebook without
-    # a time would run last whatever it costs (11 did, at 21 s, until stop 36)
+    # a time would run last whatever it costs
     assert set(nbf.NOTEBOOK_SECONDS) == set(nbf.NOTEBOOKS)
     assert all(t > 0 for t in nbf.NOTEBOOK_SECONDS.values())

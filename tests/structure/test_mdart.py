@@ -1,7 +1,7 @@
 """The assumed MDART structure against what the paper states.
 
 Calibration targets (paper text, Figs. 10a and 11a): the first torsion
-frequency.  The issue sets the gate at 2 %: the digitising-free statements
+frequency.  The gate is 2 %: the digitising-free statements
 are given to 2-3 significant figures (2.3/rev carries +-2 % by itself).
 """
 

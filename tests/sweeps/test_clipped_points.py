@@ -1,5 +1,4 @@
-"""A point whose C81 table inputs were clipped says so; a sweep or map warns once
-(issue 24, item 6).
+"""A point whose C81 table inputs were clipped says so; a sweep or map warns once.
 
 The packaged XFOIL deck at mu = 0.3 clips (alpha beyond 16 deg on the
 retreating side, Mach beyond 0.7 at the advancing tip); in hover it does not.

@@ -1,7 +1,7 @@
 """Fuzzing sweep files: a truncated or garbled file is resumed or refused with a ValueError.
 
-Issue 13, finding 9 (a ``{}`` line raised KeyError) and finding 5 (stale
-files): a valid sweep file is damaged -- truncated at any byte, lines
+A ``{}`` line must not end in a KeyError, nor a stale file be resumed: a
+valid sweep file is damaged -- truncated at any byte, lines
 replaced by garbage or other JSON, duplicated or deleted, the header edited
 -- and resumed.  The only allowed outcomes are a :class:`~tefcore.sweeps.sweep.SweepResult`
 (the points that survived loaded, the others recomputed) or a ``ValueError``

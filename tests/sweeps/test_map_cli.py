@@ -1,4 +1,4 @@
-"""``tefcore map``: what it writes, how it labels the plot, its estimate (issue 24, item 7).
+"""``tefcore map``: what it writes, how it labels the plot, its estimate.
 
 The default point function is replaced by a toy (the flap mode's growth is
 ``x + y^2 - 0.3``), so these tests take no solver time.

@@ -1,5 +1,4 @@
-"""A map's stored pieces are never reused for other inputs, and a damaged one names its file
-(issue 24, items 1 and 3).
+"""A map's stored pieces are never reused for other inputs, and a damaged one names its file.
 
 The map's boundary file (``OUT/boundary.jsonl``) carries the header sweep
 files have (configuration hash without the two mapped fields, input files,
@@ -58,7 +57,7 @@ def boundary_lines(out):
 CHANGED = MDART.with_overrides({"actuator.stiffness": STIFF})
 
 
-# ------------------------------------------------------------------ item 1: stale inputs
+# ------------------------------------------------------------------ stale inputs
 
 
 def test_the_boundary_file_has_the_header_of_a_sweep_file(tmp_path):
@@ -75,7 +74,8 @@ def test_the_boundary_file_has_the_header_of_a_sweep_file(tmp_path):
 
 
 def test_a_boundary_of_another_configuration_is_never_reused(tmp_path):
-    """The issue's probe: rows refused, deleted as advised, and the old boundary came back."""
+    """Rows refused, deleted as advised: the boundary of the other configuration does not
+    come back."""
     out = tmp_path / "F"
     run_map(MDART, out)
     with pytest.raises(SweepFileError, match="cannot resume"):
@@ -148,7 +148,7 @@ def test_resume_false_starts_the_boundary_anew(tmp_path):
     assert 0.123 not in fresh.boundary["x"].values
 
 
-# ------------------------------------------------------------------ item 3: damaged files
+# ------------------------------------------------------------------ damaged files
 
 
 def test_a_cut_short_last_line_is_dropped_and_recomputed(tmp_path):

@@ -1,4 +1,4 @@
-"""Resuming a sweep refuses stale inputs and damaged files (issue 13, finding 5, 9).
+"""Resuming a sweep refuses stale inputs and damaged files.
 
 The header of a sweep file records everything that decides a point: the
 configuration, the content of the files it refers to (the C81 deck), the
@@ -33,7 +33,7 @@ def c81_config(tmp_path):
 
 
 def test_resume_refuses_a_c81_deck_edited_in_place(tmp_path, c81_config):
-    """Finding 5: after editing the deck at the same path, resume reused the old points."""
+    """After the deck is edited at the same path, resuming refuses the old points."""
     cfg, deck = c81_config
     out = tmp_path / "s.jsonl"
     sweep(cfg, PARAM, XS[:3], point=ToyPoint(), out=out, progress=False)
@@ -51,7 +51,7 @@ def test_resume_refuses_a_c81_deck_edited_in_place(tmp_path, c81_config):
 
 
 def test_resume_refuses_another_tefcore_version(tmp_path):
-    """Finding 5: a header claiming another tefcore version was accepted."""
+    """A header claiming another tefcore version is refused."""
     out = tmp_path / "s.jsonl"
     run(XS[:2], out=out)
     rewrite_header(out, tefcore_version="0.0.1")
@@ -111,7 +111,7 @@ def test_model_stamp_covers_the_numerics_not_the_presentation():
 
 
 @pytest.mark.parametrize("line, reason", [
-    ("{}", "a record without 'key'"),                                  # finding 9
+    ("{}", "a record without 'key'"),                                  # not a KeyError
     ("[1, 2]", "a JSON list, not a record"),
     ('{"key": "0.5", "status": "ok", "value_si": 0.5, "error": null, "trim": {}, '
      '"modes": {"label": ["TEF"]}}', "lacks the column"),
@@ -123,7 +123,7 @@ def test_model_stamp_covers_the_numerics_not_the_presentation():
     ("\xff\xfe not text", "not a JSON record"),
 ])
 def test_a_damaged_record_is_a_clear_error_naming_the_line(tmp_path, line, reason):
-    """Finding 9: a ``{}`` line in a sweep file raised KeyError."""
+    """A ``{}`` line in a sweep file is an error naming the line, not a KeyError."""
     out = tmp_path / "s.jsonl"
     run(XS[:2], out=out)
     with open(out, "ab") as f:

@@ -133,7 +133,7 @@ def test_real_map_is_the_same_serial_parallel_and_on_dask():
     # side by side in joblib workers, chains as dask tasks, or row by row here --
     # so the tables (and refined boundaries) are identical, not merely close.
     # mu = 0.1, a collective sweep in x: the warm start must not carry the
-    # previous point's prescribed collective over (it did, found in review)
+    # previous point's prescribed collective over
     distributed = pytest.importorskip("distributed")
     cfg = MDART.with_overrides({"flight.advance_ratio": 0.1})
     args = (cfg, "flight.collective", [0.08, 0.1, 0.12], "flap.cg_offset", [0.0, 0.33])

@@ -88,7 +88,7 @@ def test_rigid_flapping_blade_in_hover(gamma, nu):
     anywhere in the revolution: an error of at most one cycle's decay in each
     window, which the least squares divides by the span of revolutions --
     measured 8 % over 4 revolutions, at most 1.3 % over 8 (gamma 2-10, nu
-    1-1.15).  So 8 revolutions and the issue's tolerance, 2 % + 0.01 /rev."""
+    1-1.15).  So 8 revolutions and the agreement criterion, 2 % + 0.01 /rev."""
     one = np.ones((1, 1, 1))
     system = SecondOrderSystem(one, gamma / 8 * one, nu**2 * one)
     fit, _ = fitted(system, [1.0, 0.0], 8, floor=1e-12)

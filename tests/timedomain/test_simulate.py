@@ -1,7 +1,7 @@
 """simulate(cfg) on the MDART rotor: the marched growth against the Floquet root,
 the work of the named terms, the nonlinear march at small amplitude, the command.
 
-The issue's case: the paper's mass-imbalanced flap (c_cg/c_f = 0.33,
+The case: the paper's mass-imbalanced flap (c_cg/c_f = 0.33,
 c_b/c_f = 0.29) at mu = 0.3, whose flutter root (blade torsion 2) grows at
 +3.01 /rev -- a factor 1.7e8 per revolution.
 """
@@ -29,7 +29,7 @@ def imbalanced():
 
 
 def test_flutter_root_growth_agrees_with_floquet(imbalanced):
-    """The issue's criterion, 2 % + 0.01 /rev; measured 0.0016 /rev (0.05 %)."""
+    """The agreement criterion, 2 % + 0.01 /rev; measured 0.0016 /rev (0.05 %)."""
     _, res, sim = imbalanced
     s = sim.summary
     row = res.modes.index[res.modes["flutter_root"]][0]

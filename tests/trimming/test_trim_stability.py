@@ -224,9 +224,7 @@ def test_c81_table_aerodynamics_runs_the_coupled_analysis(mdart):
 def test_heavily_damped_root_resolved_by_raising_the_sub_intervals():
     # Fig. 13 with the flap at 0.90 R: a root near -5.0 /rev beside the
     # +3.5 /rev flutter root. Its lifted root falls below MIN_ROOT with K = 4, so
-    # floquet_modes raises K (to 8). Reference: K = 16. (With the first-draft
-    # MDART data the same mechanism put a -7.2 /rev root 1.4 /rev off at K = 4
-    # on Fig. 14's 0.22 R span; with the re-derived blade K = 4 is off by
+    # floquet_modes raises K (to 8). Reference: K = 16. (K = 4 is off by
     # 1.4e-4 /rev here, among the largest of the figures' extreme points, measured.)
     from tefcore.linear.stability import periodic_state_matrix
     from tefcore.paper.figures.catalogue import figure_config
@@ -283,7 +281,7 @@ def test_statically_diverged_flap_is_refused_not_trimmed(mdart):
     assert np.rad2deg(abs(ok.q[-1].mean())) < MAX_FLAP_DEFLECTION_DEG
 
 
-# ------------------------------------------------------------------ issue 13, finding 8
+# ------------------------------------------------------------------ stiff and damped actuators
 
 
 # with damping 1e5 the TEF root (about -4.5e3 /rev) is far below the lifting's resolution:
@@ -291,8 +289,8 @@ def test_statically_diverged_flap_is_refused_not_trimmed(mdart):
 @pytest.mark.filterwarnings("ignore:lifted eigenvalues do not split:RuntimeWarning")
 @pytest.mark.parametrize("override", [{"actuator.stiffness": 1e12}, {"actuator.damping": 1e5}])
 def test_stiff_or_heavily_damped_actuator_gives_no_spurious_instability(mdart, override):
-    """Finding 8: with a rigid actuator (stiffness 1e12 N m/rad) torsion 1 came out at
-    +3.249 /rev at the default 72 Magnus steps, and at +15.7 with damping 1e5; the
+    """With a rigid actuator (stiffness 1e12 N m/rad) torsion 1 comes out at +3.249 /rev
+    at a fixed 72 Magnus steps, and at +15.7 with damping 1e5; the
     step-doubling control gives a converged root (on the re-derived MDART data -0.627,
     the same at 72, 288 and 720 steps to 7e-5, measured; the tolerance
     1e-3 + 1e-3 |sigma| is 1.6e-3 for it)."""
@@ -303,9 +301,9 @@ def test_stiff_or_heavily_damped_actuator_gives_no_spurious_instability(mdart, o
 
 
 def test_an_untrustworthy_floquet_result_is_a_clear_error(mdart):
-    """Finding 10: actuator.damping = 1e6 failed with scipy's 'array must not contain
-    infs or NaNs'; now the transition matrices' accuracy is checked and the point fails
-    naming the exponent, the estimate and what to raise."""
+    """actuator.damping = 1e6 does not end in scipy's 'array must not contain infs or
+    NaNs': the transition matrices' accuracy is checked and the point fails naming the
+    exponent, the estimate and what to raise."""
     with pytest.raises(Exception) as info:
         stability(mdart.with_overrides({"actuator.damping": 1e6}))
     assert type(info.value).__name__ == "FloquetAccuracyError"

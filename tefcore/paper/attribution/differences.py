@@ -31,8 +31,8 @@ measures it); ``tefcore reproduce --no-attribution`` skips it.
 
 References
 ----------
-.. [1] Issue 23 of tefcore: calibrate on what the paper states, and attribute
-   every disagreement with the paper.
+.. [1] tefcore's aim for the attribution: calibrate on what the paper
+   states, and attribute every disagreement with the paper.
 .. [2] The paper's assumptions and their plausible ranges: notebook 08 and
    :data:`tefcore.paper.attribution.assumptions.ASSUMPTIONS`.
 
@@ -66,7 +66,7 @@ from .search import Target, lever_rows
 __all__ = ["COLUMNS", "EXTRA_COLUMNS", "Attribution", "attribute", "attribute_run",
            "failing_claims", "summarise", "write_attribution"]
 
-#: The columns the issue asks for, in order.
+#: The attribution's columns, in order.
 COLUMNS = ["claim", "status", "assumption", "flips_at", "plausible_low", "plausible_high",
            "within_plausible"]
 #: Further columns: the figure, what the settings are and the baseline's, whether the

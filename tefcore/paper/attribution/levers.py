@@ -10,7 +10,7 @@ paper, with the range over which it is plausible:
   asks for it; an integer field (``model.n_modes``) is *discrete*: each
   value of its range is tried;
 * the Fig. 6 flap-system inertia (:func:`fig6_lever`), the one hook for the
-  flap-system calibration of issue 23: ``actuator.reflected_inertia`` from 0
+  flap-system calibration to Fig. 6: ``actuator.reflected_inertia`` from 0
   to the ``mdart-fig6`` value;
 * the model options of :data:`MODEL_OPTIONS` (unsteady aerodynamics, dynamic
   inflow, the multiple-load-path hub, the XFOIL C81 deck), discrete.
@@ -50,7 +50,7 @@ __all__ = ["FIG6_CONFIG", "FIG6_FIELD", "FIG6_NAME", "Lever", "MODEL_OPTIONS",
            "fig6_lever", "levers", "option_lever", "pair_lever",
            "placement_levers"]
 
-#: The field of the flap system's reflected actuator inertia (issue 23's calibration).
+#: The field of the flap system's reflected actuator inertia (the Fig. 6 calibration).
 FIG6_FIELD = "actuator.reflected_inertia"
 #: The packaged configuration whose ``FIG6_FIELD`` reproduces Fig. 6: the top of its range.
 FIG6_CONFIG = "mdart-fig6"

@@ -2,7 +2,7 @@
 
 A notebook's own work is often smaller than what every fresh kernel pays
 before its first cell: ~0.9 s to start and ~2.2 s to import numpy, scipy,
-pandas, matplotlib and tefcore (measured, issue 25).  :class:`WarmKernel`
+pandas, matplotlib and tefcore (measured on two shared cores).  :class:`WarmKernel`
 starts one kernel, imports those modules in it once (:data:`WARM_IMPORTS`,
 without binding a name in the user's namespace) and then executes notebook
 after notebook in it (:func:`tefcore.paper.run.reproduce.execute_notebook`

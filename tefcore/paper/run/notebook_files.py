@@ -42,7 +42,7 @@ NOTEBOOKS = (
     "11_watch_it_flutter",
 )
 #: Wall seconds of each notebook in ``tefcore reproduce`` (kernel start, imports, HTML
-#: export included; measured on 2 shared cores at load 3-4, issue 25): the
+#: export included; measured on 2 shared cores at load 3-4): the
 #: reproduction starts the longest first, so the last to finish is a short one.
 NOTEBOOK_SECONDS = {
     "01_baseline_mdart_correlation": 9.8,
@@ -54,11 +54,9 @@ NOTEBOOK_SECONDS = {
     "07_flight_condition": 16.6,
     "08_assumptions": 40.2,
     "09_design_maps": 13.8,
-    # 64.8 until stop 38, whose Fig. 9 comparison stopped refining (33.4 s in
-    # a reproduction then, the other notebooks as above within their noise)
     "10_unsteady": 33.4,
-    # missing until stop 36 (it ran last, 21 s); 10.7 s once its GIFs drew
-    # their text once (tefcore.timedomain.animation), measured at stop 36
+    # an entry per notebook: a notebook without one would run last whatever
+    # it costs
     "11_watch_it_flutter": 10.7,
 }
 

@@ -729,9 +729,8 @@ def reproduce(out, params=None, notebooks=None, progress: bool = True,
     # thread starts: jupyter_client imports IPython for its kernel directories,
     # and matplotlib's first canvas (the fan plot, drawn here while the
     # notebooks start) reads IPython.version_info if IPython is in
-    # sys.modules -- a half-imported one raised AttributeError (seen once in a
-    # reproduction, 2026-12-02; the import is traced to
-    # jupyter_client.kernelspec._kernel_dirs_default)
+    # sys.modules -- a half-imported one raises AttributeError (the import is
+    # jupyter_client.kernelspec._kernel_dirs_default's)
     ensure_kernel()
     merged = prepare_params(params, names, nb_dir)
     same, base = base_variant(merged, names)

@@ -1,4 +1,4 @@
-"""The attribution of failing claims (issue 23): search, flips, conflicts, CSV, reproduce.
+"""The attribution of failing claims: search, flips, conflicts, CSV, reproduce.
 
 A toy point function stands in for the Floquet analysis: the TEF root's real
 part is ``k (m/m0 - f0)`` with ``m/m0`` the flap-mass factor, so a claim
@@ -198,7 +198,7 @@ def test_report_says_why_we_differ(tmp_path):
 
 
 def test_reproduce_only_writes_a_row_for_every_failing_claim(tmp_path, monkeypatch):
-    """``tefcore reproduce --only 04 07 --out o`` writes ``o/attribution.csv`` (issue 23).
+    """``tefcore reproduce --only 04 07 --out o`` writes ``o/attribution.csv``.
 
     Real notebooks (three points per figure) and a real attribution, with one
     lever (dynamic inflow) to keep it to a minute or two: the rows per claim

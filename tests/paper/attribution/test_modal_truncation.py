@@ -24,7 +24,7 @@ def test_select_modes_keeps_the_chosen_rows_and_columns():
 
 
 def test_six_modes_hide_the_coupling_that_nine_show():
-    # Measured on the MDART data (issue 23): six modes +0.32 /rev, nine +3.04; flap 4
+    # Measured on the MDART data: six modes +0.32 /rev, nine +3.04; flap 4
     # alone on top of the six +2.40.  0.05 /rev: the Floquet exponents' error and the
     # trim's tolerance are below 1e-3 /rev; the margin allows small changes of the
     # identity rules, not of the physics (a wrong coupling moves these by > 0.5).

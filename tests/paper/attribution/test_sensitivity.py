@@ -54,7 +54,7 @@ def test_flutter_root_is_the_least_stable_flap_root():
     share = res.modes["share_TEF"].to_numpy()
     involved = share >= 0.1
     assert row["real_part"] == res.modes["real_part"][involved].max()
-    # the imbalanced flap flutters (issue 12: first-draft data gave +2.5 /rev)
+    # the imbalanced flap flutters (+3.0 /rev in hover, docs/theory.md 2.8)
     assert row["real_part"] > 0
     # a root without the flap never qualifies, however unstable: a fake one
     res.modes.loc[int(np.argmin(share)), "real_part"] = 99.0

@@ -29,7 +29,7 @@ def _table():
 def test_a_line_never_joins_two_roots():
     """Known answer: the name's three pieces (root 4 up to 0.2, root 7 alone at 0.25,
     root 4 from 0.3 on) are drawn apart -- no line runs from a root at -3 /rev to
-    one at +0.5 and back, as every line did before stop 38 -- and a segment with
+    one at +0.5 and back -- and a segment with
     an uncertain end is dotted (from the last certain point on)."""
     fig, ax = plt.subplots()
     plot_modes(ax, "fig9", _table(), labels=("TEF",), flutter=False)

@@ -1,4 +1,4 @@
-"""``tefcore batch`` (issue 18): one pool, failures recorded, resume, stale refusal, report.
+"""``tefcore batch``: one pool, failures recorded, resume, stale refusal, report.
 
 A real small batch (notebook 04 at 4 CG offsets, two runs of the reviewer's
 example) runs once per module; the rest replaces the notebooks with fakes

@@ -1,4 +1,4 @@
-"""The batch file of ``tefcore batch`` (issue 18): runs, grids, layers, and clear errors.
+"""The batch file of ``tefcore batch``: runs, grids, layers, and clear errors.
 
 Every problem is found before anything runs, as one :class:`BatchFileError`
 naming the file, the run and the field, with a close match where there is

@@ -1,4 +1,4 @@
-"""Ctrl-C stops ``tefcore reproduce`` and ``tefcore batch`` with their kernels (issue 24, item 7).
+"""Ctrl-C stops ``tefcore reproduce`` and ``tefcore batch`` with their kernels.
 
 The commands run in a child process on a notebook that sleeps (a stand-in
 for a long figure, set with ``TEFCORE_NOTEBOOKS``); once its kernel is up the

@@ -1,4 +1,4 @@
-"""``tefcore notebooks`` and ``tefcore reproduce`` as a user meets them (issue 14, item 3)."""
+"""``tefcore notebooks`` and ``tefcore reproduce`` as a user meets them."""
 
 from pathlib import Path
 
@@ -66,7 +66,7 @@ def test_copied_notebooks_are_what_reproduce_runs(tmp_path, monkeypatch):
         nbf.check_parameters({"04_cg_offset": {"n_pointz": 3}}, ["04_cg_offset"], dest)
 
 
-# ------------------------------------------------------------------ explorer (item 5)
+# ------------------------------------------------------------------ explorer
 
 
 def test_static_explorer_marks_the_tef_and_flutter_roots():

@@ -1,6 +1,6 @@
 """Claims print their values with the quantity's name and the unit of the plot beside them
-(issue 22, item 5): Fig. 17's claim printed a damping ratio "0 1" (unit "1") next to a
-panel in 1/rev."""
+(Fig. 17's claim, a damping ratio, must not print as "0 1" -- unit "1" -- next to a
+panel in 1/rev)."""
 
 from dataclasses import replace
 

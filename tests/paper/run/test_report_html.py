@@ -1,6 +1,6 @@
 """The reproduction report: one model, markdown and HTML, checked structurally.
 
-Issue 14, item 4: images embedded, every in-page link resolves, no literal
+Images embedded, every in-page link resolves, no literal
 markdown in the HTML, a viewport for small screens, a real caption under each
 figure, claims beside their figure, departures per figure and once in full.
 """

@@ -1,4 +1,4 @@
-"""The report's header explains every claim status and tag in one sentence (issue 22, item 4)."""
+"""The report's header explains every claim status and tag in one sentence."""
 
 import re
 
@@ -57,7 +57,7 @@ def test_ambiguous_is_explained_as_an_exceptional_point_inside_the_range(pages):
                   "swept parameter and the blade-flap coupling", "has no answer",
                   "inside the claim's range", "the reason names it"):
         assert words in sentence, words
-    # the old wording (a veering as a reason for ambiguity) is gone
+    # a veering is not a reason for ambiguity
     assert "veering" not in text
 
 

@@ -1,4 +1,4 @@
-"""``reproduce --only`` writes only what the chosen notebooks make (issue 24, item 7).
+"""``reproduce --only`` writes only what the chosen notebooks make.
 
 The baseline blade's files at the top of the output folder
 (``mdart_modes.csv``, ``mdart_frequency_checks.csv``, ``mdart_fanplot.png``)
