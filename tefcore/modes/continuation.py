@@ -29,7 +29,12 @@ import numpy as np
 
 from ..floquet import floquet_motions
 from ..floquet.second_order import STATE_MIN_RATE, SecondOrderSystem, periodic_modes
-from .final_names import flap_free_by_participation, free_labels, second_roots_of_locks
+from .final_names import (
+    flap_free_by_participation,
+    free_labels,
+    name_lock_pairs,
+    second_roots_of_locks,
+)
 from .labels import coordinate_shares, label_modes, tracking_shapes, trajectory_shapes
 from .march import FLAP_ACTIVE, March, compact_basis, flap_share, lock_matrix
 from .names import base_name, is_locked, locked_name, pair_text
@@ -734,10 +739,14 @@ def continue_roots(system: SecondOrderSystem, labels, final=None, *, basis=None,
         if final_shares is not None:
             carried = free_labels(carried, motion, final_shares, labels, final.exponents)
         origin, changed = flap_free_by_participation(origin, motion, carried)
-        origin, renamed = second_roots_of_locks(origin, list(march.origin),
-                                                 final.exponents if final is not None
-                                                 else march.eig)
+        eig_final = final.exponents if final is not None else march.eig
+        origin, renamed = second_roots_of_locks(origin, list(march.origin), eig_final)
         certain = certain & ~changed & ~renamed
+        # a locked pair is one mode's pair: named as a pair, and decided by its
+        # paths or by completeness whatever its paths' step-by-step certainty
+        origin, decided = name_lock_pairs(origin, eig_final, motion)
+        paired = lock_matrix(eig_final).any(axis=1)
+        certain = np.where(paired, decided, certain)
         held = dict(zip(names0, res0.exponents, strict=True))
         uncoupled = np.array([held.get(o, held.get(base_name(o), np.nan)) for o in origin],
                              complex)

@@ -5,7 +5,8 @@ proportion to its motion of the flap: a root of the coupled system that does
 not move it is the blade's own root of the coordinate it carries, named by
 participation (:func:`free_labels`, :func:`flap_free_by_participation`); the
 roots that move the flap keep their paths' names.  A lock's second root no
-path explains is named beside its partner (:func:`second_roots_of_locks`).
+path explains is named beside its partner (:func:`second_roots_of_locks`),
+and every locked pair is named as one mode's pair (:func:`name_lock_pairs`).
 """
 
 from __future__ import annotations
@@ -13,10 +14,11 @@ from __future__ import annotations
 import numpy as np
 
 from ..assignment import linear_sum_assignment
-from .march import FLAP_ACTIVE, same_lock
-from .names import base_name, is_locked, is_tef, locked_name
+from .march import FLAP_ACTIVE, lock_matrix, same_lock
+from .names import TEF_NAME, base_name, is_locked, is_tef, locked_name
 
-__all__ = ["flap_free_by_participation", "free_labels", "second_roots_of_locks"]
+__all__ = ["flap_free_by_participation", "free_labels", "name_lock_pairs",
+           "second_roots_of_locks"]
 
 
 def free_labels(carried, motion, shares, labels, eig=None):
@@ -148,6 +150,105 @@ def second_roots_of_locks(names, paths, eig):
             names[i] = second
             renamed[i] = True
     return names, renamed
+
+
+def _lock_pairs(members, names, eig):
+    """The pairs of one lock class: roots of one name first, the rest by real part.
+
+    A class is the real roots at one ``k/2`` (multipliers of one sign); each
+    complex pair that locked gave two of them.  Two roots already of one name
+    are a pair; the others are paired in order of their real parts (the two
+    of a pair share the complex root's decay before it split, so they lie
+    next to each other), which depends on no eigensolver's order.
+    """
+    members = sorted(members, key=lambda i: (eig[i].real, i))
+    pairs, left = [], []
+    for base in dict.fromkeys(base_name(names[i]) for i in members):
+        same = [i for i in members if base and base_name(names[i]) == base]
+        while len(same) >= 2:
+            pairs.append((same.pop(0), same.pop(0)))
+        left += same
+    left += [i for i in members if not base_name(names[i])]
+    left.sort(key=lambda i: (eig[i].real, i))
+    pairs += [(left[k], left[k + 1]) for k in range(0, len(left) - 1, 2)]
+    return pairs
+
+
+def name_lock_pairs(names, eig, motion):
+    """Every locked pair named as one mode's pair, ``X`` and ``X (locked)``.
+
+    The two real roots of a lock at ``k/2`` are one complex pair of the
+    coupled system that locked: one mode.  Which of the two a path reached is
+    decided by round-off (both lie at the same distance from the complex root
+    they split from), so a pair is named as a pair, never root by root: the
+    name ``X`` both its roots' paths agree on; where they disagree (one path
+    ended at the lock and the other root took a name from elsewhere), the one
+    of their two names that no other root of the point carries -- every
+    uncoupled mode continues into exactly one complex root or one locked pair
+    (completeness).  Which root of the pair is written ``X`` and which
+    ``X (locked)`` is the roles' rule (the plain name to the less stable).
+
+    Parameters
+    ----------
+    names : list of str
+        The roots' names after the final naming (``""``: none).
+    eig : numpy.ndarray of complex
+        Their Floquet exponents [/rev].
+    motion : numpy.ndarray
+        Their flap motion shares (:data:`FLAP_ACTIVE`): where both names are
+        free, a pair that moves the flap is the TEF's.
+
+    Returns
+    -------
+    names : list of str
+    decided : numpy.ndarray of bool
+        Per root of a pair: its name followed from its paths or from
+        completeness; False where the rule had to choose (both names free or
+        neither); True for roots in no pair.
+
+    Examples
+    --------
+    The TEF's pair locked at 4.5 /rev (3.5 by one root's dominant harmonic),
+    its second root given blade flap 3's name while blade flap 3 itself is
+    the complex root at 5.8 /rev:
+
+    >>> import numpy as np
+    >>> eig = np.array([-6.40 + 3.5j, -5.31 + 4.5j, -0.51 + 5.80j])
+    >>> names, decided = name_lock_pairs(["TEF", "blade flap 3 (locked)", "blade flap 3"],
+    ...                                  eig, np.array([0.9, 0.9, 0.1]))
+    >>> sorted(names[:2]), decided.tolist()
+    (['TEF', 'TEF (locked)'], [True, True, True])
+    """
+    eig = np.asarray(eig, complex)
+    names = list(names)
+    decided = np.ones(len(names), bool)
+    lock = lock_matrix(eig)
+    seen: set = set()
+    for i in range(len(names)):
+        if i in seen or not lock[i].any():
+            continue
+        members = [i, *np.flatnonzero(lock[i]).tolist()]
+        seen.update(members)
+        for a, b in _lock_pairs(members, names, eig):
+            na, nb = base_name(names[a]), base_name(names[b])
+            if na and na == nb:
+                x, sure = na, True
+            else:
+                others = {base_name(names[k]) for k in range(len(names)) if k not in (a, b)}
+                free = [n for n in dict.fromkeys((na, nb)) if n and n not in others]
+                if len(free) == 1:
+                    x, sure = free[0], True
+                elif (len(free) == 2 and TEF_NAME in free
+                      and max(motion[a], motion[b]) >= FLAP_ACTIVE):
+                    x, sure = TEF_NAME, False
+                else:
+                    # the less stable root's own name (the one a claim reads)
+                    x = (na, nb)[int(eig[b].real > eig[a].real)] or na or nb
+                    sure = False
+            if x:
+                names[a], names[b] = x, locked_name(x)
+            decided[[a, b]] = sure
+    return names, decided
 
 
 def flap_free_by_participation(origin, motion, carried):

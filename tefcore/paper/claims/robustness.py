@@ -1,0 +1,152 @@
+"""Verdicts that round-off cannot tip: the claims checked again on nudged inputs.
+
+A relative change of 1e-12 or 1e-9 of the blade's mass, the rotor speed, the
+air density or the radius has no engineering meaning; it changes the
+round-off of every number the solver computes, as another BLAS kernel or
+another machine does.  A verdict that such a nudge moves was decided by
+round-off.  :func:`nudged_runs` checks a set of figures' claims on the
+configuration and on nudged copies of it; :func:`differences` lists what
+moved: a claim's status, a computed value beyond a relative 1e-6, a root's
+name or the certainty of its name at any point of any figure.  The test suite
+runs it on the figures whose roots lock at k/2 (Figs. 12 and 15).
+
+Examples
+--------
+>>> from tefcore.config.io import load_config
+>>> cfg = nudge(load_config("mdart"), "rotor.rotor_speed", 1e-9)
+>>> float(cfg.rotor.rotor_speed / load_config("mdart").rotor.rotor_speed - 1) < 2e-9
+True
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import pandas as pd
+
+from ...config.configuration import resolve_field
+from ..figures.frames import compute_figure
+from .reference import load_claims
+from .validation import sweep_values, validate_all
+
+__all__ = ["NUDGES", "VALUE_RTOL", "NudgedRun", "differences", "nudge", "nudged_runs"]
+
+#: The nudges: (field, relative change).  Far below any engineering meaning,
+#: of the size of the round-off another BLAS kernel gives.
+NUDGES = (("blade.mass_scale", 1e-12), ("rotor.rotor_speed", 1e-9),
+          ("rotor.air_density", -1e-12), ("rotor.radius", 1e-9))
+
+#: Relative agreement required of a claim's computed value under a nudge: a
+#: nudge of 1e-9 moves a smooth result by about 1e-9 times its sensitivity
+#: (order one for these fields), so 1e-6 leaves a thousandfold room for the
+#: solver's own error control while any reading that jumps (a lock read at
+#: k - 1/2 instead of k + 1/2: 6 % on Fig. 12's slope) fails it.
+VALUE_RTOL = 1e-6
+
+#: The columns of a figure's table compared point by point.
+_NAMED = ("label", "identity_certain")
+
+
+@dataclass
+class NudgedRun:
+    """The claims and the figures' tables on one configuration.
+
+    Parameters
+    ----------
+    label : str
+        ``"base"`` or the nudge (``"rotor.radius +1e-09"``).
+    claims : pandas.DataFrame
+        :func:`tefcore.paper.claims.validation.validate_all` of the figures' claims.
+    tables : dict
+        Figure -> its sweep table.
+    """
+
+    label: str
+    claims: pd.DataFrame
+    tables: dict
+
+
+def nudge(cfg, field: str, rel: float):
+    """``cfg`` with one numeric field scaled by ``1 + rel``.
+
+    Parameters
+    ----------
+    cfg : tefcore.config.configuration.Config
+    field : str
+        A scalar numeric field (``"rotor.radius"``).
+    rel : float
+        The relative change.
+    """
+    section, name = resolve_field(field)
+    value = getattr(getattr(cfg, section), name)
+    return cfg.with_overrides({field: float(value) * (1.0 + rel)})
+
+
+def _run(cfg, figures, label) -> NudgedRun:
+    claims = [c for c in load_claims() if c.figure in figures]
+    results = {}
+    for fig in figures:
+        mine = [c for c in claims if c.figure == fig and c.kind != "not_reproducible"]
+        results[fig] = compute_figure(fig, cfg, sweep_values(fig, mine))
+    table = validate_all(cfg=cfg, results=results, claims=claims)
+    return NudgedRun(label, table, {f: r.table for f, r in results.items()})
+
+
+def nudged_runs(cfg, figures, nudges=NUDGES) -> list[NudgedRun]:
+    """The claims of ``figures`` on ``cfg`` and on each nudged copy of it.
+
+    Parameters
+    ----------
+    cfg : tefcore.config.configuration.Config
+    figures : sequence of str
+        Stability figures (``"fig12"``).
+    nudges : sequence of (str, float)
+        (field, relative change); default :data:`NUDGES`.
+
+    Returns
+    -------
+    list of NudgedRun
+        The base run first.
+    """
+    out = [_run(cfg, figures, "base")]
+    for field, rel in nudges:
+        out.append(_run(nudge(cfg, field, rel), figures, f"{field} {rel:+.0e}"))
+    return out
+
+
+def differences(base: NudgedRun, other: NudgedRun, rtol: float = VALUE_RTOL) -> list[str]:
+    """What a nudge moved: statuses, values, names and their certainty.
+
+    Parameters
+    ----------
+    base, other : NudgedRun
+    rtol : float
+        Relative agreement of computed values (:data:`VALUE_RTOL`).
+
+    Returns
+    -------
+    list of str
+        One line per difference (empty: the verdicts are the physics').
+    """
+    out = []
+    a = base.claims.set_index("id")
+    b = other.claims.set_index("id").reindex(a.index)
+    for cid in a.index:
+        if a.at[cid, "status"] != b.at[cid, "status"]:
+            out.append(f"{other.label}: {cid} {a.at[cid, 'status']} -> {b.at[cid, 'status']}")
+        va, vb = float(a.at[cid, "computed_value"]), float(b.at[cid, "computed_value"])
+        if np.isnan(va) != np.isnan(vb) or (
+                np.isfinite(va) and abs(va - vb) > rtol * max(abs(va), abs(vb), 1e-300)):
+            out.append(f"{other.label}: {cid} value {va:.10g} -> {vb:.10g}")
+    for fig, ta in base.tables.items():
+        tb = other.tables[fig]
+        if len(ta) != len(tb):
+            out.append(f"{other.label}: {fig} has {len(tb)} rows, {len(ta)} without the nudge")
+            continue
+        for col in _NAMED:
+            diff = ta[col].astype(str).to_numpy() != tb[col].astype(str).to_numpy()
+            for i in np.flatnonzero(diff):
+                out.append(f"{other.label}: {fig} at {ta['value'].iloc[i]} row {i}: {col} "
+                           f"{ta[col].iloc[i]} -> {tb[col].iloc[i]}")
+    return out
