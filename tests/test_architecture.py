@@ -45,7 +45,7 @@ PACKAGE_DIR = Path(tefcore.__file__).resolve().parent
 #: not import each other.  The package's face (``tefcore/__init__.py``) lazily
 #: exports names from every layer (PEP 562) and is exempt.
 LAYERS = (
-    ("_version", "units", "errors", "runtime", "fourier", "assignment", "faces"),  # no imports
+    ("_version", "units", "errors", "runtime", "fourier", "faces"),  # no imports
     ("provenance", "safe_io"),            # files, fingerprints
     ("config",),                          # the configuration: data, no physics
     ("structure", "aero", "floquet"),     # blade and hub; section airloads; Floquet theory

@@ -12,7 +12,6 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..assignment import linear_sum_assignment
 from .march import FLAP_ACTIVE, base_name, same_lock
 
 __all__ = ["flap_free_by_participation", "free_labels", "second_roots_of_locks"]
@@ -198,6 +197,7 @@ def flap_free_by_participation(origin, motion, carried):
     cost = np.array([[3.0 if k >= repeat else 0.0 if n and n == origin[i] else 1.0
                       if base_name(n) == base_name(str(carried[i])) else 2.0
                       for k, n in enumerate(pool)] for i in active])
+    from scipy.optimize import linear_sum_assignment  # on first use: 0.2 s
     rows, cols = linear_sum_assignment(cost)
     for r, c in zip(rows, cols, strict=True):
         i = active[r]
