@@ -85,10 +85,6 @@ LONG_FUNCTIONS: dict[str, str] = {
         "with the error docs/c81_format.md specifies for it",
     "tefcore.cli.build_parser":
         "declarative: one add_argument per option of every subcommand, in help order",
-    "tefcore.floquet._analysis.floquet_modes":
-        "the accuracy loop: sub-intervals raised for damped roots, steps doubled until "
-        "every exponent meets its tolerance, the lift's round-off bound; its branches are "
-        "the documented outcomes (theory 5.6a)",
     "tefcore.model.jacobian.jacobian_blocks":
         "the dispatch between the exact Jacobian and the difference schemes with the "
         "shed-wake and inflow states; one screen",
