@@ -109,8 +109,6 @@ LONG_FUNCTIONS: dict[str, str] = {
     "tefcore.structure.blade.multiple_load_path_model":
         "declarative: the hub's components, joints and couplings listed in the order of "
         "docs/theory.md 2.5a",
-    "tefcore.sweeps.store._record_problem":
-        "one check per field of a stored record, each naming the field",
     "tefcore.trimming.trim._jacobian":
         "the Newton matrix assembled in place from the exact Jacobian's blocks, the "
         "controls' and the inflow's columns (theory 7)",
