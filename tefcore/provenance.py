@@ -218,7 +218,8 @@ def environment_note(path, then, now) -> str | None:
 
     Examples
     --------
-    >>> print(environment_note("s.jsonl", {"numpy": "2.3.0"}, {"numpy": "2.4.6"}))  # doctest: +NORMALIZE_WHITESPACE
+    >>> note = environment_note("s.jsonl", {"numpy": "2.3.0"}, {"numpy": "2.4.6"})
+    >>> print(note)  # doctest: +NORMALIZE_WHITESPACE
     resuming s.jsonl: its points were computed with numpy 2.3.0 (now 2.4.6); the names and
     verdicts do not depend on it, values may differ in the last digits
     """

@@ -45,7 +45,7 @@ PACKAGE_DIR = Path(tefcore.__file__).resolve().parent
 #: not import each other.  The package's face (``tefcore/__init__.py``) lazily
 #: exports names from every layer (PEP 562) and is exempt.
 LAYERS = (
-    ("_version", "units", "errors", "runtime", "fourier", "assignment", "faces"),  # no imports
+    ("_version", "units", "errors", "runtime", "fourier", "faces"),  # no imports
     ("provenance", "safe_io"),            # files, fingerprints
     ("config",),                          # the configuration: data, no physics
     ("structure", "aero", "floquet"),     # blade and hub; section airloads; Floquet theory
@@ -85,10 +85,6 @@ LONG_FUNCTIONS: dict[str, str] = {
         "with the error docs/c81_format.md specifies for it",
     "tefcore.cli.build_parser":
         "declarative: one add_argument per option of every subcommand, in help order",
-    "tefcore.floquet._analysis.floquet_modes":
-        "the accuracy loop: sub-intervals raised for damped roots, steps doubled until "
-        "every exponent meets its tolerance, the lift's round-off bound; its branches are "
-        "the documented outcomes (theory 5.6a)",
     "tefcore.model.jacobian.jacobian_blocks":
         "the dispatch between the exact Jacobian and the difference schemes with the "
         "shed-wake and inflow states; one screen",
@@ -113,8 +109,6 @@ LONG_FUNCTIONS: dict[str, str] = {
     "tefcore.structure.blade.multiple_load_path_model":
         "declarative: the hub's components, joints and couplings listed in the order of "
         "docs/theory.md 2.5a",
-    "tefcore.sweeps.store._record_problem":
-        "one check per field of a stored record, each naming the field",
     "tefcore.trimming.trim._jacobian":
         "the Newton matrix assembled in place from the exact Jacobian's blocks, the "
         "controls' and the inflow's columns (theory 7)",

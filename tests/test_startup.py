@@ -2,17 +2,15 @@
 
 Start-up is most of a one-point command's time: ``tefcore --version`` and
 ``--help`` import no numerics at all, and ``tefcore stability`` imports what a
-point needs (numpy, scipy.linalg) but not pandas (the roots are named on
-the table's columns, and the command words the columns, tefcore.cli.text;
-the table itself is built on first use, for ``--csv``), scipy.constants (the
-unit factors are written out), scipy.integrate (only the tension integral of
-a tabulated mass uses it), scipy.interpolate (only a C81 deck read),
-scipy.sparse (the blade's uncoupled field blocks are the components of a 4 x 4
-graph, found without it; a Floquet lift imports it only for repeated
-multipliers) nor scipy.optimize (the momentum
-inflow's root is a safeguarded Newton iteration, and tefcore.assignment
-solves the continuation's small assignments itself where their optimum is
-unique -- at the default point, mu = 0.3, it is).
+point needs: numpy, scipy.linalg, and scipy.optimize for the assignments that
+name the modes (it brings scipy.constants, scipy.sparse, scipy.spatial and
+scipy.special with it), but not pandas (the roots are named on the table's
+columns, and the command words the columns, tefcore.cli.text; the table
+itself is built on first use, for ``--csv``), scipy.integrate (only the
+tension integral of a tabulated mass uses it) nor scipy.interpolate (only a
+C81 deck read).  Importing the solver imports no scipy.optimize: the modules
+that assign import :func:`scipy.optimize.linear_sum_assignment` where they
+call it.
 """
 
 from __future__ import annotations
@@ -51,9 +49,19 @@ def test_version_and_help_import_no_numerics(argv):
 def test_stability_imports_only_what_a_point_needs(argv):
     loaded = _modules_after(argv)
     assert {"numpy", "scipy.linalg", "tefcore.linear.stability"} <= loaded
-    for name in ("pandas", "scipy.constants", "scipy.integrate", "scipy.interpolate",
-                 "scipy.optimize", "scipy.sparse", "matplotlib"):
+    for name in ("pandas", "scipy.integrate", "scipy.interpolate", "matplotlib"):
         assert name not in loaded, name
+
+
+def test_importing_the_solver_leaves_scipy_optimize_to_the_first_assignment():
+    # the modules that label and match modes import scipy's assignment where
+    # they call it: a program that imports the solver and never names a mode
+    # does not pay for scipy.optimize (0.15-0.2 s of import)
+    code = ("import sys, tefcore.linear.stability; "
+            "print('scipy.optimize' in sys.modules)")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         check=True)
+    assert out.stdout.strip() == "False"
 
 
 def _program(prelude: str) -> subprocess.CompletedProcess:

@@ -82,7 +82,7 @@ def measure(cfg, name, **kw):
 
 def main():
     cfg = load_config("mdart-fig6")
-    units = rotor_units(cfg)
+    units = rotor_units(cfg.rotor, cfg.blade)
     i_a, span = cfg.actuator.reflected_inertia, cfg.flap.span * cfg.rotor.radius
     per_span = units.inertia(i_a) / cfg.flap.span
     shift = i_a * cfg.rotor.rotor_speed**2

@@ -11,7 +11,6 @@ import warnings
 import numpy as np
 import scipy.linalg
 
-from ..assignment import linear_sum_assignment
 from ._multipliers import lift, log_roots, root_cut, select_roots
 from ._propagators import (
     TWO_PI,
@@ -101,6 +100,7 @@ def error_estimates(res, coarse, znorm, atol):
     unit = TWO_PI / res.period
     d = eta[:, None] - np.asarray(coarse)[None, :]
     d = np.abs(d.real) + 1j * np.abs(np.mod(d.imag + unit / 2, unit) - unit / 2)
+    from scipy.optimize import linear_sum_assignment  # on first use: 0.2 s
     rows, cols = linear_sum_assignment(np.abs(d))
     est = np.empty(eta.shape, complex)
     est[rows] = d[rows, cols] / (2**_ORDER - 1)

@@ -6,7 +6,7 @@ Private: the public names are those of :mod:`tefcore.floquet`.
 
 from __future__ import annotations
 
-from dataclasses import replace
+from dataclasses import dataclass, replace
 
 import numpy as np
 import scipy.linalg
@@ -290,8 +290,7 @@ def floquet_modes(A, n_steps=None, n_sub=DEFAULT_N_SUB, period=TWO_PI, method="r
     method = check_method(method)
     if on_inaccurate not in ON_INACCURATE:
         raise ValueError(f"on_inaccurate must be one of {ON_INACCURATE}, got {on_inaccurate!r}")
-    check = atol is not None
-    if check:
+    if atol is not None:
         atol, rtol = (check_tolerance(name, v) for name, v in (("atol", atol), ("rtol", rtol)))
     if min_rate is not None and not (np.isfinite(min_rate) and min_rate < 0):
         raise ValueError(f"min_rate must be a negative damping rate or None, got {min_rate!r}")
@@ -300,61 +299,115 @@ def floquet_modes(A, n_steps=None, n_sub=DEFAULT_N_SUB, period=TWO_PI, method="r
     _check_trust("root_rtol", root_rtol)
     a, n_steps, constant = sample(A, n_steps, period)
     k_sub = check_sub(n_sub, n_steps)
-    max_sub = check_int("max_sub", max_sub, 1)
-    refinable = callable(A) or constant
+    problem = _Problem(A, period, constant, method, check_int("max_sub", max_sub, 1), shapes,
+                       shift_states, min_rate, participation, root_rtol)
     if max_steps is None:
         max_steps = n_steps * 2**MAX_DOUBLINGS
     max_steps = check_int("max_steps", max_steps, 1)
-    if not check:
-        if method == "rk4":
-            rk4_step_warning(a[:3] if constant else a, period / n_steps, n_steps)
-        p = propagators(a, period / n_steps, constant, method)
-        res, _, split = _modes(p, period, k_sub, max_sub, shapes, shift_states, min_rate,
-                               participation, _frozen(a), root_rtol)
-        if not split:
-            warn_unsplit()
-        return res
+    if atol is None:
+        return _one_grid(problem, a, n_steps, k_sub)
+    return _step_doubling(problem, a, n_steps, k_sub, max_steps, (atol, rtol), on_inaccurate)
 
+
+@dataclass(frozen=True)
+class _Problem:
+    """What every grid of :func:`floquet_modes` solves: ``A`` and the options of the lift."""
+
+    A: object
+    period: float
+    constant: bool
+    method: str
+    max_sub: int
+    shapes: bool
+    shift_states: object
+    min_rate: float | None
+    participation: bool
+    root_rtol: float
+
+    @property
+    def refinable(self) -> bool:
+        """Whether ``A`` can be sampled on a finer grid (not periodic samples)."""
+        return callable(self.A) or self.constant
+
+    def resample(self, n_steps):
+        """The samples of ``A`` for ``n_steps`` steps per period."""
+        return sample(self.A, n_steps, self.period)[0]
+
+    def solve(self, a, n_steps, k_sub):
+        """``(result, max ||Phi_k||, split)`` on the grid of the samples ``a``."""
+        p = propagators(a, self.period / n_steps, self.constant, self.method)
+        return _modes(p, self.period, k_sub, self.max_sub, self.shapes, self.shift_states,
+                      self.min_rate, self.participation, _frozen(a), self.root_rtol)
+
+
+def _one_grid(problem, a, n_steps, k_sub):
+    """The modes on one grid, without error control (``atol=None``): the RK4 step-limit
+    warning of :func:`step_propagators` instead."""
+    if problem.method == "rk4":
+        rk4_step_warning(a[:3] if problem.constant else a, problem.period / n_steps, n_steps)
+    res, _, split = problem.solve(a, n_steps, k_sub)
+    return _returned(res, split)
+
+
+def _step_doubling(problem, a, n_steps, k_sub, max_steps, tolerance, on_inaccurate):
+    """The accuracy loop (docs/theory.md 5.6a): the exponents of ``N`` steps against
+    those of ``N / 2``, the steps doubled while a trusted exponent misses its
+    tolerance (or a transition matrix overflows), up to ``max_steps``; there
+    :func:`inaccurate` warns or raises.  ``tolerance``: ``(atol, rtol)``."""
     coarse = None                  # exponents on the grid with half the steps
     while True:
         try:
-            p = propagators(a, period / n_steps, constant, method)
-            res, znorm, split = _modes(p, period, k_sub, max_sub, shapes, shift_states,
-                                       min_rate, participation, _frozen(a), root_rtol)
+            res, znorm, split = problem.solve(a, n_steps, k_sub)
         except FloquetOverflowError as err:
-            if refinable and 2 * n_steps <= max_steps:      # shorter steps may not overflow
+            if problem.refinable and 2 * n_steps <= max_steps:   # shorter steps may not overflow
                 n_steps, coarse = 2 * n_steps, None
-                a = sample(A, n_steps, period)[0]
+                a = problem.resample(n_steps)
                 continue
             raise FloquetOverflowError(f"{err} (at n_steps = {n_steps} with method = "
-                                       f"{method!r}; the fastest root of the mean A is "
-                                       f"{fastest_root(a):.3g} per unit of psi)") from None
+                                       f"{problem.method!r}; the fastest root of the mean A "
+                                       f"is {fastest_root(a):.3g} per unit of psi)") from None
         k_sub = res.n_sub
         if coarse is None and n_steps % 2 == 0:
-            coarse = coarse_exponents(a[::2], period, k_sub, method, constant, min_rate)
+            coarse = coarse_exponents(a[::2], problem.period, k_sub, problem.method,
+                                      problem.constant, problem.min_rate)
         if coarse is None:                                  # odd step count: compare 2N
-            if not refinable or 2 * n_steps > max_steps:
-                if not split:
-                    warn_unsplit()
-                return res
+            if not problem.refinable or 2 * n_steps > max_steps:
+                return _returned(res, split)
             coarse, n_steps = res.exponents, 2 * n_steps
-            a = sample(A, n_steps, period)[0]
+            a = problem.resample(n_steps)
             continue
-        est, trusted = error_estimates(res, coarse, znorm, atol)
-        if min_rate is not None:            # roots below min_rate are not held to it
-            trusted &= res.exponents.real >= min_rate
-        tol_re = atol + rtol * np.abs(res.exponents.real)
-        tol_im = atol + rtol * np.abs(res.exponents)   # |eta|: see the docstring
-        bad = trusted & ((est.real > tol_re) | (est.imag > tol_im))
-        res = replace(res, error_estimates=est)
-        if not bad.any() or not refinable or 2 * n_steps > max_steps:
+        res, bad, tol_re, tol_im = _misses(res, coarse, znorm, tolerance, problem.min_rate)
+        if not bad.any() or not problem.refinable or 2 * n_steps > max_steps:
             if bad.any():      # an untrusted result is an error first (on_inaccurate="raise")
-                inaccurate(res, bad, tol_re, tol_im, method, on_inaccurate)
-            if not split:
-                warn_unsplit()
-            return res
+                inaccurate(res, bad, tol_re, tol_im, problem.method, on_inaccurate)
+            return _returned(res, split)
         coarse, n_steps = res.exponents, 2 * n_steps
-        a = sample(A, n_steps, period)[0]
+        a = problem.resample(n_steps)
+
+
+def _misses(res, coarse, znorm, tolerance, min_rate):
+    """The exponents that miss their tolerance (docs/theory.md 5.6a).
+
+    Returns the result with its error estimates (:func:`error_estimates`), the
+    trusted exponents above ``atol + rtol |sigma|`` in the damping rate or
+    ``atol + rtol |eta|`` in the frequency, and those two tolerances.  Roots
+    below ``min_rate`` are not held to them.
+    """
+    atol, rtol = tolerance
+    est, trusted = error_estimates(res, coarse, znorm, atol)
+    if min_rate is not None:            # roots below min_rate are not held to it
+        trusted &= res.exponents.real >= min_rate
+    tol_re = atol + rtol * np.abs(res.exponents.real)
+    tol_im = atol + rtol * np.abs(res.exponents)   # |eta|: see floquet_modes
+    bad = trusted & ((est.real > tol_re) | (est.imag > tol_im))
+    return replace(res, error_estimates=est), bad, tol_re, tol_im
+
+
+def _returned(res, split):
+    """`res`, after the RuntimeWarning when the lifted roots did not split."""
+    if not split:
+        warn_unsplit()
+    return res
 
 
 def _check_trust(name, value):

@@ -21,7 +21,6 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from ..aero.c81.range_summary import summarised_range_warnings
-from ..assignment import linear_sum_assignment
 from ..floquet.second_order import STATE_MIN_RATE, SecondOrderSystem
 from ..floquet.second_order import state_matrix as state_matrix
 from ..model.coupled import coupled_model
@@ -445,6 +444,7 @@ def _split_aero_roots(res, model, periodic):
     # the mean inflow root in hover, 58 % in the collective flap motion (measured)
     cand = np.flatnonzero(~aero)
     frac = coordinate_shares(res.participation[:, cand], n)
+    from scipy.optimize import linear_sum_assignment  # on first use: 0.2 s
     _, cols = linear_sum_assignment(-np.log(frac + 1e-300))
     named = res.frequencies[cand[cols]]
     for j in np.setdiff1d(np.arange(cand.size), cols):

@@ -40,7 +40,9 @@ def section_model(cfg):
     Parameters
     ----------
     cfg : tefcore.config.configuration.Config
-        The rotor configuration.
+        The whole configuration: the model section (aerodynamic model, deck,
+        flap model), the flap's chord and overhang and the rotor's airfoil
+        coefficients.
 
     Returns
     -------
@@ -526,7 +528,8 @@ def coupled_model(cfg, collective: float = 0.0, modes=None) -> CoupledModel:
     Parameters
     ----------
     cfg : tefcore.config.configuration.Config
-        The rotor configuration.
+        The whole configuration (blade modes, flap, actuator, aerodynamics,
+        flight condition and model choices).
     collective : float
         Pitch at 0.75 R [rad] at which the blade modes are computed (the
         structural flap-lag coupling depends on it).
@@ -546,7 +549,7 @@ def coupled_model(cfg, collective: float = 0.0, modes=None) -> CoupledModel:
     # the flap inside its section (also checked by blade_model; the blade modes
     # are cached by structure, and the flap's CG offset is not part of it)
     check_section_inertia(cfg)
-    units = rotor_units(cfg)
+    units = rotor_units(cfg.rotor, cfg.blade)
     modes = modes or blade_modes(cfg, collective=collective)
     r, fl = cfg.rotor, cfg.flap
     has_flap = cfg.model.tef == "dynamic"
@@ -556,7 +559,7 @@ def coupled_model(cfg, collective: float = 0.0, modes=None) -> CoupledModel:
     n = cfg.model.n_gauss
     s = modes.shapes(np.append(x, 1.0))          # the stations and the tip
     shapes = {k: s[k][:-1] for k in ("w", "dw", "v", "dv", "phi")}
-    twist = pitch_function(cfg, 0.0)(x)
+    twist = pitch_function(cfg.blade, 0.0)(x)
     om, rad, m0 = units.rotor_speed, units.radius, units.mass_per_length
     scale = {"omega": om, "speed": om * rad, "accel": om**2 * rad,
              "force": m0 * om**2 * rad, "moment": m0 * om**2 * rad**2,

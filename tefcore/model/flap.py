@@ -111,7 +111,8 @@ def flap_properties(cfg) -> FlapProperties:
     Parameters
     ----------
     cfg : tefcore.config.configuration.Config
-        The rotor configuration.
+        The whole configuration: the flap, its actuator and the rotor's radius,
+        chord and elastic axis.
 
     Returns
     -------

@@ -67,7 +67,7 @@ class SectionMotion:
     flap_accel: object
 
 
-def rotor_section_motion(cfg, x: float, *, advance_ratio: float, collective: float,
+def rotor_section_motion(rotor, blade, x: float, *, advance_ratio: float, collective: float,
                          cyclic_cos: float = 0.0, cyclic_sin: float = 0.0,
                          inflow: float = 0.0, coning: float = 0.0) -> SectionMotion:
     """Section motion of a rigid blade with zero cyclic flapping (wind-tunnel trim).
@@ -78,8 +78,10 @@ def rotor_section_motion(cfg, x: float, *, advance_ratio: float, collective: flo
 
     Parameters
     ----------
-    cfg : tefcore.config.configuration.Config
-        The rotor configuration.
+    rotor : tefcore.config.sections.RotorConfig
+        The rotor section (rotor speed and radius).
+    blade : tefcore.config.sections.BladeConfig
+        The blade section (its built-in twist).
     x : float
         Station, fraction of R.
     advance_ratio, collective, cyclic_cos, cyclic_sin, inflow, coning : float
@@ -90,9 +92,8 @@ def rotor_section_motion(cfg, x: float, *, advance_ratio: float, collective: flo
     -------
     SectionMotion
     """
-    om, rad = cfg.rotor.rotor_speed, cfg.rotor.radius
-    tw = np.interp(x, cfg.blade.stations, cfg.blade.twist) - np.interp(
-        0.75, cfg.blade.stations, cfg.blade.twist)
+    om, rad = rotor.rotor_speed, rotor.radius
+    tw = np.interp(x, blade.stations, blade.twist) - np.interp(0.75, blade.stations, blade.twist)
     mu = advance_ratio
 
     def theta(p):
@@ -124,13 +125,15 @@ def rotor_section_motion(cfg, x: float, *, advance_ratio: float, collective: flo
         flap_accel=lambda p: np.zeros_like(np.asarray(p, float)))
 
 
-def rotor_motion(cfg, **controls):
+def rotor_motion(rotor, blade, **controls):
     """Factory ``motion_at(r)`` of :func:`rotor_section_motion` by radius [m].
 
     Parameters
     ----------
-    cfg : tefcore.config.configuration.Config
-        The rotor configuration.
+    rotor : tefcore.config.sections.RotorConfig
+        The rotor section.
+    blade : tefcore.config.sections.BladeConfig
+        The blade section.
     **controls
         Keyword arguments of :func:`rotor_section_motion` (``advance_ratio``,
         ``collective``, ...).
@@ -140,8 +143,8 @@ def rotor_motion(cfg, **controls):
     callable
         ``motion_at(r) -> SectionMotion``.
     """
-    radius = cfg.rotor.radius
-    return lambda r: rotor_section_motion(cfg, r / radius, **controls)
+    radius = rotor.radius
+    return lambda r: rotor_section_motion(rotor, blade, r / radius, **controls)
 
 
 def _strips(props, motion_at, n_span):
@@ -413,7 +416,8 @@ def section_overhang_study(cfg, overhangs, delta_a, *, controls: dict, n_psi: in
     Parameters
     ----------
     cfg : tefcore.config.configuration.Config
-        The rotor configuration.
+        The whole configuration: the study varies ``flap.overhang`` in it
+        (:meth:`~tefcore.config.configuration.Config.with_overrides`).
     overhangs : sequence of float
         c_b / c_f values.
     delta_a : callable
@@ -439,7 +443,7 @@ def section_overhang_study(cfg, overhangs, delta_a, *, controls: dict, n_psi: in
                                lift_slope=c.rotor.lift_slope)
 
     aero_factory = aero_factory or default
-    motion = rotor_motion(cfg, **controls)
+    motion = rotor_motion(cfg.rotor, cfg.blade, **controls)
     rows = []
     for ov in overhangs:
         c = cfg.with_overrides({"flap.overhang": float(ov)})

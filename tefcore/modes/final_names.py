@@ -13,7 +13,6 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..assignment import linear_sum_assignment
 from .march import FLAP_ACTIVE, lock_matrix, same_lock
 from .names import TEF_NAME, base_name, is_locked, is_tef, locked_name
 
@@ -300,6 +299,7 @@ def flap_free_by_participation(origin, motion, carried):
     cost = np.array([[3.0 if k >= repeat else 0.0 if n and n == origin[i] else 1.0
                       if base_name(n) == base_name(str(carried[i])) else 2.0
                       for k, n in enumerate(pool)] for i in active])
+    from scipy.optimize import linear_sum_assignment  # on first use: 0.2 s
     rows, cols = linear_sum_assignment(cost)
     for r, c in zip(rows, cols, strict=True):
         i = active[r]

@@ -18,7 +18,6 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..assignment import linear_sum_assignment
 from .names import locked_name
 
 __all__ = ["coordinate_shares", "label_modes", "tracking_shapes", "trajectory_shapes"]
@@ -67,6 +66,7 @@ def label_modes(frac, labels, freqs, rates, disp, periodic: bool = False):
     # the plain sum can hand a coordinate a mode where its share is 1e-4
     # (seen: the TEF label on a flap mode while the TEF flutter mode took a
     # blade label)
+    from scipy.optimize import linear_sum_assignment  # on first use: 0.2 s
     rows, cols = linear_sum_assignment(-np.log(frac + 1e-300))
     out = [None] * frac.shape[1]
     for r, c in zip(rows, cols, strict=True):

@@ -55,8 +55,6 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from ..assignment import linear_sum_assignment
-
 if TYPE_CHECKING:
     import pandas as pd
 
@@ -498,6 +496,7 @@ def match_modes(prev, curr, *, predicted=None, periodic: bool | None = None) -> 
     pred = eigenvalues(pm) if predicted is None else np.asarray(predicted, complex)
     vecs_prev = [None if pv is None else pv[:, i] for i in range(len(pm))]
     cost = match_cost(pred, vecs_prev, eigenvalues(cm), cv, periodic)
+    from scipy.optimize import linear_sum_assignment  # on first use: 0.2 s
     rows, cols = linear_sum_assignment(cost)
     out = np.full(len(pm), -1)
     out[rows] = cols

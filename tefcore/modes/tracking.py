@@ -97,7 +97,6 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from ..assignment import linear_sum_assignment
 from .matching import (
     LOCK_TOL,
     as_point,
@@ -324,6 +323,7 @@ def _match_step(tracks, alive, x, predict, eig, vecs, per, prev):
     pred = np.array([tracks[t].predict(x, predict) for t in alive])
     cost, shape = match_cost(pred, [tracks[t].vec for t in alive], eig, vecs,
                              per, shape_part=True)
+    from scipy.optimize import linear_sum_assignment  # on first use: 0.2 s
     rows, cols = linear_sum_assignment(cost)
     clear, rival = decide(cost, rows, cols, shape)
     for r, c, ok in zip(rows, cols, clear, strict=True):

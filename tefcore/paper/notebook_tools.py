@@ -93,7 +93,8 @@ from .summaries import (
 )
 
 __all__ = ["AXES", "LOCUS_CAPTION", "MARKERS", "MEASURES", "PAPER_MODES", "STYLE", "base_config",
-           "check_and_save", "claims_table", "damping_figure", "damping_summary", "clean", "conditions", "counted_warnings", "curves",
+           "check_and_save", "claims_table", "clean", "conditions", "counted_warnings", "curves",
+           "damping_figure", "damping_summary",
            "departures_text", "deterministic_matplotlib", "explain", "explore",
            "figure_caption", "figure_title", "figure_values", "flight_condition",
            "format_value", "legend_below", "locus_figure",

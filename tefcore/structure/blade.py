@@ -44,20 +44,30 @@ _SECTION_SCALES = {
 }
 
 
-def rotor_units(cfg) -> RotorUnits:
-    """Reference scales of a configuration (R, Omega, m0 = 3 I_b / R^3).
+def rotor_units(rotor, blade) -> RotorUnits:
+    """Reference scales of a rotor and its blade (R, Omega, m0 = 3 I_b / R^3).
 
     Parameters
     ----------
-    cfg : tefcore.config.configuration.Config
-        The rotor configuration.
+    rotor : tefcore.config.sections.RotorConfig
+        The rotor section (radius, rotor speed).
+    blade : tefcore.config.sections.BladeConfig
+        The blade section (its flapping inertia gives m0).
 
     Returns
     -------
     tefcore.structure.scaling.RotorUnits
+
+    Examples
+    --------
+    >>> from tefcore.config.io import load_config
+    >>> cfg = load_config("mdart")
+    >>> units = rotor_units(cfg.rotor, cfg.blade)
+    >>> units.radius == cfg.rotor.radius
+    True
     """
-    return RotorUnits(radius=cfg.rotor.radius, rotor_speed=cfg.rotor.rotor_speed,
-                      mass_per_length=cfg.blade.reference_mass())
+    return RotorUnits(radius=rotor.radius, rotor_speed=rotor.rotor_speed,
+                      mass_per_length=blade.reference_mass())
 
 
 def section_function(cfg, units: RotorUnits | None = None):
@@ -69,16 +79,17 @@ def section_function(cfg, units: RotorUnits | None = None):
     Parameters
     ----------
     cfg : tefcore.config.configuration.Config
-        The rotor configuration.
+        The whole configuration: the blade tables, the flap lumped into them
+        and the rotor's chord and elastic axis that place it.
     units : tefcore.structure.scaling.RotorUnits, optional
-        Reference scales (default :func:`rotor_units` of ``cfg``).
+        Reference scales (default :func:`rotor_units` of the rotor and blade).
 
     Returns
     -------
     callable
         ``f(x)``: the nondimensional section properties at stations ``x``.
     """
-    units = units or rotor_units(cfg)
+    units = units or rotor_units(cfg.rotor, cfg.blade)
 
     def section(x):
         p = lumped_section(cfg, np.clip(x, cfg.blade.stations[0], 1.0))
@@ -87,13 +98,13 @@ def section_function(cfg, units: RotorUnits | None = None):
     return section
 
 
-def pitch_function(cfg, collective: float = 0.0):
+def pitch_function(blade, collective: float = 0.0):
     """Geometric pitch ``theta(x) = theta_75 + twist(x) - twist(0.75)`` [rad].
 
     Parameters
     ----------
-    cfg : tefcore.config.configuration.Config
-        The rotor configuration.
+    blade : tefcore.config.sections.BladeConfig
+        The blade section (its stations and built-in twist).
     collective : float, optional
         theta_75 [rad].
 
@@ -102,13 +113,13 @@ def pitch_function(cfg, collective: float = 0.0):
     callable
         ``theta(x)`` for stations ``x`` (fractions of R).
     """
-    stations = np.asarray(cfg.blade.stations, float)
-    twist = np.asarray(cfg.blade.twist, float)
+    stations = np.asarray(blade.stations, float)
+    twist = np.asarray(blade.twist, float)
     t75 = np.interp(0.75, stations, twist)
     return lambda x: collective + np.interp(x, stations, twist) - t75
 
 
-def root_springs(cfg, units: RotorUnits | None = None) -> RootSprings:
+def root_springs(hub, units: RotorUnits) -> RootSprings:
     """Equivalent bearingless-hub root restraints in rotor units.
 
     The torsion spring is the pitch link (stiffness times horn arm squared)
@@ -117,16 +128,15 @@ def root_springs(cfg, units: RotorUnits | None = None) -> RootSprings:
 
     Parameters
     ----------
-    cfg : tefcore.config.configuration.Config
-        The rotor configuration.
-    units : tefcore.structure.scaling.RotorUnits, optional
-        Reference scales (default :func:`rotor_units` of ``cfg``).
+    hub : tefcore.config.sections.HubConfig
+        The hub section (its springs, pitch link and lag damper).
+    units : tefcore.structure.scaling.RotorUnits
+        Reference scales (:func:`rotor_units`).
 
     Returns
     -------
     tefcore.structure.fem.RootSprings
     """
-    units, hub = units or rotor_units(cfg), cfg.hub
     return RootSprings(flap=units.spring(hub.flap_spring), lag=units.spring(hub.lag_spring),
                        torsion=units.spring(hub.pitch_link_torsion_stiffness
                                             + hub.torsion_spring_parallel),
@@ -140,7 +150,8 @@ def blade_model(cfg, collective: float = 0.0,
     Parameters
     ----------
     cfg : tefcore.config.configuration.Config
-        The rotor configuration.
+        The whole configuration: the blade is built from its rotor, blade,
+        hub (and hub component), flap and model sections.
     collective : float
         Geometric pitch at 0.75 R [rad]; it rotates the section principal
         axes and so couples flap and lag bending.
@@ -166,14 +177,14 @@ def blade_model(cfg, collective: float = 0.0,
     if cfg.hub.model == "multiple_load_path":
         return multiple_load_path_model(cfg, collective, n_elements)
     n = n_elements or cfg.model.n_elements
-    x_nodes = element_nodes(cfg, n)
-    units = rotor_units(cfg)
+    x_nodes = element_nodes(cfg.flap, n, cfg.rotor.root_offset)
+    units = rotor_units(cfg.rotor, cfg.blade)
     section = section_function(cfg, units)
     # the section mass is linear between the blade stations: exact tension
     stations = np.asarray(cfg.blade.stations, float)
     tension = tension_piecewise_linear(stations, section(stations)["mass"])
-    beam = assemble_beam(x_nodes, section, pitch_function(cfg, collective),
-                         root_springs(cfg, units), tension=tension)
+    beam = assemble_beam(x_nodes, section, pitch_function(cfg.blade, collective),
+                         root_springs(cfg.hub, units), tension=tension)
     # positive definite by construction when the sections pass
     # check_section_inertia (0.1 ms: a Cholesky of the ~180 free dofs)
     f = beam.free
@@ -237,8 +248,9 @@ def multiple_load_path_model(cfg, collective: float = 0.0, n_elements: int | Non
     Parameters
     ----------
     cfg : tefcore.config.configuration.Config
-        Configuration with the hub sections ``flexbeam``, ``torque_tube``,
-        ``pitch_link`` and ``snubber``.
+        The whole configuration: the hub sections ``flexbeam``,
+        ``torque_tube``, ``pitch_link`` and ``snubber`` with ``hub``,
+        ``rotor``, ``blade``, ``flap`` and ``model``.
     collective : float
         Geometric pitch at 0.75 R [rad].
     n_elements : int, optional
@@ -267,7 +279,7 @@ def multiple_load_path_model(cfg, collective: float = 0.0, n_elements: int | Non
     if n_blade < 2:
         raise ValueError(f"n_elements = {n_elements or cfg.model.n_elements} leaves {n_blade} "
                          "main-blade element(s) after the flexbeam and torque tube; at least 2")
-    units = rotor_units(cfg)
+    units = rotor_units(cfg.rotor, cfg.blade)
     r0, xc = cfg.rotor.root_offset, fb.clevis
     xt = tt.inboard if torque_tube else r0
     blade_section = section_function(cfg, units)
@@ -276,7 +288,7 @@ def multiple_load_path_model(cfg, collective: float = 0.0, n_elements: int | Non
     m_f, m_t = units.mass_per_len(fb.mass), units.mass_per_len(tt.mass)
     tube_force = 0.5 * m_t * (xc**2 - xt**2) if torque_tube else 0.0   # per Omega^2
     clevis_tension = float(blade_tension(xc)) + tube_force
-    blade_pitch = pitch_function(cfg, collective)
+    blade_pitch = pitch_function(cfg.blade, collective)
     theta_c = float(blade_pitch(xc))
     # uniform GJ: the elastic wind-up of the flexbeam is linear in x
     wind = (theta_c - fb.precollective) / (xc - r0)
@@ -285,7 +297,7 @@ def multiple_load_path_model(cfg, collective: float = 0.0, n_elements: int | Non
                   hub_beam_section(fb, units, fb.ka),
                   lambda x: fb.precollective + wind * (np.asarray(x, float) - r0),
                   lambda x: clevis_tension + 0.5 * m_f * (xc**2 - np.asarray(x, float) ** 2)),
-        Component("blade", element_nodes(cfg, n_blade, start=xc), blade_section, blade_pitch,
+        Component("blade", element_nodes(cfg.flap, n_blade, xc), blade_section, blade_pitch,
                   blade_tension),
     ]
     joints = [Joint("flexbeam", fb.n_elements, "blade", 0)]
@@ -341,8 +353,8 @@ def multiple_load_path_model(cfg, collective: float = 0.0, n_elements: int | Non
     return beam
 
 
-def element_nodes(cfg, n: int, start: float | None = None) -> np.ndarray:
-    """``n`` elements from the structural root to the tip, with nodes on the flap edges.
+def element_nodes(flap, n: int, start: float) -> np.ndarray:
+    """``n`` elements from ``start`` to the tip, with nodes on the flap edges.
 
     Equal elements, except that the free interior node nearest each flap edge
     is moved onto it: the flap's CG-offset share is a step in the section
@@ -350,39 +362,37 @@ def element_nodes(cfg, n: int, start: float | None = None) -> np.ndarray:
     only there, and the modes then vary smoothly as Figs. 13-14 move the edges.
     An edge on the root or tip is already a node; a move that would leave an
     element shorter than 5 % of the others (two edges within one element) is
-    not made, and the step then lies inside that element.  ``start``: the
-    inboard end (default ``rotor.root_offset``; the clevis for the main blade
-    of the multiple-load-path hub).
+    not made, and the step then lies inside that element.
 
     Parameters
     ----------
-    cfg : tefcore.config.configuration.Config
-        The rotor configuration.
+    flap : tefcore.config.sections.FlapConfig
+        The flap section (its inboard and outboard edges).
     n : int
         Number of elements.
-    start : float, optional
-        Inboard end [fraction of R] (default ``rotor.root_offset``).
+    start : float
+        Inboard end [fraction of R]: ``rotor.root_offset`` for the blade on
+        root springs, the clevis for the main blade of the
+        multiple-load-path hub.
 
     Returns
     -------
     numpy.ndarray
-        The ``n + 1`` node stations, fractions of R, from
-        ``rotor.root_offset`` to 1.
+        The ``n + 1`` node stations, fractions of R, from ``start`` to 1.
 
     Examples
     --------
     >>> from tefcore.config.io import load_config
     >>> cfg = load_config("mdart")
-    >>> nodes = element_nodes(cfg, 20)
+    >>> nodes = element_nodes(cfg.flap, 20, cfg.rotor.root_offset)
     >>> on = [bool(np.isclose(nodes, e).any()) for e in (cfg.flap.inboard, cfg.flap.outboard)]
     >>> on
     [True, True]
     """
-    x0 = cfg.rotor.root_offset if start is None else start
-    nodes = np.linspace(x0, 1.0, n + 1)
-    h = (1.0 - x0) / n
+    nodes = np.linspace(start, 1.0, n + 1)
+    h = (1.0 - start) / n
     moved: set[int] = set()
-    for edge in (cfg.flap.inboard, cfg.flap.outboard):
+    for edge in (flap.inboard, flap.outboard):
         free = [i for i in range(1, n) if i not in moved]
         if not free or np.min(np.abs(nodes - edge)) < 1e-12:
             continue
@@ -427,7 +437,7 @@ def structural_key(cfg) -> tuple:
     Parameters
     ----------
     cfg : tefcore.config.configuration.Config
-        The configuration.
+        The whole configuration (every section, the structural fields of each).
 
     Returns
     -------
@@ -461,7 +471,8 @@ def blade_modes(cfg, n_modes: int | None = None, collective: float = 0.0,
     Parameters
     ----------
     cfg : tefcore.config.configuration.Config
-        The rotor configuration.
+        The whole configuration: the blade is built from its rotor, blade,
+        hub, flap and model sections (:func:`blade_model`).
     n_modes : int, optional
         Modes kept (default ``cfg.model.n_modes``).
     collective : float
@@ -510,7 +521,8 @@ def fan_data(cfg, speed_ratios, n_modes: int | None = None,
     Parameters
     ----------
     cfg : tefcore.config.configuration.Config
-        The rotor configuration.
+        The whole configuration: the blade is built from its rotor, blade,
+        hub, flap and model sections (:func:`blade_model`).
     speed_ratios : array_like
         Rotor speeds, fractions of the configured one.
     n_modes : int, optional
@@ -550,7 +562,8 @@ def fan_plot(cfg, speed_ratios=None, n_modes: int | None = None, ax=None):
     Parameters
     ----------
     cfg : tefcore.config.configuration.Config
-        The rotor configuration.
+        The whole configuration: the blade is built from its rotor, blade,
+        hub, flap and model sections (:func:`blade_model`).
     speed_ratios : array_like, optional
         Rotor speeds, fractions of the configured one (default 0.2 to 1.2).
     n_modes : int, optional

@@ -15,7 +15,7 @@ Examples
 >>> cfg = load_config("mdart").with_overrides({"hub.model": "multiple_load_path"})
 >>> round(kinematic_pitch_ratio(cfg), 4)
 0.969
->>> round(float(np.degrees(pitch_flap_delta3(cfg))), 1) + 0.0   # no radial offset
+>>> round(float(np.degrees(pitch_flap_delta3(cfg.hub, cfg.pitch_link))), 1) + 0.0  # no offset
 0.0
 >>> r = pitch_input_response(cfg)          # rotating: tension-torsion, propeller moment
 >>> round(r["blade_twist"], 3)
@@ -34,9 +34,9 @@ __all__ = ["HUB_MODELS", "kinematic_pitch_ratio", "pitch_flap_delta3", "pitch_in
 HUB_MODELS = ("equivalent", "multiple_load_path")
 
 
-def _require_mlp(cfg) -> None:
-    if cfg.hub.model != "multiple_load_path":
-        raise ValueError(f"hub.model = {cfg.hub.model!r}: this needs 'multiple_load_path'")
+def _require_mlp(hub) -> None:
+    if hub.model != "multiple_load_path":
+        raise ValueError(f"hub.model = {hub.model!r}: this needs 'multiple_load_path'")
 
 
 def kinematic_pitch_ratio(cfg, parts: bool = False):
@@ -53,8 +53,10 @@ def kinematic_pitch_ratio(cfg, parts: bool = False):
 
     Parameters
     ----------
-    cfg : Config
-        With ``hub.model = "multiple_load_path"``.
+    cfg : tefcore.config.configuration.Config
+        The whole configuration: the hub sections ``flexbeam``, ``torque_tube``,
+        ``pitch_link`` and ``snubber`` with ``hub`` (``hub.model =
+        "multiple_load_path"``) and ``rotor``.
     parts : bool
         Return the springs as well.
 
@@ -65,7 +67,7 @@ def kinematic_pitch_ratio(cfg, parts: bool = False):
         ``link``, ``snubber`` [N m/rad] and ``root_stiffness``, the clevis's
         torsional stiffness to ground with the swashplate fixed [N m/rad].
     """
-    _require_mlp(cfg)
+    _require_mlp(cfg.hub)
     fb, tt, pl = cfg.flexbeam, cfg.torque_tube, cfg.pitch_link
     rad, r0 = cfg.rotor.radius, cfg.rotor.root_offset
     k_link = cfg.hub.pitch_link_stiffness * (pl.horn_arm * np.cos(pl.cant)) ** 2
@@ -101,7 +103,7 @@ def kinematic_pitch_ratio(cfg, parts: bool = False):
             "link": k_link, "snubber": k_snub, "root_stiffness": root}
 
 
-def pitch_flap_delta3(cfg) -> float:
+def pitch_flap_delta3(hub, pitch_link) -> float:
     """Kinematic pitch-flap angle of the pitch-link geometry, ``atan(d / a)`` [rad].
 
     With a rigid link and the horn station held vertically, flapping the
@@ -112,16 +114,18 @@ def pitch_flap_delta3(cfg) -> float:
 
     Parameters
     ----------
-    cfg : tefcore.config.configuration.Config
-        A configuration with ``hub.model = "multiple_load_path"``.
+    hub : tefcore.config.sections.HubConfig
+        The hub section, with ``hub.model = "multiple_load_path"``.
+    pitch_link : tefcore.config.hub.PitchLinkConfig
+        The pitch link (its radial offset and horn arm).
 
     Returns
     -------
     float
         delta_3 [rad].
     """
-    _require_mlp(cfg)
-    return float(np.arctan(cfg.pitch_link.radial_offset / cfg.pitch_link.horn_arm))
+    _require_mlp(hub)
+    return float(np.arctan(pitch_link.radial_offset / pitch_link.horn_arm))
 
 
 def pitch_input_response(cfg, rotating: bool = True, collective: float = 0.0) -> dict:
@@ -133,8 +137,10 @@ def pitch_input_response(cfg, rotating: bool = True, collective: float = 0.0) ->
 
     Parameters
     ----------
-    cfg : Config
-        With ``hub.model = "multiple_load_path"``.
+    cfg : tefcore.config.configuration.Config
+        The whole configuration: the branched hub and blade are built from all
+        its structural sections (:func:`tefcore.structure.blade.multiple_load_path_model`),
+        with ``hub.model = "multiple_load_path"``.
     rotating : bool
         Elastic plus centrifugal stiffness at the configured rotor speed
         (tension-torsion of the flexbeam, propeller moment), or the elastic
@@ -148,9 +154,9 @@ def pitch_input_response(cfg, rotating: bool = True, collective: float = 0.0) ->
         ``horn_twist`` (torque tube at the horn), ``clevis_twist``,
         ``blade_twist`` (at 0.75 R) and ``tip_twist`` [rad per rad of input].
     """
-    _require_mlp(cfg)
+    _require_mlp(cfg.hub)
     beam = multiple_load_path_model(cfg, collective)
-    units = rotor_units(cfg)
+    units = rotor_units(cfg.rotor, cfg.blade)
     pl = cfg.pitch_link
     k = beam.stiffness(1.0) if rotating else beam.k_elastic
     k_link = units.spring(cfg.hub.pitch_link_stiffness * units.radius**2)

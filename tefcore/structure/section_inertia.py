@@ -102,13 +102,15 @@ class FlapShare:
     inertia_hinge: float
 
 
-def flap_share(cfg, balanced: bool = False) -> FlapShare:
+def flap_share(flap, rotor, balanced: bool = False) -> FlapShare:
     """The flap's mass, first moment and polar inertia about the elastic axis.
 
     Parameters
     ----------
-    cfg : tefcore.config.configuration.Config
-        The rotor configuration.
+    flap : tefcore.config.sections.FlapConfig
+        The flap section (mass, inertia, hinge, chord ratio, CG offset).
+    rotor : tefcore.config.sections.RotorConfig
+        The rotor section (the chord and the elastic axis).
     balanced : bool
         The share of the mass-balanced flap (CG on the hinge), which the
         blade tables contain, instead of the configured one.
@@ -117,11 +119,12 @@ def flap_share(cfg, balanced: bool = False) -> FlapShare:
     --------
     >>> from tefcore.config.io import load_config
     >>> cfg = load_config("mdart").with_overrides({"flap.cg_offset": 0.33})
-    >>> cur, bal = flap_share(cfg), flap_share(cfg, balanced=True)
+    >>> flap, rotor = cfg.flap, cfg.rotor
+    >>> cur, bal = flap_share(flap, rotor), flap_share(flap, rotor, balanced=True)
     >>> bool(cur.mass == bal.mass and cur.first_moment < bal.first_moment)   # CG moved aft
     True
     """
-    r, f = cfg.rotor, cfg.flap
+    r, f = rotor, flap
     eta = (r.elastic_axis - f.hinge_position) * r.chord
     m = f.mass_per_span
     d = 0.0 if balanced else f.cg_offset * f.chord_ratio * r.chord
@@ -132,13 +135,13 @@ def flap_share(cfg, balanced: bool = False) -> FlapShare:
                      hinge_from_ea=eta, first_moment_hinge=s_f, inertia_hinge=i_h)
 
 
-def flap_span_mask(cfg, x) -> np.ndarray:
+def flap_span_mask(flap, x) -> np.ndarray:
     """True where ``x`` (fractions of R) lies on the flap span ``[inboard, outboard)``.
 
     Parameters
     ----------
-    cfg : tefcore.config.configuration.Config
-        The rotor configuration.
+    flap : tefcore.config.sections.FlapConfig
+        The flap section (its inboard and outboard edges).
     x : float or array_like
         Radial stations, fractions of R.
 
@@ -147,7 +150,7 @@ def flap_span_mask(cfg, x) -> np.ndarray:
     numpy.ndarray of bool
     """
     x = np.asarray(x, float)
-    return (x >= cfg.flap.inboard) & (x < cfg.flap.outboard)
+    return (x >= flap.inboard) & (x < flap.outboard)
 
 
 def lumped_section(cfg, x) -> dict[str, np.ndarray]:
@@ -162,7 +165,8 @@ def lumped_section(cfg, x) -> dict[str, np.ndarray]:
     Parameters
     ----------
     cfg : tefcore.config.configuration.Config
-        The rotor configuration.
+        The whole configuration: the blade tables, the flap and the rotor's
+        chord and elastic axis that place the flap in its section.
     x : float or array_like
         Radial stations, fractions of R.
 
@@ -183,10 +187,10 @@ def lumped_section(cfg, x) -> dict[str, np.ndarray]:
     True
     """
     sec = cfg.blade.section(x)
-    on = flap_span_mask(cfg, x)
+    on = flap_span_mask(cfg.flap, x)
     if not on.any():
         return sec
-    cur, bal = flap_share(cfg), flap_share(cfg, balanced=True)
+    cur, bal = flap_share(cfg.flap, cfg.rotor), flap_share(cfg.flap, cfg.rotor, balanced=True)
     d_first = cur.first_moment - bal.first_moment
     d_inertia = cur.inertia - bal.inertia
     sec["cg_offset"] = np.where(on, sec["cg_offset"] + d_first / sec["mass"], sec["cg_offset"])
@@ -194,9 +198,9 @@ def lumped_section(cfg, x) -> dict[str, np.ndarray]:
     return sec
 
 
-def _check_points(cfg) -> np.ndarray:
+def _check_points(blade, flap) -> np.ndarray:
     """Flap edges and the table stations between them (the host's extremes)."""
-    f, st = cfg.flap, np.asarray(cfg.blade.stations, float)
+    f, st = flap, np.asarray(blade.stations, float)
     inner = st[(st > f.inboard) & (st < f.outboard)]
     # the outboard edge is evaluated just inside the span (the mask is half-open)
     out = np.nextafter(min(f.outboard, 1.0), -np.inf)
@@ -209,7 +213,8 @@ def host_section(cfg, x) -> dict[str, np.ndarray]:
     Parameters
     ----------
     cfg : tefcore.config.configuration.Config
-        The rotor configuration.
+        The whole configuration: the blade tables, the flap and the rotor's
+        chord and elastic axis that place the flap in its section.
     x : float or array_like
         Radial stations, fractions of R.
 
@@ -221,8 +226,8 @@ def host_section(cfg, x) -> dict[str, np.ndarray]:
         ``inertia_cg`` [kg m] (about the host's own CG; must be positive).
     """
     sec = cfg.blade.section(x)
-    on = flap_span_mask(cfg, x)
-    bal = flap_share(cfg, balanced=True)
+    on = flap_span_mask(cfg.flap, x)
+    bal = flap_share(cfg.flap, cfg.rotor, balanced=True)
     m = sec["mass"] - on * bal.mass
     s = sec["mass"] * sec["cg_offset"] - on * bal.first_moment
     i = sec["im_lag"] + sec["im_flap"] - on * bal.inertia
@@ -245,7 +250,8 @@ def flap_mass_limit(cfg, x=None) -> float:
     Parameters
     ----------
     cfg : tefcore.config.configuration.Config
-        The rotor configuration.
+        The whole configuration: the blade tables, the flap and the rotor's
+        chord and elastic axis that place the flap in its section.
     x : float or array_like, optional
         Stations (fractions of R) to take the bound at; default the flap span
         (its edges and the table stations between).
@@ -255,9 +261,9 @@ def flap_mass_limit(cfg, x=None) -> float:
     float
         The bound [kg/m].
     """
-    x = _check_points(cfg) if x is None else np.atleast_1d(np.asarray(x, float))
+    x = _check_points(cfg.blade, cfg.flap) if x is None else np.atleast_1d(np.asarray(x, float))
     sec = cfg.blade.section(x)
-    bal = flap_share(cfg, balanced=True)
+    bal = flap_share(cfg.flap, cfg.rotor, balanced=True)
     big_m, s = sec["mass"], sec["mass"] * sec["cg_offset"]
     a = sec["im_lag"] + sec["im_flap"] - cfg.flap.inertia_cg_per_span
     eta = bal.hinge_from_ea
@@ -265,9 +271,13 @@ def flap_mass_limit(cfg, x=None) -> float:
 
 
 def _inertia_cg_limit(cfg, x) -> float:
-    """Largest flap inertia about its CG per span [kg m] that fits, at the given mass."""
+    """Largest flap inertia about its CG per span [kg m] that fits, at the given mass.
+
+    ``cfg``: the whole configuration (blade tables, flap, the rotor's chord and
+    elastic axis).
+    """
     sec = cfg.blade.section(np.atleast_1d(x))
-    bal = flap_share(cfg, balanced=True)
+    bal = flap_share(cfg.flap, cfg.rotor, balanced=True)
     m, eta = bal.mass, bal.hinge_from_ea
     big_m, s = sec["mass"], sec["mass"] * sec["cg_offset"]
     i = sec["im_lag"] + sec["im_flap"]
@@ -289,7 +299,8 @@ def section_mass_block(cfg, x) -> np.ndarray:
     Parameters
     ----------
     cfg : tefcore.config.configuration.Config
-        The rotor configuration.
+        The whole configuration: the blade tables, the flap and the rotor's
+        chord and elastic axis that place the flap in its section.
     x : float or array_like
         Radial stations, fractions of R.
 
@@ -299,8 +310,8 @@ def section_mass_block(cfg, x) -> np.ndarray:
     """
     x = np.atleast_1d(np.asarray(x, float))
     host = host_section(cfg, x)
-    on = flap_span_mask(cfg, x).astype(float)
-    fl = flap_share(cfg)
+    on = flap_span_mask(cfg.flap, x).astype(float)
+    fl = flap_share(cfg.flap, cfg.rotor)
     eta, m, s_f, i_h = fl.hinge_from_ea, fl.mass, fl.first_moment_hinge, fl.inertia_hinge
     flap = np.array([[m, m * eta - s_f, -s_f],
                      [m * eta - s_f, m * eta**2 - 2 * eta * s_f + i_h, i_h - eta * s_f],
@@ -335,7 +346,8 @@ def check_section_inertia(cfg) -> None:
     Parameters
     ----------
     cfg : tefcore.config.configuration.Config
-        The rotor configuration.
+        The whole configuration: the blade tables, the flap, the rotor's chord
+        and elastic axis that place it, and ``model.tef``.
 
     Raises
     ------
@@ -356,7 +368,7 @@ def check_section_inertia(cfg) -> None:
             f"{st[k]:.4g} is not above blade.mass * blade.cg_offset^2 = {need[k]:.4g} kg m: a "
             "section's polar inertia about the elastic axis must exceed its mass times the "
             "CG offset squared (positive inertia about its own CG)")
-    xs = _check_points(cfg)
+    xs = _check_points(b, cfg.flap)
     host = host_section(cfg, xs)
     tab = b.section(xs)
     scale = tab["mass"] * (tab["im_lag"] + tab["im_flap"])
@@ -366,7 +378,7 @@ def check_section_inertia(cfg) -> None:
         with np.errstate(divide="ignore", invalid="ignore"):   # scale underflows to 0
             ratio = det[bad] / scale[bad]
         k = int(bad[np.argmin(np.where(np.isfinite(ratio), ratio, -np.inf))])
-        f, bal = cfg.flap, flap_share(cfg, balanced=True)
+        f, bal = cfg.flap, flap_share(cfg.flap, cfg.rotor, balanced=True)
         m_max = flap_mass_limit(cfg, xs[k])
         i_max = _inertia_cg_limit(cfg, xs[k])
         scaled = ""
@@ -394,7 +406,7 @@ def check_section_inertia(cfg) -> None:
         bad = np.flatnonzero(low <= REL_TOL * REL_TOL * top)
         if bad.size:
             k = int(bad[0])
-            fl = flap_share(cfg)
+            fl = flap_share(cfg.flap, cfg.rotor)
             raise ValueError(
                 f"the per-span mass block (w, phi, delta) of section and flap at x = "
                 f"{xs[k]:.4f} R is not positive definite (smallest eigenvalue {low[k]:.3g}): "

@@ -328,7 +328,26 @@ def _is_real(x) -> bool:
 
 
 def _record_problem(rec) -> str | None:
-    """Why `rec` (a decoded line) is not a point record, or None."""
+    """Why `rec` (a decoded line) is not a point record, or None.
+
+    Its fields (:func:`_fields_problem`), then, for a point with status
+    ``ok``, its modes table (:func:`_modes_problem`) and its tracking fields
+    (:func:`_tracking_problem`); a failed point has no modes.
+    """
+    problem = _fields_problem(rec)
+    if problem is not None:
+        return problem
+    modes = rec["modes"]
+    if rec["status"] == "failed":
+        return None if modes is None else "a failed point must have 'modes': null"
+    problem = _modes_problem(modes)
+    if problem is not None:
+        return problem
+    return _tracking_problem(rec, len(modes["mode_id"]))
+
+
+def _fields_problem(rec) -> str | None:
+    """Why the fields of `rec` (all but the modes table) are malformed, or None."""
     if not isinstance(rec, dict):
         return f"a JSON {type(rec).__name__}, not a record"
     missing = [k for k in ("key", "status", "value_si", "error", "trim", "modes")
@@ -350,9 +369,12 @@ def _record_problem(rec) -> str | None:
         return "'warning' must be a string"
     if not isinstance(rec.get("clipped", {}), dict):
         return "'clipped' must be a table"
-    modes = rec["modes"]
-    if rec["status"] == "failed":
-        return None if modes is None else "a failed point must have 'modes': null"
+    return None
+
+
+def _modes_problem(modes) -> str | None:
+    """Why the modes table of an ok point is malformed, or None: a table of the
+    :data:`RECORD_MODE_COLUMNS`, non-empty lists of one length, numbers and labels."""
     if not isinstance(modes, dict):
         return "'modes' of a point with status 'ok' must be a table of columns"
     lacking = [c for c in RECORD_MODE_COLUMNS if c not in modes]
@@ -366,7 +388,7 @@ def _record_problem(rec) -> str | None:
             return f"'modes'.{col!r} must hold numbers"
     if not all(isinstance(x, str) for x in modes["label"]):
         return "'modes'.'label' must hold strings"
-    return _tracking_problem(rec, next(iter(lengths)))
+    return None
 
 
 def _tracking_problem(rec, n_modes: int) -> str | None:

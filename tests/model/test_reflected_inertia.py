@@ -64,7 +64,7 @@ def test_reflected_inertia_adds_exactly_to_the_flap_inertia_and_nowhere_else():
     ctl = Controls(0.12, 0.02, -0.03)
     _, m_a, c_a, k_a, r_a = _blocks(base, q, qd, qdd, ctl, 0.04)
     _, m_b, c_b, k_b, r_b = _blocks(FIG6, q, qd, qdd, ctl, 0.04)
-    units = rotor_units(FIG6)
+    units = rotor_units(FIG6.rotor, FIG6.blade)
     ia = units.inertia(I_A)                      # the flap row is per m0 Omega^2 R^3
     assert ia == pytest.approx(I_A / (units.mass_per_length * FIG6.rotor.radius**3), rel=1e-15)
     dm = m_b - m_a
@@ -110,7 +110,7 @@ def test_coupled_mass_stays_positive_definite(cg):
 
 def test_section_response_inertial_moment_adds_i_a_delta_accel():
     cfg = FIG6.with_overrides({"flight.advance_ratio": 0.2})
-    motion = rotor_motion(cfg, advance_ratio=0.2, collective=0.1)
+    motion = rotor_motion(cfg.rotor, cfg.blade, advance_ratio=0.2, collective=0.1)
     psi = np.linspace(0, 2 * np.pi, 16, endpoint=False)
     delta, accel = 0.03 * np.cos(4 * psi), -0.03 * 16 * cfg.rotor.rotor_speed**2 * np.cos(4 * psi)
     p = flap_properties(cfg)

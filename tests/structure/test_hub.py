@@ -80,16 +80,16 @@ def test_branched_model_without_torque_tube_is_the_single_path_blade(collective_
     # eigen-solutions of a pencil with cond(K) ~ 1e9; seen: ~1e-12).
     coll = np.deg2rad(collective_deg)
     cfg = _uniform_inboard(MLP)
-    theta_root = float(pitch_function(cfg, coll)(cfg.rotor.root_offset))
+    theta_root = float(pitch_function(cfg.blade, coll)(cfg.rotor.root_offset))
     cfg = cfg.with_overrides({"flexbeam.precollective": theta_root})
-    root = root_springs(cfg)
+    units = rotor_units(cfg.rotor, cfg.blade)
+    root = root_springs(cfg.hub, units)
     branched = multiple_load_path_model(cfg, coll, 20, torque_tube=False, root=root)
     nodes = np.concatenate([branched.components["flexbeam"].x_nodes,
                             branched.components["blade"].x_nodes[1:]])
-    units = rotor_units(cfg)
     sec = section_function(cfg, units)
     stations = np.asarray(cfg.blade.stations, float)
-    single = assemble_beam(nodes, sec, pitch_function(cfg, coll), root,
+    single = assemble_beam(nodes, sec, pitch_function(cfg.blade, coll), root,
                            tension=tension_piecewise_linear(stations, sec(stations)["mass"]))
     a, b = beam_modes(branched, 12), beam_modes(single, 12)
     assert a.labels == b.labels
@@ -111,10 +111,10 @@ def test_single_path_limit_is_close_to_the_equivalent_hub():
     # gate 1e-3 (a root spring off by 1 % moves lag 1 by 0.4 %, flap 1 by 0.2 %).
     cfg = _uniform_inboard(MLP)
     cfg = cfg.with_overrides({"flexbeam.precollective": float(
-        pitch_function(cfg, 0.0)(cfg.rotor.root_offset))})
+        pitch_function(cfg.blade, 0.0)(cfg.rotor.root_offset))})
     eq = blade_modes(cfg.with_overrides({"hub.model": "equivalent"}))
-    br = beam_modes(multiple_load_path_model(cfg, 0.0, 20, torque_tube=False,
-                                             root=root_springs(cfg)), 9)
+    root = root_springs(cfg.hub, rotor_units(cfg.rotor, cfg.blade))
+    br = beam_modes(multiple_load_path_model(cfg, 0.0, 20, torque_tube=False, root=root), 9)
     assert br.labels == eq.labels
     assert_allclose(br.frequencies, eq.frequencies, rtol=1e-3)
 
@@ -220,7 +220,7 @@ def test_first_torsion_frequency_of_the_load_path_network():
     f = beam.free
     k, m = beam.k_elastic[f][:, f], beam.mass[f][:, f]
     lam = 1.0 / scipy.linalg.eigh(m, k, eigvals_only=True)[::-1]
-    units = rotor_units(cfg)
+    units = rotor_units(cfg.rotor, cfg.blade)
     r = kinematic_pitch_ratio(cfg, parts=True)
     big_k = units.spring(r["root_stiffness"])
     length = 1.0 - cfg.flexbeam.clevis
@@ -255,7 +255,7 @@ def test_rigid_link_pitch_flap_coupling_is_delta3(arm_in, offset_in):
     horn = beam.component_fields("torque_tube", q, [xt])
     slope, twist = horn["dw"][0, 0], horn["phi"][0, 0]
     assert abs(slope) > 0
-    tan_d3 = np.tan(pitch_flap_delta3(cfg))
+    tan_d3 = np.tan(pitch_flap_delta3(cfg.hub, cfg.pitch_link))
     assert_allclose(tan_d3, offset_in / arm_in, rtol=1e-12)
     assert_allclose(-twist / slope, tan_d3, rtol=1e-5)
 
@@ -282,7 +282,7 @@ def test_snubber_damper_enters_the_modal_damping():
     # from the coupling equals the modal damping; no loss, no damping at all.
     beam = multiple_load_path_model(MLP)
     m = beam_modes(beam, 9)
-    units = rotor_units(MLP)
+    units = rotor_units(MLP.rotor, MLP.blade)
     sn = MLP.snubber
     b = beam.couplings["snubber lag"]
     c = units.damper(sn.loss_factor * sn.lag_stiffness / sn.reference_frequency
@@ -400,7 +400,7 @@ def test_any_hub_value_gives_a_model_or_an_error_naming_it(field, value):
 
 
 def test_blade_nodes_start_at_the_clevis_with_the_flap_edges_on_nodes():
-    nodes = element_nodes(MLP, 13, start=MLP.flexbeam.clevis)
+    nodes = element_nodes(MLP.flap, 13, MLP.flexbeam.clevis)
     assert nodes[0] == MLP.flexbeam.clevis and nodes[-1] == 1.0
     for edge in (MLP.flap.inboard, MLP.flap.outboard):
         assert np.isclose(nodes, edge).any()

@@ -57,7 +57,7 @@ def test_flap_share_equals_point_masses():
     eta_h = (r.elastic_axis - f.hinge_position) * r.chord
     eta = np.array([eta_h - s1, eta_h - s2])     # ahead of the elastic axis
     masses = np.array([m1, m2])
-    sh = flap_share(cfg)
+    sh = flap_share(cfg.flap, cfg.rotor)
     assert_allclose(sh.mass, masses.sum(), rtol=EPS)
     assert_allclose(sh.first_moment, masses @ eta, rtol=EPS)
     assert_allclose(sh.inertia, masses @ eta**2, rtol=1e-10)
@@ -90,7 +90,8 @@ def test_section_totals_with_and_without_the_flap_offset():
     # of mass, first moment, polar inertia at every flap-span station)
     cfg = MDART.with_overrides({"flap.cg_offset": 0.25})
     x = np.linspace(cfg.flap.inboard, cfg.flap.outboard, 7)[:-1]
-    host, fl, bal = host_section(cfg, x), flap_share(cfg), flap_share(cfg, balanced=True)
+    host = host_section(cfg, x)
+    fl, bal = flap_share(cfg.flap, cfg.rotor), flap_share(cfg.flap, cfg.rotor, balanced=True)
     tab, lump = cfg.blade.section(x), lumped_section(cfg, x)
     for sec, share in ((tab, bal), (lump, fl)):
         assert_allclose(host["mass"] + share.mass, sec["mass"], rtol=EPS)
@@ -103,13 +104,13 @@ def test_section_totals_with_and_without_the_flap_offset():
 
 def test_structure_and_flap_equation_use_one_set():
     cfg = MDART.with_overrides({"flap.cg_offset": 0.33})
-    props, share = flap_properties(cfg), flap_share(cfg)
+    props, share = flap_properties(cfg), flap_share(cfg.flap, cfg.rotor)
     assert props.mass == share.mass == cfg.flap.mass_per_span
     assert_allclose(props.first_moment, share.first_moment_hinge, rtol=EPS)
     assert_allclose(props.inertia_hinge, share.inertia_hinge, rtol=EPS)
     assert props.hinge_from_ea == share.hinge_from_ea
     model = coupled_model(cfg)
-    units = rotor_units(cfg)
+    units = rotor_units(cfg.rotor, cfg.blade)
     assert_allclose(model.flap["first_moment"] * units.mass_per_length * units.radius,
                     share.first_moment_hinge, rtol=1e-12)
 
@@ -144,7 +145,7 @@ def test_assembled_mass_integrates_the_lumped_section_exactly(cg):
     # flap's own share is integrated exactly (next test, 1e-9).
     cfg = MDART.with_overrides({"flap.cg_offset": cg})
     beam = blade_model(cfg)
-    units = rotor_units(cfg)
+    units = rotor_units(cfg.rotor, cfg.blade)
     w, phi = _rigid(beam, "w"), _rigid(beam, "phi")
     edges = np.unique(np.concatenate([cfg.blade.stations, beam.x_nodes]))
     g, gw = np.polynomial.legendre.leggauss(12)
@@ -155,7 +156,7 @@ def test_assembled_mass_integrates_the_lumped_section_exactly(cg):
     m = units.mass_per_len(sec["mass"])
     e = units.length(sec["cg_offset"])
     im = units.inertia_per_length(sec["im_lag"] + sec["im_flap"])
-    th = pitch_function(cfg)(xs)
+    th = pitch_function(cfg.blade)(xs)
     assert_allclose(w @ beam.mass @ w, ws @ m, rtol=1e-4)
     assert_allclose(phi @ beam.mass @ phi, ws @ im, rtol=1e-4)
     assert_allclose(w @ beam.mass @ phi, ws @ (m * e * np.cos(th)), rtol=1e-4,
@@ -165,7 +166,7 @@ def test_assembled_mass_integrates_the_lumped_section_exactly(cg):
 def test_flap_cg_offset_moves_the_section_cg_in_the_structure():
     # The twist-plunge coupling of the assembled mass changes by -b_f S_f cos(theta)
     # (rotor units) when the flap CG moves aft: the structure sees the flap.
-    units = rotor_units(MDART)
+    units = rotor_units(MDART.rotor, MDART.blade)
     a, b = blade_model(MDART), blade_model(MDART.with_overrides({"flap.cg_offset": 0.33}))
     w, phi = _rigid(a, "w"), _rigid(a, "phi")
     f = MDART.flap
@@ -173,7 +174,7 @@ def test_flap_cg_offset_moves_the_section_cg_in_the_structure():
     g, gw = np.polynomial.legendre.leggauss(12)
     xs = 0.5 * (f.inboard + f.outboard) + 0.5 * f.span * g
     expected = -units.mass_per_len(s_f) * units.length(1.0) * (
-        0.5 * f.span * gw) @ np.cos(pitch_function(MDART)(xs))
+        0.5 * f.span * gw) @ np.cos(pitch_function(MDART.blade)(xs))
     assert_allclose(w @ (b.mass - a.mass) @ phi, expected, rtol=1e-9)
 
 
@@ -207,7 +208,7 @@ def test_flap_mass_limit_is_the_zero_of_the_host_determinant():
     b = MDART.blade.section([x])
     big_m, big_s = b["mass"][0], b["mass"][0] * b["cg_offset"][0]
     big_i = b["im_lag"][0] + b["im_flap"][0]
-    eta = flap_share(MDART, balanced=True).hinge_from_ea
+    eta = flap_share(MDART.flap, MDART.rotor, balanced=True).hinge_from_ea
     i_cg = MDART.flap.inertia_cg_per_span
 
     def det(m):
@@ -263,7 +264,7 @@ def test_check_refuses_exactly_the_impossible_flaps(mass, inertia, cg, overhang,
         assert "flap.mass" in msg or "flap.inertia_cg" in msg, msg
         probe = MDART.with_overrides({**over, "flap.mass": 0.0, "flap.inertia_cg": 1e-6})
         x = np.linspace(probe.flap.inboard, probe.flap.outboard, 9)[:-1]
-        share = flap_share(probe, balanced=True)
+        share = flap_share(probe.flap, probe.rotor, balanced=True)
         b = probe.blade.section(x)
         m_f = mass * probe.flap.chord_scale
         i_f = inertia * probe.flap.chord_scale**3
@@ -334,14 +335,14 @@ def test_fig15_sweep_uses_the_construction_rule():
 def test_nodes_on_the_flap_edges():
     for mid, span in ((0.83, 0.18), (0.65, 0.18), (0.8, 0.06), (0.91, 0.18)):
         cfg = MDART.with_overrides({"flap.midspan": mid, "flap.span": span})
-        nodes = element_nodes(cfg, 20)
+        nodes = element_nodes(cfg.flap, 20, cfg.rotor.root_offset)
         assert nodes.size == 21 and np.all(np.diff(nodes) > 0)
         assert nodes[0] == cfg.rotor.root_offset and nodes[-1] == 1.0
         for edge in (cfg.flap.inboard, cfg.flap.outboard):
             assert np.min(np.abs(nodes - edge)) < 1e-12
     # two edges inside one element: one node moves, the mesh stays valid
     cfg = MDART.with_overrides({"flap.midspan": 0.8, "flap.span": 0.01})
-    nodes = element_nodes(cfg, 20)
+    nodes = element_nodes(cfg.flap, 20, cfg.rotor.root_offset)
     assert np.all(np.diff(nodes) > 0.05 * (1 - 0.05) / 20)
 
 

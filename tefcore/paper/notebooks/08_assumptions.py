@@ -95,7 +95,8 @@ x = np.array([cfg.flap.midspan])
 rows = []
 for cg in (0.0, 0.33):
     c = cfg.with_overrides({"flap.cg_offset": cg})
-    share, host, sec = si.flap_share(c), si.host_section(c, x), si.lumped_section(c, x)
+    share = si.flap_share(c.flap, c.rotor)
+    host, sec = si.host_section(c, x), si.lumped_section(c, x)
     rows.append({"c_cg/c_f": cg,
                  "flap mass [lb/ft]": from_si(share.mass, "lb/ft", "mass_per_length"),
                  "flap I_theta [lb in^2/ft]": from_si(share.inertia, "lb*in^2/ft",
