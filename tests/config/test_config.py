@@ -23,7 +23,7 @@ from tefcore.config.io import (
     settings_markdown,
     settings_table,
 )
-from tefcore.config.sections import BLADE_PROPERTIES, REQUIRED, BladeConfig
+from tefcore.config.sections import BLADE_PROPERTIES, REQUIRED, BladeConfig, mode_family_counts
 from tefcore.units import to_si
 
 MDART = load_config("mdart")
@@ -376,8 +376,11 @@ def _values(section, name, value):
 
 
 def _others_valid(section, name, value):
-    """Other fields' ranges may reference this one (root_cutout >= root_offset)."""
+    """Other fields' ranges may reference this one (root_cutout >= root_offset), and
+    the basis holds its families (model.n_modes at least model.mode_families' sum)."""
     vals = _values(section, name, value)
+    if name == "n_modes" and value < sum(mode_family_counts(vals["mode_families"]).values()):
+        return False
     return all(
         q.range_error(vals[q.name], q.name, vals.__getitem__) is None
         for q in section.PARAMS

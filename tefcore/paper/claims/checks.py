@@ -16,9 +16,12 @@ least-squares slope; curves are compared at the digitised x
 
 from __future__ import annotations
 
+import itertools
+
 import numpy as np
 import pandas as pd
 
+from ...modes.matching import LOCK_TOL
 from ...modes.names import pair_labels
 from ...modes.roles import ModeNotFound, mode_rows
 from ..figures.catalogue import variant_key
@@ -28,7 +31,7 @@ from .curves import X_SLACK, compare_curve, stability_intervals, zero_crossings
 from .exceptional import exceptional_in_range, flutter_reading, swapped, where
 from .reference import Claim, load_claims
 
-__all__ = ["COLUMNS", "validate_figure"]
+__all__ = ["COLUMNS", "lock_readings", "validate_figure"]
 
 COLUMNS = ["id", "figure", "panel", "kind", "tag", "mode", "quantity", "statement", "expected",
            "computed", "computed_value", "status", "reason", "recorded_status"]
@@ -96,11 +99,64 @@ def _series(frame, mode, quantity, lo=None, hi=None, until=None, identity=True):
         t = t[t["refinement"] == 0]
     t = t[np.isfinite(t[quantity].to_numpy(float))].sort_values("x")
     x, y = t["x"].to_numpy(float), t[quantity].to_numpy(float)
+    locked = _locked_rows(t, quantity)
     if lo is not None:
         slack = X_SLACK * max(abs(lo), abs(hi), 1e-300)
         keep = (x >= lo - slack) & (x <= hi + slack)
-        x, y = x[keep], y[keep]
-    return x, y
+        x, y, locked = x[keep], y[keep], locked[keep]
+    return x, y, locked
+
+
+def _locked_rows(t, quantity) -> np.ndarray:
+    """Rows whose frequency is a lock's: a real Floquet multiplier (the point's own
+    frequency at a multiple of 1/2 /rev, within :data:`LOCK_TOL` ten times)."""
+    if quantity != "frequency_per_rev" or "frequency_per_rev" not in t:
+        return np.zeros(len(t), bool)
+    raw = t["frequency_per_rev"].to_numpy(float) if "frequency_tracked" not in t else \
+        t["frequency_tracked"].to_numpy(float)
+    return np.abs(2 * raw - np.round(2 * raw)) <= 20 * LOCK_TOL
+
+
+def lock_readings(x, y, locked) -> list[tuple[int, tuple[float, ...]]]:
+    """The frequencies a locked point may read, where the curve cannot tell them apart.
+
+    A real multiplier is its own conjugate: its frequency is known modulo 1/rev
+    *and* up to its sign, so a root locked at 4.5 /rev reads 3.5 or 5.5 as
+    well, every representation a whole /rev from the next.  Continuity along
+    the curve says which (:func:`tefcore.modes.matching.continuous_frequency`)
+    only as far as the unlocked points beside it reach: a reading within 1 /rev
+    of the straight line through the nearest unlocked point on each side (or
+    the two nearest on one side, at an end of the curve) is possible; with no
+    unlocked point, every reading within 1 /rev of the point's own.
+
+    Returns
+    -------
+    list of (int, tuple of float)
+        Per locked point: its index and its possible readings, its own first.
+
+    Examples
+    --------
+    The imbalanced TEF locked at the soft end of Fig. 12, its curve rising
+    through 7.04 and 9.24 /rev beyond:
+
+    >>> lock_readings(np.array([55.3, 82.9, 110.5, 138.2]),
+    ...               np.array([4.5, 5.5, 7.04, 9.24]), np.array([1, 1, 0, 0], bool))
+    [(0, (4.5, 3.5)), (1, (5.5, 4.5))]
+    """
+    out = []
+    free = np.flatnonzero(~locked)
+    for i in np.flatnonzero(locked):
+        left, right = free[free < i], free[free > i]
+        pair = ([left[-1], right[0]] if left.size and right.size
+                else list(right[:2]) if right.size >= 2 else list(left[-2:]))
+        if len(pair) == 2 and x[pair[1]] != x[pair[0]]:
+            line = y[pair[0]] + (y[pair[1]] - y[pair[0]]) * (x[i] - x[pair[0]]) / (
+                x[pair[1]] - x[pair[0]])
+        else:
+            line = y[i]
+        cand = [y[i]] + [y[i] + s for s in (-1.0, 1.0) if abs(y[i] + s - line) < 1.0]
+        out.append((int(i), tuple(float(v) for v in cand)))
+    return out
 
 
 class _Context:
@@ -116,6 +172,8 @@ class _Context:
         self.frames: dict = {}
         self.swaps: dict = {}        # frame key -> exceptional points taken the other way
         self.strict = True           # an exceptional point in a claim's range stops it
+        self.reading: dict = {}      # (frame key, mode, x) -> a locked point's other reading
+        self.locks: list = []        # the locked points the claim's series read, and theirs
 
     def frame(self, fig, overrides=None, quantity=""):
         key = (fig, variant_key(overrides or {}))
@@ -148,12 +206,19 @@ class _Context:
         if self.swaps.get(key):
             frame = swapped(frame, self.swaps[key])
         try:
-            x, y = _series(frame, mode, quantity, lo, hi, until, identity and self.strict)
+            x, y, locked = _series(frame, mode, quantity, lo, hi, until,
+                                   identity and self.strict)
         except _Ambiguous as err:
             err.points = [(key, p) for _, p in err.points]
             raise
         if len(x) == 0:
             raise _Fail(f"no {mode or quantity} points" + (f" in {interval}" if lo else ""))
+        if locked.any():
+            y = y.copy()
+            for i, cand in lock_readings(x, y, locked):
+                where = (key, mode, float(x[i]))
+                self.locks.append((where, cand))
+                y[i] = self.reading.get(where, y[i])
         return x, y
 
 
@@ -465,6 +530,7 @@ def validate_figure(name: str, result, claims=None, *, cfg=None, variants=None, 
         if c.kind == "not_reproducible":
             rows.append(_row(c, status="not reproducible", reason=c.reason))
             continue
+        ctx.locks = []
         try:
             expected, computed, value, ok, why = _CHECKS[c.kind](c, ctx)
         except _Fail as err:
@@ -477,8 +543,49 @@ def validate_figure(name: str, result, claims=None, *, cfg=None, variants=None, 
             rows.append(_across_exceptional_points(c, ctx, err))
             continue
         status = "not reproducible" if ok is None else ("pass" if ok else "fail")
-        rows.append(_row(c, expected, computed, value, status, why))
+        row = _row(c, expected, computed, value, status, why)
+        rows.append(_across_readings(c, ctx, row) if ctx.locks else row)
     return pd.DataFrame(rows, columns=COLUMNS)
+
+
+#: Locked points of one claim whose every combination of readings is checked
+#: (3**5 = 243 checks on the tables already computed); with more, the claim
+#: stands on the readings continuity gives and its reason says so.
+MAX_LOCK_READINGS = 5
+
+
+def _across_readings(c: Claim, ctx: _Context, row: dict) -> dict:
+    """A claim that reads a locked root's frequency, checked with every possible reading.
+
+    Its verdict stands where every combination of the locked points' readings
+    (:func:`lock_readings`) gives it; otherwise the claim is ``ambiguous`` and
+    the reason names the points and what each reading gives.  The computed
+    value stays the one of the readings continuity gives (the point's own).
+    """
+    locks = list(dict.fromkeys((w, cand) for w, cand in ctx.locks))
+    where = ", ".join(f"{_g(w[2])} ({' or '.join(_g(v) for v in cand)} /rev)"
+                      for w, cand in locks)
+    if len(locks) > MAX_LOCK_READINGS:
+        note = (f"{len(locks)} locked points in its range ({where}): checked with the "
+                "readings continuity gives")
+        row["reason"] = f"{row['reason']}; {note}" if row["reason"] else note
+        return row
+    statuses = []
+    for combo in itertools.product(*(cand for _, cand in locks)):
+        alt = _Context.__new__(_Context)
+        alt.__dict__.update(ctx.__dict__)
+        alt.locks = []
+        alt.reading = {w: v for (w, _), v in zip(locks, combo, strict=True)}
+        statuses.append(_checked(c, alt)["status"])
+    if len(set(statuses)) == 1 and statuses[0] == row["status"]:
+        note = (f"decided for every reading of the locked root(s) at {where}: a real "
+                "multiplier's frequency is known only modulo 1/rev and up to its sign")
+        row["reason"] = f"{row['reason']}; {note}" if row["reason"] else note
+        return row
+    seen = ", ".join(sorted(set(statuses)))
+    return _row(c, status="ambiguous",
+                reason=f"the verdict depends on the reading of a locked root's frequency "
+                       f"({where}): {seen} among the readings")
 
 
 #: Exceptional points in one claim's range whose every choice of names is tried
