@@ -34,7 +34,7 @@ from .reference import Claim, load_claims
 __all__ = ["COLUMNS", "lock_readings", "validate_figure"]
 
 COLUMNS = ["id", "figure", "panel", "kind", "tag", "mode", "quantity", "statement", "expected",
-           "computed", "computed_value", "status", "reason", "recorded_status"]
+           "computed", "computed_value", "margin", "status", "reason", "recorded_status"]
 
 
 class _Fail(Exception):
@@ -267,12 +267,14 @@ def _check_value(c: Claim, ctx: _Context):
     if c.expected is not None:
         tol = c.tolerance * (abs(c.expected) if c.tolerance_type == "relative" else 1)
         ok = abs(computed - c.expected) <= tol * (1 + X_SLACK)
+        ctx.margin = (tol - abs(computed - c.expected)) / tol if tol > 0 else np.nan
         expected = f"{name} {_g(c.expected)} ± {_g(tol)} {unit}".rstrip() + where
         why = f"off by {_g(computed - c.expected)}, more than {_g(tol)}"
     else:
         lo = -np.inf if c.lower is None else c.lower
         hi = np.inf if c.upper is None else c.upper
         ok = lo <= computed <= hi
+        ctx.margin = min(computed - lo, hi - computed) / _scale(lo, hi, computed)
         expected = f"{_g(lo)} <= {name} <= {_g(hi)} {unit}".rstrip() + where
         why = "outside the bounds"
     plotted = ("" if c.figure == "fig6" or c.x is None
@@ -297,6 +299,10 @@ def _check_threshold(c: Claim, ctx: _Context):
     else:
         expected = f"{c.direction} at {_g(c.expected)} ± {_g(c.tolerance)} {c.x_unit}".rstrip()
     if not wanted:
+        # how far the root stays from crossing: its extreme real part against
+        # the panel's range
+        far = y.max() if c.direction == "unstable" else -y.min()
+        ctx.margin = float(min(far, 0.0) / max(np.ptp(y), abs(far), 1e-12))
         return expected, f"crossings: {desc}", np.nan, False, f"no {c.direction} crossing"
     best = wanted[0] if c.expected is None else min(wanted, key=lambda v: abs(v / f - c.expected))
     reasons = []
@@ -304,6 +310,10 @@ def _check_threshold(c: Claim, ctx: _Context):
         reasons.append(f"the last crossing is {cross[-1][1]}: the end state is not the claimed one")
     if c.expected is not None and abs(best / f - c.expected) > c.tolerance * (1 + X_SLACK):
         reasons.append("crossing outside the tolerance")
+    ctx.margin = (1.0 if c.expected is None
+                  else (c.tolerance - abs(best / f - c.expected)) / c.tolerance)
+    if cross[-1][1] != c.direction:
+        ctx.margin = min(ctx.margin, -1.0)
     return expected, f"crossings: {desc}", best / f, not reasons, "; ".join(reasons)
 
 
@@ -315,8 +325,10 @@ def _check_range(c: Claim, ctx: _Context):
     expected = f"{c.state} on [{_g(lo)}, {_g(hi)}] ± {_g(c.tolerance)} {c.x_unit}".rstrip()
     computed = f"{c.state} on " + (" and ".join(f"[{_g(a)}, {_g(b)}]" for a, b in got) or "none")
     if len(got) != 1:
+        ctx.margin = -1.0
         return expected, computed, np.nan, False, f"{len(got)} {c.state} intervals, expected one"
     err = max(abs(got[0][0] - lo), abs(got[0][1] - hi))
+    ctx.margin = (c.tolerance - err) / c.tolerance if c.tolerance > 0 else np.nan
     ok = err <= c.tolerance * (1 + X_SLACK) + X_SLACK * max(abs(lo), abs(hi))
     return expected, computed, err, ok, "" if ok else (
         f"an end is {_g(err)} {c.x_unit}".rstrip() + " off")
@@ -338,6 +350,11 @@ def _check_trend(c: Claim, ctx: _Context):
     if c.direction != "constant":
         stat = slope if c.method == "slope" else net
         ok = stat > 0 if c.direction == "increasing" else stat < 0
+        # against the change the panel shows: its range (per unit x for a slope)
+        xd = x / float(x_to_si(c.figure, 1.0, c.x_unit))
+        scale = max(float(np.ptp(y)) / (float(np.ptp(xd)) if c.method == "slope" else 1.0),
+                    1e-12)
+        ctx.margin = (stat if c.direction == "increasing" else -stat) / scale
         why = "" if ok else f"{c.method.replace('_', ' ')} has the opposite sign"
         return f"{c.direction}{span} ({c.method})", computed, stat, ok, why
     if c.tolerance_type == "absolute":
@@ -351,6 +368,7 @@ def _check_trend(c: Claim, ctx: _Context):
         _, yr = ctx.series(c, mode=c.reference_mode, interval=c.interval, identity=False)
         scale = c.tolerance * float(np.ptp(yr))
         what = f"{_g(c.tolerance)} x peak-to-peak of {c.reference_mode} ({_g(np.ptp(yr))})"
+    ctx.margin = (scale - p2p) / scale if scale > 0 else np.nan
     return (f"constant{span}: peak-to-peak <= {what}", computed, p2p, p2p <= scale * (1 + X_SLACK),
             "" if p2p <= scale * (1 + X_SLACK) else f"varies by {_g(p2p)} > {_g(scale)}")
 
@@ -371,6 +389,7 @@ def _check_comparison(c: Claim, ctx: _Context):
             raise _Fail("fewer than 3 common x values to correlate")
         r = float(np.corrcoef(ya[inside], np.interp(xa[inside], xb, yb))[0, 1])
         ok = r >= c.tolerance if c.relation == "positive" else r <= -c.tolerance
+        ctx.margin = ((r if c.relation == "positive" else -r) - c.tolerance) / (1 - c.tolerance)
         return (f"{c.relation} correlation with ({other}), |r| >= {_g(c.tolerance)}",
                 f"r = {_g(r)}", r, ok, "" if ok else "correlation too weak or of the wrong sign")
     k = {"slope": 0, "abs_slope": 0, "peak_to_peak": 2}[c.statistic]
@@ -378,6 +397,7 @@ def _check_comparison(c: Claim, ctx: _Context):
     if c.statistic == "abs_slope":
         a, b = abs(a), abs(b)
     ok = a < b if c.relation == "less" else a > b
+    ctx.margin = (b - a if c.relation == "less" else a - b) / max(abs(a), abs(b), 1e-12)
     return (f"{c.statistic} {c.relation} than for ({other})",
             f"{_g(a)} vs {_g(b)}", a, ok, "" if ok else f"{c.statistic} is not {c.relation}")
 
@@ -392,6 +412,8 @@ def _check_curve(c: Claim, ctx: _Context):
                 f"all {len(cmp)} points outside the computed range [{_g(x[0])}, {_g(x[-1])}]")
     worst = float(cmp["deviation"][~cmp["masked"]].max())
     inside = int(cmp["within"].sum())
+    kept = cmp[~cmp["masked"]]
+    ctx.margin = float(np.min(1.0 - kept["deviation"] / np.maximum(kept["allowed"], 1e-12)))
     computed = (f"{inside}/{n} compared points within band, max |dev| {_g(worst)} {_unit(c)}, "
                 f"{len(cmp) - n} masked")
     return expected, computed, worst, inside == n, "" if inside == n else (
@@ -441,6 +463,8 @@ def _check_mechanism(c: Claim, ctx: _Context):
             reasons.append(f"{kind} participates {got:.2f} < {least:g}")
     if c.knockout_terms:
         _knockouts(c, res, found, wanted, reasons)
+    # a decomposition's verdict has no distance: +1 when every part holds, -1 otherwise
+    ctx.margin = 1.0 if not reasons else -1.0
     return ("; ".join(wanted) + f" at x = {_g(c.x)} {c.x_unit}".rstrip(), "; ".join(found),
             res.eigenvalue.real, not reasons, "; ".join(reasons))
 
@@ -484,11 +508,13 @@ _CHECKS = {"mechanism": _check_mechanism, "value": _check_value,
            "trend": _check_trend, "comparison": _check_comparison, "curve": _check_curve}
 
 
-def _row(c: Claim, expected="", computed="", value=np.nan, status="", reason=""):
+def _row(c: Claim, expected="", computed="", value=np.nan, status="", reason="",
+         margin=np.nan):
     return {"id": c.id, "figure": c.figure, "panel": c.panel, "kind": c.kind, "tag": c.tag,
             "mode": c.mode, "quantity": c.quantity, "statement": c.statement,
             "expected": expected, "computed": computed, "computed_value": value,
-            "status": status, "reason": reason, "recorded_status": c.recorded_status}
+            "margin": margin, "status": status, "reason": reason,
+            "recorded_status": c.recorded_status}
 
 
 def validate_figure(name: str, result, claims=None, *, cfg=None, variants=None, others=None,
@@ -530,7 +556,7 @@ def validate_figure(name: str, result, claims=None, *, cfg=None, variants=None, 
         if c.kind == "not_reproducible":
             rows.append(_row(c, status="not reproducible", reason=c.reason))
             continue
-        ctx.locks = []
+        ctx.locks, ctx.margin = [], np.nan
         try:
             expected, computed, value, ok, why = _CHECKS[c.kind](c, ctx)
         except _Fail as err:
@@ -543,7 +569,7 @@ def validate_figure(name: str, result, claims=None, *, cfg=None, variants=None, 
             rows.append(_across_exceptional_points(c, ctx, err))
             continue
         status = "not reproducible" if ok is None else ("pass" if ok else "fail")
-        row = _row(c, expected, computed, value, status, why)
+        row = _row(c, expected, computed, value, status, why, _signed(ctx.margin, ok))
         rows.append(_across_readings(c, ctx, row) if ctx.locks else row)
     return pd.DataFrame(rows, columns=COLUMNS)
 
@@ -599,6 +625,7 @@ MAX_CHOICES = 7
 
 def _checked(c: Claim, ctx: _Context) -> dict:
     """One claim's row (a dict of :func:`_row`) under the context's choice of names."""
+    ctx.margin = np.nan
     try:
         expected, computed, value, ok, why = _CHECKS[c.kind](c, ctx)
     except _Fail as err:
@@ -608,7 +635,7 @@ def _checked(c: Claim, ctx: _Context) -> dict:
     except _Ambiguous as err:
         return _row(c, status="ambiguous", reason=str(err))
     status = "not reproducible" if ok is None else ("pass" if ok else "fail")
-    return _row(c, expected, computed, value, status, why)
+    return _row(c, expected, computed, value, status, why, _signed(ctx.margin, ok))
 
 
 def _across_exceptional_points(c: Claim, ctx: _Context, err: _Ambiguous) -> dict:
@@ -660,3 +687,22 @@ def _across_exceptional_points(c: Claim, ctx: _Context, err: _Ambiguous) -> dict
                 reason=f"an exceptional point lies inside the claim's range ({places}): which "
                        f"root is {named} has no answer there, and the verdict depends on "
                        f"it ({seen}){flutter_reading(c, lambda alt: _checked(alt, ctx))}")
+
+
+def _scale(lo, hi, value) -> float:
+    """The size a bound's distance is measured against: the finite bounds', else the value's."""
+    finite = [abs(v) for v in (lo, hi) if np.isfinite(v) and v != 0]
+    return max(finite) if finite else max(abs(value), 1e-12)
+
+
+def _signed(margin, ok) -> float:
+    """A check's margin with the sign of its verdict: inside its threshold (pass) > 0.
+
+    The margins are measured against each claim's own tolerance or the panel's
+    scale (dimensionless: +1 at the centre of a tolerance band, 0 on its edge);
+    a pass with a margin rounded to zero or below, or a fail above, keeps the
+    verdict's sign (the slack of the threshold's comparison).
+    """
+    if ok is None or not np.isfinite(margin):
+        return np.nan
+    return abs(margin) if ok else -abs(margin)
