@@ -444,6 +444,16 @@ MODE_FAMILIES = ("flap", "lag", "torsion", "axial")
 def mode_family_counts(text: str) -> dict[str, int]:
     """The family counts of ``model.mode_families``: ``"flap 5, lag 2"`` -> ``{"flap": 5, ...}``.
 
+    Parameters
+    ----------
+    text : str
+        The field's value (``""``: no family held).
+
+    Returns
+    -------
+    dict
+        Family -> count, in the order written.
+
     Raises
     ------
     ValueError

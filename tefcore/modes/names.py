@@ -173,17 +173,46 @@ def base_name(name) -> str:
 
 
 def is_locked(name) -> bool:
-    """Whether a label is a locked pair's second root."""
+    """Whether a label is a locked pair's second root.
+
+    Parameters
+    ----------
+    name : str or ModeName
+        A root's name or any track label.
+
+    Returns
+    -------
+    bool
+    """
     return _split(name)[1]
 
 
 def is_tef(name) -> bool:
-    """Whether a label is the flap's own mode, either root of its lock."""
+    """Whether a label is the flap's own mode, either root of its lock.
+
+    Parameters
+    ----------
+    name : str or ModeName
+        A root's name or any track label.
+
+    Returns
+    -------
+    bool
+    """
     return _split(name)[0] == "TEF"
 
 
 def locked_name(name) -> str:
     """The label of the second root of ``name``'s locked pair.
+
+    Parameters
+    ----------
+    name : str or ModeName
+        A root's name or any track label.
+
+    Returns
+    -------
+    str
 
     Examples
     --------
@@ -196,6 +225,20 @@ def locked_name(name) -> str:
 def mode_kind(name) -> str:
     """The family of a root's name (the ``kind`` column): ``"flap"`` ... ``"TEF"``.
 
+    Parameters
+    ----------
+    name : str or ModeName
+        A root's name.
+
+    Returns
+    -------
+    str
+
+    Raises
+    ------
+    ValueError
+        ``name`` is not a root's name.
+
     Examples
     --------
     >>> mode_kind("blade torsion 1 (locked)"), mode_kind("TEF")
@@ -205,12 +248,31 @@ def mode_kind(name) -> str:
 
 
 def pair_text(a, b) -> str:
-    """Two roots that meet, written in a fixed order (sorted by their text)."""
+    """Two roots that meet, written in a fixed order (sorted by their text).
+
+    Parameters
+    ----------
+    a, b : str or ModeName
+        Their names.
+
+    Returns
+    -------
+    str
+    """
     return PAIR_SEPARATOR.join(sorted((str(a), str(b))))
 
 
 def pair_labels(text) -> tuple[str, str]:
     """The two labels of a meeting written by :func:`pair_text`, as text.
+
+    Parameters
+    ----------
+    text : str
+        ``"A / B"``.
+
+    Returns
+    -------
+    tuple of str
 
     Raises
     ------
@@ -225,6 +287,15 @@ def pair_labels(text) -> tuple[str, str]:
 
 def mode_pair(text) -> tuple[ModeName, ModeName]:
     """The two names of a meeting written by :func:`pair_text`.
+
+    Parameters
+    ----------
+    text : str
+        ``"A / B"``.
+
+    Returns
+    -------
+    tuple of ModeName
 
     Raises
     ------
@@ -243,6 +314,19 @@ def how_named(by_path: bool, certain: bool, meets: str = "") -> str:
     exceptional point) or a step was not decided; ``nearest``: the final
     naming gave it the name left (a flap-free root's coordinate, a lock's
     second root).
+
+    Parameters
+    ----------
+    by_path : bool
+        The root's own path brought its name (``named_by_path``).
+    certain : bool
+        Every step of that path was decided (``identity_certain``).
+    meets : str, optional
+        The names of the roots its path met (``meets``; empty: none).
+
+    Returns
+    -------
+    str
 
     Examples
     --------

@@ -250,6 +250,19 @@ def which_root(name: str, result, cfg, output_dir, labels=PAPER_MODES) -> None:
     Prints :func:`report_identity` (the TEF branch and the flutter root, where
     names exchange) and saves :func:`locus_figure` of the modes ``labels`` as
     ``OUTPUT/figNN_locus.png``.
+
+    Parameters
+    ----------
+    name : str
+        The paper figure.
+    result : tefcore.sweeps.sweep.SweepResult
+        Its sweep.
+    cfg : tefcore.config.configuration.Config
+        The configuration it ran.
+    output_dir : path
+        The notebook's output folder.
+    labels : sequence of str, optional
+        The modes drawn (default: the paper's).
     """
     report_identity(name, result)
     fig = locus_figure(name, result.table, labels=labels)
@@ -260,7 +273,16 @@ def which_root(name: str, result, cfg, output_dir, labels=PAPER_MODES) -> None:
 def damping_summary(name: str, result, measure: str, labels=None) -> None:
     """Print the tracked modes' damping along a sweep and where the TEF branch changes sign.
 
-    ``labels``: the modes of the table (default: :func:`mode_summary`'s).
+    Parameters
+    ----------
+    name : str
+        The paper figure.
+    result : tefcore.sweeps.sweep.SweepResult
+        Its sweep.
+    measure : str
+        ``"decay_rate"`` or ``"damping_ratio"``.
+    labels : sequence of str, optional
+        The modes of the table (default: :func:`mode_summary`'s).
     """
     print("damping (" + measure + ") of the tracked modes "
           "(NaN: that track is absent at this x, e.g. after a locked pair unlocks):")

@@ -296,7 +296,8 @@ def test_blade_modes_are_cached_by_the_structure():
                  {"model.inflow": "dynamic"}, {"model.n_azimuth": 36}):
         assert blade.blade_modes(cfg.with_overrides(over), collective=0.1) is first
     for over in ({"flap.cg_offset": 0.3}, {"hub.pitch_link_stiffness": "400 lb/in"},
-                 {"blade.gj_scale": 1.5}, {"model.n_modes": 8}):
+                 {"blade.gj_scale": 1.5}, {"model.n_modes": 10},
+                 {"model.mode_families": "flap 4, lag 2, torsion 3"}):
         other = blade.blade_modes(cfg.with_overrides(over), collective=0.1)
         assert other is not first
     assert blade.blade_modes(cfg, collective=0.12) is not first

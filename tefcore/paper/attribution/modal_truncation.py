@@ -80,7 +80,8 @@ def _flutter_root(cfg, labels) -> dict:
     theta = initial_collective(cfg)
     every = blade_modes(cfg, n_modes=max(12, len(labels)), collective=theta)
     modes = select_modes(every, labels)
-    c = cfg.with_overrides({"model.n_modes": len(labels)})
+    # the basis is given mode by mode: no family is held besides
+    c = cfg.with_overrides({"model.n_modes": len(labels), "model.mode_families": ""})
     with warnings.catch_warnings():          # numerical warnings: the sweeps count them
         warnings.simplefilter("ignore")
         m = stability(c, model=coupled_model(c, collective=theta, modes=modes)).modes

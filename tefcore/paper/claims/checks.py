@@ -1,17 +1,12 @@
 """Check the claims of one figure against its result (:func:`validate_figure`).
 
-Each claim kind of ``reference_data/README.md`` (kinds table) has one check
-here.  The claim's series is its mode -- at each point the root of that name,
-the uncoupled mode it continues from (:mod:`tefcore.modes.continuation`), or
-the point's flutter root -- and quantity, sorted by x, failed points left
-out.  A claim whose range holds an exceptional point of its mode (where two
-roots' names exchange, :func:`tefcore.modes.roles.exceptional_points`) is
-``ambiguous``, naming the point; otherwise it is decided; values are interpolated linearly, never
-extrapolated; thresholds and ranges use the zero crossings of the real part
-(:func:`tefcore.paper.claims.curves.zero_crossings`); trends the sign of the
-least-squares slope; curves are compared at the digitised x
-(:func:`tefcore.paper.claims.curves.compare_curve`).  Running every figure is
-:func:`tefcore.paper.claims.validation.validate_all`.
+Each claim is judged by its kind's check (:mod:`tefcore.paper.claims.kinds`) on
+the series it reads (:mod:`tefcore.paper.claims.context`).  A verdict that a
+near tie could tip is checked under every reading the tie allows: the names
+on either side of each exceptional point in the claim's range, the readings
+of each locked root's frequency; it stands where every reading gives it and
+is ``ambiguous`` otherwise, with the readings in its reason.  Running every
+figure is :func:`tefcore.paper.claims.validation.validate_all`.
 """
 
 from __future__ import annotations
@@ -21,491 +16,17 @@ import itertools
 import numpy as np
 import pandas as pd
 
-from ...modes.matching import LOCK_TOL
 from ...modes.names import pair_labels
-from ...modes.roles import ModeNotFound, mode_rows
-from ..figures.catalogue import variant_key
-from ..figures.frames import compute_figure, figure_frame, natural_frequency_frame
-from ..figures.quantities import QUANTITY_NAMES, quantity_unit, x_to_si
-from .curves import X_SLACK, compare_curve, stability_intervals, zero_crossings
-from .exceptional import exceptional_in_range, flutter_reading, swapped, where
+from .context import Ambiguous, ClaimFailed, Context, NotEvaluated, g4
+from .exceptional import flutter_reading, where
+from .kinds import CHECKS
 from .reference import Claim, load_claims
 
-__all__ = ["COLUMNS", "lock_readings", "validate_figure"]
+__all__ = ["COLUMNS", "MAX_CHOICES", "MAX_LOCK_READINGS", "validate_figure"]
+
 
 COLUMNS = ["id", "figure", "panel", "kind", "tag", "mode", "quantity", "statement", "expected",
            "computed", "computed_value", "margin", "status", "reason", "recorded_status"]
-
-
-class _Fail(Exception):
-    """The model result cannot support the claim (status ``fail``)."""
-
-
-class _NotEvaluated(Exception):
-    """A result the claim needs was not given (status ``not reproducible``)."""
-
-
-def _g(v) -> str:
-    return f"{v:.4g}"
-
-
-class _Ambiguous(Exception):
-    """The claim's mode cannot be identified over its range (status ``ambiguous``).
-
-    ``points``: the exceptional points behind it, each ``(frame key, row of
-    :func:`tefcore.modes.roles.exceptional_points`)`` -- the claim is checked
-    with the names on either side of each before it is left undecided.
-    """
-
-    def __init__(self, message, points=()):
-        super().__init__(message)
-        self.points = list(points)
-
-
-def _select(frame, mode) -> pd.DataFrame:
-    """:func:`tefcore.modes.roles.mode_rows`; a mode not in the result fails the claim."""
-    try:
-        return mode_rows(frame, mode)
-    except ModeNotFound as err:
-        raise _Fail(str(err)) from None
-
-
-def _series(frame, mode, quantity, lo=None, hi=None, until=None, identity=True):
-    """(x, y) of one mode and quantity, sorted by x, within [lo, hi].
-
-    Only the points the figure asks for (``refinement == 0``); raises
-    :class:`_Ambiguous` when an exceptional point of the mode lies in the
-    range (up to ``until`` if given: a value at one x needs the identity up
-    to there) -- unless `identity` is False (a scale read off the panel, which
-    is the same whichever root carries the name).
-    """
-    if quantity not in frame:
-        raise _Fail(f"the result has no {quantity!r} column")
-    if quantity == "frequency_per_rev" and "frequency_tracked" in frame:
-        # the curve the panel plots: each root's frequency continuous along the
-        # sweep (the point's own Floquet convention jumps by whole /rev where
-        # its dominant harmonic changes: Fig. 9's TEF at c_cg 0.08-0.10 and
-        # from 0.23 on, docs/theory.md 9.4)
-        frame = frame.assign(frequency_per_rev=frame["frequency_tracked"])
-    t = _select(frame, mode) if mode else frame
-    if identity:
-        points = exceptional_in_range(frame, mode, lo, hi if until is None else until)
-        if points:
-            e = points[0]
-            raise _Ambiguous(f"an exceptional point of {e['modes']} lies {where(e)}, inside "
-                             f"the claim's range ({e['kind']}): which root is {mode!r} has "
-                             "no answer there", [(None, p) for p in points])
-    if "refinement" in t:
-        t = t[t["refinement"] == 0]
-    t = t[np.isfinite(t[quantity].to_numpy(float))].sort_values("x")
-    x, y = t["x"].to_numpy(float), t[quantity].to_numpy(float)
-    locked = _locked_rows(t, quantity)
-    if lo is not None:
-        slack = X_SLACK * max(abs(lo), abs(hi), 1e-300)
-        keep = (x >= lo - slack) & (x <= hi + slack)
-        x, y, locked = x[keep], y[keep], locked[keep]
-    return x, y, locked
-
-
-def _locked_rows(t, quantity) -> np.ndarray:
-    """Rows whose frequency is a lock's: a real Floquet multiplier (the point's own
-    frequency at a multiple of 1/2 /rev, within :data:`LOCK_TOL` ten times)."""
-    if quantity != "frequency_per_rev" or "frequency_per_rev" not in t:
-        return np.zeros(len(t), bool)
-    raw = t["frequency_per_rev"].to_numpy(float) if "frequency_tracked" not in t else \
-        t["frequency_tracked"].to_numpy(float)
-    return np.abs(2 * raw - np.round(2 * raw)) <= 20 * LOCK_TOL
-
-
-def lock_readings(x, y, locked) -> list[tuple[int, tuple[float, ...]]]:
-    """The frequencies a locked point may read, where the curve cannot tell them apart.
-
-    A real multiplier is its own conjugate: its frequency is known modulo 1/rev
-    *and* up to its sign, so a root locked at 4.5 /rev reads 3.5 or 5.5 as
-    well, every representation a whole /rev from the next.  Continuity along
-    the curve says which (:func:`tefcore.modes.matching.continuous_frequency`)
-    only as far as the unlocked points beside it reach: a reading within 1 /rev
-    of the straight line through the nearest unlocked point on each side (or
-    the two nearest on one side, at an end of the curve) is possible; with no
-    unlocked point, every reading within 1 /rev of the point's own.
-
-    Returns
-    -------
-    list of (int, tuple of float)
-        Per locked point: its index and its possible readings, its own first.
-
-    Examples
-    --------
-    The imbalanced TEF locked at the soft end of Fig. 12, its curve rising
-    through 7.04 and 9.24 /rev beyond:
-
-    >>> lock_readings(np.array([55.3, 82.9, 110.5, 138.2]),
-    ...               np.array([4.5, 5.5, 7.04, 9.24]), np.array([1, 1, 0, 0], bool))
-    [(0, (4.5, 3.5)), (1, (5.5, 4.5))]
-    """
-    out = []
-    free = np.flatnonzero(~locked)
-    for i in np.flatnonzero(locked):
-        left, right = free[free < i], free[free > i]
-        pair = ([left[-1], right[0]] if left.size and right.size
-                else list(right[:2]) if right.size >= 2 else list(left[-2:]))
-        if len(pair) == 2 and x[pair[1]] != x[pair[0]]:
-            line = y[pair[0]] + (y[pair[1]] - y[pair[0]]) * (x[i] - x[pair[0]]) / (
-                x[pair[1]] - x[pair[0]])
-        else:
-            line = y[i]
-        cand = [y[i]] + [y[i] + s for s in (-1.0, 1.0) if abs(y[i] + s - line) < 1.0]
-        out.append((int(i), tuple(float(v) for v in cand)))
-    return out
-
-
-class _Context:
-    """Frames of the figure, its variants and other figures, built on demand."""
-
-    def __init__(self, name, result, cfg, variants, others, compute_missing):
-        self.name, self.cfg, self.compute = name, cfg, compute_missing
-        self.results = {(name, ""): result}
-        for key, res in (variants or {}).items():
-            self.results[(name, key)] = res
-        for fig, res in (others or {}).items():
-            self.results.setdefault((fig, ""), res)
-        self.frames: dict = {}
-        self.swaps: dict = {}        # frame key -> exceptional points taken the other way
-        self.strict = True           # an exceptional point in a claim's range stops it
-        self.reading: dict = {}      # (frame key, mode, x) -> a locked point's other reading
-        self.locks: list = []        # the locked points the claim's series read, and theirs
-
-    def frame(self, fig, overrides=None, quantity=""):
-        key = (fig, variant_key(overrides or {}))
-        if key not in self.frames:
-            res = self.results.get(key)
-            if res is None:
-                if not self.compute:
-                    what = f"{fig} with {key[1]}" if key[1] else fig
-                    raise _NotEvaluated(f"needs the result of {what} (validate_all runs it)")
-                res = compute_figure(fig, self.cfg, overrides=overrides or {})
-            self.frames[key] = figure_frame(fig, res)
-        f = self.frames[key]
-        if quantity == "natural_frequency_per_rev" and quantity not in f:
-            nkey = key + ("natural",)
-            if nkey not in self.frames:
-                self.frames[nkey] = natural_frequency_frame(fig, f, self.cfg, overrides or {})
-            f = self.frames[nkey]
-        return f
-
-    def series(self, c: Claim, fig=None, mode=None, quantity=None, interval=None,
-               overrides=None, until=None, identity=True):
-        fig, mode = fig or c.figure, c.mode if mode is None else mode
-        quantity = quantity or c.quantity
-        overrides = c.overrides if overrides is None else overrides
-        lo = hi = None
-        if interval is not None:
-            lo, hi = (float(v) for v in x_to_si(fig, np.asarray(interval, float), c.x_unit))
-        key = (fig, variant_key(overrides or {}))
-        frame = self.frame(fig, overrides, quantity)
-        if self.swaps.get(key):
-            frame = swapped(frame, self.swaps[key])
-        try:
-            x, y, locked = _series(frame, mode, quantity, lo, hi, until,
-                                   identity and self.strict)
-        except _Ambiguous as err:
-            err.points = [(key, p) for _, p in err.points]
-            raise
-        if len(x) == 0:
-            raise _Fail(f"no {mode or quantity} points" + (f" in {interval}" if lo else ""))
-        if locked.any():
-            y = y.copy()
-            for i, cand in lock_readings(x, y, locked):
-                where = (key, mode, float(x[i]))
-                self.locks.append((where, cand))
-                y[i] = self.reading.get(where, y[i])
-        return x, y
-
-
-def _unit(c: Claim) -> str:
-    """The unit after a value of the claim's quantity; a dimensionless one by its name."""
-    unit = quantity_unit(c.quantity)
-    return unit if unit or not c.quantity else f"({QUANTITY_NAMES[c.quantity]})"
-
-
-def _named(c: Claim, value: float, unit: str) -> str:
-    """A computed value with its quantity's name: ``"damping ratio -0.0123"``."""
-    return " ".join(t for t in (QUANTITY_NAMES.get(c.quantity, ""), _g(value), unit) if t)
-
-
-def _plotted(c: Claim, ctx: _Context, xs: float) -> str:
-    """A damping ratio's real part at the same x [1/rev]: the panels plot a rate, not a ratio."""
-    if c.quantity != "damping_ratio" or c.relative_to is not None:
-        return ""
-    try:
-        x, y = ctx.series(c, quantity="real_part", until=xs, identity=False)
-    except _Fail:
-        return ""
-    return f" (real part {_g(float(np.interp(xs, x, y)))} 1/rev)" if len(x) else ""
-
-
-def _at(c, x, y, xv):
-    xs = float(x_to_si(c.figure, xv, c.x_unit))
-    slack = X_SLACK * max(abs(xs), 1e-300)
-    if not x[0] - slack <= xs <= x[-1] + slack:
-        raise _Fail(f"x = {_g(xv)} {c.x_unit} is outside the computed range")
-    return float(np.interp(xs, x, y))
-
-
-def _check_value(c: Claim, ctx: _Context):
-    if c.figure == "fig6":
-        computed = float(ctx.frame("fig6")[c.quantity].iloc[0])
-    else:
-        last = max(v for v in (c.x, c.relative_to) if v is not None)
-        x, y = ctx.series(c, until=float(x_to_si(c.figure, last, c.x_unit)))
-        computed = _at(c, x, y, c.x)
-        if c.relative_to is not None:
-            computed = computed / _at(c, x, y, c.relative_to) - 1
-    unit = "(relative change)" if c.relative_to is not None else quantity_unit(c.quantity)
-    where = "" if c.x is None else f" at x = {_g(c.x)} {c.x_unit}".rstrip()
-    name = QUANTITY_NAMES.get(c.quantity, "value")
-    if c.expected is not None:
-        tol = c.tolerance * (abs(c.expected) if c.tolerance_type == "relative" else 1)
-        ok = abs(computed - c.expected) <= tol * (1 + X_SLACK)
-        ctx.margin = (tol - abs(computed - c.expected)) / tol if tol > 0 else np.nan
-        expected = f"{name} {_g(c.expected)} ± {_g(tol)} {unit}".rstrip() + where
-        why = f"off by {_g(computed - c.expected)}, more than {_g(tol)}"
-    else:
-        lo = -np.inf if c.lower is None else c.lower
-        hi = np.inf if c.upper is None else c.upper
-        ok = lo <= computed <= hi
-        ctx.margin = min(computed - lo, hi - computed) / _scale(lo, hi, computed)
-        expected = f"{_g(lo)} <= {name} <= {_g(hi)} {unit}".rstrip() + where
-        why = "outside the bounds"
-    plotted = ("" if c.figure == "fig6" or c.x is None
-               else _plotted(c, ctx, float(x_to_si(c.figure, c.x, c.x_unit))))
-    return (expected, _named(c, computed, unit) + plotted, computed, ok,
-            "" if ok else why)
-
-
-def _fmt_x(c, xs, factor):
-    return ", ".join(f"{_g(v / factor)}" for v in xs) + (f" {c.x_unit}" if c.x_unit else "")
-
-
-def _check_threshold(c: Claim, ctx: _Context):
-    x, y = ctx.series(c, interval=c.interval)
-    f = float(x_to_si(c.figure, 1.0, c.x_unit))
-    cross = zero_crossings(x, y)
-    wanted = [x0 for x0, d in cross if d == c.direction]
-    desc = "; ".join(f"{d} at {_fmt_x(c, [x0], f)}" for x0, d in cross) or (
-        f"none (real part {_g(y.min())} to {_g(y.max())} 1/rev)")
-    if c.expected is None:
-        expected = f"a {c.direction} crossing"
-    else:
-        expected = f"{c.direction} at {_g(c.expected)} ± {_g(c.tolerance)} {c.x_unit}".rstrip()
-    if not wanted:
-        # how far the root stays from crossing: its extreme real part against
-        # the panel's range
-        far = y.max() if c.direction == "unstable" else -y.min()
-        ctx.margin = float(min(far, 0.0) / max(np.ptp(y), abs(far), 1e-12))
-        return expected, f"crossings: {desc}", np.nan, False, f"no {c.direction} crossing"
-    best = wanted[0] if c.expected is None else min(wanted, key=lambda v: abs(v / f - c.expected))
-    reasons = []
-    if cross[-1][1] != c.direction:
-        reasons.append(f"the last crossing is {cross[-1][1]}: the end state is not the claimed one")
-    if c.expected is not None and abs(best / f - c.expected) > c.tolerance * (1 + X_SLACK):
-        reasons.append("crossing outside the tolerance")
-    ctx.margin = (1.0 if c.expected is None
-                  else (c.tolerance - abs(best / f - c.expected)) / c.tolerance)
-    if cross[-1][1] != c.direction:
-        ctx.margin = min(ctx.margin, -1.0)
-    return expected, f"crossings: {desc}", best / f, not reasons, "; ".join(reasons)
-
-
-def _check_range(c: Claim, ctx: _Context):
-    x, y = ctx.series(c)
-    f = float(x_to_si(c.figure, 1.0, c.x_unit))
-    got = [(a / f, b / f) for a, b in stability_intervals(x, y, c.state)]
-    lo, hi = c.expected_interval
-    expected = f"{c.state} on [{_g(lo)}, {_g(hi)}] ± {_g(c.tolerance)} {c.x_unit}".rstrip()
-    computed = f"{c.state} on " + (" and ".join(f"[{_g(a)}, {_g(b)}]" for a, b in got) or "none")
-    if len(got) != 1:
-        ctx.margin = -1.0
-        return expected, computed, np.nan, False, f"{len(got)} {c.state} intervals, expected one"
-    err = max(abs(got[0][0] - lo), abs(got[0][1] - hi))
-    ctx.margin = (c.tolerance - err) / c.tolerance if c.tolerance > 0 else np.nan
-    ok = err <= c.tolerance * (1 + X_SLACK) + X_SLACK * max(abs(lo), abs(hi))
-    return expected, computed, err, ok, "" if ok else (
-        f"an end is {_g(err)} {c.x_unit}".rstrip() + " off")
-
-
-def _stats(c, x, y, fig):
-    xd = x / float(x_to_si(fig, 1.0, c.x_unit))  # slopes per x_unit
-    slope = float(np.polyfit(xd, y, 1)[0]) if len(x) > 1 else np.nan
-    return slope, float(y[-1] - y[0]), float(np.ptp(y))
-
-
-def _check_trend(c: Claim, ctx: _Context):
-    x, y = ctx.series(c, interval=c.interval)
-    if len(x) < 2:
-        raise _Fail(f"a trend needs at least 2 points, got {len(x)}")
-    slope, net, p2p = _stats(c, x, y, c.figure)
-    span = "" if c.interval is None else f" over [{_g(c.interval[0])}, {_g(c.interval[1])}]"
-    computed = f"slope {_g(slope)}, net change {_g(net)}, peak-to-peak {_g(p2p)} {_unit(c)}"
-    if c.direction != "constant":
-        stat = slope if c.method == "slope" else net
-        ok = stat > 0 if c.direction == "increasing" else stat < 0
-        # against the change the panel shows: its range (per unit x for a slope)
-        xd = x / float(x_to_si(c.figure, 1.0, c.x_unit))
-        scale = max(float(np.ptp(y)) / (float(np.ptp(xd)) if c.method == "slope" else 1.0),
-                    1e-12)
-        ctx.margin = (stat if c.direction == "increasing" else -stat) / scale
-        why = "" if ok else f"{c.method.replace('_', ' ')} has the opposite sign"
-        return f"{c.direction}{span} ({c.method})", computed, stat, ok, why
-    if c.tolerance_type == "absolute":
-        scale, what = c.tolerance, f"{_g(c.tolerance)} {_unit(c)}"
-    elif c.tolerance_type == "relative":
-        scale, what = c.tolerance * np.mean(np.abs(y)), f"{_g(c.tolerance)} x mean |value|"
-    else:
-        # the panel's scale: the reference mode's range as drawn, whichever
-        # root carries its name (a claim about the lag is not withheld for the
-        # TEF's identity)
-        _, yr = ctx.series(c, mode=c.reference_mode, interval=c.interval, identity=False)
-        scale = c.tolerance * float(np.ptp(yr))
-        what = f"{_g(c.tolerance)} x peak-to-peak of {c.reference_mode} ({_g(np.ptp(yr))})"
-    ctx.margin = (scale - p2p) / scale if scale > 0 else np.nan
-    return (f"constant{span}: peak-to-peak <= {what}", computed, p2p, p2p <= scale * (1 + X_SLACK),
-            "" if p2p <= scale * (1 + X_SLACK) else f"varies by {_g(p2p)} > {_g(scale)}")
-
-
-def _check_comparison(c: Claim, ctx: _Context):
-    xa, ya = ctx.series(c, interval=c.interval)
-    xb, yb = ctx.series(c, fig=c.other_figure, mode=c.other_mode, quantity=c.other_quantity,
-                        interval=c.other_interval, overrides=c.other_overrides)
-    other = ", ".join(f"{k}={v}" for k, v in (
-        ("figure", c.other_figure if c.other_figure != c.figure else ""),
-        ("mode", c.other_mode if c.other_mode != c.mode else ""),
-        ("quantity", c.other_quantity if c.other_quantity != c.quantity else ""),
-        ("interval", c.other_interval if c.other_interval != c.interval else None),
-        ("overrides", c.other_overrides)) if v)
-    if c.statistic == "correlation":
-        inside = (xa >= xb[0]) & (xa <= xb[-1])
-        if inside.sum() < 3:
-            raise _Fail("fewer than 3 common x values to correlate")
-        r = float(np.corrcoef(ya[inside], np.interp(xa[inside], xb, yb))[0, 1])
-        ok = r >= c.tolerance if c.relation == "positive" else r <= -c.tolerance
-        ctx.margin = ((r if c.relation == "positive" else -r) - c.tolerance) / (1 - c.tolerance)
-        return (f"{c.relation} correlation with ({other}), |r| >= {_g(c.tolerance)}",
-                f"r = {_g(r)}", r, ok, "" if ok else "correlation too weak or of the wrong sign")
-    k = {"slope": 0, "abs_slope": 0, "peak_to_peak": 2}[c.statistic]
-    a, b = _stats(c, xa, ya, c.figure)[k], _stats(c, xb, yb, c.other_figure)[k]
-    if c.statistic == "abs_slope":
-        a, b = abs(a), abs(b)
-    ok = a < b if c.relation == "less" else a > b
-    ctx.margin = (b - a if c.relation == "less" else a - b) / max(abs(a), abs(b), 1e-12)
-    return (f"{c.statistic} {c.relation} than for ({other})",
-            f"{_g(a)} vs {_g(b)}", a, ok, "" if ok else f"{c.statistic} is not {c.relation}")
-
-
-def _check_curve(c: Claim, ctx: _Context):
-    x, y = ctx.series(c)
-    cmp = compare_curve(x, y, c.points)
-    n = int((~cmp["masked"]).sum())
-    expected = f"{len(cmp)} digitised points within their band"
-    if n == 0:
-        return (expected, "no point inside the model's x range", np.nan, None,
-                f"all {len(cmp)} points outside the computed range [{_g(x[0])}, {_g(x[-1])}]")
-    worst = float(cmp["deviation"][~cmp["masked"]].max())
-    inside = int(cmp["within"].sum())
-    kept = cmp[~cmp["masked"]]
-    ctx.margin = float(np.min(1.0 - kept["deviation"] / np.maximum(kept["allowed"], 1e-12)))
-    computed = (f"{inside}/{n} compared points within band, max |dev| {_g(worst)} {_unit(c)}, "
-                f"{len(cmp) - n} masked")
-    return expected, computed, worst, inside == n, "" if inside == n else (
-        f"{n - inside} point(s) outside their band")
-
-
-def _check_mechanism(c: Claim, ctx: _Context):
-    from ...linear.mechanism import mechanism
-    from ..figures.catalogue import FIGURES as FIGS
-    from ..figures.catalogue import figure_config
-
-    frame = ctx.frame(c.figure, c.overrides)
-    xs = float(x_to_si(c.figure, c.x, c.x_unit))
-    rows = _select(frame, c.mode)
-    points = exceptional_in_range(frame, c.mode, xs, xs)
-    if points:           # the root decomposed would be a choice: no verdict
-        e = points[0]
-        raise _Ambiguous(f"an exceptional point of {e['modes']} lies {where(e)}: which root "
-                         f"is {c.mode!r} at the claim's x has no answer")
-    at = rows[np.abs(rows["x"].to_numpy(float) - xs) <= X_SLACK * max(abs(xs), 1.0)]
-    if at.empty:
-        raise _Fail(f"no {c.mode} root at x = {_g(c.x)} {c.x_unit}".rstrip()
-                    + " (validate_all adds the x of mechanism claims to the sweep)")
-    root = complex(at["real_part"].iloc[0], at["frequency_per_rev"].iloc[0])
-    cfg = figure_config(c.figure, ctx.cfg).with_overrides(
-        {**c.overrides, FIGS[c.figure].parameter: xs})
-    res = mechanism(cfg, mode="root", root=root, knockouts=bool(c.knockout_terms))
-    terms = res.table[~res.table["term"].str.startswith(("total", "knockout"))]
-    contrib = dict(zip(terms["term"], terms["contribution_real"], strict=True))
-    found, reasons, wanted = [], [], []
-    found.append(f"{res.kind} at {res.eigenvalue.real:+.3g} {res.eigenvalue.imag:+.3g}i /rev")
-    if c.root_kind:
-        wanted.append(f"a {c.root_kind}")
-        if res.kind != c.root_kind:
-            reasons.append(f"the root is a {res.kind}, not a {c.root_kind}")
-    if c.driving_terms:
-        top = max(contrib, key=contrib.get)
-        found.append(f"driven most by {top} ({contrib[top]:+.3g} /rev)")
-        wanted.append("driven most by " + " or ".join(c.driving_terms))
-        if top not in c.driving_terms:
-            reasons.append(f"the largest destabilising work is done by {top}")
-    for kind, least in c.min_participation.items():
-        got = res.participation.get(kind, 0.0)
-        found.append(f"{kind} participation {got:.2f}")
-        wanted.append(f"{kind} participation >= {least:g}")
-        if got < least:
-            reasons.append(f"{kind} participates {got:.2f} < {least:g}")
-    if c.knockout_terms:
-        _knockouts(c, res, found, wanted, reasons)
-    # a decomposition's verdict has no distance: +1 when every part holds, -1 otherwise
-    ctx.margin = 1.0 if not reasons else -1.0
-    return ("; ".join(wanted) + f" at x = {_g(c.x)} {c.x_unit}".rstrip(), "; ".join(found),
-            res.eigenvalue.real, not reasons, "; ".join(reasons))
-
-
-def _knockouts(c, res, found, wanted, reasons):
-    """The claimed path's knockouts (and a rival path's): the share of growth each removes."""
-    sigma = res.eigenvalue.real
-
-    def best_cut(terms):
-        cut = {t: sigma - res.knockouts[t].eigenvalue.real for t in terms if t in res.knockouts}
-        best = max(cut, key=cut.get)
-        if not res.knockouts[best].clear:
-            raise _Ambiguous(f"the knockout of {best} passes a coalescence")
-        return best, cut[best] / abs(sigma) if sigma else np.nan
-
-    best, share = best_cut(c.knockout_terms)
-    found.append(f"knocking out {best} removes {share:.0%} of the growth")
-    wanted.append(f"a knockout of {' or '.join(c.knockout_terms)} removes >= "
-                  f"{c.tolerance:.0%} of the growth rate")
-    if not share >= c.tolerance:
-        reasons.append(f"no knockout of {', '.join(c.knockout_terms)} removes "
-                       f"{c.tolerance:.0%} of the growth rate")
-    if c.rival_terms:
-        rival, rshare = best_cut(c.rival_terms)
-        found.append(f"knocking out {rival} removes {rshare:.0%}: the "
-                     f"{'claimed' if share > rshare else 'rival'} path dominates")
-        # and the work each path's terms do on the root (the energy balance)
-        work = res.table.set_index("term")["contribution_real"]
-        mine = float(sum(work.get(t, 0.0) for t in c.knockout_terms))
-        theirs = float(sum(work.get(t, 0.0) for t in c.rival_terms))
-        found.append(f"work of the claimed path's terms {mine:+.3g} /rev, of the rival's "
-                     f"{theirs:+.3g} /rev")
-        wanted.append(f"more than a knockout of {' or '.join(c.rival_terms)} removes")
-        if not share > rshare:
-            reasons.append(f"the rival path dominates: knocking out {rival} removes "
-                           f"{rshare:.0%} of the growth, {best} {share:.0%}")
-
-
-_CHECKS = {"mechanism": _check_mechanism, "value": _check_value,
-           "threshold": _check_threshold, "range": _check_range,
-           "trend": _check_trend, "comparison": _check_comparison, "curve": _check_curve}
 
 
 def _row(c: Claim, expected="", computed="", value=np.nan, status="", reason="",
@@ -548,7 +69,7 @@ def validate_figure(name: str, result, claims=None, *, cfg=None, variants=None, 
     """
     if claims is None:
         claims = [c for c in load_claims() if c.figure == name]
-    ctx = _Context(name, result, cfg, variants, others, compute_missing)
+    ctx = Context(name, result, cfg, variants, others, compute_missing)
     rows = []
     for c in claims:
         if c.figure != name:
@@ -558,14 +79,14 @@ def validate_figure(name: str, result, claims=None, *, cfg=None, variants=None, 
             continue
         ctx.locks, ctx.margin = [], np.nan
         try:
-            expected, computed, value, ok, why = _CHECKS[c.kind](c, ctx)
-        except _Fail as err:
+            expected, computed, value, ok, why = CHECKS[c.kind](c, ctx)
+        except ClaimFailed as err:
             rows.append(_row(c, status="fail", reason=str(err)))
             continue
-        except _NotEvaluated as err:
+        except NotEvaluated as err:
             rows.append(_row(c, status="not reproducible", reason=str(err)))
             continue
-        except _Ambiguous as err:
+        except Ambiguous as err:
             rows.append(_across_exceptional_points(c, ctx, err))
             continue
         status = "not reproducible" if ok is None else ("pass" if ok else "fail")
@@ -580,7 +101,7 @@ def validate_figure(name: str, result, claims=None, *, cfg=None, variants=None, 
 MAX_LOCK_READINGS = 5
 
 
-def _across_readings(c: Claim, ctx: _Context, row: dict) -> dict:
+def _across_readings(c: Claim, ctx: Context, row: dict) -> dict:
     """A claim that reads a locked root's frequency, checked with every possible reading.
 
     Its verdict stands where every combination of the locked points' readings
@@ -589,7 +110,7 @@ def _across_readings(c: Claim, ctx: _Context, row: dict) -> dict:
     value stays the one of the readings continuity gives (the point's own).
     """
     locks = list(dict.fromkeys((w, cand) for w, cand in ctx.locks))
-    where = ", ".join(f"{_g(w[2])} ({' or '.join(_g(v) for v in cand)} /rev)"
+    where = ", ".join(f"{g4(w[2])} ({' or '.join(g4(v) for v in cand)} /rev)"
                       for w, cand in locks)
     if len(locks) > MAX_LOCK_READINGS:
         note = (f"{len(locks)} locked points in its range ({where}): checked with the "
@@ -598,7 +119,7 @@ def _across_readings(c: Claim, ctx: _Context, row: dict) -> dict:
         return row
     statuses = []
     for combo in itertools.product(*(cand for _, cand in locks)):
-        alt = _Context.__new__(_Context)
+        alt = Context.__new__(Context)
         alt.__dict__.update(ctx.__dict__)
         alt.locks = []
         alt.reading = {w: v for (w, _), v in zip(locks, combo, strict=True)}
@@ -623,22 +144,22 @@ def _across_readings(c: Claim, ctx: _Context, row: dict) -> dict:
 MAX_CHOICES = 7
 
 
-def _checked(c: Claim, ctx: _Context) -> dict:
+def _checked(c: Claim, ctx: Context) -> dict:
     """One claim's row (a dict of :func:`_row`) under the context's choice of names."""
     ctx.margin = np.nan
     try:
-        expected, computed, value, ok, why = _CHECKS[c.kind](c, ctx)
-    except _Fail as err:
+        expected, computed, value, ok, why = CHECKS[c.kind](c, ctx)
+    except ClaimFailed as err:
         return _row(c, status="fail", reason=str(err))
-    except _NotEvaluated as err:
+    except NotEvaluated as err:
         return _row(c, status="not reproducible", reason=str(err))
-    except _Ambiguous as err:
+    except Ambiguous as err:
         return _row(c, status="ambiguous", reason=str(err))
     status = "not reproducible" if ok is None else ("pass" if ok else "fail")
     return _row(c, expected, computed, value, status, why, _signed(ctx.margin, ok))
 
 
-def _across_exceptional_points(c: Claim, ctx: _Context, err: _Ambiguous) -> dict:
+def _across_exceptional_points(c: Claim, ctx: Context, err: Ambiguous) -> dict:
     """A claim whose range holds exceptional points: decided when no choice matters.
 
     At an exceptional point which root carries a name has no answer.  The
@@ -655,7 +176,7 @@ def _across_exceptional_points(c: Claim, ctx: _Context, err: _Ambiguous) -> dict
         return _row(c, status="ambiguous", reason=why)
     outcomes = []
     for mask in np.ndindex(*(2,) * len(points)):
-        alt = _Context.__new__(_Context)
+        alt = Context.__new__(Context)
         alt.__dict__.update(ctx.__dict__)
         alt.strict = False
         alt.swaps = {}
@@ -687,12 +208,6 @@ def _across_exceptional_points(c: Claim, ctx: _Context, err: _Ambiguous) -> dict
                 reason=f"an exceptional point lies inside the claim's range ({places}): which "
                        f"root is {named} has no answer there, and the verdict depends on "
                        f"it ({seen}){flutter_reading(c, lambda alt: _checked(alt, ctx))}")
-
-
-def _scale(lo, hi, value) -> float:
-    """The size a bound's distance is measured against: the finite bounds', else the value's."""
-    finite = [abs(v) for v in (lo, hi) if np.isfinite(v) and v != 0]
-    return max(finite) if finite else max(abs(value), 1e-12)
 
 
 def _signed(margin, ok) -> float:

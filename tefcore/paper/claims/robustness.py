@@ -73,10 +73,15 @@ def nudge(cfg, field: str, rel: float):
     Parameters
     ----------
     cfg : tefcore.config.configuration.Config
+        The configuration.
     field : str
         A scalar numeric field (``"rotor.radius"``).
     rel : float
         The relative change.
+
+    Returns
+    -------
+    tefcore.config.configuration.Config
     """
     section, name = resolve_field(field)
     value = getattr(getattr(cfg, section), name)
@@ -99,6 +104,7 @@ def nudged_runs(cfg, figures, nudges=NUDGES) -> list[NudgedRun]:
     Parameters
     ----------
     cfg : tefcore.config.configuration.Config
+        The configuration.
     figures : sequence of str
         Stability figures (``"fig12"``).
     nudges : sequence of (str, float)
@@ -120,7 +126,10 @@ def differences(base: NudgedRun, other: NudgedRun, rtol: float = VALUE_RTOL) -> 
 
     Parameters
     ----------
-    base, other : NudgedRun
+    base : NudgedRun
+        The run on the configuration as it is.
+    other : NudgedRun
+        A run on a nudged copy.
     rtol : float
         Relative agreement of computed values (:data:`VALUE_RTOL`).
 

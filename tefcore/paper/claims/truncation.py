@@ -124,6 +124,15 @@ def converged_count(cfg, figure: str, values=None, counts=MODE_COUNTS,
 def converged_verdicts(cfg, figures=None, counts=MODE_COUNTS) -> pd.DataFrame:
     """Every claim of ``figures`` checked on its figure's converged basis.
 
+    Parameters
+    ----------
+    cfg : tefcore.config.configuration.Config
+        The base configuration.
+    figures : sequence of str, optional
+        Stability figures (default: every one with a claim).
+    counts : sequence of int
+        The bases to try (:data:`MODE_COUNTS`).
+
     Returns
     -------
     pandas.DataFrame
@@ -146,7 +155,17 @@ def converged_verdicts(cfg, figures=None, counts=MODE_COUNTS) -> pd.DataFrame:
 
 
 def write_converged(table: pd.DataFrame, cfg, root=None) -> None:
-    """Store converged verdicts beside the claims, with what they were computed for."""
+    """Store converged verdicts beside the claims, with what they were computed for.
+
+    Parameters
+    ----------
+    table : pandas.DataFrame
+        :func:`converged_verdicts`.
+    cfg : tefcore.config.configuration.Config
+        The configuration they were computed on (its name and hash are kept).
+    root : path, optional
+        The reference-data folder (default: the package's).
+    """
     from ..._version import __version__
     from ...sweeps.store import config_hash
 
@@ -160,7 +179,21 @@ def write_converged(table: pd.DataFrame, cfg, root=None) -> None:
 
 
 def load_converged(cfg, root=None) -> pd.DataFrame | None:
-    """The stored converged verdicts, where they were computed for ``cfg``; else None."""
+    """The stored converged verdicts, where they were computed for ``cfg``; else None.
+
+    Parameters
+    ----------
+    cfg : tefcore.config.configuration.Config
+        The configuration a reproduction runs.
+    root : path, optional
+        The reference-data folder (default: the package's).
+
+    Returns
+    -------
+    pandas.DataFrame or None
+        ``id, figure, status, computed_value, n_modes``; None where none were
+        stored or they were computed for another configuration.
+    """
     from ...sweeps.store import config_hash
 
     root = reference_dir() if root is None else root
