@@ -32,8 +32,8 @@ from .curves import X_SLACK, compare_curve, stability_intervals, zero_crossings
 from .files import ReferenceDataError, reference_dir
 from .reference import STATUSES, load_claims
 
-__all__ = ["COLUMNS", "claims_score", "compare_curve", "figure_frame", "figure_values",
-           "reference_curves", "stability_intervals", "sweep_values", "update_recorded_status",
+__all__ = ["COLUMNS", "claim_values", "claims_score", "compare_curve", "figure_frame",
+           "figure_values", "reference_curves", "stability_intervals", "sweep_values", "update_recorded_status",
            "validate_all", "validate_figure", "worse_than_recorded", "zero_crossings"]
 
 
@@ -125,6 +125,44 @@ def figure_values(name: str, n_points: int | None = None, values=None,
     return [float(f"{v:.10g}") for v in grid]
 
 
+def claim_values(claims) -> dict:
+    """Each figure the claims read, with its sweep values (None: the figure's own).
+
+    Parameters
+    ----------
+    claims : sequence of Claim
+        The checkable claims.
+
+    Returns
+    -------
+    dict
+        Figure -> its values: the paper's and the claims' x for a stability
+        figure (:func:`sweep_values`), Fig. 7's overhangs with the claims'.
+    """
+    need = {c.figure for c in claims} | {c.other_figure for c in claims if c.other_figure}
+    values: dict = {}
+    for name in (n for n in KNOWN_FIGURES if n in need):
+        mine = [c for c in claims if c.figure == name]
+        values[name] = None
+        if name in FIGURES:
+            values[name] = sweep_values(name, mine)
+        elif name == "fig7":
+            xs = {float(v) for c in mine for v in (c.x, c.relative_to) if v is not None}
+            values[name] = sorted(set(FIG7_OVERHANGS) | xs)
+    return values
+
+
+def _variant_results(claims, cfg, values, n_jobs, progress) -> dict:
+    """``(figure, variant key) -> result`` of every variant a claim reads (its overrides)."""
+    variants: dict = {}
+    for c in claims:
+        for fig, ov in ((c.figure, c.overrides), (c.other_figure or c.figure, c.other_overrides)):
+            if ov and (fig, variant_key(ov)) not in variants:
+                variants[(fig, variant_key(ov))] = compute_figure(
+                    fig, cfg, values.get(fig), ov, n_jobs, progress)
+    return variants
+
+
 def validate_all(n_jobs: int = 1, progress: bool = False, *, claims=None, cfg=None,
                  results=None, include_examples: bool = False) -> pd.DataFrame:
     """Run every figure that has a checkable claim and check all claims.
@@ -153,23 +191,11 @@ def validate_all(n_jobs: int = 1, progress: bool = False, *, claims=None, cfg=No
     claims = load_claims(include_examples=include_examples) if claims is None else list(claims)
     results = dict(results or {})
     active = [c for c in claims if c.kind != "not_reproducible"]
-    need = {c.figure for c in active} | {c.other_figure for c in active if c.other_figure}
-    values = {}
-    for name in (n for n in KNOWN_FIGURES if n in need):
-        mine = [c for c in active if c.figure == name]
-        if name in FIGURES:
-            values[name] = sweep_values(name, mine)
-        elif name == "fig7":
-            xs = {float(v) for c in mine for v in (c.x, c.relative_to) if v is not None}
-            values[name] = sorted(set(FIG7_OVERHANGS) | xs)
+    values = claim_values(active)
+    for name, vals in values.items():
         if name not in results:
-            results[name] = compute_figure(name, cfg, values.get(name), None, n_jobs, progress)
-    variants: dict = {}
-    for c in active:
-        for fig, ov in ((c.figure, c.overrides), (c.other_figure or c.figure, c.other_overrides)):
-            if ov and (fig, variant_key(ov)) not in variants:
-                variants[(fig, variant_key(ov))] = compute_figure(
-                    fig, cfg, values.get(fig), ov, n_jobs, progress)
+            results[name] = compute_figure(name, cfg, vals, None, n_jobs, progress)
+    variants = _variant_results(active, cfg, values, n_jobs, progress)
     tables = []
     for name in dict.fromkeys(c.figure for c in claims):
         mine = [c for c in claims if c.figure == name]
