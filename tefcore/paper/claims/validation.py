@@ -33,8 +33,9 @@ from .files import ReferenceDataError, reference_dir
 from .reference import STATUSES, load_claims
 
 __all__ = ["COLUMNS", "claim_values", "claims_score", "compare_curve", "figure_frame",
-           "figure_values", "reference_curves", "stability_intervals", "sweep_values", "update_recorded_status",
-           "validate_all", "validate_figure", "worse_than_recorded", "zero_crossings"]
+           "figure_values", "reference_curves", "stability_intervals", "sweep_values",
+           "update_recorded_status", "validate_all", "validate_figure", "worse_than_recorded",
+           "zero_crossings"]
 
 
 def _value_si(name: str, v) -> float:
