@@ -48,7 +48,6 @@ from .continuation import FLAP_ACTIVE
 from .names import (
     TEF_NAME,
     base_name,
-    is_locked,
     is_tef,
     locked_name,
     mode_kind,
@@ -241,7 +240,6 @@ def named_columns(columns: dict, continued, shares=None, coordinates=None) -> di
               for o, d in zip(continued.origin, cols["label"], strict=True)]
     rates = np.asarray(cols["real_part"], float)
     origin = _plain_name_to_less_stable(origin, rates)
-    carried = _carried_with_the_plain_name(origin, np.asarray(continued.frequency, float))
     cols["label"] = np.array(origin, dtype=object)
     cols["kind"] = np.array([mode_kind(o) for o in origin],
                             dtype=object)
@@ -263,7 +261,7 @@ def named_columns(columns: dict, continued, shares=None, coordinates=None) -> di
     motion = np.asarray(continued.flap_motion, float)
     new = {"real_part_uncoupled": continued.uncoupled.real,
            "frequency_uncoupled": continued.uncoupled.imag,
-           "frequency_continued": carried,
+           "frequency_continued": continued.frequency,
            "identity_certain": continued.certain,
            "meets": np.array([", ".join(met.get(base_name(o), [])) for o in origin],
                              dtype=object),
@@ -285,20 +283,6 @@ def named_columns(columns: dict, continued, shares=None, coordinates=None) -> di
     order += ["flap_motion", "named_by_path", "flap_induced", "flutter_root"]
     cols.update(new)
     return {c: cols[c] for c in order}
-
-
-def _carried_with_the_plain_name(names, carried):
-    """The frequency a path carried into a locked pair, on the root that now has the
-    plain name (the pair's two roots share the lock's frequency; which root the path
-    reached is round-off, which one is plain is the less stable)."""
-    carried = carried.copy()
-    for i, name in enumerate(names):
-        if not np.isnan(carried[i]) or is_locked(name):
-            continue
-        twin = [j for j, n in enumerate(names) if n == locked_name(name)]
-        if twin and np.isfinite(carried[twin[0]]):
-            carried[i], carried[twin[0]] = carried[twin[0]], np.nan
-    return carried
 
 
 def _plain_name_to_less_stable(names, rates):
