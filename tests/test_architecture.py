@@ -83,8 +83,6 @@ LONG_FUNCTIONS: dict[str, str] = {
     "tefcore.aero.c81.reader.numbers":
         "one pass over a line's fields: each branch is one way a number can be wrong, "
         "with the error docs/c81_format.md specifies for it",
-    "tefcore.cli.build_parser":
-        "declarative: one add_argument per option of every subcommand, in help order",
     "tefcore.floquet._analysis.floquet_modes":
         "the accuracy loop: sub-intervals raised for damped roots, steps doubled until "
         "every exponent meets its tolerance, the lift's round-off bound; its branches are "

@@ -1,8 +1,11 @@
-"""What the ``tefcore`` subcommands share: the configuration a command's options name."""
+"""What the ``tefcore`` subcommands share: the configuration a command's options name,
+and the table a command writes with ``--csv``."""
 
 from __future__ import annotations
 
-__all__ = ["load"]
+from ..safe_io import atomic_output
+
+__all__ = ["load", "write_csv"]
 
 
 def load(args):
@@ -25,3 +28,21 @@ def load(args):
     if args.set:
         cfg = cfg.with_overrides(parse_overrides(args.set))
     return cfg
+
+
+def write_csv(table, path, what: str = "--csv", **kwargs) -> None:
+    """Write a table atomically (the destination was checked before computing).
+
+    Parameters
+    ----------
+    table : pandas.DataFrame
+        The table (written without its index).
+    path : path-like
+        The destination.
+    what : str, optional
+        The option that named it, for messages.
+    **kwargs
+        Further options of :meth:`pandas.DataFrame.to_csv` (``float_format``).
+    """
+    with atomic_output(path, newline="", what=what) as f:
+        table.to_csv(f, index=False, **kwargs)

@@ -8,7 +8,7 @@ import sys
 from ..safe_io import atomic_output, check_output_file
 from .common import load
 
-__all__ = ["ESTIMATE_ABOVE_S", "TIMED_FROM_POINTS", "cmd_map"]
+__all__ = ["ESTIMATE_ABOVE_S", "TIMED_FROM_POINTS", "add_arguments", "run"]
 
 
 def _grid(cfg, field: str, start: str, stop: str, num: str, axis: str) -> list:
@@ -68,7 +68,7 @@ def _map_plot(res, cfg, path) -> None:
                           metadata={"Software": None})
 
 
-def cmd_map(args) -> int:
+def run(args) -> int:
     """``tefcore map``: outputs checked, the estimate printed, the map computed and written.
 
     Parameters
@@ -128,3 +128,43 @@ def cmd_map(args) -> int:
     print(f"wrote {', '.join(p for p, _ in outputs)}: {len(xs)} x {len(ys)} points, "
           f"{n_bad} failed, {len(res.boundary)} boundary points")
     return 1 if n_bad else 0
+
+
+def add_arguments(sub, add) -> None:
+    """Add ``map`` to the ``tefcore`` parser.
+
+    Parameters
+    ----------
+    sub : argparse._SubParsersAction
+        The subcommands of the ``tefcore`` parser.
+    add : callable
+        Makes one subcommand in the house style (``tefcore.cli``).
+    """
+    p = add(sub, "map", "stability map over two fields: flutter growth, boundary",
+            "Stability map: one sweep of FIELD_X per value of FIELD_Y (resumable with "
+            "--out), the flutter root's growth rate at every point and the flutter "
+            "boundary refined between grid points. Ranges are START STOP NUM, numbers "
+            "(SI or fractions) or 'value unit' strings.", run,
+            epilog="example:\n  tefcore map flap.cg_offset 0 0.3 7 flap.overhang 0 0.4 5 "
+                   "--png map.png")
+    # one positional per item: argparse cannot format the usage of a positional
+    # with a tuple metavar (nargs=3)
+    p.add_argument("x_field", help="dotted field on the x axis, e.g. flap.cg_offset")
+    p.add_argument("x_start", metavar="X_START", help="first x value (a number or 'value unit')")
+    p.add_argument("x_stop", metavar="X_STOP", help="last x value")
+    p.add_argument("x_num", metavar="X_NUM", help="number of evenly spaced x values")
+    p.add_argument("y_field", help="dotted field on the y axis, e.g. flap.overhang")
+    p.add_argument("y_start", metavar="Y_START", help="first y value")
+    p.add_argument("y_stop", metavar="Y_STOP", help="last y value")
+    p.add_argument("y_num", metavar="Y_NUM", help="number of evenly spaced y values")
+    p.add_argument("--csv", default=None,
+                   help="tidy table (default: map.csv when neither --png nor --netcdf is given)")
+    p.add_argument("--png", default=None, help="draw the map to this image")
+    p.add_argument("--netcdf", default=None, help="write the xarray Dataset (netCDF3)")
+    p.add_argument("--out", default=None, help="folder for resumable sweep files")
+    p.add_argument("--jobs", type=int, default=1, help="parallel processes (joblib)")
+    p.add_argument("--scheduler", default=None, metavar="ADDRESS",
+                   help="dask.distributed scheduler, e.g. tcp://10.0.0.5:8786 (instead of "
+                        "local processes)")
+    p.add_argument("--no-refine", action="store_true", help="do not refine the boundary")
+    p.add_argument("--quiet", "--no-progress", action="store_true", help="no progress bar")

@@ -5,7 +5,7 @@ from a small perturbation of the trim, fits the growth and compares it with
 the Floquet root (:mod:`tefcore.timedomain.simulate`), and writes the time
 history, a JSON summary and an animation.  ``explore`` serves the root-map
 explorer as a web page with voila (:mod:`tefcore.paper.explorer_app`).
-:func:`add_commands` adds them to the parser of :mod:`tefcore.cli`.
+:func:`add_arguments` adds them to the parser of :mod:`tefcore.cli`.
 """
 
 from __future__ import annotations
@@ -13,10 +13,10 @@ from __future__ import annotations
 from ..safe_io import atomic_output, check_output_file
 from .common import load
 
-__all__ = ["add_commands", "cmd_explore", "cmd_simulate"]
+__all__ = ["add_arguments", "run_explore", "run_simulate"]
 
 
-def cmd_simulate(args) -> int:
+def run_simulate(args) -> int:
     """Run ``tefcore simulate``: march from a perturbation, fit the growth, compare with Floquet.
 
     Parameters
@@ -77,7 +77,7 @@ def _simulate_parser(sub, add) -> None:
              "shape when it is unstable, else the TEF mode's -- fit the growth rate of the "
              "response (least squares on the log of its per-revolution envelope) and compare "
              "it with the Floquet real part. Growth rates are per radian of azimuth, as the "
-             "real parts of 'tefcore stability'.", cmd_simulate,
+             "real parts of 'tefcore stability'.", run_simulate,
              epilog="example:\n  tefcore simulate -s flight.advance_ratio=0.3 -s "
                     "flap.overhang=0.29 -s flap.cg_offset=0.33 --revs 6 --json s.json "
                     "--gif s.gif")
@@ -102,7 +102,7 @@ def _simulate_parser(sub, add) -> None:
                         "the amplitude panel shows all)")
 
 
-def add_commands(sub, add) -> None:
+def add_arguments(sub, add) -> None:
     """Add ``simulate`` and ``explore`` to the ``tefcore`` parser.
 
     Parameters
@@ -110,13 +110,13 @@ def add_commands(sub, add) -> None:
     sub : argparse._SubParsersAction
         The subcommands of the ``tefcore`` parser.
     add : callable
-        :func:`tefcore.cli._add`, which makes one subcommand in the house style.
+        Makes one subcommand in the house style (``tefcore.cli``).
     """
     _simulate_parser(sub, add)
     _explore_parser(sub, add)
 
 
-def cmd_explore(args) -> int:
+def run_explore(args) -> int:
     """Run ``tefcore explore``: serve the explorer page with voila.
 
     Parameters
@@ -142,7 +142,7 @@ def _explore_parser(sub, add) -> None:
             "(pip install 'tefcore[app]'): sliders for the flap CG offset, overhang, "
             "actuator stiffness and advance ratio redraw the root map and the flutter root's "
             "mechanism bars; a button animates the flutter root. --set changes the base "
-            "configuration; Ctrl-C stops the server.", cmd_explore,
+            "configuration; Ctrl-C stops the server.", run_explore,
             epilog="example:\n  tefcore explore --port 8866 --open")
     p.add_argument("--port", type=int, default=8866, help="TCP port (default 8866; 0: any free)")
     p.add_argument("--open", action="store_true", help="open the page in the default browser")
