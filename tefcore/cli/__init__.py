@@ -37,7 +37,8 @@ from .._version import __version__
 from ..errors import run_command
 from . import blade, c81, maps, mechanism, stability, sweep, watch
 
-__all__ = ["COMMAND_MODULES", "add_command", "build_parser", "entry_point", "main"]
+__all__ = ["COMMAND_MODULES", "OPENBLAS_X86_64_KERNELS", "add_command", "build_parser",
+           "coretype_warning", "entry_point", "main"]
 
 #: ``tefcore --help``: what the command is, and where the details are.
 DESCRIPTION = """\
@@ -190,6 +191,58 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
+#: The kernels OpenBLAS can be told to load on x86-64 (``OPENBLAS_CORETYPE``; the
+#: ``corename`` list of its ``driver/others/dynamic.c``), read without case as it reads them.
+OPENBLAS_X86_64_KERNELS = (
+    "Katmai", "Coppermine", "Northwood", "Prescott", "Banias", "Atom", "Core2", "Penryn",
+    "Dunnington", "Nehalem", "Athlon", "Opteron", "Opteron_SSE3", "Barcelona", "Nano",
+    "Sandybridge", "Bobcat", "Bulldozer", "Piledriver", "Haswell", "Steamroller", "Excavator",
+    "Zen", "SkylakeX", "Cooperlake", "SapphireRapids")
+
+
+def coretype_warning(environ=None, machine: str | None = None) -> str | None:
+    """The line to print when ``OPENBLAS_CORETYPE`` names no kernel OpenBLAS knows.
+
+    OpenBLAS then says nothing (unless ``OPENBLAS_VERBOSE=2``) and picks its
+    kernels by the processor, as if the variable were not set.  Checked on
+    x86-64 only, where the names are known (:data:`OPENBLAS_X86_64_KERNELS`).
+
+    Parameters
+    ----------
+    environ : mapping, optional
+        The environment (default: ``os.environ``).
+    machine : str, optional
+        The processor family (default: ``platform.machine()``).
+
+    Returns
+    -------
+    str or None
+
+    Examples
+    --------
+    >>> coretype_warning({"OPENBLAS_CORETYPE": "haswell"}, "x86_64") is None
+    True
+    >>> print(coretype_warning({"OPENBLAS_CORETYPE": "Haswel"}, "x86_64"))
+    ... # doctest: +NORMALIZE_WHITESPACE
+    tefcore: warning: OPENBLAS_CORETYPE = 'Haswel' is not a kernel OpenBLAS knows (did you
+    mean Haswell?); OpenBLAS ignores it and picks its kernels by the processor
+    """
+    import os
+    import platform
+
+    value = (os.environ if environ is None else environ).get("OPENBLAS_CORETYPE")
+    if not value or (machine or platform.machine()).lower() not in ("x86_64", "amd64"):
+        return None
+    if value.strip().lower() in {k.lower() for k in OPENBLAS_X86_64_KERNELS}:
+        return None
+    import difflib
+
+    close = difflib.get_close_matches(value, OPENBLAS_X86_64_KERNELS, n=1, cutoff=0.6)
+    hint = f" (did you mean {close[0]}?)" if close else " (e.g. Haswell, SkylakeX, Zen)"
+    return (f"tefcore: warning: OPENBLAS_CORETYPE = {value!r} is not a kernel OpenBLAS "
+            f"knows{hint}; OpenBLAS ignores it and picks its kernels by the processor")
+
+
 def main(argv: list[str] | None = None) -> int:
     """Run the ``tefcore`` command.
 
@@ -208,6 +261,8 @@ def main(argv: list[str] | None = None) -> int:
         args = build_parser().parse_args(argv)
         from ..runtime import apply_defaults
 
+        if (line := coretype_warning()) is not None:
+            print(line, file=sys.stderr)
         apply_defaults()  # the command owns its process (tefcore.runtime)
         with warnings.catch_warnings():
             warnings.showwarning = _show_warning

@@ -31,6 +31,19 @@ def run_example(args) -> int:
     return 0
 
 
+def _unreadable(path) -> str | None:
+    """Why `path` cannot be read as a deck, or None when it can."""
+    import os
+
+    if os.path.isfile(path):
+        return None if os.access(path, os.R_OK) else "no permission to read it"
+    if os.path.islink(path):
+        return "a link to a missing file"
+    if os.path.isdir(path):
+        return "a folder"
+    return "not a file" if os.path.exists(path) else "no such file"
+
+
 def run_check(args) -> int:
     """``tefcore c81 check``: parse each deck, print its summary or its first problem.
 
@@ -42,21 +55,30 @@ def run_check(args) -> int:
     Returns
     -------
     int
-        0, or 1 when a deck is bad.
+        0, or 1 when a deck is bad (each problem one ``tefcore: error:`` line).
+
+    Raises
+    ------
+    OSError
+        A FILE that is missing or not a readable file, before any is parsed.
     """
     from ..aero.c81.format import COEFFICIENT_LABELS, C81FormatError
     from ..aero.c81.reader import read_c81
 
+    for f in args.files:                    # every file there before any is parsed
+        if (why := _unreadable(f)) is not None:
+            raise OSError(f"c81 check: FILE {f}: cannot read it ({why})")
     status = 0
     for f in args.files:
         try:
             deck = read_c81(f)
         except C81FormatError as exc:       # names the file, line and column
-            print(exc, file=sys.stderr)
+            print(f"tefcore: error: c81 check: {exc}", file=sys.stderr)
             status = 1
             continue
-        except OSError as exc:              # a folder, a dangling link, no permission
-            print(f"{f}: cannot read the C81 deck ({exc.strerror or exc})", file=sys.stderr)
+        except OSError as exc:              # gone or unreadable since it was checked
+            print(f"tefcore: error: c81 check: {f}: cannot read the C81 deck "
+                  f"({exc.strerror or exc})", file=sys.stderr)
             status = 1
             continue
         kind = f"flap deck, {deck.delta.size} deltas" if deck.is_flap else "blade deck"

@@ -2,8 +2,8 @@
 
 from __future__ import annotations
 
-from ..safe_io import check_output_file
-from .common import load, write_csv
+from ..safe_io import check_outputs
+from .common import inputs, load, write_csv
 
 __all__ = ["add_arguments", "run"]
 
@@ -26,8 +26,7 @@ def run(args) -> int:
     from .text import mechanism_choice, wrap
 
     cfg = load(args)
-    if args.csv:
-        check_output_file(args.csv, "--csv")
+    check_outputs([(args.csv, "--csv")], inputs=inputs(args, cfg))
     point = stability(cfg)
     # no --mode: mechanism's default, the flutter root when unstable, else the TEF mode
     res = mechanism(cfg, mode=args.mode, knockouts=not args.no_knockouts,

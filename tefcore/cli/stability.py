@@ -2,8 +2,8 @@
 
 from __future__ import annotations
 
-from ..safe_io import check_output_file
-from .common import load, write_csv
+from ..safe_io import check_outputs
+from .common import inputs, load, write_csv
 
 __all__ = ["add_arguments", "run"]
 
@@ -25,8 +25,7 @@ def run(args) -> int:
     from .text import flutter_text, legend, modes_text, trim_lines, wrap
 
     cfg = load(args)
-    if args.csv:
-        check_output_file(args.csv, "--csv")
+    check_outputs([(args.csv, "--csv")], inputs=inputs(args, cfg))
     res = stability(cfg)
     # the table's columns: printing them needs no pandas (the CSV does)
     table = res.columns if hasattr(res, "columns") else res.modes

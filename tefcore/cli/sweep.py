@@ -4,8 +4,9 @@ from __future__ import annotations
 
 import sys
 
-from ..safe_io import check_output_file
-from .common import load
+from ..safe_io import check_output_file, check_outputs
+from .common import inputs, jobs, load
+from .estimate import YES_HELP, announce
 
 __all__ = ["add_arguments", "run"]
 
@@ -24,9 +25,11 @@ def run(args) -> int:
         0, or 1 when a point failed.
     """
     from ..config.text_input import sweep_values
-    from ..sweeps.evaluate import command_pool, start_pool_for
+    from ..runtime import process_cap
+    from ..sweeps.evaluate import command_pool, n_chains, start_pool_for
 
     values = sweep_values(args.parameter, args.values, args.range)
+    processes, line = process_cap(args.jobs, n_chains(len(values)), "chain of points")
     # a forked worker is this process's copy, ready at once: started once the
     # inputs are checked; a spawned one starts and imports while they are.
     # The pool is closed when the command ends: no idle worker to wait for
@@ -37,9 +40,14 @@ def run(args) -> int:
         from .text import sweep_summary, timing_lines
 
         cfg = load(args)
-        check_output_file(args.csv, "--csv")
+        check_outputs([(args.csv, "--csv")], inputs=inputs(args, cfg),
+                      stores=[(args.out, "--out")])
         if args.out:
             check_output_file(args.out, "--out", create_folder=True)
+        if line:
+            print(f"tefcore sweep: {line}", file=sys.stderr, flush=True)
+        announce("sweep", f"{len(values)} points", len(values), processes, cfg,
+                 {args.parameter: values[0]}, yes=args.yes, after="the steps are refined")
         if forked:
             start_pool_for(len(values), args.jobs)
         result = sweep(cfg, args.parameter, values, n_jobs=args.jobs, out=args.out,
@@ -86,5 +94,8 @@ def add_arguments(sub, add) -> None:
                    help="tidy table (default: sweep.csv); exit status 1 when points failed")
     p.add_argument("--out", default=None,
                    help="stream points to this JSON-lines file; re-running resumes it")
-    p.add_argument("--jobs", type=int, default=1, help="parallel processes (joblib)")
+    p.add_argument("--jobs", type=jobs, default=1,
+                   help="parallel processes (joblib); at most one per core and per "
+                        "warm-start chain (up to 8 points)")
     p.add_argument("--quiet", "--no-progress", action="store_true", help="no progress bar")
+    p.add_argument("--yes", action="store_true", help=YES_HELP)
