@@ -309,6 +309,13 @@ def check_outputs(outputs, *, inputs=(), stores=()) -> list[Path]:
     others = [(p, w, "an input") for p, w, _ in _entries(inputs)] + \
              [(p, w, "a file it appends to") for p, w, _ in stores]
     known = [_identity(p) for p, _, _ in others]
+    n_inputs = len(others) - len(stores)
+    for (store, store_what, _), key in zip(others[n_inputs:], known[n_inputs:], strict=True):
+        for (other, other_what, _), in_key in zip(others[:n_inputs], known, strict=False):
+            if _same(key, in_key):
+                raise OutputError(f"{store_what} {store} is the same file as {other_what} "
+                                  f"{other}, an input: appending to it would spoil that file "
+                                  "(choose another path)")
     seen = []
     for i, (path, what, _) in enumerate(outs):
         this = _identity(path)

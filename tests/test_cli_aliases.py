@@ -237,3 +237,13 @@ def test_check_outputs_compares_resolved_paths_and_inodes(tmp_path):
         check_outputs([(tmp_path / "s.jsonl.lock", "--csv")],
                       stores=[(tmp_path / "s.jsonl", "--out")])
     assert check_outputs([(None, "--csv"), (a, "--json")]) == [a]
+
+
+def test_a_sweep_file_onto_the_configuration_file(here, toy, capsys):
+    save_config(load_config("mdart"), here / "rotor.toml")
+    before = (here / "rotor.toml").read_bytes()
+    assert main(["sweep", "flap.cg_offset", "--values", "0", "--quiet", "--config", "rotor.toml",
+                 "--out", "rotor.toml"]) == 2
+    assert "--out rotor.toml is the same file as --config rotor.toml, an input" \
+        in one_error_line(capsys)
+    assert toy.calls == 0 and (here / "rotor.toml").read_bytes() == before

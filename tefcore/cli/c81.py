@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import sys
 
-from ..safe_io import check_output_file
+from ..safe_io import check_outputs
 
 __all__ = ["add_arguments", "run_check", "run_example"]
 
@@ -26,7 +26,7 @@ def run_example(args) -> int:
     from ..aero.c81.tables import example_deck_path, make_example_deck
 
     out = args.out or example_deck_path()
-    check_output_file(out, "--out")
+    check_outputs([(out, "--out")])
     print(f"wrote {write_c81(make_example_deck(), out)}")
     return 0
 
