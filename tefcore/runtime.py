@@ -57,7 +57,7 @@ import sys
 import threading
 
 __all__ = ["apply_defaults", "blas_limit", "defaults_applied", "keep_freed_memory",
-           "limit_blas_threads", "worker_init"]
+           "limit_blas_threads", "process_cap", "process_count", "usable_cores", "worker_init"]
 
 #: ``mallopt`` parameter numbers (glibc ``malloc.h``).
 _M_TRIM_THRESHOLD, _M_MMAP_THRESHOLD = -1, -3
@@ -268,3 +268,94 @@ def defaults_applied() -> bool:
     bool
     """
     return _process_applied
+
+
+def usable_cores() -> int:
+    """The cores this process may run on: its affinity mask where the system has one.
+
+    ``os.cpu_count()`` counts the machine's cores; a container, ``taskset``
+    or a batch scheduler may give the process fewer, which
+    ``os.sched_getaffinity`` reports (Linux).
+
+    Returns
+    -------
+    int
+        At least 1.
+    """
+    try:
+        return max(1, len(os.sched_getaffinity(0)))
+    except (AttributeError, OSError):          # no affinity mask here (macOS, Windows)
+        return max(1, os.cpu_count() or 1)
+
+
+def process_count(n_jobs: int, n_tasks: int | None = None) -> int:
+    """Processes worth starting for `n_tasks` independent tasks asked to run on `n_jobs`.
+
+    Never more than the cores this process may use (:func:`usable_cores`) --
+    a process per task beyond them only shares the same cores, each with its
+    own copy of the solver in memory -- nor than the tasks (a process without
+    a task is only a start-up).  A negative `n_jobs` asks for all the cores
+    (as joblib reads it).
+
+    Parameters
+    ----------
+    n_jobs : int
+        Processes asked for, the caller included; negative: all the cores.
+    n_tasks : int, optional
+        Tasks to share among them (sweep chains, map rows, notebooks); None:
+        not known yet.
+
+    Returns
+    -------
+    int
+        At least 1.
+
+    Examples
+    --------
+    >>> cores = usable_cores()
+    >>> process_count(100000, 5) == min(cores, 5), process_count(64, 1), process_count(1, 40)
+    (True, 1, 1)
+    """
+    n = usable_cores() if n_jobs < 0 else min(int(n_jobs), usable_cores())
+    if n_tasks is not None:
+        n = min(n, int(n_tasks))
+    return max(1, n)
+
+
+def process_cap(n_jobs: int, n_tasks: int | None = None, task: str = "task",
+                option: str = "--jobs") -> tuple[int, str | None]:
+    """:func:`process_count`, and the line a command prints when it is fewer than asked.
+
+    Parameters
+    ----------
+    n_jobs : int
+        Processes asked for (``--jobs``); negative: all the cores.
+    n_tasks : int, optional
+        Tasks to share among them.
+    task : str, optional
+        What a task is, for the line (``"row"``).
+    option : str, optional
+        The option that asked, for the line.
+
+    Returns
+    -------
+    processes : int
+    line : str or None
+        Why fewer processes than asked for (``"--jobs 64: 2 processes, the
+        cores this process may use"``), or None when `n_jobs` processes are
+        used (or all the cores were asked for).
+
+    Examples
+    --------
+    >>> process_cap(100000, 1, "chain of points")
+    (1, '--jobs 100000: 1 process, one per chain of points (there is 1)')
+    """
+    n = process_count(n_jobs, n_tasks)
+    if n_jobs < 0 or n >= n_jobs:
+        return n, None
+    cores = usable_cores()
+    if n_tasks is not None and n == n_tasks and n_tasks < cores:
+        why = f"one per {task} (there {'is' if n == 1 else 'are'} {n})"
+    else:
+        why = f"the {cores} core{'s' if cores > 1 else ''} this process may use"
+    return n, f"{option} {n_jobs}: {n} process{'es' if n > 1 else ''}, {why}"

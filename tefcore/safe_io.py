@@ -24,6 +24,12 @@ configurations, C81 decks) goes through this module:
   the holder's process id.  ``flock`` locks are not reliable on some network
   file systems, and do nothing where ``fcntl`` is missing (Windows).
 * :func:`open_append` -- appending without following a link.
+* :func:`check_outputs` -- a command's outputs checked together before it
+  computes: each as above, none the same file (after links are resolved, or
+  a hard link) as an input, a store the command appends to, or another
+  output; none an existing store (a file with a :class:`FileLock` lock file
+  beside it); and a binary output replaces only a file of its own kind
+  (:data:`FILE_SIGNATURES`), never, say, a text file named ``a.gif``.
 
 Examples
 --------
@@ -57,15 +63,39 @@ except ImportError:  # pragma: no cover - Windows
     fcntl = None
 
 __all__ = [
+    "FILE_SIGNATURES",
     "FileLock",
     "atomic_output",
     "atomic_write_bytes",
     "atomic_write_text",
     "check_output_file",
     "check_output_folder",
+    "check_outputs",
+    "check_replaceable",
     "open_append",
+    "same_file",
     "write_error",
 ]
+
+#: How a binary output of each kind starts: ``(offset, bytes)`` alternatives.  An
+#: existing file that starts otherwise is not a previous output of that kind
+#: (:func:`check_replaceable`); kinds not listed (CSV, JSON, text) are not checked.
+FILE_SIGNATURES: dict[str, tuple[tuple[int, bytes], ...]] = {
+    "png": ((0, b"\x89PNG\r\n\x1a\n"),),
+    "gif": ((0, b"GIF87a"), (0, b"GIF89a")),
+    "mp4": ((4, b"ftyp"),),
+    "pdf": ((0, b"%PDF-"),),
+    "svg": ((0, b"<?xml"), (0, b"<svg")),
+    "jpg": ((0, b"\xff\xd8\xff"),),
+    "jpeg": ((0, b"\xff\xd8\xff"),),
+    "tif": ((0, b"II*\x00"), (0, b"MM\x00*")),
+    "tiff": ((0, b"II*\x00"), (0, b"MM\x00*")),
+    "webp": ((8, b"WEBP"),),
+    "eps": ((0, b"%!PS"), (0, b"\xc5\xd0\xd3\xc6")),
+    "ps": ((0, b"%!PS"),),
+    # netCDF3 (classic, 64-bit offsets) and netCDF4 (HDF5)
+    "netcdf": ((0, b"CDF\x01"), (0, b"CDF\x02"), (0, b"\x89HDF\r\n\x1a\n")),
+}
 
 
 def check_output_folder(folder, what: str = "output folder", *, create: bool = False) -> Path:
@@ -142,6 +172,172 @@ def check_output_file(path, what: str = "output file", *, create_folder: bool = 
     except OutputError as err:
         raise OutputError(f"{what} {path}: {err}") from None
     return path
+
+
+def _identity(path) -> tuple:
+    """What makes two paths one file: the resolved path, and the inode where it exists."""
+    try:
+        st = os.stat(path)
+        inode = (st.st_dev, st.st_ino)
+    except OSError:                  # not there (yet): its resolved path alone
+        inode = None
+    return Path(os.path.abspath(path)).resolve(), inode
+
+
+def _same(a: tuple, b: tuple) -> bool:
+    return a[0] == b[0] or (a[1] is not None and a[1] == b[1])
+
+
+def same_file(a, b) -> bool:
+    """Whether two paths name the same file: after links and ``..`` are resolved, or as
+    the same inode (a hard link, another spelling on a case-insensitive disk).
+
+    Parameters
+    ----------
+    a, b : path-like
+        The paths; neither need exist.
+
+    Returns
+    -------
+    bool
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> folder = pathlib.Path(tempfile.mkdtemp())
+    >>> same_file(folder / "a.csv", folder / "sub" / ".." / "a.csv")
+    True
+    >>> (folder / "link").symlink_to(folder)
+    >>> same_file(folder / "a.csv", folder / "link" / "a.csv")
+    True
+    >>> same_file(folder / "a.csv", folder / "b.csv")
+    False
+    """
+    return _same(_identity(a), _identity(b))
+
+
+def check_replaceable(path, what: str, kind: str | None) -> None:
+    """Refuse to replace an existing file that is not a previous output of `kind`.
+
+    Parameters
+    ----------
+    path : path-like
+        The output file.
+    what : str
+        How to name it in messages (``"--gif"``).
+    kind : str or None
+        A key of :data:`FILE_SIGNATURES` (``"gif"``); another kind, or None, is
+        not checked.
+
+    Raises
+    ------
+    OutputError
+        The file exists, is not empty, and does not start as a `kind` file does.
+    """
+    signatures = FILE_SIGNATURES.get((kind or "").lower())
+    path = Path(path)
+    if not signatures or path.is_symlink() or not path.is_file():
+        return
+    try:
+        with open(path, "rb") as f:
+            head = f.read(16)
+    except OSError as err:
+        raise OutputError(f"{what} {path}: cannot read it to check what it is "
+                          f"({err.strerror})") from None
+    if head and not any(head[o:o + len(b)] == b for o, b in signatures):
+        name = kind.upper() if kind != "netcdf" else "netCDF"
+        raise OutputError(f"{what} {path} exists and is not a {name} file; tefcore replaces "
+                          f"only a previous {name} output (remove it, or choose another path)")
+
+
+def _entries(items):
+    """``(Path, what, kind)`` of ``(path, what)`` or ``(path, what, kind)``, None paths left out."""
+    for item in items:
+        if item[0] is not None:
+            yield Path(item[0]), item[1], (item[2] if len(item) > 2 else None)
+
+
+def check_outputs(outputs, *, inputs=(), stores=()) -> list[Path]:
+    """Check a command's output files together, before it computes anything.
+
+    Each output is checked by :func:`check_output_file` and, when its kind is
+    given, :func:`check_replaceable`; then no output may be the same file
+    (:func:`same_file`) as an input, a store or another output, nor an
+    existing store of another run (a file whose :class:`FileLock` lock file is
+    beside it): writing it would destroy what is there while the command
+    reads or appends to it.
+
+    Parameters
+    ----------
+    outputs : iterable of tuple
+        ``(path, what)`` or ``(path, what, kind)`` (kind: a key of
+        :data:`FILE_SIGNATURES`); a None path is no output.
+    inputs : iterable of tuple, optional
+        ``(path, what)`` of the files the command reads (its configuration,
+        the C81 decks the configuration names).
+    stores : iterable of tuple, optional
+        ``(path, what)`` of the files it appends to and resumes (sweep files),
+        checked by the command itself; their lock files count as stores too.
+
+    Returns
+    -------
+    list of pathlib.Path
+        The outputs.
+
+    Raises
+    ------
+    OutputError
+        Naming the output and what it would destroy.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> folder = pathlib.Path(tempfile.mkdtemp())
+    >>> check_outputs([(folder / "s.csv", "--csv"), (folder / "s.json", "--json")])
+    ... # doctest: +ELLIPSIS
+    [PosixPath('.../s.csv'), PosixPath('.../s.json')]
+    >>> check_outputs([(folder / "s.csv", "--csv")], stores=[(folder / "s.csv", "--out")])
+    ... # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    tefcore.errors.OutputError: --csv .../s.csv is the same file as --out .../s.csv, ...
+    """
+    outs = list(_entries(outputs))
+    stores = list(_entries(stores))
+    stores += [(p.with_name(p.name + ".lock"), f"the lock file of {w} {p}", None)
+               for p, w, _ in stores]
+    others = [(p, w, "an input") for p, w, _ in _entries(inputs)] + \
+             [(p, w, "a file it appends to") for p, w, _ in stores]
+    known = [_identity(p) for p, _, _ in others]
+    n_inputs = len(others) - len(stores)
+    for (store, store_what, _), key in zip(others[n_inputs:], known[n_inputs:], strict=True):
+        for (other, other_what, _), in_key in zip(others[:n_inputs], known, strict=False):
+            if _same(key, in_key):
+                raise OutputError(f"{store_what} {store} is the same file as {other_what} "
+                                  f"{other}, an input: appending to it would spoil that file "
+                                  "(choose another path)")
+    seen = []
+    for i, (path, what, _) in enumerate(outs):
+        this = _identity(path)
+        for (other, other_what, role), key in zip(others, known, strict=True):
+            if _same(this, key):
+                raise OutputError(f"{what} {path} is the same file as {other_what} {other}, "
+                                  f"{role}: writing it would destroy that file "
+                                  "(choose another path)")
+        for (other, other_what, _), key in zip(outs[:i], seen, strict=True):
+            if _same(this, key):
+                raise OutputError(f"{what} {path} and {other_what} {other} are the same file: "
+                                  "one output would replace the other (choose different paths)")
+        seen.append(this)
+    for path, what, kind in outs:
+        check_output_file(path, what)
+        lock = path.with_name(path.name + ".lock")
+        if path.is_file() and lock.exists():
+            raise OutputError(f"{what} {path} is a file tefcore appends to and resumes (its lock "
+                              f"file {lock} is beside it): writing over it would lose its "
+                              "records (choose another path)")
+        check_replaceable(path, what, kind)
+    return [p for p, _, _ in outs]
 
 
 def write_error(err: OSError, what: str, path, doing: str) -> OutputError:

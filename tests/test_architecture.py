@@ -83,8 +83,6 @@ LONG_FUNCTIONS: dict[str, str] = {
     "tefcore.aero.c81.reader.numbers":
         "one pass over a line's fields: each branch is one way a number can be wrong, "
         "with the error docs/c81_format.md specifies for it",
-    "tefcore.cli.build_parser":
-        "declarative: one add_argument per option of every subcommand, in help order",
     "tefcore.model.jacobian.jacobian_blocks":
         "the dispatch between the exact Jacobian and the difference schemes with the "
         "shed-wake and inflow states; one screen",

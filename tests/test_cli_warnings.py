@@ -1,6 +1,9 @@
 """The command's warnings are one line each, and what a user reads is not noise."""
 
+import platform
+
 import pandas as pd
+import pytest
 
 import tefcore.linear.stability
 from tefcore.cli import main
@@ -38,3 +41,23 @@ def test_a_real_part_below_the_resolution_is_printed_neutral(monkeypatch, capsys
     stored = pd.read_csv(csv)
     assert stored.loc[0, "real_part"] == -3e-8 and bool(stored.loc[0, "neutral"])
     assert stored.loc[1, "real_part"] == -3.09e-5 and not bool(stored.loc[1, "neutral"])
+
+
+@pytest.mark.skipif(platform.machine().lower() not in ("x86_64", "amd64"),
+                    reason="OpenBLAS's kernel names are checked on x86-64")
+@pytest.mark.parametrize("value, hint", [("garbage", "(e.g. Haswell, SkylakeX, Zen)"),
+                                         ("Haswel", "(did you mean Haswell?)")])
+def test_an_unknown_openblas_kernel_is_one_warning_line(value, hint, monkeypatch, capsys):
+    """OpenBLAS ignores a kernel name it does not know without a word (it picks its kernels
+    by the processor), so a typo in OPENBLAS_CORETYPE went unnoticed."""
+    from tefcore.aero.c81 import example_deck_path
+
+    monkeypatch.setenv("OPENBLAS_CORETYPE", value)
+    assert main(["c81", "check", str(example_deck_path())]) == 0
+    err = capsys.readouterr().err.splitlines()
+    assert err == [f"tefcore: warning: OPENBLAS_CORETYPE = {value!r} is not a kernel OpenBLAS "
+                   f"knows {hint}; OpenBLAS ignores it and picks its kernels by the processor"]
+    for known in ("Haswell", "skylakex", "ZEN", "SapphireRapids"):   # read without case
+        monkeypatch.setenv("OPENBLAS_CORETYPE", known)
+        assert main(["c81", "check", str(example_deck_path())]) == 0
+        assert capsys.readouterr().err == ""

@@ -16,6 +16,7 @@ from pathlib import Path
 
 import pytest
 
+from tefcore.aero.c81 import example_deck_path
 from tefcore.cli import main
 
 #: Largest file of the child [bytes]: a sweep header (~400 B) fits, a point record
@@ -78,16 +79,19 @@ def test_atomic_output_names_the_file_when_the_disk_is_full(tmp_path, monkeypatc
 
 
 @pytest.mark.parametrize("make, reason", [
-    (lambda p: p.mkdir(), "Is a directory"),
-    (lambda p: p.symlink_to(p.parent / "nowhere.c81"), "No such file or directory"),
+    (lambda p: p.mkdir(), "a folder"),
+    (lambda p: p.symlink_to(p.parent / "nowhere.c81"), "a link to a missing file"),
+    (lambda p: None, "no such file"),
 ])
 def test_c81_check_of_a_folder_or_a_dangling_link_names_it(tmp_path, capsys, make, reason):
-    """A folder or a dangling link is named, not a raw ``[Errno 21] Is a directory``."""
+    """A folder or a dangling link is an error before any deck is read, with the
+    ``tefcore: error:`` prefix, naming it (not a raw ``[Errno 21] Is a directory``)."""
     target = tmp_path / "deck.c81"
     make(target)
-    assert main(["c81", "check", str(target)]) == 1
-    err = capsys.readouterr().err
-    assert err == f"{target}: cannot read the C81 deck ({reason})\n"
+    assert main(["c81", "check", str(example_deck_path()), str(target)]) == 2
+    out, err = capsys.readouterr()
+    assert err == f"tefcore: error: c81 check: FILE {target}: cannot read it ({reason})\n"
+    assert out == ""                                # checked before any deck is parsed
 
 
 def test_an_unreadable_parameters_file_says_what_it_is(tmp_path, capsys):

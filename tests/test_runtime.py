@@ -97,7 +97,7 @@ def test_the_command_applies_the_settings():
     got = run_python("""
     import json, tefcore.cli
     seen = []
-    tefcore.cli.cmd_c81_check = lambda args: seen.append(blas_threads()) or 0
+    tefcore.cli.c81.run_check = lambda args: seen.append(blas_threads()) or 0
     tefcore.cli.main(["c81", "check", "x.c81"])
     print(json.dumps(seen[0]))
     """)

@@ -1,11 +1,19 @@
 """The ``tefcore`` command.
 
-Subcommands: ``modes``, ``fanplot``, ``stability``, ``sweep``, ``map``,
-``mechanism``, ``simulate``, ``c81 example|check``, and from the paper layer
+Subcommands, each with its arguments in its own module: ``modes`` and
+``fanplot`` (:mod:`tefcore.cli.blade`), ``stability``
+(:mod:`tefcore.cli.stability`), ``sweep`` (:mod:`tefcore.cli.sweep`), ``map``
+(:mod:`tefcore.cli.maps`), ``mechanism`` (:mod:`tefcore.cli.mechanism`),
+``simulate`` and ``explore`` (:mod:`tefcore.cli.watch`), ``c81 check|example``
+(:mod:`tefcore.cli.c81`), and from the paper layer
 (:mod:`tefcore.paper.run.commands`) ``reproduce`` (executes the notebooks and
-writes the claims report) and ``notebooks`` (lists them, copies them for
-editing); ``tefcore --help`` lists them and ``tefcore SUBCOMMAND --help``
-describes one.
+writes the claims report), ``batch`` and ``notebooks`` (lists them, copies them
+for editing); ``tefcore --help`` lists them and ``tefcore SUBCOMMAND --help``
+describes one.  Each command module has ``add_arguments(sub, add)``, which
+adds its subcommands with :func:`add_command` (``add``: the house style and
+the shared options), each set to run its function (``func(args) -> exit
+status``); this module keeps the entry point, the shared options and the
+dispatch.
 
 Values given with ``--set`` (and ``sweep --values/--range``) follow the
 units rules of :mod:`tefcore.config.text_input`: a dimensional field needs its
@@ -21,19 +29,16 @@ output pipe closed.
 from __future__ import annotations
 
 import argparse
-import math
 import sys
 import textwrap
 import warnings
-from pathlib import Path
 
 from .._version import __version__
 from ..errors import run_command
-from ..safe_io import atomic_output, check_output_file
-from .common import load
-from .maps import cmd_map
+from . import blade, c81, maps, mechanism, stability, sweep, watch
 
-__all__ = ["build_parser", "entry_point", "main"]
+__all__ = ["COMMAND_MODULES", "OPENBLAS_X86_64_KERNELS", "add_command", "build_parser",
+           "coretype_warning", "entry_point", "main"]
 
 #: ``tefcore --help``: what the command is, and where the details are.
 DESCRIPTION = """\
@@ -59,176 +64,18 @@ points, bad C81 decks, failing notebooks or claims); 2 an error (one line);
 130 interrupted; 141 output pipe closed."""
 
 
-def _write_csv(table, path) -> None:
-    """Write a table atomically (the destination was checked before computing)."""
-    with atomic_output(path, newline="", what="--csv") as f:
-        table.to_csv(f, index=False)
+#: The modules of the subcommands, in the order ``tefcore --help`` lists them
+#: (the paper layer's follow, :func:`tefcore.paper.run.commands.add_commands`).
+COMMAND_MODULES = (blade, stability, sweep, maps, mechanism, watch, c81)
 
 
 def _common(p):
+    """The options every computing subcommand shares: the configuration and its overrides."""
     p.add_argument("--config", default="mdart",
                    help="configuration TOML file or packaged name (default: mdart)")
     p.add_argument("-s", "--set", action="append", metavar="NAME=VALUE",
                    help="override a field by dotted name, "
                         "e.g. hub.pitch_link_stiffness='800 lb/in'")
-
-
-def cmd_modes(args) -> int:
-    from ..structure.blade import blade_modes
-
-    cfg = load(args)
-    if args.csv:
-        check_output_file(args.csv, "--csv")
-    table = blade_modes(cfg, n_modes=args.n_modes,
-                        collective=math.radians(args.collective)).table()
-    if args.csv:
-        _write_csv(table, args.csv)
-    print(table.to_string(index=False, float_format=lambda v: f"{v:.4f}"))
-    return 0
-
-
-def cmd_fanplot(args) -> int:
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.figure
-
-    from ..structure.blade import fan_plot
-
-    cfg = load(args)
-    fmt = Path(args.out).suffix.lstrip(".").lower() or "png"
-    if fmt not in matplotlib.figure.Figure().canvas.get_supported_filetypes():
-        raise ValueError(f"--out {args.out}: unknown image format {fmt!r}")
-    check_output_file(args.out, "--out")
-    ax = fan_plot(cfg, n_modes=args.n_modes)
-    ax.set_title(cfg.name)
-    with atomic_output(args.out, "wb", what="--out") as f:
-        ax.figure.savefig(f, format=fmt, dpi=120, bbox_inches="tight")
-    print(f"wrote {args.out}")
-    return 0
-
-
-def cmd_stability(args) -> int:
-    from ..linear.stability import stability
-    from .text import flutter_text, legend, modes_text, trim_lines, wrap
-
-    cfg = load(args)
-    if args.csv:
-        check_output_file(args.csv, "--csv")
-    res = stability(cfg)
-    # the table's columns: printing them needs no pandas (the CSV does)
-    table = res.columns if hasattr(res, "columns") else res.modes
-    if args.csv:
-        _write_csv(res.modes, args.csv)
-    print(modes_text(table))
-    print("\n".join(legend(table)))
-    if (sentence := flutter_text(table)) is not None:
-        print(sentence)
-    print("\n".join(trim_lines(res.trim)))
-    if res.aero_modes is not None:
-        am = res.aero_modes
-        kinds = ", ".join(f"{(am['kind'] == k).sum()} {k}" for k in ("wake", "inflow")
-                          if (am["kind"] == k).any())
-        print(wrap(f"aerodynamic-state roots (no mode label): {kinds}; least stable "
-                   f"{am['real_part'].max():+.4f} /rev") if len(am) else
-              "aerodynamic-state roots: none")
-    return 0
-
-
-def cmd_sweep(args) -> int:
-    from ..config.text_input import sweep_values
-    from ..sweeps.evaluate import command_pool, start_pool_for
-
-    values = sweep_values(args.parameter, args.values, args.range)
-    # a forked worker is this process's copy, ready at once: started once the
-    # inputs are checked; a spawned one starts and imports while they are.
-    # The pool is closed when the command ends: no idle worker to wait for
-    with command_pool() as forked:
-        if not forked:
-            start_pool_for(len(values), args.jobs)
-        from ..sweeps.sweep import sweep
-        from .text import sweep_summary, timing_lines
-
-        cfg = load(args)
-        check_output_file(args.csv, "--csv")
-        if args.out:
-            check_output_file(args.out, "--out", create_folder=True)
-        if forked:
-            start_pool_for(len(values), args.jobs)
-        result = sweep(cfg, args.parameter, values, n_jobs=args.jobs, out=args.out,
-                       progress=False if args.quiet else None)
-    path = result.to_csv(args.csv)
-    n_bad = len(result.failed)
-    print(f"wrote {path}: {len(values)} points, {n_bad} failed")
-    for line in timing_lines(result.timing) + sweep_summary(result):
-        print(line)
-    if n_bad:
-        print(result.failed.to_string(index=False))
-        print(f"tefcore sweep: {n_bad} of {len(values)} point(s) failed (see {path}, column "
-              "'error')", file=sys.stderr)
-        return 1
-    return 0
-
-
-def cmd_mechanism(args) -> int:
-    from ..linear.mechanism import mechanism
-    from ..linear.stability import stability
-    from .text import mechanism_choice, wrap
-
-    cfg = load(args)
-    if args.csv:
-        check_output_file(args.csv, "--csv")
-    point = stability(cfg)
-    # no --mode: mechanism's default, the flutter root when unstable, else the TEF mode
-    res = mechanism(cfg, mode=args.mode, knockouts=not args.no_knockouts,
-                    stability_result=point)
-    if args.csv:
-        with atomic_output(args.csv, newline="", what="--csv") as f:
-            res.table.to_csv(f, index=False, float_format="%.10g")
-    if args.mode is None:
-        print(mechanism_choice(res, point.modes))
-    for line in res.summary().splitlines():
-        print(wrap(line, indent="    "))
-    doubtful = [t for t, f in res.knockouts.items() if not f.clear]
-    if doubtful:
-        print(wrap("knockouts through a coalescence (identity not certain): "
-                   + ", ".join(doubtful)))
-    if args.csv:
-        print(f"wrote {args.csv}: {len(res.table)} rows")
-    return 0
-
-
-def cmd_c81_example(args) -> int:
-    from ..aero.c81.format import write_c81
-    from ..aero.c81.tables import example_deck_path, make_example_deck
-
-    out = args.out or example_deck_path()
-    check_output_file(out, "--out")
-    print(f"wrote {write_c81(make_example_deck(), out)}")
-    return 0
-
-
-def cmd_c81_check(args) -> int:
-    from ..aero.c81.format import COEFFICIENT_LABELS, C81FormatError
-    from ..aero.c81.reader import read_c81
-
-    status = 0
-    for f in args.files:
-        try:
-            deck = read_c81(f)
-        except C81FormatError as exc:       # names the file, line and column
-            print(exc, file=sys.stderr)
-            status = 1
-            continue
-        except OSError as exc:              # a folder, a dangling link, no permission
-            print(f"{f}: cannot read the C81 deck ({exc.strerror or exc})", file=sys.stderr)
-            status = 1
-            continue
-        kind = f"flap deck, {deck.delta.size} deltas" if deck.is_flap else "blade deck"
-        sizes = ", ".join(f"{COEFFICIENT_LABELS[c]} {deck.alpha[c].size}x{deck.mach[c].size}"
-                          for c in deck.coefficients)
-        print(f"{f}: {deck.name!r} ({kind}; alpha x Mach: {sizes})")
-    return status
 
 
 class _Parser(argparse.ArgumentParser):
@@ -288,6 +135,40 @@ def _add(sub, name: str, help: str, description: str, func, *, common: bool = Tr
     return p
 
 
+def add_command(sub, name: str, help: str, description: str, func, *, common: bool = True,
+                epilog: str | None = None) -> argparse.ArgumentParser:
+    """One subcommand in the house style: its line in ``tefcore --help``, its description.
+
+    Parameters
+    ----------
+    sub : argparse._SubParsersAction
+        The subcommands it joins.
+    name : str
+        The subcommand.
+    help : str
+        Its one line in ``tefcore --help``.
+    description : str
+        Its ``--help`` text.
+    func : callable or None
+        What runs it (``func(args) -> exit status``); None for a group of subcommands.
+    common : bool, optional
+        Add the shared options (``--config``, ``--set``).
+    epilog : str, optional
+        Examples after the options.
+
+    Returns
+    -------
+    argparse.ArgumentParser
+        The subcommand's parser, for its own arguments.
+    """
+    p = sub.add_parser(name, help=help, description=description, epilog=epilog,
+                       formatter_class=_HelpFormatter)
+    if common:
+        _common(p)
+    p.set_defaults(func=func)
+    return p
+
+
 def build_parser() -> argparse.ArgumentParser:
     """The argument parser of the ``tefcore`` command.
 
@@ -302,107 +183,64 @@ def build_parser() -> argparse.ArgumentParser:
     parser.add_argument("--version", action="version", version=f"tefcore {__version__}")
     sub = parser.add_subparsers(dest="command", required=True, metavar="SUBCOMMAND",
                                 title="subcommands")
-    p = _add(sub, "modes", "coupled blade modes (frequencies, labels) as a table",
-             "Rotating blade modes of the configuration (finite elements, flap included) "
-             "at one collective pitch: frequency (/rev) and label of each mode.", cmd_modes)
-    p.add_argument("--n-modes", type=int, default=None, help="number of modes (default: the "
-                   "configuration's model.n_modes)")
-    p.add_argument("--collective", type=float, default=0.0, help="pitch at 0.75R [deg]")
-    p.add_argument("--csv", default=None, help="also write the table to this CSV file")
-    p = _add(sub, "fanplot", "fan plot (frequency vs rotor speed) to an image",
-             "Blade mode frequencies against rotor speed (fan plot), written to an image "
-             "whose format follows the file name (png, pdf, svg, ...).", cmd_fanplot)
-    p.add_argument("--n-modes", type=int, default=None, help="number of modes")
-    p.add_argument("--out", default="fanplot.png", help="image file (default: fanplot.png)")
-    p = _add(sub, "stability", "trim + Floquet stability, one row per mode",
-             "Trim the rotor, linearise about the periodic trim and compute the Floquet "
-             "modes: frequency (/rev), real part (/rev), damping ratio and label of each "
-             "mode, and the trim controls.", cmd_stability,
-             epilog="example:\n  tefcore stability --set flight.advance_ratio=0.3 "
-                    "--csv modes.csv")
-    p.add_argument("--csv", default=None, help="also write the mode table to this CSV file")
-    p = _add(sub, "sweep", "stability over one parameter, tidy CSV",
-             "Stability at each value of one configuration field, the modes tracked from "
-             "point to point (tidy CSV, one row per mode and point). A failed point is "
-             "recorded with its reason and the sweep goes on (exit status 1).", cmd_sweep,
-             epilog="examples:\n"
-                    "  tefcore sweep flap.cg_offset --values 0 0.1 0.2 0.3\n"
-                    "  tefcore sweep hub.pitch_link_stiffness --range '400 lb/in' "
-                    "'800 lb/in' 5 --out run.jsonl")
-    p.add_argument("parameter", help="dotted field, e.g. flap.cg_offset")
-    p.add_argument("--values", nargs="+",
-                   help="values: numbers (dimensionless fields) or 'value unit' "
-                        "(dimensional fields need their unit, as with --set)")
-    p.add_argument("--range", nargs=3, metavar=("START", "STOP", "NUM"),
-                   help="NUM evenly spaced values; START and STOP take units like --set "
-                        "(e.g. '400 lb/in' '800 lb/in' 5)")
-    p.add_argument("--csv", default="sweep.csv",
-                   help="tidy table (default: sweep.csv); exit status 1 when points failed")
-    p.add_argument("--out", default=None,
-                   help="stream points to this JSON-lines file; re-running resumes it")
-    p.add_argument("--jobs", type=int, default=1, help="parallel processes (joblib)")
-    p.add_argument("--quiet", "--no-progress", action="store_true", help="no progress bar")
-    p = _add(sub, "map", "stability map over two fields: flutter growth, boundary",
-             "Stability map: one sweep of FIELD_X per value of FIELD_Y (resumable with "
-             "--out), the flutter root's growth rate at every point and the flutter "
-             "boundary refined between grid points. Ranges are START STOP NUM, numbers "
-             "(SI or fractions) or 'value unit' strings.", cmd_map,
-             epilog="example:\n  tefcore map flap.cg_offset 0 0.3 7 flap.overhang 0 0.4 5 "
-                    "--png map.png")
-    # one positional per item: argparse cannot format the usage of a positional
-    # with a tuple metavar (nargs=3): its help raises a TypeError
-    p.add_argument("x_field", help="dotted field on the x axis, e.g. flap.cg_offset")
-    p.add_argument("x_start", metavar="X_START", help="first x value (a number or 'value unit')")
-    p.add_argument("x_stop", metavar="X_STOP", help="last x value")
-    p.add_argument("x_num", metavar="X_NUM", help="number of evenly spaced x values")
-    p.add_argument("y_field", help="dotted field on the y axis, e.g. flap.overhang")
-    p.add_argument("y_start", metavar="Y_START", help="first y value")
-    p.add_argument("y_stop", metavar="Y_STOP", help="last y value")
-    p.add_argument("y_num", metavar="Y_NUM", help="number of evenly spaced y values")
-    p.add_argument("--csv", default=None,
-                   help="tidy table (default: map.csv when neither --png nor --netcdf is given)")
-    p.add_argument("--png", default=None, help="draw the map to this image")
-    p.add_argument("--netcdf", default=None, help="write the xarray Dataset (netCDF3)")
-    p.add_argument("--out", default=None, help="folder for resumable sweep files")
-    p.add_argument("--jobs", type=int, default=1, help="parallel processes (joblib)")
-    p.add_argument("--scheduler", default=None, metavar="ADDRESS",
-                   help="dask.distributed scheduler, e.g. tcp://10.0.0.5:8786 (instead of "
-                        "local processes)")
-    p.add_argument("--no-refine", action="store_true", help="do not refine the boundary")
-    p.add_argument("--quiet", "--no-progress", action="store_true", help="no progress bar")
-    p = _add(sub, "mechanism", "why a root is (un)stable: work of each term, knockouts",
-             "Decompose one root's growth rate into the work of the named terms of the "
-             "linearised equations (they add up to its real part), and follow the root with "
-             "each term knocked out. CSV columns: term, contribution_real, "
-             "contribution_imag; rows: one per term, 'total' (the root's eigenvalue, /rev) "
-             "and 'knockout <term>' (the root's eigenvalue with that term removed).",
-             cmd_mechanism)
-    p.add_argument("--mode", default=None,
-                   help="'TEF' (the root the flap mode becomes), 'flutter' (the least stable "
-                        "flap-induced root) or a root's name, e.g. 'blade torsion 1' "
-                        "(default: the flutter root when it is unstable, else TEF)")
-    p.add_argument("--csv", default=None, help="write the decomposition to this CSV file")
-    p.add_argument("--no-knockouts", action="store_true", help="skip the knockouts (faster)")
-    from .watch import add_commands as add_watch_commands  # simulate, explore
-
-    add_watch_commands(sub, _add)
-    p = _add(sub, "c81", "C81 airfoil decks: check decks, regenerate the example deck",
-             "C81 airfoil decks (layout: docs/c81_format.md).", None, common=False)
-    c81 = p.add_subparsers(dest="c81_command", required=True, metavar="C81COMMAND",
-                           title="subcommands")
-    q = _add(c81, "check", "parse decks and print a one-line summary of each",
-             "Parse each deck and print its summary, or its first problem with file, line "
-             "and column. Exit status 1 when a deck is bad.", cmd_c81_check, common=False)
-    q.add_argument("files", nargs="+", metavar="FILE", help="C81 deck (blade or flap)")
-    q = _add(c81, "example", "regenerate the packaged example flap deck",
-             "Write the example flap deck, tabulated from the thin-airfoil model of the "
-             "MDART flap (GENERATED data, not test data).", cmd_c81_example, common=False)
-    q.add_argument("--out", default=None, help="output file (default: the packaged "
-                                                "tefcore/data/example_flap_generated.c81)")
-    from ..paper.run.commands import add_commands  # reproduce, notebooks: the paper layer
+    for module in COMMAND_MODULES:
+        module.add_arguments(sub, add_command)
+    from ..paper.run.commands import add_commands  # reproduce, batch, notebooks: the paper layer
 
     add_commands(sub, formatter_class=_HelpFormatter)
     return parser
+
+
+#: The kernels OpenBLAS can be told to load on x86-64 (``OPENBLAS_CORETYPE``; the
+#: ``corename`` list of its ``driver/others/dynamic.c``), read without case as it reads them.
+OPENBLAS_X86_64_KERNELS = (
+    "Katmai", "Coppermine", "Northwood", "Prescott", "Banias", "Atom", "Core2", "Penryn",
+    "Dunnington", "Nehalem", "Athlon", "Opteron", "Opteron_SSE3", "Barcelona", "Nano",
+    "Sandybridge", "Bobcat", "Bulldozer", "Piledriver", "Haswell", "Steamroller", "Excavator",
+    "Zen", "SkylakeX", "Cooperlake", "SapphireRapids")
+
+
+def coretype_warning(environ=None, machine: str | None = None) -> str | None:
+    """The line to print when ``OPENBLAS_CORETYPE`` names no kernel OpenBLAS knows.
+
+    OpenBLAS then says nothing (unless ``OPENBLAS_VERBOSE=2``) and picks its
+    kernels by the processor, as if the variable were not set.  Checked on
+    x86-64 only, where the names are known (:data:`OPENBLAS_X86_64_KERNELS`).
+
+    Parameters
+    ----------
+    environ : mapping, optional
+        The environment (default: ``os.environ``).
+    machine : str, optional
+        The processor family (default: ``platform.machine()``).
+
+    Returns
+    -------
+    str or None
+
+    Examples
+    --------
+    >>> coretype_warning({"OPENBLAS_CORETYPE": "haswell"}, "x86_64") is None
+    True
+    >>> print(coretype_warning({"OPENBLAS_CORETYPE": "Haswel"}, "x86_64"))
+    ... # doctest: +NORMALIZE_WHITESPACE
+    tefcore: warning: OPENBLAS_CORETYPE = 'Haswel' is not a kernel OpenBLAS knows (did you
+    mean Haswell?); OpenBLAS ignores it and picks its kernels by the processor
+    """
+    import os
+    import platform
+
+    value = (os.environ if environ is None else environ).get("OPENBLAS_CORETYPE")
+    if not value or (machine or platform.machine()).lower() not in ("x86_64", "amd64"):
+        return None
+    if value.strip().lower() in {k.lower() for k in OPENBLAS_X86_64_KERNELS}:
+        return None
+    import difflib
+
+    close = difflib.get_close_matches(value, OPENBLAS_X86_64_KERNELS, n=1, cutoff=0.6)
+    hint = f" (did you mean {close[0]}?)" if close else " (e.g. Haswell, SkylakeX, Zen)"
+    return (f"tefcore: warning: OPENBLAS_CORETYPE = {value!r} is not a kernel OpenBLAS "
+            f"knows{hint}; OpenBLAS ignores it and picks its kernels by the processor")
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -423,6 +261,8 @@ def main(argv: list[str] | None = None) -> int:
         args = build_parser().parse_args(argv)
         from ..runtime import apply_defaults
 
+        if (line := coretype_warning()) is not None:
+            print(line, file=sys.stderr)
         apply_defaults()  # the command owns its process (tefcore.runtime)
         with warnings.catch_warnings():
             warnings.showwarning = _show_warning

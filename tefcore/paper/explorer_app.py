@@ -33,14 +33,15 @@ from __future__ import annotations
 
 import io
 import json
+import re
 import textwrap
 
 from ..errors import TefcoreError
 from .explorer import SLIDERS, RootMap, draw_root_map, explorer_config, explorer_state
 
-__all__ = ["ANIMATION_REVS", "FIGURE_DPI", "MissingExtra", "PageState", "check_voila",
-           "figure_png", "free_port", "mechanism_bars", "mechanism_figure", "notebook_json",
-           "page", "page_state", "serve"]
+__all__ = ["ANIMATION_REVS", "FIGURE_DPI", "MissingExtra", "PageState", "check_port",
+           "check_voila", "figure_png", "free_port", "mechanism_bars", "mechanism_figure",
+           "notebook_json", "page", "page_state", "serve"]
 
 #: Revolutions of the animation on request (short: about 10 s on two cores).
 ANIMATION_REVS = 2
@@ -186,7 +187,8 @@ def page_state(base=None, **values) -> PageState:
                      label, float(mech.eigenvalue.real), res)
 
 
-def notebook_json(config: str = "mdart", overrides: list[str] | None = None) -> str:
+def notebook_json(config: str = "mdart", overrides: list[str] | None = None,
+                  folder: str | None = None) -> str:
     """The one-cell notebook that voila serves: :func:`page` of the configuration.
 
     Parameters
@@ -195,6 +197,9 @@ def notebook_json(config: str = "mdart", overrides: list[str] | None = None) -> 
         Configuration file or packaged name.
     overrides : list of str, optional
         ``NAME=VALUE`` overrides (the command's ``--set``).
+    folder : str, optional
+        The folder relative paths are read from (the command's): the kernel
+        starts there, not in the notebook's temporary folder.
 
     Returns
     -------
@@ -203,6 +208,8 @@ def notebook_json(config: str = "mdart", overrides: list[str] | None = None) -> 
     """
     source = ("from tefcore.paper.explorer_app import page\n"
               f"_page = page(config={config!r}, overrides={list(overrides or [])!r})")
+    if folder is not None:
+        source = f"import os\nos.chdir({str(folder)!r})\n" + source
     nb = {"cells": [{"cell_type": "code", "execution_count": None, "id": "explorer",
                      "metadata": {}, "outputs": [], "source": source}],
           "metadata": {"kernelspec": {"display_name": "Python 3", "language": "python",
@@ -385,9 +392,106 @@ def free_port() -> int:
         return int(s.getsockname()[1])
 
 
+def check_port(port: int) -> int:
+    """The port to serve on: `port` when it is free on 127.0.0.1, a free one for 0.
+
+    Bound as the server binds it (``SO_REUSEADDR``: a port a closed connection
+    left waiting is free), and closed again at once.
+
+    Parameters
+    ----------
+    port : int
+        0 to 65535 (0: any free port).
+
+    Returns
+    -------
+    int
+
+    Raises
+    ------
+    ValueError
+        Out of range, or in use (naming it).
+    """
+    import socket
+
+    if not 0 <= port <= 65535:
+        raise ValueError(f"--port {port}: must be a TCP port in [1, 65535] (0: any free port)")
+    if port == 0:
+        return free_port()
+    with socket.socket() as s:
+        s.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)
+        try:
+            s.bind(("127.0.0.1", port))
+        except OSError as err:
+            raise ValueError(f"--port {port}: cannot serve on it ({err.strerror}): another "
+                             "program has it; choose another port, or --port 0 for a free "
+                             "one") from None
+    return port
+
+
+#: A log record of voila, Jupyter or the kernel at WARNING level (``[Voila] WARNING | ...``):
+#: notices for a Jupyter operator (an untrusted notebook, a kernel over local TCP),
+#: not for the page's user.
+_SERVER_WARNING = re.compile(r"^\[[\w.-]+\] WARNING \|")
+
+
+def _relay(lines, out) -> None:
+    """Copy the server's output to `out`, without its WARNING log records."""
+    for line in lines:
+        if not _SERVER_WARNING.match(line):
+            out.write(line)
+            out.flush()
+
+
+class _Stopped(BaseException):
+    """SIGTERM (or SIGHUP) arrived: stop the server and clean up, as for Ctrl-C."""
+
+
+def _listening(port: int) -> bool:
+    import socket
+
+    try:
+        with socket.create_connection(("127.0.0.1", port), timeout=0.5):
+            return True
+    except OSError:
+        return False
+
+
+def _stop(proc) -> None:
+    """Stop voila and everything it started (its kernel): SIGTERM to its process group,
+    SIGKILL after 10 s."""
+    import os
+    import signal
+    import subprocess
+
+    if proc.poll() is not None:
+        return
+    if not hasattr(os, "killpg"):              # no process groups (Windows)
+        proc.terminate()
+        proc.wait()
+        return
+    for sig, wait in ((signal.SIGTERM, 10), (signal.SIGKILL, 5)):
+        try:
+            os.killpg(proc.pid, sig)
+        except ProcessLookupError:
+            return
+        try:
+            proc.wait(timeout=wait)
+            return
+        except subprocess.TimeoutExpired:
+            continue
+
+
 def serve(config: str = "mdart", overrides: list[str] | None = None, *, port: int = 8866,
           open_browser: bool = False) -> int:
     """Serve the page with voila on ``127.0.0.1:port`` until interrupted.
+
+    The port is checked first (:func:`check_port`) and voila may not move to
+    another: the address printed, once voila answers on it, is the one
+    served.  Relative paths are read from the caller's folder.  Ctrl-C,
+    SIGTERM and SIGHUP stop voila and its kernel (its whole process group)
+    and remove the notebook's temporary folder.  Warnings of the server's
+    own libraries are not shown.
 
     Parameters
     ----------
@@ -403,31 +507,67 @@ def serve(config: str = "mdart", overrides: list[str] | None = None, *, port: in
     Returns
     -------
     int
-        voila's exit status.
+        voila's exit status; 128 + the signal's number after SIGTERM or SIGHUP.
 
     Raises
     ------
     MissingExtra
         voila is not installed.
+    ValueError
+        The port is out of range or in use.
+    KeyboardInterrupt
+        Ctrl-C (after the server is stopped and its folder removed).
     """
     import os
+    import shutil
+    import signal
     import subprocess
     import sys
     import tempfile
+    import threading
+    import time
 
     check_voila()
-    port = port or free_port()
-    with tempfile.TemporaryDirectory(prefix="tefcore-explore-") as tmp:
+    port = check_port(port)
+    tmp = tempfile.mkdtemp(prefix="tefcore-explore-")
+    proc = None
+
+    def stopped(signum, frame):
+        raise _Stopped(signum)
+
+    handlers = {}
+    if threading.current_thread() is threading.main_thread():   # signals reach it alone
+        handlers = {sig: signal.signal(sig, stopped) for sig in
+                    (getattr(signal, n) for n in ("SIGTERM", "SIGHUP") if hasattr(signal, n))}
+    try:
         path = os.path.join(tmp, "tefcore_explorer.ipynb")
         with open(path, "w", encoding="utf-8") as f:
-            f.write(notebook_json(config, overrides))
+            f.write(notebook_json(config, overrides, folder=os.getcwd()))
         # JupyterLab extensions that are not for a page (jupytext's, when installed)
-        # fail to load in voila's page and print console errors
-        cmd = [sys.executable, "-m", "voila", path, f"--port={port}", "--Voila.ip=127.0.0.1",
-               "--theme=light", "--show_tracebacks=False",
-               f"--VoilaConfiguration.extension_denylist={list(VOILA_DENIED)!r}"]
+        # fail to load in voila's page and print console errors; a list option is
+        # given item by item (the list syntax is deprecated in traitlets 5)
+        cmd = [sys.executable, "-m", "voila", path, f"--port={port}", "--Voila.port_retries=0",
+               "--Voila.ip=127.0.0.1", "--theme=light", "--show_tracebacks=False",
+               "--Voila.log_level=WARN"]
+        cmd += [f"--VoilaConfiguration.extension_denylist={name}" for name in VOILA_DENIED]
         if not open_browser:
             cmd.append("--no-browser")
-        print(f"serving the tefcore explorer at http://127.0.0.1:{port}/ (Ctrl-C stops it)",
-              flush=True)
-        return subprocess.call(cmd, cwd=tmp)
+        env = {**os.environ, "PYTHONWARNINGS": "ignore"}   # the server's libraries' warnings
+        proc = subprocess.Popen(cmd, cwd=tmp, env=env, stdout=subprocess.PIPE,
+                                stderr=subprocess.STDOUT, text=True, errors="replace",
+                                start_new_session=hasattr(os, "killpg"))
+        threading.Thread(target=_relay, args=(proc.stdout, sys.stderr), daemon=True).start()
+        while proc.poll() is None and not _listening(port):
+            time.sleep(0.2)
+        if proc.poll() is None:
+            print(f"serving the tefcore explorer at http://127.0.0.1:{port}/ (Ctrl-C stops it)",
+                  flush=True)
+        return proc.wait()
+    except _Stopped as stop:
+        return 128 + int(stop.args[0])
+    finally:
+        if proc is not None:
+            _stop(proc)
+        for sig, handler in handlers.items():
+            signal.signal(sig, handler)
+        shutil.rmtree(tmp, ignore_errors=True)

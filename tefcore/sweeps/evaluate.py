@@ -29,13 +29,13 @@ from ..aero.c81.range_summary import (
     range_warning,
 )
 from ..errors import error_text
-from ..runtime import worker_init
+from ..runtime import process_count, worker_init
 from .store import jsonable
 
 __all__ = ["MIN_COLD_CHAINS", "POOL_IDLE_SECONDS", "REQUIRED_MODE_COLUMNS", "WARM_CHAIN",
            "chains", "check_result", "clipped_summary", "close_pool", "command_pool",
            "decode_complex", "default_point", "encode_complex", "evaluate_point", "fork_workers",
-           "forked_workers", "min_chains", "pool_ready", "pool_started", "run_joblib",
+           "forked_workers", "min_chains", "n_chains", "pool_ready", "pool_started", "run_joblib",
            "shape_vectors", "start_pool_for", "takes_warm_start", "warn_clipped", "worker_pool"]
 
 
@@ -421,15 +421,18 @@ def worker_pool(n_workers: int):
     Parameters
     ----------
     n_workers : int
-        Worker processes.
+        Worker processes: at most the cores this process may use
+        (:func:`tefcore.runtime.process_count`), however many are asked for.
 
     Returns
     -------
     concurrent.futures.Executor
-        The executor (the same one while ``n_workers`` stays the same and it works).
+        The executor (the same one while it has ``n_workers`` or more and works:
+        a later, smaller task list, a sweep's refinement, keeps the pool).
     """
     global _pool
-    if _pool is not None and (_pool[0] != n_workers or getattr(_pool[1], "_broken", False)):
+    n_workers = process_count(n_workers)
+    if _pool is not None and (_pool[0] < n_workers or getattr(_pool[1], "_broken", False)):
         close_pool()
     if _pool is None:
         if _fork:
@@ -464,10 +467,32 @@ def start_pool_for(n_points: int, n_jobs: int) -> None:
     n_points : int
         Points of the sweep.
     n_jobs : int
-        Processes at work, the caller included (negative: all the cores).
+        Processes at work, the caller included (negative: all the cores), at
+        most one per chain and per core (:func:`tefcore.runtime.process_count`).
     """
-    if n_jobs != 1 and len(_even_chains(range(n_points), WARM_CHAIN)) >= min_chains():
-        worker_pool(n_jobs - 1 if n_jobs > 1 else max(1, (os.cpu_count() or 2) - 1))
+    chains_ = n_chains(n_points)
+    if n_jobs != 1 and chains_ >= min_chains() and process_count(n_jobs, chains_) > 1:
+        worker_pool(process_count(n_jobs, chains_) - 1)
+
+
+def n_chains(n_points: int) -> int:
+    """The warm-start chains of a sweep of `n_points` values (:func:`chains`): its tasks.
+
+    Parameters
+    ----------
+    n_points : int
+        Values of the sweep.
+
+    Returns
+    -------
+    int
+
+    Examples
+    --------
+    >>> n_chains(5), n_chains(40), n_chains(100000)
+    (1, 6, 12500)
+    """
+    return len(_even_chains(range(n_points), WARM_CHAIN))
 
 
 def pool_ready() -> bool:
@@ -520,7 +545,8 @@ def run_joblib(jobs, n_jobs):
     jobs : list of list of tuple
         The chains (:func:`chains`).
     n_jobs : int
-        Processes at work, the caller included (negative: all the cores).
+        Processes at work, the caller included (negative: all the cores), at
+        most one per chain and per core (:func:`tefcore.runtime.process_count`).
 
     Yields
     ------
@@ -529,7 +555,7 @@ def run_joblib(jobs, n_jobs):
     """
     import concurrent.futures as cf
 
-    n_workers = (os.cpu_count() or 1) - 1 if n_jobs < 0 else n_jobs - 1
+    n_workers = process_count(n_jobs, len(jobs)) - 1
     pending = list(jobs)
     pool = worker_pool(max(1, n_workers))
     running: dict = {}
@@ -555,8 +581,9 @@ def run_joblib(jobs, n_jobs):
             fut.cancel()
 
 
-def dask_client(n_jobs, client):
-    """(client, cluster to close or None) for backend='dask'."""
+def dask_client(n_jobs, client, n_tasks=None):
+    """(client, cluster to close or None) for backend='dask': a local cluster of
+    at most one worker per core and per task (`n_tasks`, when known)."""
     try:
         from distributed import Client, LocalCluster
     except ImportError as err:
@@ -564,7 +591,7 @@ def dask_client(n_jobs, client):
                           "'dask[distributed]' (or the tefcore[dask] extra)") from err
     if client is not None:
         return client, None
-    workers = os.cpu_count() if n_jobs < 0 else n_jobs
+    workers = process_count(n_jobs, n_tasks)
     # dask sets its workers' environment (OMP_NUM_THREADS, MALLOC_TRIM_THRESHOLD_,
     # PYTHONHASHSEED, ...) in this process's os.environ and leaves it there
     # (measured, distributed 2026.8): the caller's later subprocesses would

@@ -36,7 +36,7 @@ Examples
 from __future__ import annotations
 
 import numbers
-import os
+import warnings
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -45,10 +45,15 @@ import numpy as np
 import pandas as pd
 from scipy.optimize import brentq
 
-from ..aero.c81.range_summary import merge_clipped
+from ..aero.c81.range_summary import (
+    collected_range_warnings,
+    describe_clipped,
+    merge_clipped,
+    range_warning,
+)
 from ..config.configuration import Config
 from ..modes.roles import flutter_root
-from ..runtime import worker_init
+from ..runtime import process_count, worker_init
 from .evaluate import (
     check_result,
     default_point,
@@ -61,7 +66,7 @@ from .evaluate import (
 from .map_store import BoundaryFile, boundary_header, crossing_key
 from .sweep import SweepResult, sweep
 
-__all__ = ["MapResult", "stability_map"]
+__all__ = ["MapResult", "map_files", "stability_map"]
 
 
 @dataclass
@@ -245,13 +250,14 @@ def _row_in_worker(cfg, x_field, x_values, point, out, resume):
 def _in_workers(fn, args, n_jobs):
     """``[fn(*a) for a in args]`` in `n_jobs` worker processes, in order: the
     forked pool of a command (:func:`tefcore.sweeps.evaluate.fork_workers`,
-    ready at once), else joblib's loky processes."""
+    ready at once), else joblib's loky processes; never more processes than
+    cores or tasks (:func:`tefcore.runtime.process_count`)."""
+    workers = process_count(n_jobs, len(args))
     if forked_workers():
-        workers = (os.cpu_count() or 1) if n_jobs < 0 else n_jobs
         return list(worker_pool(workers).map(fn, *zip(*args, strict=True)))
     from joblib import Parallel, delayed
 
-    return Parallel(n_jobs=n_jobs, backend="loky")(delayed(fn)(*a) for a in args)
+    return Parallel(n_jobs=workers, backend="loky")(delayed(fn)(*a) for a in args)
 
 
 def _refine_in_worker(*args):
@@ -261,16 +267,46 @@ def _refine_in_worker(*args):
 
 
 def _refine(point, cfg, x_field, y_si, a, b, direction, xtol):
-    """Zero of the flutter growth between two grid x (brentq); never raises."""
+    """Zero of the flutter growth between two grid x (brentq); never raises.
+
+    The record's ``clipped`` is the summary of the C81 inputs its evaluations
+    clipped (or None): the map warns once for all its crossings, not once per
+    evaluation (:func:`_boundary`)."""
     warm = {} if takes_warm_start(point) else None
-    try:
-        x0, info = brentq(lambda x: _flutter_growth(point, cfg, x_field, x, warm), a, b,
-                          xtol=xtol, maxiter=40, full_output=True, disp=False)
-        return {"y": y_si, "x": float(x0), "direction": direction, "x_lo": a, "x_hi": b,
-                "converged": bool(info.converged), "error": ""}
-    except Exception as err:   # a point failed inside the bracket: keep the bracket
-        return {"y": y_si, "x": 0.5 * (a + b), "direction": direction, "x_lo": a, "x_hi": b,
-                "converged": False, "error": f"{type(err).__name__}: {err}"}
+    with collected_range_warnings() as found:
+        try:
+            x0, info = brentq(lambda x: _flutter_growth(point, cfg, x_field, x, warm), a, b,
+                              xtol=xtol, maxiter=40, full_output=True, disp=False)
+            rec = {"y": y_si, "x": float(x0), "direction": direction, "x_lo": a, "x_hi": b,
+                   "converged": bool(info.converged), "error": ""}
+        except Exception as err:   # a point failed inside the bracket: keep the bracket
+            rec = {"y": y_si, "x": 0.5 * (a + b), "direction": direction, "x_lo": a,
+                   "x_hi": b, "converged": False, "error": f"{type(err).__name__}: {err}"}
+    return {**rec, "clipped": found["clipped"]}
+
+
+def map_files(out, n_rows: int) -> list[Path]:
+    """The files a map keeps in its folder `out`: one sweep file per row, then the boundary's.
+
+    Parameters
+    ----------
+    out : path-like
+        The map's folder (``stability_map(out=...)``).
+    n_rows : int
+        Its y values.
+
+    Returns
+    -------
+    list of pathlib.Path
+        ``row_0.jsonl`` ... ``row_<n_rows - 1>.jsonl``, ``boundary.jsonl``.
+
+    Examples
+    --------
+    >>> [p.name for p in map_files("m", 2)]
+    ['row_0.jsonl', 'row_1.jsonl', 'boundary.jsonl']
+    """
+    out = Path(out)
+    return [out / f"row_{k}.jsonl" for k in range(n_rows)] + [out / "boundary.jsonl"]
 
 
 def stability_map(cfg: Config, x_field: str, x_values, y_field: str, y_values, *,
@@ -338,7 +374,7 @@ def stability_map(cfg: Config, x_field: str, x_values, y_field: str, y_values, *
     if outdir is not None and refine_boundary:
         # checked (and locked) before any row is computed: a stale boundary is refused
         # first, never reused for another configuration or code (map_store)
-        store = BoundaryFile(outdir / "boundary.jsonl",
+        store = BoundaryFile(map_files(outdir, len(y_values))[-1],
                              boundary_header(cfg, x_field, y_field,
                                              point_name(point or default_point())), resume)
     try:
@@ -355,7 +391,8 @@ def _run_map(cfg, x_field, x_values, y_field, y_values, point, n_jobs, backend, 
     rows, frames = [], []
     row_cfgs = [(k, yv, _si(cfg, y_field, yv), cfg.with_overrides({y_field: yv}))
                 for k, yv in enumerate(y_values)]
-    outs = [None if outdir is None else outdir / f"row_{k}.jsonl" for k in range(len(y_values))]
+    outs = ([None] * len(y_values) if outdir is None
+            else map_files(outdir, len(y_values))[:len(y_values)])
     if backend == "joblib" and n_jobs != 1 and len(y_values) > 1:
         # rows side by side, each a serial sweep in one worker: every worker busy
         # (a row's warm-start chains would leave one idle), the same points and
@@ -381,6 +418,17 @@ def _run_map(cfg, x_field, x_values, y_field, y_values, point, n_jobs, backend, 
                              client, store, xtol)
     return MapResult(x_field=x_field, y_field=y_field, table=table, boundary=boundary,
                      rows=rows)
+
+
+def _warn_clipped_crossings(clipped: list, x_field: str, y_field: str) -> None:
+    """One warning for all the refinement's evaluations whose C81 inputs were clipped
+    (each evaluation warned once before), with the most extreme inputs of all."""
+    if (merged := merge_clipped(clipped)) is not None:
+        n = sum(c is not None for c in clipped)
+        warnings.warn(range_warning(
+            f"boundary of the map of {x_field} x {y_field}: C81 table inputs clipped in "
+            f"refining {n} of {len(clipped)} crossings; {describe_clipped(merged)}", merged),
+            stacklevel=5)
 
 
 def _boundary(table, cfg, x_field, y_field, y_values, point, n_jobs, backend, client, store,
@@ -418,11 +466,13 @@ def _boundary(table, cfg, x_field, y_field, y_values, point, n_jobs, backend, cl
             found = _in_workers(_refine_in_worker, args, n_jobs)
         else:
             found = [_refine(*a) for a in args]
+        clipped = [rec.pop("clipped", None) for rec in found]
         for (key, *_), rec in zip(todo, found, strict=True):
             rec = {"key": key, **rec}
             results.append(rec)
             if store is not None:
                 store.append(rec)
+        _warn_clipped_crossings(clipped, x_field, y_field)
     cols = ["y", "x", "direction", "x_lo", "x_hi", "converged", "error"]
     out = pd.DataFrame(results, columns=["key", *cols]).drop(columns="key")
     return out.sort_values(["y", "x"], ignore_index=True)

@@ -40,7 +40,6 @@ ValueError: flap.cg_offset = 1.5 is outside the allowed range [-1, 1]
 from __future__ import annotations
 
 import numbers
-import os
 import sys
 import time
 from collections.abc import Callable, Iterable, Mapping
@@ -54,6 +53,7 @@ from tqdm import tqdm
 
 from ..config.configuration import SECTIONS, Config, resolve_field
 from ..modes.roles import exceptional_points, undecided_steps
+from ..runtime import process_count
 from ..safe_io import atomic_output
 from .evaluate import (
     WARM_CHAIN,
@@ -452,10 +452,12 @@ class _Run:
     def _runner(self, jobs):
         if self.backend == "dask":
             if self.client_own is None:
-                self.client_own, self.cluster = dask_client(self.n_jobs, self.client)
+                self.client_own, self.cluster = dask_client(self.n_jobs, self.client,
+                                                            n_tasks=len(jobs))
             return run_dask(jobs, self.client_own)
         # small jobs stay serial: a cold pool's start costs more than they take
-        if self.n_jobs == 1 or len(jobs) < min_chains():
+        if self.n_jobs == 1 or len(jobs) < min_chains() or process_count(self.n_jobs,
+                                                                          len(jobs)) < 2:
             return run_serial(jobs)
         return run_joblib(jobs, self.n_jobs)
 
@@ -465,8 +467,7 @@ class _Run:
             return
         runner = self._runner(jobs)
         if runner.__name__ != "run_serial":
-            self.processes = max(self.processes, self.n_jobs if self.n_jobs > 0 else
-                                 os.cpu_count() or 1)
+            self.processes = max(self.processes, process_count(self.n_jobs, len(jobs)))
         key_of = {i: args[4] for chain in jobs for i, args, _ in chain}
         start = time.perf_counter()
         try:

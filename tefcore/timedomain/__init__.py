@@ -8,6 +8,7 @@ revolution by revolution; an animation of the blade section.
 
 Its modules, bottom up::
 
+    limits     the bounds of a march and its animation (imports nothing)
     march      integrate x* = A(psi) x revolution by revolution; fit the growth
     nonlinear  the coupled model's residual marched about the trim
     work       the work of each named term per revolution (the energy balance)

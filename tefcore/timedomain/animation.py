@@ -22,7 +22,8 @@ ratios (largest angle 20 deg or plunge a quarter chord), each cycle is shown
 over its own amplitude, and the growth is slowed to a factor
 :data:`SHOWN_GROWTH` over the clip -- the true factor per revolution is in
 the title and the amplitude panel shows the true scale.  The first
-:data:`ANIMATED_REVS` revolutions are animated at :data:`FRAMES_PER_CYCLE`
+:data:`ANIMATED_REVS` revolutions (at most
+:data:`~tefcore.timedomain.limits.MAX_ANIMATED_REVS`) are animated at :data:`FRAMES_PER_CYCLE`
 frames per cycle of the root.  Frames are deterministic (same input, same
 bytes).
 """
@@ -34,6 +35,8 @@ import shutil
 import textwrap
 
 import numpy as np
+
+from .limits import MAX_ANIMATED_REVS, check_bounded
 
 __all__ = ["ANIMATED_REVS", "FRAMES_PER_CYCLE", "SHOWN_GROWTH", "animate", "check_writer",
            "gif_bytes", "naca0012", "render_frames", "save_animation"]
@@ -139,6 +142,8 @@ def _frames(result, frames_per_rev, revs):
     as a slow stroboscopic wobble (found looking at 12 frames a revolution).
     """
     end = result.run.psi_end if revs is None else min(result.run.psi_end, 2 * np.pi * revs)
+    check_bounded("revs", end / (2 * np.pi), MAX_ANIMATED_REVS,
+                  "revolutions animated" + (": the whole march" if revs is None else ""))
     if frames_per_rev is None:
         freq = abs(result.summary["frequency_floquet_per_rev"])
         frames_per_rev = max(12, int(np.ceil(FRAMES_PER_CYCLE * freq)))
@@ -257,6 +262,8 @@ def _scene(result, frames_per_rev, dpi, figsize, revs=ANIMATED_REVS):
     from matplotlib.backends.backend_agg import FigureCanvasAgg
     from matplotlib.figure import Figure
 
+    if revs is not None:                          # before the result is looked at
+        check_bounded("revs", revs, MAX_ANIMATED_REVS, "revolutions animated")
     model = result.stability.trim_result.model
     cfg, chord, n, nm = model.cfg, model.cfg.rotor.chord, model.n_dof, model.n_modes
     frames = _frames(result, frames_per_rev, revs)

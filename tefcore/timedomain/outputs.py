@@ -90,9 +90,15 @@ def summary_lines(result) -> list[str]:
         Lines of at most about 100 columns (the caller wraps).
     """
     s = result.summary
-    start = (f"started from a flap impulse ({s['amplitude_chord']:g} chord per rad)"
-             if s["start"] == "flap impulse" else
-             f"started from the {s['start']} ({s['mode']}) at {s['amplitude_chord']:g} chord")
+    if s["start"] == "flap impulse":
+        start = f"started from a flap impulse ({s['amplitude_chord']:g} chord per rad)"
+    elif s["start"] == "least stable flap-induced root":
+        # the words of `tefcore stability`: a flutter root is an unstable one
+        state = "stable" if s["growth_floquet_per_rev"] <= 0 else "neutral"
+        start = (f"started from the least stable flap-induced root, {s['mode']}, at "
+                 f"{s['amplitude_chord']:g} chord (no flutter root: it is {state})")
+    else:
+        start = f"started from the {s['start']} ({s['mode']}) at {s['amplitude_chord']:g} chord"
     lines = [f"{start}; {s['revolutions']:g} revolutions"]
     if s["fit_revolutions"] and math.isfinite(s["growth_time_domain_per_rev"]):
         a, b = s["fit_revolutions"]

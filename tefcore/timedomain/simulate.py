@@ -35,11 +35,12 @@ import numpy as np
 import pandas as pd
 
 from ..modes.roles import flutter_root
+from .limits import MAX_AMPLITUDE, MAX_REVS, check_bounded
 from .march import DEFAULT_RTOL, RESOLVED_DECAY, GrowthFit, Trajectory, fit_growth, march
 from .nonlinear import check_nonlinear, flap_limit_event, nonlinear_rhs
 
-__all__ = ["COMPONENTS", "FIT_SAMPLES", "REL_TOLERANCE", "ABS_TOLERANCE", "SimulationResult",
-           "physical_map", "simulate"]
+__all__ = ["COMPONENTS", "FIT_SAMPLES", "LEAST_STABLE", "REL_TOLERANCE", "ABS_TOLERANCE",
+           "SimulationResult", "check_march", "physical_map", "simulate"]
 
 #: Physical components of the response: name -> (column of the history, unit).
 COMPONENTS = {"tip_flap_bending": ("tip_flap_bending_m", "m"),
@@ -52,6 +53,10 @@ FIT_SAMPLES = 2048
 #: The time-domain growth agrees with Floquet within REL_TOLERANCE |sigma| + ABS_TOLERANCE.
 REL_TOLERANCE = 0.02
 ABS_TOLERANCE = 0.01
+#: How the start is named when ``mode="flutter"`` and that root is not unstable:
+#: the flutter root is the least stable flap-induced root only when it is
+#: unstable (as ``tefcore stability`` says).
+LEAST_STABLE = "least stable flap-induced root"
 
 
 @dataclass
@@ -132,20 +137,26 @@ def _kinematic_weights(cfg) -> np.ndarray:
     return np.array([1.0, 0.5 * chord, cfg.flap.chord_ratio * chord, 1.0])
 
 
+def _unstable(table, row) -> bool:
+    """Whether a root is unstable: real part above zero and not within its error."""
+    neutral = "neutral" in table.columns and table.at[row, "neutral"] in (True, 1)
+    return bool(table.at[row, "real_part"] > 0) and not neutral
+
+
 def _choose_root(table, mode, has_flap):
     """Row of the modes table to start from, and how it was chosen."""
     if mode is None:
         if not has_flap:
             raise ValueError("without the flap, name the mode to start from (e.g. 'blade lag 1')")
         row = flutter_root(table)
-        if row is not None and table.at[row, "real_part"] > 0:
+        if row is not None and _unstable(table, row):
             return row, "flutter root"
         mode = "TEF"
     if mode == "flutter":
         row = flutter_root(table) if has_flap else None
         if row is None:
             raise ValueError("no flap-induced root (the configuration has no flap)")
-        return row, "flutter root"
+        return row, "flutter root" if _unstable(table, row) else LEAST_STABLE
     rows = np.flatnonzero(table["label"].to_numpy() == mode)
     if rows.size == 0:
         raise ValueError(f"no mode named {mode!r}; names: {', '.join(table['label'])}; "
@@ -268,15 +279,15 @@ def simulate(cfg, mode: str | None = None, *, impulse: bool = False, revs: float
     Raises
     ------
     ValueError
-        Unknown ``mode``; no flap for a flap mode or impulse; ``revs`` not
-        positive; with ``nonlinear``, aerodynamic states.
+        Unknown ``mode``; no flap for a flap mode or impulse; ``revs`` or
+        ``amplitude`` outside their ranges (:func:`check_march`), before
+        anything is computed; with ``nonlinear``, aerodynamic states.
     """
     from ..linear.stability import stability
 
+    check_march(revs, amplitude)                  # before anything is computed
     if nonlinear:
-        check_nonlinear(cfg)                      # before anything is computed
-    if revs <= 0 or amplitude <= 0:
-        raise ValueError(f"revs and amplitude must be positive, got {revs} and {amplitude}")
+        check_nonlinear(cfg)
     res = stability_result or stability(cfg)
     model = res.trim_result.model
     table = res.modes
@@ -299,6 +310,33 @@ def simulate(cfg, mode: str | None = None, *, impulse: bool = False, revs: float
     if nonlinear:
         _compare_nonlinear(out, res, x0, revs, phys, weights, psi, rtol)
     return out
+
+
+def check_march(revs: float, amplitude: float) -> None:
+    """Refuse revolutions or an amplitude :func:`simulate` cannot march: one line each.
+
+    Parameters
+    ----------
+    revs : float
+        Revolutions, in (0, :data:`~tefcore.timedomain.limits.MAX_REVS`].
+    amplitude : float
+        Perturbation in chords, in (0, :data:`~tefcore.timedomain.limits.MAX_AMPLITUDE`].
+
+    Raises
+    ------
+    ValueError
+        Naming the argument, its value and its range (NaN and infinities too).
+
+    Examples
+    --------
+    >>> check_march(6, 1e-3)
+    >>> check_march(6, float("nan"))
+    Traceback (most recent call last):
+    ...
+    ValueError: amplitude = nan: must be a number in (0, 1] (chords)
+    """
+    check_bounded("revs", revs, MAX_REVS, "revolutions marched")
+    check_bounded("amplitude", amplitude, MAX_AMPLITUDE, "chords")
 
 
 def _summary(cfg, table, row, ref_row, start, sigma, freq, fit, dominant, amplitude, revs,

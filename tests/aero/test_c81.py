@@ -699,7 +699,10 @@ def test_cli_check(tmp_path, capsys):
     assert tefcore_main(["c81", "check", str(good)]) == 0
     assert "blade deck" in capsys.readouterr().out
     assert tefcore_main(["c81", "check", str(good), str(bad)]) == 1
-    assert "line 9, column 19" in capsys.readouterr().err
+    err = capsys.readouterr().err
+    # every problem line of the command starts as the other commands' errors do
+    assert err.startswith(f"tefcore: error: c81 check: {bad} line 9, column 19")
+    assert err.count("\n") == 1
 
 
 # --------------------------------------------------------------------------

@@ -136,3 +136,130 @@ def test_headless_browser_drives_the_page(tmp_path):
     report = json.loads(proc.stdout)
     assert proc.returncode == 0, proc.stdout + proc.stderr
     assert report[0]["overflow_px"] <= 0 and not report[0]["errors"]
+
+
+# ------------------------------------------------------------------ serving safely
+
+
+class _Started(Exception):
+    """A stand-in for starting voila: what it was started with."""
+
+
+@pytest.fixture
+def voila_command(monkeypatch):
+    """Serving stops where voila would start; the command line and notebook are kept."""
+    seen = {}
+
+    def popen(cmd, **kw):
+        seen["cmd"], seen["kw"] = cmd, kw
+        seen["notebook"] = Path(cmd[3]).read_text(encoding="utf-8")
+        raise _Started
+
+    monkeypatch.setattr(app, "check_voila", lambda: None)
+    monkeypatch.setattr(subprocess, "Popen", popen)
+    return seen
+
+
+@pytest.mark.parametrize("port", ["99999", "-1", "http"])
+def test_a_port_out_of_range_is_one_line(port, voila_command, capsys):
+    # --port 99999 was accepted and --port -1 ended in a traceback
+    assert main(["explore", "--port", port]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "Traceback" not in err
+    assert f"argument --port: must be a whole number in [0, 65535], got '{port}'" in err
+    assert voila_command == {}                              # voila never started
+
+
+def test_a_port_in_use_is_refused_naming_it(voila_command, capsys):
+    # a busy port made voila serve on the next one, while the command printed the busy one
+    import socket
+
+    with socket.socket() as busy:
+        busy.bind(("127.0.0.1", 0))
+        busy.listen()
+        port = busy.getsockname()[1]
+        assert main(["explore", "--port", str(port)]) == 2
+    err = capsys.readouterr().err
+    assert f"--port {port}: cannot serve on it" in err and "--port 0" in err
+    assert voila_command == {}                              # voila never started
+
+
+def test_voila_serves_the_port_it_is_given_or_fails(voila_command):
+    with pytest.raises(_Started):
+        app.serve(port=0)
+    cmd = voila_command["cmd"]
+    assert "--Voila.port_retries=0" in cmd                  # no other port behind our back
+    # traitlets' list syntax is deprecated (a DeprecationWarning reached the user)
+    assert "--VoilaConfiguration.extension_denylist=jupyterlab-jupytext" in cmd
+    assert not any("=[" in c for c in cmd)
+    assert voila_command["kw"]["env"]["PYTHONWARNINGS"] == "ignore"
+
+
+def test_a_relative_config_is_read_from_the_callers_folder(voila_command, tmp_path,
+                                                           monkeypatch):
+    # a relative --config was looked for in the kernel's temporary folder
+    from tefcore.config.io import load_config, save_config
+
+    monkeypatch.chdir(tmp_path)
+    save_config(load_config("mdart"), tmp_path / "rotor.toml")
+    with pytest.raises(_Started):
+        main(["explore", "--config", "rotor.toml", "--port", "0"])
+    (cell,) = nbformat.reads(voila_command["notebook"], as_version=4).cells
+    assert f"config={str(tmp_path / 'rotor.toml')!r}" in cell.source
+    assert f"os.chdir({str(tmp_path)!r})" in cell.source   # and the --set files with it
+
+
+def test_the_temporary_folder_goes_when_voila_cannot_start(voila_command, tmp_path,
+                                                           monkeypatch):
+    monkeypatch.setenv("TMPDIR", str(tmp_path))
+    import tempfile
+
+    monkeypatch.setattr(tempfile, "tempdir", None)         # TMPDIR read again
+    with pytest.raises(_Started):
+        app.serve(port=0)
+    assert list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.skipif(not HAS_VOILA, reason="voila not installed (pip install 'tefcore[app]')")
+@pytest.mark.parametrize("signame", ["SIGTERM", "SIGINT"])
+def test_a_signal_stops_the_server_its_kernel_and_removes_its_folder(signame, tmp_path):
+    # SIGTERM left voila serving (and its temporary folder) after the command had gone
+    import re
+    import signal
+
+    psutil = pytest.importorskip("psutil")
+    env = {**os.environ, "TMPDIR": str(tmp_path), "PYTHONPATH": os.pathsep.join(
+        [str(REPO), *filter(None, [os.environ.get("PYTHONPATH")])])}
+    env.pop("PYTHONWARNINGS", None)
+    log = tmp_path / "log.txt"
+    with open(log, "w") as out:
+        proc = subprocess.Popen([sys.executable, "-m", "tefcore", "explore", "--port", "0"],
+                                env=env, stdout=out, stderr=subprocess.STDOUT)
+    started = []
+    try:
+        deadline = time.monotonic() + 120
+        while "serving" not in log.read_text() and time.monotonic() < deadline:
+            assert proc.poll() is None, log.read_text()
+            time.sleep(0.2)
+        port = int(re.search(r"http://127\.0\.0\.1:(\d+)/", log.read_text()).group(1))
+        # the port printed is the port that answers; the page starts its kernel
+        with urllib.request.urlopen(f"http://127.0.0.1:{port}/", timeout=120) as r:
+            assert "voila" in r.read().decode(errors="replace").lower()
+        started = psutil.Process(proc.pid).children(recursive=True)
+        assert len(started) >= 2                             # voila and the page's kernel
+        os.kill(proc.pid, getattr(signal, signame))
+        code = proc.wait(timeout=60)
+    finally:
+        for p in psutil.Process(proc.pid).children(recursive=True) if proc.poll() is None \
+                else []:
+            p.kill()
+        if proc.poll() is None:
+            proc.kill()
+    assert code == (143 if signame == "SIGTERM" else 130)
+    gone, alive = psutil.wait_procs(started, timeout=20)
+    for p in alive:                                          # never leave one behind
+        p.kill()
+    assert not alive, alive
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["log.txt"]
+    text = log.read_text()
+    assert "Warning" not in text and "[Voila]" not in text, text   # no third-party noise

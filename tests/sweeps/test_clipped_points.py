@@ -46,3 +46,30 @@ def test_a_map_marks_clipped_points_and_warns_once():
     assert m.table.loc[m.table["x"] == 0.3, "warning"].str.contains("alpha reached").all()
     assert m.table.loc[m.table["x"] == 0.0, "warning"].isna().all()
     assert len(caught) == 1 and "clipped at 2 of 4 points" in str(caught[0].message)
+
+
+class ClippingToy:
+    """The toy map's point (flutter where cg_offset + overhang^2 > 0.3), each call warning
+    that a C81 deck clipped its inputs, as a point of the XFOIL deck at mu = 0.3 does."""
+
+    def __call__(self, cfg):
+        from tefcore.aero.c81.range_summary import range_warning
+        from tests.sweeps.test_stability_map import Toy
+
+        x = cfg.flap.cg_offset
+        clipped = {"calls": 3, "decks": ["TOY"], "extremes": {"alpha": [20 + x, -15, 15]}}
+        warnings.warn(range_warning(f"clipped at {x}", clipped), stacklevel=2)
+        return Toy()(cfg)
+
+
+def test_the_boundary_refinement_warns_once():
+    # the refinement's brentq evaluations printed one C81RangeWarning each (27 lines)
+    m, caught = run(stability_map, XFOIL, "flap.cg_offset", [0.0, 0.2, 0.4], "flap.overhang",
+                    [0.0, 0.2], point=ClippingToy(), progress=False)
+    assert len(m.boundary) == 2 and m.boundary["converged"].all()
+    refine = [w for w in caught if "boundary" in str(w.message)]
+    assert len(caught) == 2 and len(refine) == 1, [str(w.message) for w in caught]
+    text = str(refine[0].message)
+    assert "refining 2 of 2 crossings" in text and "C81 deck 'TOY'" in text
+    # the most extreme input of all the evaluations, not the last one's
+    assert refine[0].message.clipped["extremes"]["alpha"][0] > 20.2

@@ -103,7 +103,7 @@ def test_a_large_map_prints_its_estimate_before_it_starts(monkeypatch, tmp_path,
 
     monkeypatch.setattr(tefcore.sweeps.maps, "stability_map", no_map)
     assert main(["map", "flap.cg_offset", "0", "0.4", "1000", "flap.overhang", "0", "0.4",
-                 "1000", "--jobs", "2"]) == 130
+                 "1000", "--jobs", "2", "--yes"]) == 130          # --yes: past the bound
     estimate = started[0]
     assert "1000 x 1000 = 1000000 points" in estimate and "2 processes" in estimate
     # one point timed (0.05 s, more on a loaded machine) x 1e6 points / 2 processes:

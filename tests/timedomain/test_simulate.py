@@ -153,7 +153,7 @@ def test_simulate_command_writes_json_and_csv(tmp_path, capsys):
 
 @pytest.mark.parametrize("argv, message", [
     (["--mode", "blade flap 9"], "no mode named 'blade flap 9'"),
-    (["--revs", "0"], "must be positive"),
+    (["--revs", "0"], "argument --revs: must be a number in (0, 100] revolutions"),
     (["--nonlinear", "-s", "model.aero=unsteady"], "nonlinear march takes quasi-steady"),
 ])
 def test_simulate_command_errors_are_one_line(argv, message, capsys):
