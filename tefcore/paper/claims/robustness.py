@@ -30,7 +30,8 @@ from ..figures.frames import compute_figure
 from .reference import load_claims
 from .validation import sweep_values, validate_all
 
-__all__ = ["NUDGES", "VALUE_RTOL", "NudgedRun", "differences", "nudge", "nudged_runs"]
+__all__ = ["NUDGES", "VALUE_ATOL", "VALUE_RTOL", "NudgedRun", "differences", "nudge",
+           "nudged_runs"]
 
 #: The nudges: (field, relative change).  Far below any engineering meaning,
 #: of the size of the round-off another BLAS kernel gives.
@@ -43,6 +44,12 @@ NUDGES = (("blade.mass_scale", 1e-12), ("rotor.rotor_speed", 1e-9),
 #: solver's own error control while any reading that jumps (a lock read at
 #: k - 1/2 instead of k + 1/2: 6 % on Fig. 12's slope) fails it.
 VALUE_RTOL = 1e-6
+
+#: Absolute agreement below which two values are the same: a statistic that is
+#: itself round-off (the peak-to-peak of a frequency that does not change,
+#: 1e-10 /rev) is compared to the solver's resolution -- the Floquet exponents'
+#: round-off bound, 1e-9 /rev, ten times over -- not relatively.
+VALUE_ATOL = 1e-8
 
 #: The columns of a figure's table compared point by point.
 _NAMED = ("label", "identity_certain")
@@ -146,7 +153,7 @@ def differences(base: NudgedRun, other: NudgedRun, rtol: float = VALUE_RTOL) -> 
             out.append(f"{other.label}: {cid} {a.at[cid, 'status']} -> {b.at[cid, 'status']}")
         va, vb = float(a.at[cid, "computed_value"]), float(b.at[cid, "computed_value"])
         if np.isnan(va) != np.isnan(vb) or (
-                np.isfinite(va) and abs(va - vb) > rtol * max(abs(va), abs(vb), 1e-300)):
+                np.isfinite(va) and abs(va - vb) > max(rtol * max(abs(va), abs(vb)), VALUE_ATOL)):
             out.append(f"{other.label}: {cid} value {va:.10g} -> {vb:.10g}")
     for fig, ta in base.tables.items():
         tb = other.tables[fig]

@@ -118,7 +118,8 @@ def natural_frequency_frame(name, frame, cfg, overrides) -> pd.DataFrame:
     return pd.DataFrame(rows)
 
 
-def compute_figure(name, cfg=None, values=None, overrides=None, n_jobs=1, progress=False):
+def compute_figure(name, cfg=None, values=None, overrides=None, n_jobs=1, progress=False,
+                   refine=True):
     """Run one figure (optionally with configuration overrides).
 
     Parameters
@@ -140,6 +141,9 @@ def compute_figure(name, cfg=None, values=None, overrides=None, n_jobs=1, progre
         Processes of the sweep (:func:`tefcore.sweeps.sweep.sweep`); 1 runs serially.
     progress : bool
         Show the sweep's progress bar.
+    refine : bool
+        Bisect the steps where a root's identity is undecided
+        (:func:`tefcore.sweeps.sweep.sweep`).
 
     Returns
     -------
@@ -155,8 +159,10 @@ def compute_figure(name, cfg=None, values=None, overrides=None, n_jobs=1, progre
         return responses.overhang_actuation_figure(cfg, overhangs=values or FIG7_OVERHANGS)
     values = list(FIGURES[name].values if values is None else values)
     if not overrides:
-        return catalogue.run_figure(name, cfg, values=values, n_jobs=n_jobs, progress=progress)
+        return catalogue.run_figure(name, cfg, values=values, n_jobs=n_jobs, progress=progress,
+                                    refine=refine)
     from ...sweeps.sweep import sweep
 
     base = catalogue.figure_config(name, cfg).with_overrides(overrides)
-    return sweep(base, FIGURES[name].parameter, values, n_jobs=n_jobs, progress=progress)
+    return sweep(base, FIGURES[name].parameter, values, n_jobs=n_jobs, progress=progress,
+                 refine=refine)
