@@ -138,7 +138,15 @@ def claim_series(frame, mode, quantity, lo=None, hi=None, until=None, identity=T
         # sweep (the point's own Floquet convention jumps by whole /rev where
         # its dominant harmonic changes: Fig. 9's TEF at c_cg 0.08-0.10 and
         # from 0.23 on, docs/theory.md 9.4)
-        frame = frame.assign(frequency_per_rev=frame["frequency_tracked"])
+        # -- except at a lock: a real multiplier reads k - 1/2 and k + 1/2 alike,
+        # and continuity's choice between them moves with the points around it
+        # (a refinement point more or less), so a locked root keeps its own
+        # reading, its dominant harmonic, and the claim is checked with every
+        # reading (lock_readings)
+        own = frame["frequency_per_rev"].to_numpy(float)
+        at_lock = np.abs(2 * own - np.round(2 * own)) <= 20 * LOCK_TOL
+        frame = frame.assign(frequency_per_rev=np.where(
+            at_lock, own, frame["frequency_tracked"].to_numpy(float)))
     t = select_mode(frame, mode) if mode else frame
     if identity:
         points = exceptional_in_range(frame, mode, lo, hi if until is None else until)
@@ -164,8 +172,7 @@ def _locked_rows(t, quantity) -> np.ndarray:
     frequency at a multiple of 1/2 /rev, within :data:`LOCK_TOL` ten times)."""
     if quantity != "frequency_per_rev" or "frequency_per_rev" not in t:
         return np.zeros(len(t), bool)
-    raw = t["frequency_per_rev"].to_numpy(float) if "frequency_tracked" not in t else \
-        t["frequency_tracked"].to_numpy(float)
+    raw = t["frequency_per_rev"].to_numpy(float)
     return np.abs(2 * raw - np.round(2 * raw)) <= 20 * LOCK_TOL
 
 
