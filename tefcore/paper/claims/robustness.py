@@ -128,7 +128,8 @@ def nudged_runs(cfg, figures, nudges=NUDGES) -> list[NudgedRun]:
     return out
 
 
-def differences(base: NudgedRun, other: NudgedRun, rtol: float = VALUE_RTOL) -> list[str]:
+def differences(base: NudgedRun, other: NudgedRun, rtol: float = VALUE_RTOL,
+                certainty: bool = True) -> list[str]:
     """What a nudge moved: statuses, values, names and their certainty.
 
     Parameters
@@ -139,6 +140,8 @@ def differences(base: NudgedRun, other: NudgedRun, rtol: float = VALUE_RTOL) -> 
         A run on a nudged copy.
     rtol : float
         Relative agreement of computed values (:data:`VALUE_RTOL`).
+    certainty : bool, optional
+        Compare the certainty of the names too (``identity_certain``).
 
     Returns
     -------
@@ -160,7 +163,7 @@ def differences(base: NudgedRun, other: NudgedRun, rtol: float = VALUE_RTOL) -> 
         if len(ta) != len(tb):
             out.append(f"{other.label}: {fig} has {len(tb)} rows, {len(ta)} without the nudge")
             continue
-        for col in _NAMED:
+        for col in _NAMED if certainty else _NAMED[:1]:
             diff = ta[col].astype(str).to_numpy() != tb[col].astype(str).to_numpy()
             for i in np.flatnonzero(diff):
                 out.append(f"{other.label}: {fig} at {ta['value'].iloc[i]} row {i}: {col} "
