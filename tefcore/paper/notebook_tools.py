@@ -42,6 +42,7 @@ import pandas as pd
 from ..runtime import apply_defaults
 from ..safe_io import atomic_output
 from .attribution.departures import departures_text, show_departures
+from .claims.truncation import load_converged, mark_truncation
 from .claims.validation import figure_values
 from .claims.variants import apply_variant
 from .explorer import explore
@@ -196,12 +197,14 @@ def check_and_save(out, results: dict, *, cfg=None, variants=None, tables=None) 
                         for name, result in results.items()], ignore_index=True)
     # on a packaged variant, its calibration claims and recorded statuses
     claims = apply_variant(claims, cfg)
+    # each claim's verdict on its figure's converged basis, where one is stored
+    # for this configuration: a verdict that differs is truncation-dependent
+    claims = mark_truncation(claims, load_converged(cfg if cfg is not None else base_config()))
     show_claims(claims)
     written = [save_csv(claims, out, "claims")]
     written += [save_csv(df, out, stem) for stem, df in (tables or {}).items()]
     print(sorted(p.name for p in written + sorted(Path(out).glob("*.png"))))
     return claims
-
 
 
 def _stem(name: str) -> str:
