@@ -243,6 +243,9 @@ class Report:
         "Why we differ": :func:`tefcore.paper.attribution.differences.summarise` of the
         run's attribution (which few assumptions explain most failing claims,
         which no plausible assumption explains); None without one.
+    what_if : str
+        The changed parameters of a what-if run (its claims are not compared
+        with the recorded statuses); ``""`` for the recorded computation.
     """
 
     title: str
@@ -263,6 +266,7 @@ class Report:
     up: str = ""
     variants: dict | None = None
     why: dict | None = None
+    what_if: str = ""
 
 
 def _legend(meanings: dict, names) -> list[dict]:
@@ -395,7 +399,7 @@ def build_report(out, runs, claims: pd.DataFrame, worse: pd.DataFrame, *, figure
                  checks: pd.DataFrame | None = None, version: str = "",
                  title: str = "tefcore reproduction report", up: str = "",
                  variants: dict | None = None,
-                 attribution: pd.DataFrame | None = None) -> Report:
+                 attribution: pd.DataFrame | None = None, what_if: str = "") -> Report:
     """Collect a reproduction's outputs in ``out`` into a :class:`Report`.
 
     Parameters
@@ -426,6 +430,9 @@ def build_report(out, runs, claims: pd.DataFrame, worse: pd.DataFrame, *, figure
     attribution : DataFrame, optional
         The run's attribution (:mod:`tefcore.paper.attribution.differences`): "why we
         differ" per figure and for the whole run.
+    what_if : str
+        The parameters that make the run a what-if (:mod:`tefcore.paper.run.outcome`);
+        ``""`` for the recorded computation.
 
     Returns
     -------
@@ -476,7 +483,8 @@ def build_report(out, runs, claims: pd.DataFrame, worse: pd.DataFrame, *, figure
         version=version,
         fanplot=_image(fan, out, "MDART blade (assumed properties): fan plot of the coupled "
                                  "modes") if fan.exists() else None,
-        departures=departures_text(), variants=variants_view(variants), why=why)
+        departures=departures_text(), variants=variants_view(variants), why=why,
+        what_if=what_if)
 
 
 def template_environment(**filters) -> jinja2.Environment:
