@@ -220,6 +220,16 @@ def _fmt_x(c, xs, factor):
 
 
 def _check_threshold(c: Claim, ctx: _Context):
+    """A stability threshold: the root is in the claimed state above its onset, not before.
+
+    The rule, on every zero crossing in the claim's range: the onset is the
+    last crossing in the claimed direction, and the last crossing of all has
+    that direction (the root stays in the claimed state above it); with an
+    ``expected`` x, the onset lies within the tolerance, and below the
+    tolerance band the root is never in the claimed state (a root unstable
+    before 0.5 and stable again is not "unstable above 0.5").  A root that
+    crosses more than once is said so in the reason, also when it passes.
+    """
     x, y = ctx.series(c, interval=c.interval)
     f = float(x_to_si(c.figure, 1.0, c.x_unit))
     cross = zero_crossings(x, y)
@@ -232,13 +242,37 @@ def _check_threshold(c: Claim, ctx: _Context):
         expected = f"{c.direction} at {_g(c.expected)} ± {_g(c.tolerance)} {c.x_unit}".rstrip()
     if not wanted:
         return expected, f"crossings: {desc}", np.nan, False, f"no {c.direction} crossing"
-    best = wanted[0] if c.expected is None else min(wanted, key=lambda v: abs(v / f - c.expected))
+    onset = wanted[-1]
     reasons = []
     if cross[-1][1] != c.direction:
         reasons.append(f"the last crossing is {cross[-1][1]}: the end state is not the claimed one")
-    if c.expected is not None and abs(best / f - c.expected) > c.tolerance * (1 + X_SLACK):
-        reasons.append("crossing outside the tolerance")
-    return expected, f"crossings: {desc}", best / f, not reasons, "; ".join(reasons)
+    if c.expected is not None:
+        band = c.tolerance * (1 + X_SLACK)
+        if abs(onset / f - c.expected) > band:
+            reasons.append("crossing outside the tolerance")
+        early = _early_intervals(c, x, y, f, c.expected - band, onset / f)
+        if early:
+            reasons.append(f"{_state_word(c)} on {early} below the claimed onset "
+                           f"{_g(c.expected)} ± {_g(c.tolerance)}, then "
+                           f"{_state_word(c, before=True)} again: not "
+                           f"{_state_word(c)} above {_g(c.expected)} only")
+    note = (f"the root crosses {len(cross)} times; the onset is the last {c.direction} "
+            f"crossing, at {_fmt_x(c, [onset], f)}" if len(cross) > 1 else "")
+    reason = "; ".join(reasons + ([note] if note else []))
+    return expected, f"crossings: {desc}", onset / f, not reasons, reason
+
+
+def _state_word(c: Claim, before: bool = False) -> str:
+    """``unstable`` (or ``stable``): the state a threshold claim has above its onset."""
+    above = "unstable" if c.direction == "destabilising" else "stable"
+    return ({"unstable": "stable", "stable": "unstable"}[above]) if before else above
+
+
+def _early_intervals(c: Claim, x, y, f: float, below: float, onset: float) -> str:
+    """The intervals in the claimed state before the onset that start below ``below``
+    (in ``x_unit``: the tolerance band's lower end), as text."""
+    got = [(a / f, b / f) for a, b in stability_intervals(x, y, _state_word(c))]
+    return " and ".join(f"[{_g(a)}, {_g(b)}]" for a, b in got if a < below and b < onset)
 
 
 def _check_range(c: Claim, ctx: _Context):
