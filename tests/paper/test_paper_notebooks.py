@@ -11,12 +11,12 @@ from pathlib import Path
 import nbformat
 import pytest
 
-from tefcore.paper.run import notebook_files as nbf
 from tefcore.paper.attribution.departures import departures_text, load_departures
 from tefcore.paper.figures.captions import figure_caption, figure_title
 from tefcore.paper.figures.catalogue import FIGURES
 from tefcore.paper.figures.responses import response_config
 from tefcore.paper.figures.runs import run_config
+from tefcore.paper.run import notebook_files as nbf
 
 jupytext = pytest.importorskip("jupytext")
 

@@ -23,7 +23,7 @@ from ...modes.roles import ModeNotFound, mode_rows
 from ..figures.catalogue import variant_key
 from ..figures.frames import compute_figure, figure_frame, natural_frequency_frame
 from ..figures.quantities import QUANTITY_NAMES, quantity_unit, x_to_si
-from .curves import X_SLACK, compare_curve, stability_intervals, zero_crossings
+from .curves import X_SLACK, compare_curve, stability_intervals, threshold_onset, zero_crossings
 from .exceptional import exceptional_in_range, flutter_reading, swapped, where
 from .reference import Claim, load_claims
 
@@ -233,46 +233,28 @@ def _check_threshold(c: Claim, ctx: _Context):
     x, y = ctx.series(c, interval=c.interval)
     f = float(x_to_si(c.figure, 1.0, c.x_unit))
     cross = zero_crossings(x, y)
-    wanted = [x0 for x0, d in cross if d == c.direction]
     desc = "; ".join(f"{d} at {_fmt_x(c, [x0], f)}" for x0, d in cross) or (
         f"none (real part {_g(y.min())} to {_g(y.max())} 1/rev)")
-    if c.expected is None:
-        expected = f"a {c.direction} crossing"
-    else:
-        expected = f"{c.direction} at {_g(c.expected)} ± {_g(c.tolerance)} {c.x_unit}".rstrip()
-    if not wanted:
+    band = None if c.expected is None else c.tolerance * (1 + X_SLACK)
+    expected = (f"a {c.direction} crossing" if c.expected is None else
+                f"{c.direction} at {_g(c.expected)} ± {_g(c.tolerance)} {c.x_unit}".rstrip())
+    onset, end_ok, early = threshold_onset(x, y, c.direction,
+                                           None if band is None else (c.expected - band) * f)
+    if onset is None:
         return expected, f"crossings: {desc}", np.nan, False, f"no {c.direction} crossing"
-    onset = wanted[-1]
-    reasons = []
-    if cross[-1][1] != c.direction:
-        reasons.append(f"the last crossing is {cross[-1][1]}: the end state is not the claimed one")
-    if c.expected is not None:
-        band = c.tolerance * (1 + X_SLACK)
-        if abs(onset / f - c.expected) > band:
-            reasons.append("crossing outside the tolerance")
-        early = _early_intervals(c, x, y, f, c.expected - band, onset / f)
-        if early:
-            reasons.append(f"{_state_word(c)} on {early} below the claimed onset "
-                           f"{_g(c.expected)} ± {_g(c.tolerance)}, then "
-                           f"{_state_word(c, before=True)} again: not "
-                           f"{_state_word(c)} above {_g(c.expected)} only")
-    note = (f"the root crosses {len(cross)} times; the onset is the last {c.direction} "
-            f"crossing, at {_fmt_x(c, [onset], f)}" if len(cross) > 1 else "")
-    reason = "; ".join(reasons + ([note] if note else []))
-    return expected, f"crossings: {desc}", onset / f, not reasons, reason
-
-
-def _state_word(c: Claim, before: bool = False) -> str:
-    """``unstable`` (or ``stable``): the state a threshold claim has above its onset."""
-    above = "unstable" if c.direction == "destabilising" else "stable"
-    return ({"unstable": "stable", "stable": "unstable"}[above]) if before else above
-
-
-def _early_intervals(c: Claim, x, y, f: float, below: float, onset: float) -> str:
-    """The intervals in the claimed state before the onset that start below ``below``
-    (in ``x_unit``: the tolerance band's lower end), as text."""
-    got = [(a / f, b / f) for a, b in stability_intervals(x, y, _state_word(c))]
-    return " and ".join(f"[{_g(a)}, {_g(b)}]" for a, b in got if a < below and b < onset)
+    state, other = ("unstable", "stable")[::1 if c.direction == "destabilising" else -1]
+    reasons = [] if end_ok else [f"the last crossing is {cross[-1][1]}: the end state is not "
+                                 "the claimed one"]
+    if band is not None and abs(onset / f - c.expected) > band:
+        reasons.append("crossing outside the tolerance")
+    reasons += [f"{state} on {' and '.join(f'[{_g(a / f)}, {_g(b / f)}]' for a, b in early)} "
+                f"below the claimed onset {_g(c.expected)} ± {_g(c.tolerance)}, then {other} "
+                f"again: not {state} above {_g(c.expected)} only"] if early else []
+    ok = not reasons
+    if len(cross) > 1:              # said also when it passes
+        reasons.append(f"the root crosses {len(cross)} times; the onset is the last "
+                       f"{c.direction} crossing, at {_fmt_x(c, [onset], f)}")
+    return expected, f"crossings: {desc}", onset / f, ok, "; ".join(reasons)
 
 
 def _check_range(c: Claim, ctx: _Context):

@@ -175,12 +175,11 @@ def ensure_kernel(name: str = KERNEL_NAME) -> None:
 
 
 def _export_html(executed: Path) -> None:
-    """``executed`` (.ipynb) as a standalone HTML page beside it."""
-    import nbformat
-    from nbconvert import HTMLExporter
+    """``executed`` (.ipynb) as a standalone HTML page beside it, readable offline
+    (:func:`tefcore.paper.run.notebook_page.notebook_html`)."""
+    from .notebook_page import notebook_html
 
-    body, _ = HTMLExporter().from_notebook_node(nbformat.read(str(executed), as_version=4))
-    atomic_write_text(executed.with_suffix(".html"), body)
+    atomic_write_text(executed.with_suffix(".html"), notebook_html(executed))
 
 
 def execute_notebook(name: str, src: Path, out: Path, params: dict,

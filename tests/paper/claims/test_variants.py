@@ -5,7 +5,6 @@ import pytest
 
 from tefcore.config.io import load_config
 from tefcore.paper import fig6_calibration as f6
-from tefcore.paper.run import reproduce as rp
 from tefcore.paper.claims.reference import load_claims
 from tefcore.paper.claims.variants import (
     DEFAULT_VARIANT,
@@ -14,6 +13,7 @@ from tefcore.paper.claims.variants import (
     comparison_variants,
     load_variants,
 )
+from tefcore.paper.run import reproduce as rp
 from tefcore.paper.run.report import Report, render, variants_view
 from tefcore.units import from_si
 

@@ -15,7 +15,6 @@ would, except in the tests that kill a real run.
 import contextlib
 import json
 import os
-import signal
 import subprocess
 import sys
 import textwrap

@@ -10,8 +10,8 @@ import pytest
 
 from tefcore.cli import main
 from tefcore.paper.run import notebook_files as nbf
-from tefcore.paper.run import reproduce as rp
 from tefcore.paper.run import params as run_params
+from tefcore.paper.run import reproduce as rp
 from tests.paper.run.test_report_html import check_page
 
 pytest.importorskip("yaml")
