@@ -53,7 +53,7 @@ from ...safe_io import FileLock, check_output_file, check_output_folder
 from .batch_report import write_comparison
 from .batch_spec import RunSpec, load_batch
 from .batch_state import plan_runs, read_record, write_record
-from .kernel_guard import stop_notebooks
+from .kernel_guard import stop_notebooks, watch_children
 from .notebook_files import NOTEBOOKS, notebooks_dir
 from .reproduce import (
     BASELINE_NOTEBOOK,
@@ -290,7 +290,7 @@ def batch(runs_file, out, *, jobs: int | None = None, force: bool = False, only=
     if dry_run:
         return _dry_run(out, specs, params_of, force, nb_dir)
     check_output_folder(out, "batch --out", create=True)
-    with FileLock(out / "batch", "batch folder"):
+    with FileLock(out / "batch", "batch folder"), watch_children():
         plans = plan_runs(out, specs, lambda s: params_of[s.name], force=force, nb_dir=nb_dir)
         ensure_kernel(kernel_name)
         todo, outcomes = _start_runs(out, plans)

@@ -355,8 +355,9 @@ def _claim_rows(claims: pd.DataFrame, figure: str) -> list[dict]:
     cl = claims[claims["figure"] == figure] if "figure" in claims else claims.iloc[0:0]
     rows = []
     for row in cl.fillna("").astype(str).to_dict("records"):
-        r = {k: _plain(v) for k, v in row.items()}
-        reason = r.get("reason", "")
+        r = dict.fromkeys(("id", "statement", "expected", "computed", "reason", "status"), "")
+        r |= {k: _plain(v) for k, v in row.items()}
+        reason = r["reason"]
         r["reason_start"] = (reason[:160].rsplit(" ", 1)[0] + " …"
                              if len(reason) > LONG_REASON else "")
         rows.append(r | {"css": _STATUS_CLASS.get(row.get("status", ""), "notrep")})

@@ -667,7 +667,7 @@ def finish_report(out: Path, runs, names, checks: pd.DataFrame | None, *,
         attributed = None
     worse = claims.iloc[0:0] if what_if else regressions(claims)
     passed, total = score(claims)
-    with _phase("other variants", len(variant_runs), progress) as bar:
+    with _phase("other variants", len(variant_runs), progress and bool(variant_runs)) as bar:
         variants = finish_variant_runs(list(variant_runs), out, claims, base,
                                        done=lambda run: bar.update())
     with _phase("report", 2, progress) as bar:
