@@ -88,7 +88,7 @@ def _key_finding(v: pd.DataFrame) -> str:
         share = (f", blade torsion {shares['torsion']} of its motion and the flap "
                  f"{shares['TEF']}" if {"torsion", "TEF"} <= set(shares) else "")
         text += (f"; the root that does go unstable, the flutter root, grows at "
-                 f"{growth.max():+.1f} /rev in {_figs([top['figure']])}{share} -- a fast "
+                 f"{growth.max():+.1f} /rev in {_figs([top['figure']])}{share}: a fast "
                  "coupled flutter where the paper describes a weak instability of the flap")
     return text + "."
 

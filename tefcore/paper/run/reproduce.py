@@ -331,7 +331,7 @@ def run_notebooks(out: Path, params: dict, names=NOTEBOOKS, progress: bool = Tru
     # 1 s for an unknown one) over the slots, so its estimate of the time left is
     # in seconds; it closes after the exporter, which finishes the last notebook
     cost = {n: max(1.0, NOTEBOOK_SECONDS.get(n, 1.0)) for n in names}
-    with tqdm(total=round(sum(cost.values()), 1), desc=f"notebooks 0/{len(names)}",
+    with tqdm(total=sum(cost.values()), desc=f"notebooks 0/{len(names)}",
               disable=not progress, file=sys.stderr, bar_format=BAR_FORMAT) as bar, \
             ThreadPoolExecutor(max_workers=1) as exporter:
         def exported(fut):
