@@ -21,7 +21,7 @@ Examples
 ...                        "computed_value": ["", ""], "reason": ["", ""]})
 >>> print(headline(claims))  # doctest: +NORMALIZE_WHITESPACE
 1 of the paper's 2 validation claims reproduce, among them every statement on Fig. 10.
-1 do not (on Fig. 9).
+1 does not (on Fig. 9).
 """
 
 from __future__ import annotations
@@ -78,9 +78,11 @@ def _key_finding(v: pd.DataFrame) -> str:
     root = v[(col == "flutter root") & (v["computed_value"].astype(str) != "")]
     if decided.empty:
         return ""
-    text = (f"The key finding: of the {len(decided)} statements that the TEF mode becomes "
-            f"unstable which tefcore can decide, {len(stable)} find the computed TEF root "
-            f"stable throughout ({_figs(sorted(stable['figure'], key=_fig_order))})")
+    text = (f"The key finding: of the {len(decided)} "
+            f"{'statement' if len(decided) == 1 else 'statements'} that the TEF mode becomes "
+            f"unstable which tefcore can decide, {len(stable)} "
+            f"{'finds' if len(stable) == 1 else 'find'} the computed TEF root stable "
+            f"throughout ({_figs(sorted(stable['figure'], key=_fig_order))})")
     growth = pd.to_numeric(root["computed_value"], errors="coerce")
     if growth.notna().any():
         top = root.loc[growth.idxmax()]
@@ -120,8 +122,8 @@ def headline(claims: pd.DataFrame, what_if: str = "") -> str:
     first = (f"{len(by['pass'])} of the paper's {len(v)} validation claims reproduce"
              + (f", among them every statement on {_figs(whole)}" if whole else "") + ".")
     failing = sorted(by["fail"]["figure"].unique(), key=_fig_order)
-    second = (f"{len(by['fail'])} do not (on {_figs(failing)})" if failing
-              else "None fails")
+    second = (f"{len(by['fail'])} {'does' if len(by['fail']) == 1 else 'do'} not "
+              f"(on {_figs(failing)})" if failing else "None fails")
     undecided = len(by["ambiguous"]) + len(by["not reproducible"])
     if undecided:
         second += (f", and {undecided} cannot be decided: {len(by['ambiguous'])} ambiguous "

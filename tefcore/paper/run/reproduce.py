@@ -714,7 +714,8 @@ def _summary(runs, done, elapsed, out, *, what_if: str = "", changes=None) -> bo
     v = done.get("variants")
     if v:
         print("on each variant: " + "; ".join(
-            f"{n} {a} of {b} validation claims" for n, (a, b) in v["scores"].items())
+            f"{'this what-if' if what_if and n == v['base'] else n} {a} of {b} validation claims"
+            for n, (a, b) in v["scores"].items())
             + f"; other variants worse than recorded: {len(v['worse'])}")
     if done.get("attribution") is not None:
         a = done["attribution"]

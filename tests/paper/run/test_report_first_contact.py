@@ -99,7 +99,7 @@ def test_the_top_says_what_reproduces_what_does_not_and_the_key_finding(report_f
     assert sentences[0] == ("3 of the paper's 6 validation claims reproduce, among them every "
                             "statement on Fig. 10.")
     assert sentences[1].startswith("2 do not (on Fig. 9), and 1 cannot be decided")
-    assert "of the 1 statements that the TEF mode becomes unstable" in sentences[2]
+    assert "of the 1 statement that the TEF mode becomes unstable" in sentences[2]
     assert "+2.7 /rev in Fig. 9" in sentences[2]             # from the table, not written in
     assert pages["md"].index(r.intro) < pages["md"].index("What a claim's status means")
 
