@@ -188,12 +188,21 @@ def _value(v, unit: str) -> str:
 
 
 def _lever_text(row) -> str:
-    """``"elastic axis = 0.255 (plausible 0.23 to 0.27; baseline 0.25)"``, units included."""
-    unit = setting_unit(str(row["setting"]))
-    what = str(row["setting"]).removeprefix("factor on ").removesuffix(" [SI]")
-    rng = (f"plausible {_value(row['plausible_low'], unit)} to "
-           f"{_value(row['plausible_high'], unit)}; baseline {_value(row['baseline'], unit)}")
-    return f"{row['assumption']} = {_value(row['flips_at'], unit)} ({what}: {rng})"
+    """``"elastic axis = 0.255 (rotor.elastic_axis: plausible 0.23 to 0.27; baseline 0.25)"``,
+    units included; the parts the table lacks are left out."""
+    setting = str(row.get("setting", "") or "")
+    unit = setting_unit(setting) if setting else ""
+    parts = []
+    if str(row.get("plausible_low", "")) != "" and str(row.get("plausible_high", "")) != "":
+        parts.append(f"plausible {_value(row['plausible_low'], unit)} to "
+                     f"{_value(row['plausible_high'], unit)}")
+    if str(row.get("baseline", "")) != "":
+        parts.append(f"baseline {_value(row['baseline'], unit)}")
+    what = setting.removeprefix("factor on ").removesuffix(" [SI]")
+    inner = "; ".join(parts)
+    inner = f"{what}: {inner}" if what and inner else what or inner
+    return f"{row['assumption']} = {_value(row['flips_at'], unit)}" + (
+        f" ({inner})" if inner else "")
 
 
 def why_view(table: pd.DataFrame, claims: pd.DataFrame) -> dict:
@@ -234,11 +243,13 @@ def why_view(table: pd.DataFrame, claims: pd.DataFrame) -> dict:
     for e in base["explains"]:
         rows = good[good["assumption"] == e["assumption"]]
         r = rows.iloc[0]
-        unit = setting_unit(r["setting"])
+        setting = str(r.get("setting", "") or "")
+        unit = setting_unit(setting) if setting else ""
         explains.append({
             "assumption": e["assumption"],
-            "what": f"{r['setting']}, plausible {_value(r['plausible_low'], unit)} to "
-                    f"{_value(r['plausible_high'], unit)}",
+            "what": (f"{setting}, " if setting else "")
+            + f"plausible {_value(r['plausible_low'], unit)} to "
+              f"{_value(r['plausible_high'], unit)}",
             "claims": [claim(c) for c in e["claims"]]})
     figures: dict = {}
     for cid, g in t.groupby("claim", sort=False):
