@@ -1,4 +1,4 @@
-"""An executed notebook as an HTML page that reads offline.
+r"""An executed notebook as an HTML page that reads offline.
 
 nbconvert's HTML pages load require.js, MathJax and mermaid from a CDN: read
 without a network, their maths stayed blank.  :func:`notebook_html` exports
