@@ -93,14 +93,6 @@ LONG_FUNCTIONS: dict[str, str] = {
     "tefcore.modes.tracking._lock_steps":
         "the plane rule of a Floquet lock: entering, within and leaving a k/2 lock are "
         "three cases of one decision on the same cost and shape matrices",
-    "tefcore.paper.run.batch.batch":
-        "the batch's lifecycle in order: plan, skip or refuse stale runs, one pool, "
-        "records, report; each branch is a documented outcome of the command",
-    "tefcore.paper.run.batch_report.comparison":
-        "one table of the runs side by side: a column per setting, claim score and "
-        "headline, each with its own missing-value rule",
-    "tefcore.paper.run.batch_spec._check_values":
-        "one check per notebook parameter, each naming the parameter and its allowed values",
     "tefcore.paper.run.batch_state.changes":
         "one comparison per recorded input of a run (parameters, configuration file, "
         "version, code, notebook cells, reference data), each worded for the user",

@@ -133,20 +133,37 @@ def _targets(claims: pd.DataFrame, reference) -> tuple[list, list]:
     return targets, unknown
 
 
-def _run(tasks, settings_of, folder: Path, n_jobs: int):
-    """Each ``(lever, targets)`` by :func:`lever_rows`, costliest first; rows and CPU seconds."""
+def _indexed(i, *args):
+    return i, lever_rows(*args)
+
+
+def _run(tasks, settings_of, folder: Path, n_jobs: int, progress=None):
+    """Each ``(lever, targets)`` by :func:`lever_rows`, costliest first; rows and CPU seconds.
+
+    ``progress`` (a tqdm bar, or None) grows by the tasks' estimated cost
+    (:func:`_cost` times the claims each checks) and advances as each ends.
+    """
     order = sorted(range(len(tasks)), key=lambda i: -_cost(tasks[i][0]))
     args = [(tasks[i][0], tasks[i][1], settings_of, folder / f"task{i}") for i in order]
     for a in args:
         a[3].mkdir(parents=True, exist_ok=True)
+    weight = {i: _cost(tasks[i][0]) * max(1, len(tasks[i][1])) for i in order}
+    if progress is not None:
+        progress.total = (progress.total or 0) + sum(weight.values())
+        progress.refresh()
     if n_jobs == 1 or len(args) <= 1:
-        done = [lever_rows(*a) for a in args]
+        ends = ((i, lever_rows(*a)) for i, a in zip(order, args, strict=True))
     else:
         from joblib import Parallel, delayed
 
-        done = Parallel(n_jobs=n_jobs)(delayed(lever_rows)(*a) for a in args)
-    by_task = dict(zip(order, done, strict=True))
-    return [by_task[i][0] for i in range(len(tasks))], sum(d[1] for d in done)
+        ends = Parallel(n_jobs=n_jobs, return_as="generator_unordered")(
+            delayed(_indexed)(i, *a) for i, a in zip(order, args, strict=True))
+    by_task = {}
+    for i, result in ends:
+        by_task[i] = result
+        if progress is not None:
+            progress.update(weight[i])
+    return [by_task[i][0] for i in range(len(tasks))], sum(d[1] for d in by_task.values())
 
 
 def _cost(lever) -> float:
@@ -180,7 +197,8 @@ def _none_row(target, note) -> dict:
 
 
 def attribute(claims: pd.DataFrame, settings_of: dict | None = None, *, lever_list=None,
-              pairs: bool = True, n_jobs: int = 1, reference=None) -> Attribution:
+              pairs: bool = True, n_jobs: int = 1, reference=None,
+              progress=None) -> Attribution:
     """What would flip each failing validation claim of a claims table.
 
     Parameters
@@ -201,6 +219,10 @@ def attribute(claims: pd.DataFrame, settings_of: dict | None = None, *, lever_li
         Parallel joblib processes (one task per lever).
     reference : sequence of Claim, optional
         The claims' definitions (default :func:`tefcore.paper.claims.reference.load_claims`).
+    progress : tqdm.tqdm, optional
+        A progress bar: its total grows by each stage's estimated cost (the
+        pairs are known only after the single levers) and it advances as
+        each task ends.
 
     Returns
     -------
@@ -218,9 +240,11 @@ def attribute(claims: pd.DataFrame, settings_of: dict | None = None, *, lever_li
         base = next(iter(settings_of.values())).base
         lvs = list(lever_list) if lever_list is not None else levers(base)
         with tempfile.TemporaryDirectory(prefix="tefcore-attribution-") as tmp:
-            targets, why, task_cpu = _baseline(targets, settings_of, Path(tmp) / "base", n_jobs)
+            targets, why, task_cpu = _baseline(targets, settings_of, Path(tmp) / "base", n_jobs,
+                                               progress)
             todo = [t for t in targets if t.claim.id not in why]
-            done, c1 = _run([(lv, todo) for lv in lvs], settings_of, Path(tmp), n_jobs)
+            done, c1 = _run([(lv, todo) for lv in lvs], settings_of, Path(tmp), n_jobs,
+                            progress)
             found = [r for part in done for r in part]
             left = [t for t in todo if t.claim.id not in _explained(found)]
             pair_levers, missing = _pairs(lvs, base) if pairs and left \
@@ -228,7 +252,7 @@ def attribute(claims: pd.DataFrame, settings_of: dict | None = None, *, lever_li
             c2 = 0.0
             if pair_levers:
                 more, c2 = _run([(p, left) for p in pair_levers], settings_of,
-                                Path(tmp) / "pairs", n_jobs)
+                                Path(tmp) / "pairs", n_jobs, progress)
                 found += [r for part in more for r in part]
             task_cpu += c1 + c2
             n_tasks = len(lvs) + len(pair_levers)
@@ -244,7 +268,7 @@ class _Unknown:
     figure: str = ""
 
 
-def _baseline(targets, settings_of, folder, n_jobs):
+def _baseline(targets, settings_of, folder, n_jobs, progress=None):
     """Each target checked at the baseline on its own points (one task per figure).
 
     Returns the targets with their side of the pass band, the claims that do not
@@ -254,7 +278,8 @@ def _baseline(targets, settings_of, folder, n_jobs):
     groups: dict = {}
     for t in targets:
         groups.setdefault((t.notebook, t.claim.figure), []).append(t)
-    done, cpu = _run([(None, g) for g in groups.values()], settings_of, folder, n_jobs)
+    done, cpu = _run([(None, g) for g in groups.values()], settings_of, folder, n_jobs,
+                     progress)
     got = {r["claim"]: r for part in done for r in part}
     why = {c: f"the attribution's points give {r['status']} at the baseline: not attributed"
            for c, r in got.items() if r["status"] != "fail"}
@@ -317,7 +342,7 @@ def attribute_run(out, claims: pd.DataFrame, params: dict | None = None,
     n_jobs : int
         Parallel processes.
     **kwargs
-        Passed to :func:`attribute` (``lever_list``, ``pairs``).
+        Passed to :func:`attribute` (``lever_list``, ``pairs``, ``progress``).
 
     Returns
     -------

@@ -11,7 +11,8 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
-__all__ = ["X_SLACK", "compare_curve", "stability_intervals", "zero_crossings"]
+__all__ = ["X_SLACK", "compare_curve", "stability_intervals", "threshold_onset",
+           "zero_crossings"]
 
 #: Relative slack on x and tolerance comparisons (round-off of unit conversions).
 X_SLACK = 1e-9
@@ -94,6 +95,46 @@ def stability_intervals(x, y, state: str = "unstable") -> list[tuple[float, floa
     if inside:
         out.append((start, float(x[-1])))
     return out
+
+
+def threshold_onset(x, y, direction: str, lower: float | None = None):
+    """A stability threshold read on every crossing: its onset and what contradicts it.
+
+    The onset is the last crossing in ``direction``; the root must end in
+    the state that direction leads to (``end_ok``), and no interval in that
+    state may start below ``lower`` (the tolerance band's lower end) and end
+    before the onset (``early``): a root unstable before 0.5 and stable again
+    is not "unstable above 0.5".
+
+    Parameters
+    ----------
+    x, y : array_like
+        Samples (:func:`zero_crossings`).
+    direction : {"destabilising", "stabilising"}
+        The claimed crossing.
+    lower : float, optional
+        Below this x the root must not be in the claimed state.
+
+    Returns
+    -------
+    tuple
+        ``(onset, end_ok, early)``: the onset (None without such a
+        crossing), whether the last crossing has ``direction``, and the early
+        intervals ``[(start, end), ...]``.
+
+    Examples
+    --------
+    >>> threshold_onset([0, 1, 2, 3, 4], [-1.0, 1.0, -1.0, -1.0, 1.0], "destabilising", 3.0)
+    (3.5, True, [(0.5, 1.5)])
+    """
+    cross = zero_crossings(x, y)
+    wanted = [x0 for x0, d in cross if d == direction]
+    if not wanted:
+        return None, False, []
+    onset, state = wanted[-1], "unstable" if direction == "destabilising" else "stable"
+    early = [(a, b) for a, b in stability_intervals(x, y, state)
+             if lower is not None and a < lower and b < onset]
+    return onset, cross[-1][1] == direction, early
 
 
 def compare_curve(x_model, y_model, points: pd.DataFrame) -> pd.DataFrame:

@@ -18,7 +18,13 @@ import numpy as np
 
 from ..figures.quantities import QUANTITY_NAMES, quantity_unit, x_to_si
 from .context import Ambiguous, ClaimFailed, Context, g4, select_mode
-from .curves import X_SLACK, compare_curve, stability_intervals, zero_crossings
+from .curves import (
+    X_SLACK,
+    compare_curve,
+    stability_intervals,
+    threshold_onset,
+    zero_crossings,
+)
 from .exceptional import exceptional_in_range, where
 from .reference import Claim
 
@@ -91,33 +97,49 @@ def _fmt_x(c, xs, factor):
 
 
 def _check_threshold(c: Claim, ctx: Context):
+    """A stability threshold: the root is in the claimed state above its onset, not before.
+
+    The rule, on every zero crossing in the claim's range: the onset is the
+    last crossing in the claimed direction, and the last crossing of all has
+    that direction (the root stays in the claimed state above it); with an
+    ``expected`` x, the onset lies within the tolerance, and below the
+    tolerance band the root is never in the claimed state (a root unstable
+    before 0.5 and stable again is not "unstable above 0.5").  A root that
+    crosses more than once is said so in the reason, also when it passes.
+    """
     x, y = ctx.series(c, interval=c.interval)
     f = float(x_to_si(c.figure, 1.0, c.x_unit))
     cross = zero_crossings(x, y)
-    wanted = [x0 for x0, d in cross if d == c.direction]
     desc = "; ".join(f"{d} at {_fmt_x(c, [x0], f)}" for x0, d in cross) or (
         f"none (real part {g4(y.min())} to {g4(y.max())} 1/rev)")
-    if c.expected is None:
-        expected = f"a {c.direction} crossing"
-    else:
-        expected = f"{c.direction} at {g4(c.expected)} ± {g4(c.tolerance)} {c.x_unit}".rstrip()
-    if not wanted:
+    band = None if c.expected is None else c.tolerance * (1 + X_SLACK)
+    expected = (f"a {c.direction} crossing" if c.expected is None else
+                f"{c.direction} at {g4(c.expected)} ± {g4(c.tolerance)} {c.x_unit}".rstrip())
+    onset, end_ok, early = threshold_onset(x, y, c.direction,
+                                           None if band is None else (c.expected - band) * f)
+    if onset is None:
         # how far the root stays from crossing: its extreme real part against
         # the panel's range
-        far = y.max() if c.direction == "unstable" else -y.min()
+        far = y.max() if c.direction == "destabilising" else -y.min()
         ctx.margin = float(min(far, 0.0) / max(np.ptp(y), abs(far), 1e-12))
         return expected, f"crossings: {desc}", np.nan, False, f"no {c.direction} crossing"
-    best = wanted[0] if c.expected is None else min(wanted, key=lambda v: abs(v / f - c.expected))
-    reasons = []
-    if cross[-1][1] != c.direction:
-        reasons.append(f"the last crossing is {cross[-1][1]}: the end state is not the claimed one")
-    if c.expected is not None and abs(best / f - c.expected) > c.tolerance * (1 + X_SLACK):
+    state, other = ("unstable", "stable")[::1 if c.direction == "destabilising" else -1]
+    reasons = [] if end_ok else [f"the last crossing is {cross[-1][1]}: the end state is not "
+                                 "the claimed one"]
+    if band is not None and abs(onset / f - c.expected) > band:
         reasons.append("crossing outside the tolerance")
+    reasons += [f"{state} on {' and '.join(f'[{g4(a / f)}, {g4(b / f)}]' for a, b in early)} "
+                f"below the claimed onset {g4(c.expected)} ± {g4(c.tolerance)}, then {other} "
+                f"again: not {state} above {g4(c.expected)} only"] if early else []
+    ok = not reasons
     ctx.margin = (1.0 if c.expected is None
-                  else (c.tolerance - abs(best / f - c.expected)) / c.tolerance)
-    if cross[-1][1] != c.direction:
+                  else (c.tolerance - abs(onset / f - c.expected)) / c.tolerance)
+    if not end_ok or early:
         ctx.margin = min(ctx.margin, -1.0)
-    return expected, f"crossings: {desc}", best / f, not reasons, "; ".join(reasons)
+    if len(cross) > 1:              # said also when it passes
+        reasons.append(f"the root crosses {len(cross)} times; the onset is the last "
+                       f"{c.direction} crossing, at {_fmt_x(c, [onset], f)}")
+    return expected, f"crossings: {desc}", onset / f, ok, "; ".join(reasons)
 
 
 def _check_range(c: Claim, ctx: Context):

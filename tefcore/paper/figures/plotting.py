@@ -22,6 +22,7 @@ from __future__ import annotations
 import io
 import json
 import re
+import textwrap
 from pathlib import Path
 
 import numpy as np
@@ -679,8 +680,10 @@ def locus_figure(name: str, table: pd.DataFrame, labels=PAPER_MODES):
     if "flutter_root" in table and table["flutter_root"].fillna(False).astype(bool).any():
         ok = table[(table["status"] == "ok") & table["flutter_root"].fillna(False).astype(bool)]
         plot_participation(ax_f, name, table, "flutter root")
-        ax_f.set_title(flutter_legend(ok).replace("flutter root", "participation in the "
-                                                  "flutter root", 1), fontsize="medium")
+        # wrapped to its axes' width: the modes it continues from made the title run
+        # into the middle one's
+        ax_f.set_title(textwrap.fill(flutter_legend(ok).replace(
+            "flutter root", "participation in the flutter root", 1), 45), fontsize="medium")
         legend_below(ax_f, ncol=2)
     else:
         ax_f.set_axis_off()

@@ -7,7 +7,9 @@ Its modules, bottom up::
     params          notebook parameters from a YAML file and -p options, in layers
     kernels         warm Jupyter kernels that run several notebooks each
     kernel_guard    the notebook kernels a run started, stopped with it
-    output_folder   the reproduction's output folder: checked, never the checkout
+    output_folder   the reproduction's output folder: checked, locked, swapped in whole
+    outcome         what the claims are compared with: the records, or a what-if's last run
+    notebook_page   an executed notebook as an HTML page that reads offline
     variant_runs    the other packaged variant's claims, in a process beside the notebooks
     report          the reproduction report as one model, to markdown and HTML
     reproduce       ``tefcore reproduce``: run the notebooks, check claims, write the report

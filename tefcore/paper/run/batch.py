@@ -53,7 +53,7 @@ from ...safe_io import FileLock, check_output_file, check_output_folder
 from .batch_report import write_comparison
 from .batch_spec import RunSpec, load_batch
 from .batch_state import plan_runs, read_record, write_record
-from .kernel_guard import stop_notebooks
+from .kernel_guard import stop_notebooks, watch_children
 from .notebook_files import NOTEBOOKS, notebooks_dir
 from .reproduce import (
     BASELINE_NOTEBOOK,
@@ -279,8 +279,6 @@ def batch(runs_file, out, *, jobs: int | None = None, force: bool = False, only=
     tefcore.paper.run.reproduce.ReproductionError
         Missing papermill/nbconvert or reference data.
     """
-    from tqdm.auto import tqdm
-
     start = time.perf_counter()
     nb_dir = Path(nb_dir or notebooks_dir()).resolve()
     specs = load_batch(runs_file, only=only, extra_params=params, nb_dir=nb_dir)
@@ -290,64 +288,14 @@ def batch(runs_file, out, *, jobs: int | None = None, force: bool = False, only=
     check_reference_data()
     params_of = {s.name: run_parameters(s, out, nb_dir) for s in specs}
     if dry_run:
-        plans = plan_runs(out, specs, lambda s: params_of[s.name], force=force, nb_dir=nb_dir)
-        for p in plans:
-            print(f"{p.spec.name:40s} {p.action:6s} {' '.join(p.spec.notebooks)}"
-                  f"{'  (' + p.reason + ')' if p.reason else ''}")
-        return BatchResult(out, [RunOutcome(p.spec, p.action) for p in plans])
+        return _dry_run(out, specs, params_of, force, nb_dir)
     check_output_folder(out, "batch --out", create=True)
-    with FileLock(out / "batch", "batch folder"):
+    with FileLock(out / "batch", "batch folder"), watch_children():
         plans = plan_runs(out, specs, lambda s: params_of[s.name], force=force, nb_dir=nb_dir)
         ensure_kernel(kernel_name)
-        todo = [p for p in plans if p.action != "skip"]
-        outcomes = {p.spec.name: (_from_record(out, p) if p.action == "skip"
-                                  else RunOutcome(p.spec, p.action)) for p in plans}
-        for p in plans:
-            if p.action == "skip":
-                print(f"{p.spec.name:40s} skipped: inputs unchanged since it finished")
-        for p in todo:
-            folder = out / p.spec.name
-            folder.mkdir(parents=True, exist_ok=True)
-            _clear(folder)
-            write_record(folder, p.spec.name, p.inputs, "running")
-        n_tasks = sum(len(p.spec.notebooks) for p in todo)
-        jobs = max(1, min(n_tasks or 1, jobs or os.cpu_count() or 1))
-        inner = max((int(params_of[p.spec.name][nb].get("n_jobs") or 1) for p in todo
-                     for nb in p.spec.notebooks), default=1)
-        if jobs * inner > (os.cpu_count() or 1):
-            print(f"tefcore batch: note: {jobs} notebooks at once, each with up to {inner} "
-                  f"sweep processes (n_jobs), on {os.cpu_count()} cores", file=sys.stderr)
-        pending = {p.spec.name: len(p.spec.notebooks) for p in todo}
-        results: dict[str, dict] = {p.spec.name: {} for p in todo}
-        by_name = {p.spec.name: p for p in todo}
-        with ThreadPoolExecutor(max_workers=jobs) as pool, \
-                tqdm(total=n_tasks, desc="batch", unit="nb", disable=not progress,
-                     file=sys.stderr) as bar:
-            futures = {}
-            for p in todo:
-                for nb in p.spec.notebooks:
-                    fut = pool.submit(execute_notebook, nb, nb_dir / f"{nb}.ipynb",
-                                      out / p.spec.name, params_of[p.spec.name][nb],
-                                      kernel_name)
-                    futures[fut] = (p.spec.name, nb)
-            try:
-                for fut in as_completed(futures):
-                    name, nb = futures[fut]
-                    results[name][nb] = fut.result()
-                    bar.update()
-                    pending[name] -= 1
-                    if pending[name]:
-                        continue
-                    p = by_name[name]
-                    runs = [results[name][n] for n in p.spec.notebooks]
-                    outcome = outcomes[name]
-                    _finish_run(out, p.spec, params_of[name], runs, outcome, p.inputs)
-                    outcome.seconds = sum(r.seconds for r in runs)
-                    bar.write(f"{name:40s} {outcome.status:6s} {outcome.seconds:6.1f} s "
-                              f"(notebook time)  {outcome.error}")
-            except BaseException:   # Ctrl-C: cancel the rest, stop the running kernels
-                stop_notebooks(futures)
-                raise
+        todo, outcomes = _start_runs(out, plans)
+        _execute_runs(out, todo, params_of, outcomes, nb_dir=nb_dir, kernel_name=kernel_name,
+                      jobs=_pool_size(todo, params_of, jobs), progress=progress)
         done = [outcomes[p.spec.name] for p in plans]
         paths = write_comparison(out, done)
     result = BatchResult(out, done, paths, time.perf_counter() - start)
@@ -357,3 +305,80 @@ def batch(runs_file, out, *, jobs: int | None = None, force: bool = False, only=
     if failed:
         print(f"tefcore batch: run(s) failed: {', '.join(failed)}", file=sys.stderr)
     return result
+
+
+def _dry_run(out, specs, params_of, force, nb_dir) -> BatchResult:
+    """Print what each run would do (new, skip, retry, recompute); run and write nothing."""
+    plans = plan_runs(out, specs, lambda s: params_of[s.name], force=force, nb_dir=nb_dir)
+    for p in plans:
+        print(f"{p.spec.name:40s} {p.action:6s} {' '.join(p.spec.notebooks)}"
+              f"{'  (' + p.reason + ')' if p.reason else ''}")
+    return BatchResult(out, [RunOutcome(p.spec, p.action) for p in plans])
+
+
+def _start_runs(out: Path, plans) -> tuple[list, dict]:
+    """The runs to compute, their folders cleared and recorded as running; every run's outcome
+    (a skipped one read from its record)."""
+    todo = [p for p in plans if p.action != "skip"]
+    outcomes = {p.spec.name: (_from_record(out, p) if p.action == "skip"
+                              else RunOutcome(p.spec, p.action)) for p in plans}
+    for p in plans:
+        if p.action == "skip":
+            print(f"{p.spec.name:40s} skipped: inputs unchanged since it finished")
+    for p in todo:
+        folder = out / p.spec.name
+        folder.mkdir(parents=True, exist_ok=True)
+        _clear(folder)
+        write_record(folder, p.spec.name, p.inputs, "running")
+    return todo, outcomes
+
+
+def _pool_size(todo, params_of, jobs) -> int:
+    """Notebooks executed at once: ``jobs`` (default the cores), at most the notebooks;
+    a note when their sweep processes (``n_jobs``) would share the cores."""
+    n_tasks = sum(len(p.spec.notebooks) for p in todo)
+    jobs = max(1, min(n_tasks or 1, jobs or os.cpu_count() or 1))
+    inner = max((int(params_of[p.spec.name][nb].get("n_jobs") or 1) for p in todo
+                 for nb in p.spec.notebooks), default=1)
+    if jobs * inner > (os.cpu_count() or 1):
+        print(f"tefcore batch: note: {jobs} notebooks at once, each with up to {inner} "
+              f"sweep processes (n_jobs), on {os.cpu_count()} cores", file=sys.stderr)
+    return jobs
+
+
+def _execute_runs(out: Path, todo, params_of, outcomes, *, nb_dir, kernel_name, jobs,
+                  progress) -> None:
+    """Every notebook of the runs in one pool; a run is finished (claims, report, record)
+    as soon as its last notebook is.  Ctrl-C cancels the rest and stops the kernels."""
+    from tqdm.auto import tqdm
+
+    pending = {p.spec.name: len(p.spec.notebooks) for p in todo}
+    results: dict[str, dict] = {p.spec.name: {} for p in todo}
+    by_name = {p.spec.name: p for p in todo}
+    with ThreadPoolExecutor(max_workers=jobs) as pool, \
+            tqdm(total=sum(pending.values()), desc="batch", unit="nb", disable=not progress,
+                 file=sys.stderr) as bar:
+        futures = {}
+        for p in todo:
+            for nb in p.spec.notebooks:
+                fut = pool.submit(execute_notebook, nb, nb_dir / f"{nb}.ipynb",
+                                  out / p.spec.name, params_of[p.spec.name][nb], kernel_name)
+                futures[fut] = (p.spec.name, nb)
+        try:
+            for fut in as_completed(futures):
+                name, nb = futures[fut]
+                results[name][nb] = fut.result()
+                bar.update()
+                pending[name] -= 1
+                if pending[name]:
+                    continue
+                p = by_name[name]
+                runs = [results[name][n] for n in p.spec.notebooks]
+                outcome = outcomes[name]
+                _finish_run(out, p.spec, params_of[name], runs, outcome, p.inputs)
+                outcome.seconds = sum(r.seconds for r in runs)
+                bar.write(f"{name:40s} {outcome.status:6s} {outcome.seconds:6.1f} s "
+                          f"(notebook time)  {outcome.error}")
+        except BaseException:   # Ctrl-C: cancel the rest, stop the running kernels
+            stop_notebooks(futures)
+            raise

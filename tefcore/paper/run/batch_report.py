@@ -356,59 +356,12 @@ def comparison(out, outcomes, title: str = "tefcore batch comparison") -> tuple:
     tables = {o.spec.name: run_curves(out / o.spec.name, o.spec.notebooks) for o in outcomes}
     rows, long, view = [], [], []
     for o in outcomes:
-        claims = o.claims or {}
-        row = {"run": o.spec.name, "status": o.status, "error": o.error,
-               "notebooks": " ".join(o.spec.notebooks),
-               **{k: o.spec.settings.get(k) for k in keys},
-               "passed": claims.get("passed"), "total": claims.get("total"),
-               "worse": claims.get("worse")}
-        for fig, table in tables[o.spec.name].items():
-            for root, h in headlines(fig, table).items():
-                tag = "flutter" if root == "flutter root" else "tef"
-                row.update({f"{fig}.{tag}_onset": h["onset"], f"{fig}.{tag}_state": h["state"],
-                            f"{fig}.{tag}_max_growth": h["max_growth"],
-                            f"{fig}.{tag}_max_growth_at": h["max_growth_at"]})
-                long.append({"run": o.spec.name, "figure": fig,
-                             "x_axis": AXES.get(fig, (fig,))[0], "root": root,
-                             **{k: h[k] for k in _LONG[4:]}})
+        row, headline_rows = _run_row(o, keys, tables[o.spec.name])
         rows.append(row)
-        view.append({"name": o.spec.name, "link": f"{o.spec.name}/report.html",
-                     "status": o.status, "css": "pass" if o.status == "ok" else "fail",
-                     "error": o.error, "notebooks": " ".join(n[:2] for n in o.spec.notebooks),
-                     "settings": [_text(o.spec.settings.get(k, "–")) for k in varying],
-                     "score": f"{claims['passed']} / {claims['total']}" if claims else "–",
-                     "worse": claims.get("worse", "–")})
+        long += headline_rows
+        view.append(_run_view(o, varying))
     figs = [f for f in _PAPER_ORDER if any(f in t for t in tables.values())]
-    panels = []
-    for fig in figs:
-        curves = [(o.spec.name, tables[o.spec.name][fig]) for o in outcomes
-                  if fig in tables[o.spec.name]]
-        groups = _groups(fig, curves, {o.spec.name: o.spec.settings for o in outcomes},
-                         varying)
-        png = _overlay(out, fig, groups)
-        label_of = {run: label for label, runs, _ in groups for run in runs}
-        prow = []
-        for run, table in curves:
-            h = headlines(fig, table)
-            prow.append({"run": run, "link": f"{run}/report.html#{fig}",
-                         "curve": label_of[run] if len(groups) < len(curves) else "",
-                         **{f"{tag}_{what}": fn(h[root]) for root, tag in
-                            (("flutter root", "flutter"), ("TEF branch", "tef"))
-                            for what, fn in (("onset", _onset_text), ("growth", _growth_text))}})
-        panels.append(FigurePanel(
-            key=fig, title=FIGURE_TITLES.get(fig, fig), xlabel=AXES.get(fig, (fig,))[0],
-            image=base64.b64encode(png.read_bytes()).decode("ascii"),
-            src=png.relative_to(out).as_posix(),
-            caption=(f"Damping −Re(s)/Ω [1/rev] of the flutter root (left: at each point the "
-                     f"least stable flap-induced root, so the curve jumps where another root "
-                     f"becomes the least stable) and of the TEF mode (right: the root the "
-                     f"flap's own mode continues into, where that name is certain) against "
-                     f"{AXES.get(fig, (fig,))[0]}, one colour per run"
-                     + (" (runs with identical curves drawn once, labelled with the settings "
-                        "they share)" if len(groups) < len(curves) else "")
-                     + "; a triangle on the zero line marks where the root turns unstable "
-                       "(onset)."),
-            rows=prow))
+    panels = [_figure_panel(out, fig, outcomes, tables, varying) for fig in figs]
     counts = {s: sum(o.status == s for o in outcomes) for s in ("ok", "failed")}
     model = Comparison(
         title=title,
@@ -424,6 +377,70 @@ def comparison(out, outcomes, title: str = "tefcore batch comparison") -> tuple:
     runs_df = pd.DataFrame(rows)
     long_df = pd.DataFrame(long, columns=list(_LONG))
     return model, runs_df, long_df
+
+
+def _run_row(o, keys, tables: dict) -> tuple[dict, list]:
+    """One run's row of ``runs.csv`` (settings, score, each figure's headlines) and its rows
+    of the tidy ``headlines.csv``."""
+    claims = o.claims or {}
+    row = {"run": o.spec.name, "status": o.status, "error": o.error,
+           "notebooks": " ".join(o.spec.notebooks),
+           **{k: o.spec.settings.get(k) for k in keys},
+           "passed": claims.get("passed"), "total": claims.get("total"),
+           "worse": claims.get("worse")}
+    long = []
+    for fig, table in tables.items():
+        for root, h in headlines(fig, table).items():
+            tag = "flutter" if root == "flutter root" else "tef"
+            row.update({f"{fig}.{tag}_onset": h["onset"], f"{fig}.{tag}_state": h["state"],
+                        f"{fig}.{tag}_max_growth": h["max_growth"],
+                        f"{fig}.{tag}_max_growth_at": h["max_growth_at"]})
+            long.append({"run": o.spec.name, "figure": fig,
+                         "x_axis": AXES.get(fig, (fig,))[0], "root": root,
+                         **{k: h[k] for k in _LONG[4:]}})
+    return row, long
+
+
+def _run_view(o, varying) -> dict:
+    """One run's row of the comparison page: link, status, the settings that vary, score."""
+    claims = o.claims or {}
+    return {"name": o.spec.name, "link": f"{o.spec.name}/report.html",
+            "status": o.status, "css": "pass" if o.status == "ok" else "fail",
+            "error": o.error, "notebooks": " ".join(n[:2] for n in o.spec.notebooks),
+            "settings": [_text(o.spec.settings.get(k, "–")) for k in varying],
+            "score": f"{claims['passed']} / {claims['total']}" if claims else "–",
+            "worse": claims.get("worse", "–")}
+
+
+def _figure_panel(out: Path, fig: str, outcomes, tables: dict, varying) -> FigurePanel:
+    """One figure's overlay of every run's curves (its PNG written) and its headline rows."""
+    curves = [(o.spec.name, tables[o.spec.name][fig]) for o in outcomes
+              if fig in tables[o.spec.name]]
+    groups = _groups(fig, curves, {o.spec.name: o.spec.settings for o in outcomes}, varying)
+    png = _overlay(out, fig, groups)
+    label_of = {run: label for label, runs, _ in groups for run in runs}
+    prow = []
+    for run, table in curves:
+        h = headlines(fig, table)
+        prow.append({"run": run, "link": f"{run}/report.html#{fig}",
+                     "curve": label_of[run] if len(groups) < len(curves) else "",
+                     **{f"{tag}_{what}": fn(h[root]) for root, tag in
+                        (("flutter root", "flutter"), ("TEF branch", "tef"))
+                        for what, fn in (("onset", _onset_text), ("growth", _growth_text))}})
+    return FigurePanel(
+        key=fig, title=FIGURE_TITLES.get(fig, fig), xlabel=AXES.get(fig, (fig,))[0],
+        image=base64.b64encode(png.read_bytes()).decode("ascii"),
+        src=png.relative_to(out).as_posix(),
+        caption=(f"Damping −Re(s)/Ω [1/rev] of the flutter root (left: at each point the "
+                 f"least stable flap-induced root, so the curve jumps where another root "
+                 f"becomes the least stable) and of the TEF mode (right: the root the "
+                 f"flap's own mode continues into, where that name is certain) against "
+                 f"{AXES.get(fig, (fig,))[0]}, one colour per run"
+                 + (" (runs with identical curves drawn once, labelled with the settings "
+                    "they share)" if len(groups) < len(curves) else "")
+                 + "; a triangle on the zero line marks where the root turns unstable "
+                   "(onset)."),
+        rows=prow)
 
 
 def _breakable(text: str):

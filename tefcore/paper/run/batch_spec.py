@@ -253,44 +253,61 @@ def _base_config(config: str | None, aero_model: str):
 
 def _check_values(run: str, nb: str, params: dict, defaults: dict, config, origin: str):
     """The shared parameters' values, and every override on every figure the notebook runs."""
-    from ..figures.catalogue import FIGURES
-    from ..figures.plotting import MEASURES
-    from ..figures.runs import AERO_MODELS, run_config
-
     where = f"run {run!r}, {nb}"
     p = {**defaults, **params}
-
-    def bad(name, allowed):
+    for name, allowed in _scalar_problems(p, params):
         _fail(origin, where, f"{name} = {p[name]!r}; allowed: {allowed}")
+    if "values" in params:
+        _check_sweep_values(p["values"], nb, where, origin)
+    _check_overrides(p, nb, config, where, origin)
+
+
+def _scalar_problems(p: dict, given: dict):
+    """``(name, what is allowed)`` of each scalar parameter set in ``given`` with a bad value."""
+    from ..figures.plotting import MEASURES
+    from ..figures.runs import AERO_MODELS
 
     def integer(v):
         return isinstance(v, int) and not isinstance(v, bool)
 
-    if "n_points" in params and not (p["n_points"] is None or
-                                     (integer(p["n_points"]) and p["n_points"] >= 2)):
-        bad("n_points", "null (the paper's values) or an integer >= 2")
-    if "n_jobs" in params and not (integer(p["n_jobs"]) and p["n_jobs"] >= 1):
-        bad("n_jobs", "an integer >= 1")
-    if "aero_model" in params and p["aero_model"] not in (*AERO_MODELS, "c81"):
-        bad("aero_model", ", ".join(AERO_MODELS))
-    if "damping_measure" in params and p["damping_measure"] not in MEASURES:
-        bad("damping_measure", ", ".join(MEASURES))
-    if "interactive" in params and not isinstance(p["interactive"], bool):
-        bad("interactive", "true or false")
-    if "values" in params:
-        if not isinstance(p["values"], dict):
-            bad("values", "a mapping of figure to sweep values, e.g. {fig9: [0.0, 0.2]}")
-        for fig, vals in p["values"].items():
-            fig = str(fig)
-            if fig not in NOTEBOOK_FIGURES[nb]:
-                _fail(origin, where, f"values: {nb} computes no figure {fig!r}"
-                                     f"{_close(fig, NOTEBOOK_FIGURES[nb])}; its figures: "
-                                     f"{', '.join(NOTEBOOK_FIGURES[nb]) or 'none'}")
-            if not isinstance(vals, list) or not vals:
-                _fail(origin, where, f"values.{fig} must be a non-empty list")
+    rules = {
+        "n_points": (lambda v: v is None or (integer(v) and v >= 2),
+                     "null (the paper's values) or an integer >= 2"),
+        "n_jobs": (lambda v: integer(v) and v >= 1, "an integer >= 1"),
+        "aero_model": (lambda v: v in (*AERO_MODELS, "c81"), ", ".join(AERO_MODELS)),
+        "damping_measure": (lambda v: v in MEASURES, ", ".join(MEASURES)),
+        "interactive": (lambda v: isinstance(v, bool), "true or false"),
+    }
+    for name, (ok, allowed) in rules.items():
+        if name in given and not ok(p[name]):
+            yield name, allowed
+
+
+def _check_sweep_values(values, nb: str, where: str, origin: str) -> None:
+    """``values``: a mapping of the notebook's figures to non-empty lists of sweep values."""
+    if not isinstance(values, dict):
+        _fail(origin, where, f"values = {values!r}; allowed: a mapping of figure to sweep "
+                             "values, e.g. {fig9: [0.0, 0.2]}")
+    for fig, vals in values.items():
+        fig = str(fig)
+        if fig not in NOTEBOOK_FIGURES[nb]:
+            _fail(origin, where, f"values: {nb} computes no figure {fig!r}"
+                                 f"{_close(fig, NOTEBOOK_FIGURES[nb])}; its figures: "
+                                 f"{', '.join(NOTEBOOK_FIGURES[nb]) or 'none'}")
+        if not isinstance(vals, list) or not vals:
+            _fail(origin, where, f"values.{fig} must be a non-empty list")
+
+
+def _check_overrides(p: dict, nb: str, config, where: str, origin: str) -> None:
+    """The overrides name configuration fields, and the flap fits its section with them on
+    the base configuration and on every stability figure's the notebook runs."""
+    from ..figures.catalogue import FIGURES
+    from ..figures.runs import run_config
+
     overrides = p.get("overrides") or {}
     if not isinstance(overrides, dict) or not all(isinstance(k, str) for k in overrides):
-        bad("overrides", "a mapping of dotted configuration fields to values")
+        _fail(origin, where, f"overrides = {p.get('overrides')!r}; allowed: a mapping of "
+                             "dotted configuration fields to values")
     fig = None
     try:
         base = _base_config(config, str(p.get("aero_model", "thin_airfoil")))

@@ -22,12 +22,23 @@ OUT/claims.csv; each executed notebook also as OUT/notebooks/NAME.html.
 Then it attributes every failing validation claim: each assumption and model
 option is moved within its plausible range to find what would flip the claim
 (OUT/attribution.csv, and "why we differ" in the report).  That is the
-expensive part -- about an hour of CPU for a full run, a few minutes for one
-notebook's claims; it prints its cost -- and --no-attribution skips it.
+expensive part: a full run costs about 1900 s of CPU, of which the
+attribution 1600 s (15 failing claims): about 16 minutes on two idle cores,
+13 of them the attribution, longer on a shared machine (55 minutes
+measured with the two cores under a load of 10 to 15); --no-attribution: about
+2 minutes.  Each phase shows a progress bar with the time left, and the
+attribution prints its cost.
+
+OUT must be new, empty or a previous reproduction, which is replaced whole
+when the run has finished (written beside as OUT.incomplete meanwhile: a
+stopped run leaves the previous result); one run at a time writes OUT.
 
 Works from an installed wheel in any folder: the notebooks and the reference
 data ship with tefcore.  Exit status 1 when a notebook fails, a claim is worse
-than its recorded status, or no claim was checked.
+than its recorded status, or no claim was checked.  A run with parameters
+that change results (-p overrides, -p config my.toml, -p n_points ...) is a
+what-if: its claims are compared with the previous run of the same
+parameters in OUT, never called worse than recorded.
 
 The notebooks run on the default configuration, mdart, or on another with
 '-p config NAME' (a packaged one, e.g. mdart-fig6, the flap system's inertia
@@ -219,7 +230,7 @@ def add_commands(sub, formatter_class=argparse.RawDescriptionHelpFormatter) -> N
     p.add_argument("--no-progress", "--quiet", action="store_true", help="no progress bar")
     p.add_argument("--no-attribution", action="store_true",
                    help="skip the attribution of the failing claims (OUT/attribution.csv): "
-                        "it costs about an hour of CPU on a full run")
+                        "the longest phase of a full run")
     p.set_defaults(func=cmd_reproduce)
     p = sub.add_parser("batch", formatter_class=fmt, description=_BATCH,
                        help="run many parameter sets through the notebooks, compare them")

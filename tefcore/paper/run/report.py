@@ -33,6 +33,7 @@ import pandas as pd
 from ...safe_io import atomic_write_text
 from ..attribution.departures import departures_text, load_departures
 from ..claims.reference import STATUSES, TAGS
+from .report_views import check_rows, headline, notebook_title, shared_notes, why_view
 
 __all__ = ["FIGURE_TITLES", "Image", "Report", "STATUS_MEANINGS", "Section", "TAG_MEANINGS",
            "WORSE_MEANING", "build_report", "render", "template_environment", "variants_view",
@@ -82,14 +83,11 @@ STATUS_MEANINGS = {
             "tolerance (each tolerance gives its reason in the reference data).",
     "fail": "the computation contradicts the statement beyond its tolerance, or lacks what "
             "the statement is about (no such root, no crossing); the reason says which.",
-    "ambiguous": "which root carries the claim's mode has no answer, and that only where a "
-                 "located exceptional point — a coalescence of two roots in the plane of the "
-                 "swept parameter and the blade-flap coupling — lies inside the claim's "
-                 "range and the verdict is not the same with the names exchanged there (or "
-                 "there are too many such points to try each choice); the reason names it "
-                 "(its two modes and where) and, for a claim on the TEF's stability, what "
-                 "the same check gives on the flutter root (the least stable flap-induced "
-                 "root, which every point decides).",
+    "ambiguous": "two roots meet inside the claim's range (an exceptional point), so which "
+                 "of them carries the claim's mode has no single answer there, and the "
+                 "verdict depends on the choice. The reason says where they meet and what "
+                 "the same check gives on the flutter root ([docs/theory.md, section 9.3]("
+                 + "{theory}#93-exceptional-points-along-a-sweep)).",
     "not reproducible": "tefcore cannot check the statement: it compares with data tefcore "
                         "does not have (wind-tunnel tests, other analyses, the paper's "
                         "tables), its digitised points all lie outside the computed range, "
@@ -127,12 +125,19 @@ class Image:
         :func:`tefcore.paper.figures.plotting.savefig`, markdown marks removed).
     anchor : str
         HTML id of the image, a slug of its file name.
+    mime : str
+        ``image/png``, or ``image/gif`` for an animation.
+    shared : bool
+        The caption had the sentences the figures share
+        (:attr:`Report.figure_notes`), said once above them.
     """
 
     src: str
     data: str
     caption: str
     anchor: str
+    mime: str = "image/png"
+    shared: bool = False
 
 
 @dataclass
@@ -170,8 +175,10 @@ class Section:
         The claims' statuses, e.g. ``"3 pass, 1 fail"``.
     attribution : list of dict
         Why the figure's failing claims fail: one row per claim of
-        :func:`tefcore.paper.attribution.differences.summarise` (``claim``, ``plausible``,
-        ``beyond``, ``conflicts``); empty without an attribution.
+        :func:`tefcore.paper.run.report_views.why_view` (``id``, ``statement``,
+        ``plausible``, ``beyond``, ``breaks``); empty without an attribution.
+    thumb_mime : str
+        The thumbnail's image type.
     """
 
     key: str
@@ -186,6 +193,7 @@ class Section:
     thumb: str = ""
     tally: str = ""
     attribution: list = field(default_factory=list)
+    thumb_mime: str = "image/png"
 
 
 @dataclass
@@ -197,8 +205,8 @@ class Report:
     title : str
         Page title.
     intro : str
-        Opening paragraph (markdown): what is replicated (the statuses are
-        explained by ``statuses``).
+        Opening paragraph (markdown): what reproduces, what does not, the key
+        finding (:func:`tefcore.paper.run.report_views.headline`).
     passed : int
         Validation claims that pass (the score; calibration targets are
         listed, not scored).
@@ -240,9 +248,17 @@ class Report:
         The claims on both packaged variants (:func:`variants_view`), or None
         when the other variant was not checked.
     why : dict or None
-        "Why we differ": :func:`tefcore.paper.attribution.differences.summarise` of the
+        "Why we differ": :func:`tefcore.paper.run.report_views.why_view` of the
         run's attribution (which few assumptions explain most failing claims,
         which no plausible assumption explains); None without one.
+    what_if : str
+        The changed parameters of a what-if run (its claims are not compared
+        with the recorded statuses); ``""`` for the recorded computation.
+    guide : str
+        How the sections read (markdown), below the opening paragraph.
+    figure_notes : list of str
+        The sentences the figures' captions share (how to read their lines
+        and markers), said once; a caption that had them links to them.
     """
 
     title: str
@@ -263,6 +279,22 @@ class Report:
     up: str = ""
     variants: dict | None = None
     why: dict | None = None
+    what_if: str = ""
+    guide: str = ""
+    figure_notes: list = field(default_factory=list)
+
+
+def _theory_url() -> str:
+    """Where docs/theory.md is read: the project's source (its package metadata)."""
+    from importlib import metadata
+
+    try:
+        urls = metadata.metadata("tefcore").get_all("Project-URL") or []
+    except metadata.PackageNotFoundError:
+        urls = []
+    source = next((u.split(",", 1)[1].strip() for u in urls
+                   if u.lower().startswith("source")), "https://github.com/tefcore/tefcore")
+    return source.rstrip("/") + "/blob/main/docs/theory.md"
 
 
 def _legend(meanings: dict, names) -> list[dict]:
@@ -270,7 +302,8 @@ def _legend(meanings: dict, names) -> list[dict]:
     missing = [n for n in names if n not in meanings]
     if missing:
         raise KeyError(f"no meaning written for {missing} (tefcore.paper.run.report)")
-    return [{"name": n, "meaning": meanings[n]} for n in names]
+    return [{"name": n, "meaning": meanings[n].replace("{theory}", _theory_url())}
+            for n in names]
 
 
 def _slug(text: str) -> str:
@@ -287,12 +320,19 @@ def _plain(text: str) -> str:
 def _image(path: Path, root: Path, caption: str) -> Image:
     return Image(src=path.relative_to(root).as_posix(),
                  data=base64.b64encode(path.read_bytes()).decode("ascii"),
-                 caption=_plain(caption), anchor=_slug(path.stem))
+                 caption=_plain(caption), anchor=_slug(path.stem),
+                 mime="image/gif" if path.suffix == ".gif" else "image/png")
 
 
 def _sidecars(folder: Path) -> dict:
-    """``{png stem: {"figures": [...], "caption": str}}`` from the JSON written beside figures."""
+    """``{stem: {"figures": [...], "caption": str, "file": name}}``: the figures beside their
+    JSON captions, and the animations a notebook saved (GIF, without a caption file)."""
     out = {}
+    for gif in sorted(folder.glob("*.gif")) if folder.exists() else []:
+        if not gif.with_suffix(".json").exists():
+            out[gif.stem] = {"figures": [], "file": gif.name,
+                             "caption": f"Animation: {gif.stem.replace('-', ' ')} "
+                                        "(as the notebook shows it)"}
     for side in sorted(folder.glob("*.json")) if folder.exists() else []:
         try:
             meta = json.loads(side.read_text(encoding="utf-8"))
@@ -300,16 +340,28 @@ def _sidecars(folder: Path) -> dict:
             continue
         if isinstance(meta, dict) and (side.with_suffix(".png")).exists():
             out[side.stem] = {"figures": str(meta.get("figure") or "").split(),
-                              "caption": str(meta.get("caption") or side.stem)}
+                              "caption": str(meta.get("caption") or side.stem),
+                              "file": f"{side.stem}.png"}
     return out
 
 
+#: A reason longer than this is folded (its start shown, the rest on a click).
+LONG_REASON = 240
+
+
 def _claim_rows(claims: pd.DataFrame, figure: str) -> list[dict]:
-    """A figure's claims as plain-text rows with their status class."""
+    """A figure's claims as plain-text rows with their status class; a long reason folded
+    (``reason_start``: its first words, ``""`` when it is short)."""
     cl = claims[claims["figure"] == figure] if "figure" in claims else claims.iloc[0:0]
-    return [{k: _plain(v) for k, v in row.items()}
-            | {"css": _STATUS_CLASS.get(row.get("status", ""), "notrep")}
-            for row in cl.fillna("").astype(str).to_dict("records")]
+    rows = []
+    for row in cl.fillna("").astype(str).to_dict("records"):
+        r = dict.fromkeys(("id", "statement", "expected", "computed", "reason", "status"), "")
+        r |= {k: _plain(v) for k, v in row.items()}
+        reason = r["reason"]
+        r["reason_start"] = (reason[:160].rsplit(" ", 1)[0] + " …"
+                             if len(reason) > LONG_REASON else "")
+        rows.append(r | {"css": _STATUS_CLASS.get(row.get("status", ""), "notrep")})
+    return rows
 
 
 def _notebook_sections(out: Path, name: str, figures, claims: pd.DataFrame) -> list[Section]:
@@ -329,14 +381,14 @@ def _notebook_sections(out: Path, name: str, figures, claims: pd.DataFrame) -> l
             key=fig, title=FIGURE_TITLES.get(fig, fig), anchor=fig, notebook=name,
             notebook_html=html_nb, departures=own_departures.get(fig, ""),
             shown_with=shared[0] if shared and not mine else "", claims=rows,
-            images=[_image(folder / f"{stem}.png", out, sides[stem]["caption"])
+            images=[_image(folder / sides[stem]["file"], out, sides[stem]["caption"])
                     for stem in mine]))
     extra = [stem for stem, m in sides.items() if not m["figures"]]
     if extra:     # figures a notebook saved without a paper figure (e.g. its own studies)
         sections.append(Section(
-            key=name, title=f"Further results of {name}", anchor=_slug(name), notebook=name,
+            key=name, title=notebook_title(out, name), anchor=_slug(name), notebook=name,
             notebook_html=html_nb,
-            images=[_image(folder / f"{stem}.png", out, sides[stem]["caption"])
+            images=[_image(folder / sides[stem]["file"], out, sides[stem]["caption"])
                     for stem in extra]))
     return sections
 
@@ -395,7 +447,7 @@ def build_report(out, runs, claims: pd.DataFrame, worse: pd.DataFrame, *, figure
                  checks: pd.DataFrame | None = None, version: str = "",
                  title: str = "tefcore reproduction report", up: str = "",
                  variants: dict | None = None,
-                 attribution: pd.DataFrame | None = None) -> Report:
+                 attribution: pd.DataFrame | None = None, what_if: str = "") -> Report:
     """Collect a reproduction's outputs in ``out`` into a :class:`Report`.
 
     Parameters
@@ -426,6 +478,9 @@ def build_report(out, runs, claims: pd.DataFrame, worse: pd.DataFrame, *, figure
     attribution : DataFrame, optional
         The run's attribution (:mod:`tefcore.paper.attribution.differences`): "why we
         differ" per figure and for the whole run.
+    what_if : str
+        The parameters that make the run a what-if (:mod:`tefcore.paper.run.outcome`);
+        ``""`` for the recorded computation.
 
     Returns
     -------
@@ -445,38 +500,43 @@ def build_report(out, runs, claims: pd.DataFrame, worse: pd.DataFrame, *, figure
         shown = sec.images or (by_key[sec.shown_with].images if sec.shown_with in by_key
                                else [])
         sec.thumb = shown[0].data if shown else ""
+        sec.thumb_mime = shown[0].mime if shown else "image/png"
         n = pd.Series([c["status"] for c in sec.claims], dtype=str).value_counts()
         sec.tally = ", ".join(f"{n[st]} {st}" for st in _STATUS_CLASS if st in n) \
             or "no claims checked"
+    # the sentences every stability figure's caption repeats, said once above them
+    notes, short = shared_notes(im.caption for sec in sections for im in sec.images)
+    for sec in sections:
+        for im in sec.images:
+            im.shared = bool(notes) and short[im.caption] != im.caption
+            im.caption = short[im.caption]
     why = None
     if attribution is not None:
-        from ..attribution.differences import summarise
-
-        why = summarise(attribution)
+        why = why_view(attribution, claims)
         for sec in sections:
             sec.attribution = why["figures"].get(sec.key, [])
     fan = out / "mdart_fanplot.png"
     return Report(
         title=title, up=up,
-        intro=("Replication of *Aeroelastic Stability of Trailing-Edge Flap Helicopter "
-               "Rotors* with the compact tefcore model. Each section shows one figure of the "
-               "paper as tefcore computes it, the paper's statements about it checked against "
-               "the computation, and where the model departs from the paper's. A root is "
-               "named by the uncoupled mode it continues from as the blade-flap coupling is "
-               "switched on (docs/theory.md 9.1)."),
+        intro=headline(claims, what_if),
+        guide=("Each section below shows one figure of the paper as tefcore computes it, the "
+               "paper's statements about it checked against the computation, and where the "
+               "compact model departs from the paper's. A root is named by the uncoupled mode "
+               "it continues from as the blade-flap coupling is switched on (docs/theory.md "
+               "9.1)."),
         passed=passed, total=len(validation), counts=counts,
         worse=worse.fillna("").astype(str).to_dict("records") if not worse.empty else [],
         notebooks=[{"name": r.name, "status": r.status, "error": r.error,
                     "html": f"notebooks/{r.name}.html",
                     "parameters": _parameters_text(getattr(r, "parameters", {}))}
                    for r in runs],
-        sections=sections,
-        checks=[] if checks is None else checks.drop(columns="source", errors="ignore")
-        .round(3).astype(str).to_dict("records"),
+        sections=sections, figure_notes=notes,
+        checks=check_rows(checks),
         version=version,
         fanplot=_image(fan, out, "MDART blade (assumed properties): fan plot of the coupled "
                                  "modes") if fan.exists() else None,
-        departures=departures_text(), variants=variants_view(variants), why=why)
+        departures=departures_text(), variants=variants_view(variants), why=why,
+        what_if=what_if)
 
 
 def template_environment(**filters) -> jinja2.Environment:
@@ -534,6 +594,7 @@ def _md_inline_to_html(text: str):
 
 def _inline(text) -> str:
     s = str(text)
+    s = re.sub(r"\[([^\]]+)\]\(((?:https?://|#)[^)\s]+)\)", r'<a href="\2">\1</a>', s)
     s = re.sub(r"\*\*(.+?)\*\*", r"<strong>\1</strong>", s)
     s = re.sub(r"(?<![\w*])\*(?!\s)(.+?)(?<!\s)\*(?![\w*])", r"<em>\1</em>", s)
     s = re.sub(r"`([^`]+)`", r"<code>\1</code>", s)
@@ -563,7 +624,11 @@ def render(report: Report, fmt: str = "html") -> str:
     """
     if fmt not in ("html", "md"):
         raise ValueError(f"format must be 'html' or 'md', got {fmt!r}")
-    return template_environment(md_to_html=_md_inline_to_html).get_template(
+    from markupsafe import Markup, escape
+
+    return template_environment(
+        md_to_html=_md_inline_to_html, md_inline=lambda t: Markup(_inline(escape(t)))
+    ).get_template(
         f"report.{fmt}.j2").render(r=report)
 
 

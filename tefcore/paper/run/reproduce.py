@@ -11,6 +11,8 @@ folder: the notebooks and the reference data ship with the package.
 Output layout (``--out OUT``)::
 
     OUT/report.md, OUT/report.html, OUT/claims.csv
+    OUT/reproduction.json             what ran: the notebooks, their parameters, the version
+                                      (it marks the folder as a reproduction's)
     OUT/attribution.csv               what would flip each failing validation claim
                                       (tefcore.paper.attribution.differences; skipped with
                                       attribution=False, --no-attribution)
@@ -25,8 +27,15 @@ The notebooks run on their ``config`` parameter (default ``mdart``); the claims
 of the same figures are checked meanwhile on the other packaged variant
 (``mdart-fig6``, or ``mdart`` when the notebooks run on ``mdart-fig6``).
 
+The folder is written beside as ``OUT.incomplete`` and swapped in whole when
+the run has finished, one run at a time
+(:mod:`tefcore.paper.run.output_folder`); the processes a run starts end
+with it (:func:`tefcore.paper.run.kernel_guard.watch_children`).
+
 The exit code is 0 when every notebook ran and no validation claim is worse
-than its recorded status (on either variant), 1 otherwise; missing reference data is an error
+than its recorded status (on either variant), 1 otherwise; a run with other
+parameters than the recorded computation's is a what-if, never a regression
+(:mod:`tefcore.paper.run.outcome`).  Missing reference data is an error
 before anything runs (never "0 claims passed of 0").
 """
 
@@ -50,7 +59,7 @@ from ..claims.files import ReferenceDataError, reference_dir
 from ..claims.reference import load_claims
 from ..claims.validation import claims_score, worse_than_recorded
 from ..figures.plotting import deterministic_matplotlib, savefig
-from .kernel_guard import stop_notebooks
+from .kernel_guard import stop_notebooks, watch_children
 from .notebook_files import (
     NOTEBOOK_FIGURES,
     NOTEBOOK_SECONDS,
@@ -60,7 +69,15 @@ from .notebook_files import (
     notebooks_dir,
     resolve_notebook,
 )
-from .output_folder import check_reproduce_folder, source_checkout
+from .outcome import (
+    change_lines,
+    previous_claims,
+    run_record,
+    same_parameters,
+    status_changes,
+    what_if,
+)
+from .output_folder import ReproductionFolder, check_reproduce_folder, source_checkout
 from .params import merge_params
 from .report import build_report, write_report
 from .variant_runs import (
@@ -80,6 +97,8 @@ KERNEL_NAME = "python3"
 #: The notebook whose run also writes the baseline blade's files at the top of the
 #: output folder (:func:`baseline_blade`): the blade's correlation.
 BASELINE_NOTEBOOK = "01_baseline_mdart_correlation"
+#: The progress bars of the run's phases: what, how far, the time spent and left.
+BAR_FORMAT = "{desc} {percentage:3.0f}%|{bar:20}| [{elapsed}<{remaining}]{postfix}"
 #: What to install when the notebook tools are missing.
 INSTALL_HINT = 'python -m pip install "tefcore[notebooks]"'
 
@@ -156,12 +175,11 @@ def ensure_kernel(name: str = KERNEL_NAME) -> None:
 
 
 def _export_html(executed: Path) -> None:
-    """``executed`` (.ipynb) as a standalone HTML page beside it."""
-    import nbformat
-    from nbconvert import HTMLExporter
+    """``executed`` (.ipynb) as a standalone HTML page beside it, readable offline
+    (:func:`tefcore.paper.run.notebook_page.notebook_html`)."""
+    from .notebook_page import notebook_html
 
-    body, _ = HTMLExporter().from_notebook_node(nbformat.read(str(executed), as_version=4))
-    atomic_write_text(executed.with_suffix(".html"), body)
+    atomic_write_text(executed.with_suffix(".html"), notebook_html(executed))
 
 
 def execute_notebook(name: str, src: Path, out: Path, params: dict,
@@ -309,14 +327,19 @@ def run_notebooks(out: Path, params: dict, names=NOTEBOOKS, progress: bool = Tru
         todo.put(name)
     runs: dict = {}
     stop = threading.Event() if stop is None else stop   # set on Ctrl-C: the slots stop
-    with ThreadPoolExecutor(max_workers=1) as exporter, \
-            tqdm(total=len(names), desc="notebooks", unit="nb", disable=not progress,
-                 file=sys.stderr) as bar:
+    # the bar advances by each notebook's expected seconds (NOTEBOOK_SECONDS, from
+    # 1 s for an unknown one) over the slots, so its estimate of the time left is
+    # in seconds; it closes after the exporter, which finishes the last notebook
+    cost = {n: max(1.0, NOTEBOOK_SECONDS.get(n, 1.0)) for n in names}
+    with tqdm(total=sum(cost.values()), desc=f"notebooks 0/{len(names)}",
+              disable=not progress, file=sys.stderr, bar_format=BAR_FORMAT) as bar, \
+            ThreadPoolExecutor(max_workers=1) as exporter:
         def exported(fut):
             run = fut.result()
             runs[run.name] = run
-            bar.set_postfix_str(run.name)
-            bar.update()
+            bar.set_description_str(f"notebooks {len(runs)}/{len(names)}", refresh=False)
+            bar.set_postfix_str(run.name, refresh=False)
+            bar.update(cost[run.name])
 
         def slot():
             _Slot(kernel_name, warm, stop).run(todo, out, params, nb_dir, exporter, exported)
@@ -579,9 +602,18 @@ def attribute_claims(out: Path, claims: pd.DataFrame, attribution: dict | None):
     return attribute_run(out, claims, **attribution)
 
 
+def _phase(desc: str, total, progress: bool):
+    """A progress bar of one phase of the run (:data:`BAR_FORMAT`), on stderr."""
+    from tqdm.auto import tqdm
+
+    return tqdm(total=total, desc=desc, disable=not progress, file=sys.stderr,
+                bar_format=BAR_FORMAT)
+
+
 def finish_report(out: Path, runs, names, checks: pd.DataFrame | None, *,
                   title: str = "tefcore reproduction report", up: str = "",
-                  variant_runs=(), base=None, attribution: dict | None = None) -> dict:
+                  variant_runs=(), base=None, attribution: dict | None = None,
+                  what_if: str = "", progress: bool = False) -> dict:
     """Collect the claims the notebooks wrote, write ``claims.csv`` and the report.
 
     Parameters
@@ -607,6 +639,13 @@ def finish_report(out: Path, runs, names, checks: pd.DataFrame | None, *,
     attribution : dict, optional
         Attribute the failing claims (:func:`attribute_claims`) with these
         arguments; None: no attribution.
+    what_if : str
+        The parameters that make the run a what-if
+        (:func:`tefcore.paper.run.outcome.what_if`): its claims are not
+        compared with the recorded statuses (``worse`` is empty).
+    progress : bool
+        A progress bar for each phase (the variants, the attribution, the
+        report) on stderr.
 
     Returns
     -------
@@ -621,17 +660,26 @@ def finish_report(out: Path, runs, names, checks: pd.DataFrame | None, *,
     claims = collect_claims(out, names)
     with atomic_output(out / "claims.csv", newline="") as f:
         (claims if claims.empty else claims.drop(columns=["notebook"])).to_csv(f, index=False)
-    attributed = attribute_claims(out, claims, attribution)
-    worse = regressions(claims)
+    if attribution is not None:
+        with _phase("attribution", 0, progress) as bar:
+            attributed = attribute_claims(out, claims, {**attribution, "progress": bar})
+    else:
+        attributed = None
+    worse = claims.iloc[0:0] if what_if else regressions(claims)
     passed, total = score(claims)
-    variants = finish_variant_runs(list(variant_runs), out, claims, base)
-    report = build_report(out, runs, claims, worse, figures_of=NOTEBOOK_FIGURES,
-                          checks=checks, version=__version__, title=title, up=up,
-                          variants=variants,
-                          attribution=None if attributed is None else attributed.table)
+    with _phase("other variants", len(variant_runs), progress and bool(variant_runs)) as bar:
+        variants = finish_variant_runs(list(variant_runs), out, claims, base,
+                                       done=lambda run: bar.update())
+    with _phase("report", 2, progress) as bar:
+        report = build_report(out, runs, claims, worse, figures_of=NOTEBOOK_FIGURES,
+                              checks=checks, version=__version__, title=title, up=up,
+                              variants=variants, what_if=what_if,
+                              attribution=None if attributed is None else attributed.table)
+        bar.update()
+        paths = write_report(report, out)
+        bar.update()
     return {"claims": claims, "worse": worse, "passed": passed, "total": total,
-            "paths": write_report(report, out), "variants": variants,
-            "attribution": attributed}
+            "paths": paths, "variants": variants, "attribution": attributed}
 
 
 def _attribution_args(attribution, params: dict, jobs) -> dict | None:
@@ -642,100 +690,61 @@ def _attribution_args(attribution, params: dict, jobs) -> dict | None:
     return {"params": params, "n_jobs": max(1, jobs or os.cpu_count() or 1), **extra}
 
 
-def _summary(runs, done, elapsed, out) -> bool:
-    """Print the run's summary; True when something is not clean (exit status 1)."""
+def _summary(runs, done, elapsed, out, *, what_if: str = "", changes=None) -> bool:
+    """Print the run's summary; True when something is not clean (exit status 1).
+
+    ``changes`` are the status changes since the previous run of the same
+    parameters in ``out`` (:func:`tefcore.paper.run.outcome.status_changes`),
+    None when there was none to compare with.
+    """
     claims, worse, passed, total = (done[k] for k in ("claims", "worse", "passed", "total"))
-    md, html_path = done["paths"]
     for r in runs:
         print(f"{r.name:38s} {r.status:7s} {r.seconds:6.1f} s  {r.error}")
-    print(f"claims: {passed} validation claims passed of {total} ({len(claims)} checked in "
-          f"all); worse than recorded: {len(worse)}")
+    if what_if:
+        print(f"claims: {passed} validation claims pass of {total} on this what-if "
+              f"({what_if}); the recorded statuses are the default rotor's, so none is "
+              "compared with them")
+    else:
+        print(f"claims: {passed} validation claims passed of {total} ({len(claims)} checked "
+              f"in all); worse than recorded: {len(worse)}")
+    if changes is not None:
+        print(f"since the previous run of these parameters in {out}: "
+              + (f"{len(changes)} claim(s) changed" if changes else "no claim changed"))
+        print("\n".join(change_lines(changes)) if changes else "", end="\n" if changes else "")
     v = done.get("variants")
     if v:
         print("on each variant: " + "; ".join(
-            f"{n} {a} of {b} validation claims" for n, (a, b) in v["scores"].items())
+            f"{'this what-if' if what_if and n == v['base'] else n} {a} of {b} validation claims"
+            for n, (a, b) in v["scores"].items())
             + f"; other variants worse than recorded: {len(v['worse'])}")
     if done.get("attribution") is not None:
         a = done["attribution"]
         print(f"attribution: {a.table['claim'].nunique()} failing claim(s), {a.tasks} "
               f"levers, {a.cpu_seconds:.0f} CPU s ({a.wall_seconds:.0f} s wall) -> "
               f"{out / 'attribution.csv'}")
-    print(f"wrote {md} and {html_path} in {elapsed:.1f} s")
+    print(f"wrote {out / 'report.md'} and {out / 'report.html'} in {elapsed:.1f} s")
     failed = [r.name for r in runs if r.status != "ok"]
     if failed:
         print(f"tefcore reproduce: notebook(s) failed: {', '.join(failed)}", file=sys.stderr)
     if not worse.empty:
-        print("tefcore reproduce: claim(s) worse than recorded:\n"
-              + worse.to_string(index=False), file=sys.stderr)
+        print(f"tefcore reproduce: {len(worse)} claim(s) worse than recorded (a regression):\n"
+              + "\n".join(change_lines(worse.to_dict("records"), before="recorded_status")),
+              file=sys.stderr)
     bad_variants = bool(v and (v["errors"] or not v["worse"].empty))
     if v and v["errors"]:
         print("tefcore reproduce: " + "; ".join(v["errors"]), file=sys.stderr)
     if v and not v["worse"].empty:
+        rows = [{**r, "id": f"{r['id']} on {r['variant']}"}
+                for r in v["worse"].to_dict("records")]
         print("tefcore reproduce: claim(s) worse than recorded on another variant:\n"
-              + v["worse"][["variant", "id", "status", "recorded_status"]].to_string(index=False),
-              file=sys.stderr)
+              + "\n".join(change_lines(rows, before="recorded_status")), file=sys.stderr)
     return bool(failed) or not worse.empty or bad_variants
 
 
-def reproduce(out, params=None, notebooks=None, progress: bool = True,
-              nb_dir: Path | None = None, jobs: int | None = None,
-              variants: bool = True, attribution: bool | dict = True) -> int:
-    """Run the notebooks into ``out`` and write the report; return the exit code.
-
-    Parameters
-    ----------
-    out : path
-        Output folder (checked before anything runs: :func:`check_reproduce_folder`).
-    params : dict or list of dict, optional
-        ``{"all"|notebook: {name: value}}`` or a list of such layers (later
-        wins, :func:`tefcore.paper.run.params.merge_params`).
-    notebooks : sequence of str, optional
-        Run only these (``"04"``, ``"04_cg_offset"`` ...).
-    progress : bool
-        A progress bar.
-    nb_dir : path, optional
-        The notebooks' folder.
-    jobs : int, optional
-        Notebooks executed at once (default: the cores); also the attribution's
-        processes.
-    variants : bool
-        Meanwhile check the same figures' claims on the other packaged variant
-        (:mod:`tefcore.paper.run.variant_runs`), when the notebooks all run on a
-        packaged variant (``config`` None, ``"mdart"`` or ``"mdart-fig6"``).
-    attribution : bool or dict
-        Attribute the failing validation claims after the notebooks
-        (:mod:`tefcore.paper.attribution.differences`, ``OUT/attribution.csv``; its CPU
-        cost is printed): True, False, or a dict of further arguments of
-        :func:`tefcore.paper.attribution.differences.attribute` (``lever_list``,
-        ``pairs``).
-
-    Returns
-    -------
-    int
-        0, or 1 when a notebook failed, a claim is worse than recorded (on
-        any variant), a variant's check failed, or no claim was checked.
-
-    Raises
-    ------
-    ReproductionError
-        Missing papermill/nbconvert or reference data (before anything runs).
-    """
-    names = [resolve_notebook(n) for n in notebooks] if notebooks else list(NOTEBOOKS)
-    nb_dir = (nb_dir or notebooks_dir())
-    out = check_reproduce_folder(out, names, nb_dir)
-    check_tools()
-    check_reference_data()
-    # the kernelspec looked up here, in this thread, before the notebooks'
-    # thread starts: jupyter_client imports IPython for its kernel directories,
-    # and matplotlib's first canvas (the fan plot, drawn here while the
-    # notebooks start) reads IPython.version_info if IPython is in
-    # sys.modules -- a half-imported one raises AttributeError (the import is
-    # jupyter_client.kernelspec._kernel_dirs_default's)
-    ensure_kernel()
-    merged = prepare_params(params, names, nb_dir)
+def _run_into(out: Path, merged: dict, names, *, nb_dir, jobs, progress, variants,
+              attribution, what_if: str) -> tuple[list, dict]:
+    """The notebooks, the other variant and the report, written into ``out``."""
     same, base = base_variant(merged, names)
-    out.mkdir(parents=True, exist_ok=True)
-    start = time.perf_counter()
     # the blade's files at the top belong to the baseline notebook: --only writes
     # what the chosen notebooks make; the other variant's claims run beside
     figures = [f for n in names for f in NOTEBOOK_FIGURES[n]]
@@ -756,10 +765,102 @@ def reproduce(out, params=None, notebooks=None, progress: bool = True,
                 stop_notebooks([running])     # the running ones' kernels stopped
                 raise
         done = finish_report(out, runs, names, checks, variant_runs=vruns, base=base,
-                             attribution=_attribution_args(attribution, merged, jobs))
+                             attribution=_attribution_args(attribution, merged, jobs),
+                             what_if=what_if, progress=progress)
     finally:
         stop_variant_runs(vruns)
-    unclean = _summary(runs, done, time.perf_counter() - start, out)
+    return runs, done
+
+
+def reproduce(out, params=None, notebooks=None, progress: bool = True,
+              nb_dir: Path | None = None, jobs: int | None = None,
+              variants: bool = True, attribution: bool | dict = True) -> int:
+    """Run the notebooks into ``out`` and write the report; return the exit code.
+
+    ``out`` is locked for the run, written beside as ``OUT.incomplete`` and
+    swapped in whole at the end (:class:`~tefcore.paper.run.output_folder.ReproductionFolder`):
+    a second run into the same folder is refused, a killed run leaves the
+    previous result, and the processes the run started end with it
+    (:func:`~tefcore.paper.run.kernel_guard.watch_children`).
+
+    Parameters
+    ----------
+    out : path
+        Output folder (checked before anything runs: :func:`check_reproduce_folder`;
+        missing, empty, or a previous reproduction, which is replaced).
+    params : dict or list of dict, optional
+        ``{"all"|notebook: {name: value}}`` or a list of such layers (later
+        wins, :func:`tefcore.paper.run.params.merge_params`).  Any parameter
+        but ``n_jobs``, ``interactive`` and a packaged ``config`` makes the
+        run a what-if (:mod:`tefcore.paper.run.outcome`): its claims are
+        compared with the previous run of the same parameters in ``out``,
+        never with the recorded statuses.
+    notebooks : sequence of str, optional
+        Run only these (``"04"``, ``"04_cg_offset"`` ...).
+    progress : bool
+        A progress bar for each phase, with the time left.
+    nb_dir : path, optional
+        The notebooks' folder.
+    jobs : int, optional
+        Notebooks executed at once (default: the cores); also the attribution's
+        processes.
+    variants : bool
+        Meanwhile check the same figures' claims on the other packaged variant
+        (:mod:`tefcore.paper.run.variant_runs`), when the notebooks all run on a
+        packaged variant (``config`` None, ``"mdart"`` or ``"mdart-fig6"``).
+    attribution : bool or dict
+        Attribute the failing validation claims after the notebooks
+        (:mod:`tefcore.paper.attribution.differences`, ``OUT/attribution.csv``; its CPU
+        cost is printed): True, False, or a dict of further arguments of
+        :func:`tefcore.paper.attribution.differences.attribute` (``lever_list``,
+        ``pairs``).
+
+    Returns
+    -------
+    int
+        0, or 1 when a notebook failed, a claim is worse than recorded (on
+        any variant; never for a what-if), a variant's check failed, or no
+        claim was checked.
+
+    Raises
+    ------
+    ReproductionError
+        Missing papermill/nbconvert or reference data (before anything runs).
+    tefcore.errors.OutputError
+        ``out`` is refused, or another run holds it.
+    """
+    from ... import __version__
+
+    names = [resolve_notebook(n) for n in notebooks] if notebooks else list(NOTEBOOKS)
+    nb_dir = (nb_dir or notebooks_dir())
+    out = check_reproduce_folder(out, names, nb_dir)
+    check_tools()
+    check_reference_data()
+    # the kernelspec looked up here, in this thread, before the notebooks'
+    # thread starts: jupyter_client imports IPython for its kernel directories,
+    # and matplotlib's first canvas (the fan plot, drawn here while the
+    # notebooks start) reads IPython.version_info if IPython is in
+    # sys.modules -- a half-imported one raised AttributeError (the import is
+    # traced to jupyter_client.kernelspec._kernel_dirs_default)
+    ensure_kernel()
+    merged = prepare_params(params, names, nb_dir)
+    change = what_if(merged, names)
+    record = run_record(names, merged, __version__, change)
+    start = time.perf_counter()
+    with ReproductionFolder(out) as folder, watch_children():
+        try:
+            runs, done = _run_into(folder.staging, merged, names, nb_dir=nb_dir, jobs=jobs,
+                                   progress=progress, variants=variants,
+                                   attribution=attribution, what_if=change)
+        except KeyboardInterrupt:
+            print(f"tefcore reproduce: {out} is unchanged; what the run wrote is in "
+                  f"{folder.staging}", file=sys.stderr)
+            raise
+        changes = (status_changes(done["claims"], previous_claims(out))
+                   if same_parameters(folder.previous, record) else None)
+        folder.commit(record)
+    unclean = _summary(runs, done, time.perf_counter() - start, out, what_if=change,
+                       changes=changes)
     if done["claims"].empty and any(NOTEBOOK_FIGURES[n] for n in names):
         print("tefcore reproduce: no claim was checked", file=sys.stderr)
         return 1

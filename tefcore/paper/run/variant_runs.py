@@ -155,7 +155,8 @@ def _read(run: VariantRun) -> tuple[pd.DataFrame | None, str]:
     return None, f"{run.name} exited with status {code}: {lines[-1] if lines else 'no output'}"
 
 
-def finish_variant_runs(runs, out: Path, base_claims: pd.DataFrame, base) -> dict | None:
+def finish_variant_runs(runs, out: Path, base_claims: pd.DataFrame, base,
+                        done=None) -> dict | None:
     """Wait for ``runs`` and compare the variants' claims; write ``OUT/claims-variants.csv``.
 
     Parameters
@@ -168,6 +169,8 @@ def finish_variant_runs(runs, out: Path, base_claims: pd.DataFrame, base) -> dic
         The notebooks' claims (on ``base``).
     base : str or None
         The notebooks' configuration.
+    done : callable, optional
+        Called with each run once it has ended (a progress bar's step).
 
     Returns
     -------
@@ -187,6 +190,8 @@ def finish_variant_runs(runs, out: Path, base_claims: pd.DataFrame, base) -> dic
     conflict, errors, worse = None, [], []
     for r in runs:
         table, err = _read(r)
+        if done is not None:
+            done(r)
         errors += [err] if err else []
         if table is not None and r.variant:
             tables[r.variant] = table

@@ -182,16 +182,20 @@ def test_report_says_why_we_differ(tmp_path):
     r = build_report(tmp_path, [NotebookRun("07_flight_condition", status="ok")], claims,
                      claims.iloc[0:0], figures_of={"07_flight_condition": ("fig17",)},
                      attribution=attribution)
-    assert r.why["unexplained"] == ["fig17-b"] and r.sections[0].attribution[0]["plausible"] \
-        == "dynamic inflow at dynamic"
+    # each claim by its sentence, each lever with its range (units where the setting has one)
+    assert r.why["unexplained"] == [{"id": "fig17-b", "statement": "s"}]
+    assert r.sections[0].attribution[0]["plausible"] == [
+        "dynamic inflow = dynamic (plausible linear to dynamic)"]
     md_path, html_path = write_report(r, tmp_path)
     page = check_page(html_path.read_text(encoding="utf-8"))
     assert "why-we-differ" in page.ids
     text = " ".join(page.text)
-    assert "No plausible change explains 1 claim(s)" in text and "lift slope at 7.5" in text
+    assert "No plausible change explains 1 statement(s)" in text
+    assert "lift slope = 7.5 (plausible 5.5 to 6.28)" in text
     md = md_path.read_text(encoding="utf-8")
-    assert "## Why we differ" in md and "| fig17-a | dynamic inflow at dynamic |" in md
-    assert "fig17-c (pass -> fail)" in md
+    assert "## Why we differ" in md
+    assert "| s (fig17-a) | dynamic inflow = dynamic (plausible linear to dynamic)" in md
+    assert "but then fails: fig17-c (pass -> fail)" in md
 
 
 # ------------------------------------------------- tefcore reproduce, for real

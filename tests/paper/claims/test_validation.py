@@ -96,6 +96,39 @@ def test_threshold_fails_when_the_state_does_not_stay():
     assert got == "fail" and "end state" in row["reason"]
 
 
+XT = np.round(np.arange(0.30, 0.605, 0.01), 2)
+
+
+def _crossing_at(*points):
+    """A TEF real part through (x, y) ``points`` (linear between), on :data:`XT`."""
+    xs, ys = zip(*points, strict=True)
+    return sweep_table(XT, TEF=(np.interp(XT, xs, ys), 10.0))
+
+
+def test_threshold_fails_on_a_root_unstable_before_the_onset_and_stable_again():
+    # Fig. 8's TEF root as computed: unstable from 0.43 to 0.47, stable again, unstable
+    # from 0.52 -- the last onset lies within 0.5 +- 0.05, the first instability does not
+    t = _crossing_at((0.30, -1.0), (0.43, 0.0), (0.45, 0.2), (0.47, 0.0), (0.50, -0.3),
+                     (0.52, 0.0), (0.60, 1.0))
+    c = claim(kind="threshold", mode="TEF", direction="destabilising", expected=0.5,
+              tolerance=0.05, **TOL)
+    got, row = check(c, t)
+    assert got == "fail"
+    assert "unstable on [0.43, 0.47] below the claimed onset 0.5 ± 0.05" in row["reason"]
+    assert "crosses 3 times" in row["reason"] and "0.52" in row["reason"]
+    assert row["computed_value"] == pytest.approx(0.52)
+
+
+def test_threshold_passes_a_root_that_crosses_within_the_tolerance_and_says_so():
+    t = _crossing_at((0.30, -1.0), (0.47, 0.0), (0.48, 0.1), (0.49, 0.0), (0.50, -0.1),
+                     (0.52, 0.0), (0.60, 1.0))
+    c = claim(kind="threshold", mode="TEF", direction="destabilising", expected=0.5,
+              tolerance=0.05, **TOL)
+    got, row = check(c, t)
+    assert got == "pass" and "crosses 3 times" in row["reason"]
+    assert row["computed_value"] == pytest.approx(0.52)
+
+
 def test_threshold_with_units_and_no_crossing():
     x = np.array([100.0, 200.0, 300.0]) * 175.12683524647636  # lb/in -> N/m
     t = sweep_table(x, TEF=(np.array([1.0, -1.0, -3.0]), 5.0))

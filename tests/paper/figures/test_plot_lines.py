@@ -40,3 +40,23 @@ def test_a_line_never_joins_two_roots():
     plt.close(fig)
     spans = sorted((style, tuple(float(v) for v in np.round(xs, 6))) for style, xs in drawn)
     assert spans == sorted([("-", (0.0, 0.1, 0.2)), ("-", (0.25,)), (":", (0.3, 0.4, 0.5))])
+
+
+def test_the_flutter_roots_title_does_not_run_into_its_neighbours():
+    """Fig. 15's locus: the flutter root continued from five modes, its title one line
+    wider than its axes, ran into the TEF participation's title beside it."""
+    from tefcore.paper.figures.plotting import locus_figure
+
+    t = _table().assign(flutter_root=True, share_TEF=0.5, share_torsion=0.3, share_flap=0.2,
+                        share_lag=0.0)
+    names = ["TEF", "blade flap 5", "blade flap 4", "blade torsion 2", "blade flap 3"]
+    t = pd.concat([t.assign(label=n, track=k, point=t["point"]) for k, n in enumerate(names)],
+                  ignore_index=True)
+    fig = locus_figure("fig15", t, labels=("TEF",))
+    fig.canvas.draw()
+    renderer = fig.canvas.get_renderer()
+    boxes = [ax.title.get_window_extent(renderer) for ax in fig.axes[:3] if ax.get_title()]
+    plt.close(fig)
+    assert len(boxes) == 3
+    for left, right in zip(boxes, boxes[1:], strict=False):
+        assert left.x1 <= right.x0, (left, right)            # side by side, never over

@@ -56,8 +56,10 @@ def check_page(page: str) -> _Page:
     assert not missing, f"links to missing anchors: {missing}"
     assert p.imgs, "no figures"
     for img in p.imgs:
-        assert img["src"].startswith("data:image/png;base64,"), img["src"][:40]
-        assert base64.b64decode(img["src"].split(",", 1)[1])[:8] == b"\x89PNG\r\n\x1a\n"
+        kind = img["src"][:22]
+        assert kind in ("data:image/png;base64,", "data:image/gif;base64,"), img["src"][:40]
+        magic = base64.b64decode(img["src"].split(",", 1)[1])[:6]
+        assert magic[:6] in (b"\x89PNG\r\n", b"GIF89a", b"GIF87a"), magic
         assert img.get("alt")
     text = " ".join(p.text)
     literal = re.findall(r"\*\*[^*]+\*\*|(?<![\w*])\*[A-Za-z][^*]*\*(?![\w*])|`[^`]+`", text)

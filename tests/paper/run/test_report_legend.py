@@ -1,4 +1,4 @@
-"""The report's header explains every claim status and tag in one sentence."""
+"""The report's header explains every claim status and tag in one sentence (issue 22, item 4)."""
 
 import re
 
@@ -35,8 +35,12 @@ def pages(folder):  # noqa: F811 (the fixture of test_report_html)
 def test_every_status_and_tag_has_one_sentence():
     # every status a claim can get (reference.STATUSES), nothing else
     assert set(STATUS_MEANINGS) == set(STATUSES) and set(TAG_MEANINGS) == set(TAGS)
-    for meaning in [*STATUS_MEANINGS.values(), *TAG_MEANINGS.values(), WORSE_MEANING]:
-        assert meaning.count(". ") == 0 and meaning.endswith("."), meaning
+    for name, meaning in [*STATUS_MEANINGS.items(), *TAG_MEANINGS.items(),
+                          ("worse", WORSE_MEANING)]:
+        # "ambiguous" takes two short sentences and a link to the theory
+        most = 1 if name == "ambiguous" else 0
+        assert meaning.count(". ") <= most and meaning.rstrip(")").endswith("."), meaning
+        assert len(meaning.split(". ")[0].split()) <= 45, name
 
 
 @pytest.mark.parametrize("fmt", ["md", "html"])
@@ -46,18 +50,21 @@ def test_the_header_explains_each_status_and_tag(pages, fmt):
     for name, meaning in [*STATUS_MEANINGS.items(), *(("tag " + k, v)
                                                       for k, v in TAG_MEANINGS.items()),
                           ("worse than recorded", WORSE_MEANING)]:
+        meaning = plain(re.sub(r"\[([^]]+)\]\([^)]+\)", r"\1", meaning.split(" ([docs")[0]))
         assert f"{name}: {meaning}" in header or f"{name} {meaning}" in header, name
 
 
-def test_ambiguous_is_explained_as_an_exceptional_point_inside_the_range(pages):
+def test_ambiguous_is_two_short_sentences_with_a_link_to_the_theory(pages):
     text = plain(pages["md"])
-    sentence = text[text.index("ambiguous:"):]
-    sentence = sentence[:sentence.index(".") + 1]
-    for words in ("only where a located exceptional point", "coalescence of two roots",
-                  "swept parameter and the blade-flap coupling", "has no answer",
-                  "inside the claim's range", "the reason names it"):
-        assert words in sentence, words
-    # a veering is not a reason for ambiguity
+    said = text[text.index("ambiguous:"):text.index("not reproducible:")]
+    for words in ("two roots meet inside the claim's range", "exceptional point",
+                  "no single answer", "the verdict depends on the choice",
+                  "The reason says where they meet"):
+        assert words in said, words
+    assert len(said.split()) <= 70         # it was one sentence of 90 words
+    assert '<a href="https://' in pages["html"] and "theory.md#93-exceptional-points" in \
+        pages["html"]
+    # the old wording (a veering as a reason for ambiguity) is gone
     assert "veering" not in text
 
 

@@ -46,7 +46,7 @@ def test_only_some_notebooks_write_no_baseline_blade_files(tmp_path, fake_notebo
     rp.reproduce(out, notebooks=["03", "04"], progress=False)
     assert sorted(p.name for p in out.iterdir()) == [
         "03_overhang", "04_cg_offset", "attribution.csv", "claims.csv", "notebooks",
-        "report.html", "report.md"]
+        "report.html", "report.md", "reproduction.json"]
     assert fake_notebooks == []
 
 
@@ -55,4 +55,5 @@ def test_the_baseline_notebook_brings_the_blade_files(tmp_path, fake_notebooks):
     rp.reproduce(out, notebooks=["01", "04"], progress=False)
     assert {"mdart_modes.csv", "mdart_frequency_checks.csv", "mdart_fanplot.png"} <= \
         {p.name for p in out.iterdir()}
-    assert fake_notebooks == [out]
+    # drawn into the run's folder, which then became OUT
+    assert fake_notebooks == [out.with_name("out.incomplete")]

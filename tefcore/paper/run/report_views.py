@@ -1,0 +1,349 @@
+"""What the report says in words, made from the run's tables.
+
+* :func:`headline` -- the report's first paragraph, three sentences made
+  from the claims table: what reproduces, what does not, the key finding
+  (where the paper's TEF mode goes unstable, what the computed roots do);
+* :func:`why_view` -- "why we differ" for a first-time reader: each failing
+  claim with its sentence, each lever with what it sets, its units and its
+  plausible range;
+* :func:`shared_notes` -- the sentences every stability figure's caption
+  repeats (how to read the lines and markers), said once;
+* :func:`check_rows` -- the stated blade frequencies with named columns and
+  units;
+* :func:`notebook_title` -- a notebook's own title (its first heading).
+
+Examples
+--------
+>>> claims = pd.DataFrame({"id": ["a", "b"], "figure": ["fig10", "fig9"],
+...                        "tag": ["validation"] * 2, "status": ["pass", "fail"],
+...                        "mode": ["", ""], "kind": ["trend", "trend"],
+...                        "statement": ["s", "t"], "computed": ["", ""],
+...                        "computed_value": ["", ""], "reason": ["", ""]})
+>>> print(headline(claims))  # doctest: +NORMALIZE_WHITESPACE
+1 of the paper's 2 validation claims reproduce, among them every statement on Fig. 10.
+1 does not (on Fig. 9).
+"""
+
+from __future__ import annotations
+
+import json
+import re
+from functools import cache
+from pathlib import Path
+
+import pandas as pd
+
+__all__ = ["CHECK_COLUMNS", "check_rows", "headline", "notebook_title", "setting_unit",
+           "shared_notes", "why_view"]
+
+#: The stated blade frequencies' columns as the report names them.
+CHECK_COLUMNS = {"case": "case", "stated_per_rev": "stated torsion 1 [/rev]",
+                 "computed_per_rev": "model torsion 1 [/rev]",
+                 "error_percent": "model − stated [%]", "flap1_per_rev": "model flap 1 [/rev]",
+                 "lag1_per_rev": "model lag 1 [/rev]"}
+
+
+def _figs(keys) -> str:
+    """``["fig9", "fig16a"]`` as ``"Figs. 9 and 16a"``."""
+    nums = [str(k).replace("fig", "") for k in dict.fromkeys(keys)]
+    if not nums:
+        return ""
+    if len(nums) == 1:
+        return f"Fig. {nums[0]}"
+    return "Figs. " + ", ".join(nums[:-1]) + " and " + nums[-1]
+
+
+def _fig_order(key: str) -> tuple:
+    m = re.match(r"fig(\d+)(\w*)", str(key))
+    return (int(m.group(1)), m.group(2)) if m else (999, str(key))
+
+
+def _stays_stable(row) -> bool:
+    """Whether a claim's computed TEF root is stable everywhere it was checked."""
+    text = str(row["computed"])
+    if "unstable on none" in text:
+        return True
+    m = re.search(r"real part (-?[\d.]+(?:e[+-]?\d+)?)(?: to (-?[\d.]+(?:e[+-]?\d+)?))? 1/rev",
+                  text)
+    return m is not None and float(m.group(2) or m.group(1)) < 0
+
+
+def _key_finding(v: pd.DataFrame) -> str:
+    """The key finding: where the paper's TEF mode goes unstable, what the computation gives."""
+    col = v["mode"].astype(str)
+    onset = v[(col == "TEF") & v["kind"].isin(["threshold", "range", "value"])
+              & v["statement"].str.contains("unstable", case=False)]
+    decided = onset[onset["status"].isin(["pass", "fail"])]
+    stable = decided[(decided["status"] == "fail") & decided.apply(_stays_stable, axis=1)]
+    root = v[(col == "flutter root") & (v["computed_value"].astype(str) != "")]
+    if decided.empty:
+        return ""
+    text = (f"The key finding: of the {len(decided)} "
+            f"{'statement' if len(decided) == 1 else 'statements'} that the TEF mode becomes "
+            f"unstable which tefcore can decide, {len(stable)} "
+            f"{'finds' if len(stable) == 1 else 'find'} the computed TEF root stable "
+            f"throughout ({_figs(sorted(stable['figure'], key=_fig_order))})")
+    growth = pd.to_numeric(root["computed_value"], errors="coerce")
+    if growth.notna().any():
+        top = root.loc[growth.idxmax()]
+        shares = dict(re.findall(r"(\w+) participation ([\d.]+)", str(top["computed"])))
+        share = (f", blade torsion {shares['torsion']} of its motion and the flap "
+                 f"{shares['TEF']}" if {"torsion", "TEF"} <= set(shares) else "")
+        text += (f"; the root that does go unstable, the flutter root, grows at "
+                 f"{growth.max():+.1f} /rev in {_figs([top['figure']])}{share}: a fast "
+                 "coupled flutter where the paper describes a weak instability of the flap")
+    return text + "."
+
+
+def headline(claims: pd.DataFrame, what_if: str = "") -> str:
+    """The report's first paragraph: what reproduces, what does not, the key finding.
+
+    Parameters
+    ----------
+    claims : pandas.DataFrame
+        The run's claims (``id``, ``figure``, ``tag``, ``status``, ``mode``,
+        ``kind``, ``statement``, ``computed``, ``computed_value``, ``reason``).
+    what_if : str
+        The changed parameters of a what-if run (said first).
+
+    Returns
+    -------
+    str
+        Markdown, three sentences (four for a what-if).
+    """
+    v = claims[claims["tag"] == "validation"] if "tag" in claims else claims
+    if v.empty or "status" not in v:
+        return "No validation claim of the paper was checked in this run."
+    needed = ["figure", "mode", "kind", "statement", "computed", "computed_value", "reason"]
+    v = v.assign(**{c: "" for c in needed if c not in v}).fillna("")
+    by = {s: v[v["status"] == s] for s in ("pass", "fail", "ambiguous", "not reproducible")}
+    figures = sorted(v["figure"].unique(), key=_fig_order)
+    whole = [f for f in figures if (v.loc[v["figure"] == f, "status"] == "pass").all()]
+    first = (f"{len(by['pass'])} of the paper's {len(v)} validation claims reproduce"
+             + (f", among them every statement on {_figs(whole)}" if whole else "") + ".")
+    failing = sorted(by["fail"]["figure"].unique(), key=_fig_order)
+    second = (f"{len(by['fail'])} {'does' if len(by['fail']) == 1 else 'do'} not "
+              f"(on {_figs(failing)})" if failing else "None fails")
+    undecided = len(by["ambiguous"]) + len(by["not reproducible"])
+    if undecided:
+        second += (f", and {undecided} cannot be decided: {len(by['ambiguous'])} ambiguous "
+                   f"(two roots meet inside the claim's range), {len(by['not reproducible'])} "
+                   "needing data tefcore does not have")
+    parts = [first, second + ".", _key_finding(v)]
+    if what_if:
+        parts.insert(0, f"**A what-if**: the notebooks ran with {what_if}; the claims say what "
+                        "the paper's statements become for that rotor, and none is compared "
+                        "with the statuses recorded for the default one.")
+    return " ".join(p for p in parts if p)
+
+
+@cache
+def _params_by_field() -> dict:
+    """``{"section.field": Param}`` of the shipped configuration's sections."""
+    from ...config.io import load_config
+
+    cfg = load_config("mdart")
+    out = {}
+    for name in dir(cfg):
+        section = getattr(cfg, name, None)
+        for p in getattr(type(section), "PARAMS", ()):
+            out[f"{name}.{p.name}"] = p
+    return out
+
+
+def setting_unit(setting: str) -> str:
+    """The unit of a lever's setting (``"factor on flap.mass"`` -> ``"× baseline"``).
+
+    Parameters
+    ----------
+    setting : str
+        What a lever's numbers are (:class:`tefcore.paper.attribution.levers.Lever`).
+
+    Returns
+    -------
+    str
+        SI unit, ``"× baseline"`` for a factor, ``""`` when dimensionless or
+        an option.
+
+    Examples
+    --------
+    >>> setting_unit("factor on flap.mass"), setting_unit("rotor.radius")
+    ('× baseline', 'm')
+    """
+    if setting.startswith("factor on "):
+        return "× baseline"
+    m = re.fullmatch(r"shift of ([\w.]+)(?: \[SI\])?", setting)
+    p = _params_by_field().get(m.group(1) if m else setting)
+    unit = p.unit if p is not None and p.kind != "str" else ""
+    return unit.replace("^2", "²").replace("^3", "³").replace("*", " ")
+
+
+def _value(v, unit: str) -> str:
+    try:
+        x = float(v)
+    except (TypeError, ValueError):
+        return str(v)
+    return f"{x:.3g}" + (f" {unit}" if unit and unit != "× baseline" else
+                         " × baseline" if unit else "")
+
+
+def _lever_text(row) -> str:
+    """``"elastic axis = 0.255 (rotor.elastic_axis: plausible 0.23 to 0.27; baseline 0.25)"``,
+    units included; the parts the table lacks are left out."""
+    setting = str(row.get("setting", "") or "")
+    unit = setting_unit(setting) if setting else ""
+    parts = []
+    if str(row.get("plausible_low", "")) != "" and str(row.get("plausible_high", "")) != "":
+        parts.append(f"plausible {_value(row['plausible_low'], unit)} to "
+                     f"{_value(row['plausible_high'], unit)}")
+    if str(row.get("baseline", "")) != "":
+        parts.append(f"baseline {_value(row['baseline'], unit)}")
+    what = setting.removeprefix("factor on ").removesuffix(" [SI]")
+    inner = "; ".join(parts)
+    inner = f"{what}: {inner}" if what and inner else what or inner
+    return f"{row['assumption']} = {_value(row['flips_at'], unit)}" + (
+        f" ({inner})" if inner else "")
+
+
+def why_view(table: pd.DataFrame, claims: pd.DataFrame) -> dict:
+    """"Why we differ" in words: claims by their sentence, levers with units and ranges.
+
+    Parameters
+    ----------
+    table : pandas.DataFrame
+        The run's attribution (``OUT/attribution.csv``).
+    claims : pandas.DataFrame
+        The run's claims (their statements).
+
+    Returns
+    -------
+    dict
+        ``failing``, ``explained`` (counts); ``explains``: each lever that
+        flips failing claims within its plausible range (``assumption``,
+        ``what``: the setting and its range, ``claims``: ``id`` and
+        ``statement``); ``unexplained`` (``id``, ``statement``); ``figures``:
+        figure -> one row per failing claim (``claim``, ``statement``,
+        ``plausible`` and ``beyond``: lists of lever settings in words,
+        ``breaks``: the passing claims the flipping change makes fail);
+        ``notes``.
+    """
+    from ..attribution.differences import summarise
+
+    said = dict(zip(claims.get("id", []), claims.get("statement", []), strict=False))
+    base = summarise(table)
+    t = table.fillna("").astype(str)
+    flips = t[(t["flips_at"] != "") & (t["assumption"] != "none")]
+    good = flips[flips["within_plausible"].isin(["True", "true"])
+                 & (flips["confirmed"] == "True")]
+
+    def claim(cid):
+        return {"id": cid, "statement": said.get(cid, "")}
+
+    explains = []
+    for e in base["explains"]:
+        rows = good[good["assumption"] == e["assumption"]]
+        r = rows.iloc[0]
+        setting = str(r.get("setting", "") or "")
+        unit = setting_unit(setting) if setting else ""
+        explains.append({
+            "assumption": e["assumption"],
+            "what": (f"{setting}, " if setting else "")
+            + f"plausible {_value(r['plausible_low'], unit)} to "
+              f"{_value(r['plausible_high'], unit)}",
+            "claims": [claim(c) for c in e["claims"]]})
+    figures: dict = {}
+    for cid, g in t.groupby("claim", sort=False):
+        ok = good[good["claim"] == cid]
+        rest = flips[(flips["claim"] == cid) & ~flips.index.isin(ok.index)]
+        figures.setdefault(str(g["figure"].iloc[0]), []).append({
+            **claim(cid), "plausible": [_lever_text(r) for _, r in ok.iterrows()],
+            "beyond": [_lever_text(r) + ("" if r["confirmed"] == "True" else ", not confirmed")
+                       for _, r in rest.iterrows()],
+            "breaks": "; ".join(c for c in ok["conflicts"] if c)})
+    return {"failing": base["failing"], "explained": base["explained"], "explains": explains,
+            "unexplained": [claim(c) for c in base["unexplained"]], "figures": figures,
+            "notes": base["notes"]}
+
+
+def _sentences(caption: str) -> list[str]:
+    return [s for s in re.split(r"(?<=[.)])\s+(?=[A-Z(\"])", caption.strip()) if s]
+
+
+def shared_notes(captions, least: int = 3) -> tuple[list[str], dict]:
+    """The sentences at least ``least`` captions repeat, and each caption without them.
+
+    Parameters
+    ----------
+    captions : iterable of str
+        The figures' captions.
+    least : int
+        How many captions must repeat a sentence for it to be said once.
+
+    Returns
+    -------
+    tuple
+        ``(notes, short)``: the shared sentences in the order they first
+        appear, and ``{caption: caption without them}``.
+
+    Examples
+    --------
+    >>> caps = ["Fig. 8: a. Lines join points.", "Fig. 9: b. Lines join points.",
+    ...         "Fig. 10: c. Lines join points.", "Fig. 7: d."]
+    >>> notes, short = shared_notes(caps)
+    >>> notes, short["Fig. 9: b. Lines join points."]
+    (['Lines join points.'], 'Fig. 9: b.')
+    """
+    captions = list(dict.fromkeys(captions))
+    count: dict = {}
+    for c in captions:
+        for s in dict.fromkeys(_sentences(c)):
+            count[s] = count.get(s, 0) + 1
+    notes = [s for s, n in count.items() if n >= least]
+    short = {c: " ".join(s for s in _sentences(c) if s not in notes) for c in captions}
+    return notes, short
+
+
+def check_rows(checks: pd.DataFrame | None) -> list[dict]:
+    """The stated blade frequencies as rows with the report's column names (rounded).
+
+    Parameters
+    ----------
+    checks : pandas.DataFrame or None
+        :func:`tefcore.paper.calibration.frequency_checks`.
+
+    Returns
+    -------
+    list of dict
+    """
+    if checks is None:
+        return []
+    table = checks.drop(columns="source", errors="ignore").round(3)
+    return table.rename(columns=CHECK_COLUMNS).astype(str).to_dict("records")
+
+
+def notebook_title(out, name: str) -> str:
+    """The first heading of the executed notebook ``out/notebooks/<name>.ipynb``.
+
+    Parameters
+    ----------
+    out : path
+        The reproduction folder.
+    name : str
+        The notebook.
+
+    Returns
+    -------
+    str
+        ``"11 -- Watch it flutter: ..."``, or ``"Further results of <name>"``.
+    """
+    path = Path(out) / "notebooks" / f"{name}.ipynb"
+    try:
+        cells = json.loads(path.read_text(encoding="utf-8"))["cells"]
+    except (OSError, ValueError, KeyError):
+        cells = []
+    for c in cells:
+        src = "".join(c.get("source", "")) if c.get("cell_type") == "markdown" else ""
+        m = re.match(r"\s*#\s+(.+)", src)
+        if m:
+            return m.group(1).strip().replace(" -- ", " — ")
+    return f"Further results of {name}"
