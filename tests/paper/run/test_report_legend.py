@@ -1,4 +1,4 @@
-"""The report's header explains every claim status and tag in one sentence (issue 22, item 4)."""
+"""The report's header explains every claim status and tag in short sentences."""
 
 import re
 
