@@ -8,6 +8,7 @@ Its modules (import each by name; the package itself exports nothing)::
 
     trim    the trim: Newton iterations on the collocated residual, the result
     newton  the linear algebra of the Newton iterations (Broyden, shed-wake Schur)
+    newton_matrix  the Newton matrix from the residual's per-azimuth blocks
 """
 
 __all__: list[str] = []
