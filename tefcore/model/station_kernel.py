@@ -14,13 +14,18 @@ projection and the flap's equation of :func:`tefcore.model.flap.flap_moments`
 functions: the results agree with the numpy path to round-off (measured:
 3e-16 of the largest entry on MDART at mu = 0.3; the tests hold 1e-13).
 
-numba is optional (``pip install tefcore[fast]``).  Which path runs is
-:data:`KERNEL_ENV` (``auto``: numba where it is installed, ``numpy``: never,
-``numba``: numba or an error); the numpy path is what runs without numba, for
-the C81 table model, and for the Jacobian by piece.  The compiled kernel is
-cached on disk (numba's ``cache=True``) next to this module, or in numba's
-cache directory where that is not writable; numba itself is imported only
-when the first Jacobian asks for the kernel.
+numba is optional (``pip install tefcore[fast]``), and the kernel is asked
+for by :data:`KERNEL_ENV`: ``numba`` (numba or an error), ``auto`` (numba
+where it is installed) or ``numpy`` (the default).  It is not the default
+because its first call in a process costs what hundreds of Jacobians save:
+importing numba and loading the compiled kernel from its on-disk cache
+(numba's ``cache=True``, next to this module or in numba's cache directory
+where that is not writable) took 0.55-0.63 s of CPU in a fresh process, and
+compiling it where no cache exists 4.6 s, against 2-3 ms saved per Jacobian
+(two per stability point; measured on the shared 2-core machine, load 5):
+worth it for a reproduction or a long sweep, not for one point.  The numpy
+path is what runs without numba, for the C81 table model, and for the
+Jacobian by piece; the two differ in round-off only.
 
 Examples
 --------
@@ -40,7 +45,8 @@ from ..aero.thin_airfoil import MACH_CLIP, MACH_MAX, ThinAirfoilFlap
 
 __all__ = ["KERNEL_ENV", "KERNELS", "covers", "kernel_name", "station_derivatives"]
 
-#: Environment variable choosing the station kernel: ``auto``, ``numba`` or ``numpy``.
+#: Environment variable choosing the station kernel: ``auto``, ``numba`` or ``numpy``
+#: (the default).
 KERNEL_ENV = "TEFCORE_STATION_KERNEL"
 
 #: The values of :data:`KERNEL_ENV`.
@@ -53,7 +59,7 @@ def kernel_name(choice: str | None = None) -> str:
     Parameters
     ----------
     choice : str, optional
-        One of :data:`KERNELS`; default :data:`KERNEL_ENV` (``auto`` when unset).
+        One of :data:`KERNELS`; default :data:`KERNEL_ENV` (``numpy`` when unset).
 
     Returns
     -------
@@ -64,7 +70,7 @@ def kernel_name(choice: str | None = None) -> str:
     ValueError
         An unknown choice, or ``numba`` where numba is not installed.
     """
-    choice = (os.environ.get(KERNEL_ENV, "auto") if choice is None else choice).strip().lower()
+    choice = (os.environ.get(KERNEL_ENV, "numpy") if choice is None else choice).strip().lower()
     if choice not in KERNELS:
         raise ValueError(f"{KERNEL_ENV} = {choice!r} is not one of {', '.join(KERNELS)}")
     if choice == "numpy":

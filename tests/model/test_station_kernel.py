@@ -90,6 +90,7 @@ def test_without_numba_the_numpy_path_runs(monkeypatch):
     monkeypatch.setattr(sk, "_numba_available", lambda: False)
     monkeypatch.delenv(sk.KERNEL_ENV, raising=False)
     assert sk.kernel_name() == "numpy"
+    assert sk.kernel_name("auto") == "numpy"
     assert sk.station_derivatives(None, {}, 6, 1e-30) is None
     with pytest.raises(ValueError, match=r"numba is not installed.*tefcore\[fast\]"):
         sk.kernel_name("numba")
