@@ -5,10 +5,10 @@ are the same derivatives; a point evaluates them once (docs/theory.md 6.3,
 :meth:`tefcore.trimming.trim.TrimResult.final_blocks`).  Every evaluation of
 the Jacobian is recorded with the motion it was taken at; an evaluation at the
 solution is one whose coordinates equal the trimmed motion to 1e-9 (the
-linearisation takes them by Fourier interpolation of the trim: round-off
-apart, the same), while the trim's first guess is rest and its Newton
-iterates lie farther than that (a warm start's first residual, 4e-7, moves
-the motion by more than 1e-9; measured).
+linearisation takes them by Fourier interpolation of the trim: the same,
+round-off apart).  The trim's own Newton matrices are evaluated at its first
+guess (rest, or the neighbouring point's solution) and where its iterations
+stall, farther from the solution than that.
 """
 
 import warnings
