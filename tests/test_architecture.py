@@ -87,9 +87,13 @@ LONG_FUNCTIONS: dict[str, str] = {
         "the dispatch between the exact Jacobian and the difference schemes with the "
         "shed-wake and inflow states; one screen",
     "tefcore.model.jacobian.exact_jacobian":
-        "one complex-step pass over the local variables of every station: the seeds, "
-        "projections and the inflow's chain rule share a dozen arrays (theory 6.3); "
-        "to be replaced by the station kernel of the speed work",
+        "the station derivatives (fused kernel or complex step) projected on the shapes "
+        "by derivative order, the thrust's, the linear terms' and the controls' and "
+        "inflow's chain rule: one sequence over a dozen shared arrays (theory 6.3)",
+    "tefcore.model.station_kernel._kernel":
+        "the compiled kernel: one station's section loads, airloads and flap equation "
+        "per complex step, written out in one body because numba compiles it as one "
+        "function (no Python helpers inside a cached kernel)",
     "tefcore.modes.tracking._lock_steps":
         "the plane rule of a Floquet lock: entering, within and leaving a k/2 lock are "
         "three cases of one decision on the same cost and shape matrices",
@@ -99,9 +103,6 @@ LONG_FUNCTIONS: dict[str, str] = {
     "tefcore.structure.blade.multiple_load_path_model":
         "declarative: the hub's components, joints and couplings listed in the order of "
         "docs/theory.md 2.5a",
-    "tefcore.trimming.trim._jacobian":
-        "the Newton matrix assembled in place from the exact Jacobian's blocks, the "
-        "controls' and the inflow's columns (theory 7)",
 }
 
 #: Known violations in tefcore.paper, being fixed there (remove entries as they are fixed).

@@ -222,6 +222,21 @@ class ThinAirfoilFlap:
             der[f"ch_{name}"] = 0.5 * (sm[i, 3] - d * sm[i, 2])
         self.derivatives = {k: float(v) for k, v in der.items()}
 
+    def influence(self):
+        """The flap's geometry in the loads' formulas (:func:`section_loads`).
+
+        Returns
+        -------
+        d : float
+            Hinge offset behind the flap nose [semichords], ``2 overhang E``.
+        steady, apparent_mass : numpy.ndarray
+            The ``(4, 4)`` influence matrices ``S`` and ``N`` of the kink at the
+            flap nose (module docstring; read-only).
+        """
+        _, _, c, d = _geometry(self.chord_ratio, self.overhang)
+        sm, nm = _influence(c)
+        return d, sm, nm
+
     def __repr__(self):
         return (f"ThinAirfoilFlap(chord_ratio={self.chord_ratio:g}, overhang={self.overhang:g}, "
                 f"compressibility={self.compressibility})")

@@ -281,11 +281,13 @@ def linear_system(tr: TrimResult) -> SecondOrderSystem:
     ``cfg.model.n_azimuth`` equally spaced azimuths, interpolated by
     trigonometric series (the trim resolves harmonics below
     ``n_azimuth / 2``; twice the samples change the exponents by less than
-    1e-3 /rev, measured on MDART at mu = 0.3).  Exact derivatives: the trim's
-    Newton Jacobian at the solution (:meth:`tefcore.trimming.trim.TrimResult.final_blocks`,
-    the same grid), or with the dynamic-inflow states
-    :func:`tefcore.model.jacobian.exact_jacobian` about the trim; with the
-    shed-wake states forward differences (step 1e-6 relative).
+    1e-3 /rev, measured on MDART at mu = 0.3).  The one Jacobian of the
+    residual at the solution (:meth:`tefcore.trimming.trim.TrimResult.final_blocks`,
+    on the trim's grid), which also gives the trim's Newton matrix there:
+    exact (:func:`tefcore.model.jacobian.exact_jacobian`), with the dynamic-inflow
+    states too; with the shed-wake states forward differences (step 1e-6).
+    A trim without the record of its equations is linearised on its own
+    (:func:`linearize`).
 
     Parameters
     ----------
@@ -298,11 +300,12 @@ def linear_system(tr: TrimResult) -> SecondOrderSystem:
     """
     model = tr.model
     n_first = model.n_wake + model.n_inflow
-    blocks = tr.final_blocks() if n_first == 0 else None
+    blocks = tr.final_blocks()
     if blocks is not None:
-        # the trim's Newton Jacobian at the solution, on the same grid
+        # the Jacobian at the solution, on the trim's grid, that also gives the
+        # trim's Newton matrix there (one evaluation for both)
         k, c, m = blocks
-        return SecondOrderSystem(m, c, k)
+        return SecondOrderSystem(m, c, k, n_first=n_first)
     if model.hover:
         psi = np.zeros(1)
     else:

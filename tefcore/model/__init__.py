@@ -9,6 +9,8 @@ Its modules, bottom up::
 
     flap              the flap and actuator: properties, hinge moments, natural frequency
     station_terms     the nonlinear part of the residual, station by station
+    station_kernel    the station forces and their derivatives in one compiled pass
+                      (numba, optional)
     coupled           the coupled blade/flap/actuator model and its residual
     jacobian          exact (complex-step) and finite-difference Jacobians of the residual
     section_response  the flap on a prescribed blade section: hinge moments, responses (Figs. 5-7)

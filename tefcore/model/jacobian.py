@@ -31,6 +31,7 @@ import numpy as np
 
 from ..aero.states import inflow_fields, rotating_inflow_damping
 from .coupled import Controls, CoupledModel
+from .station_kernel import covers, station_derivatives
 from .station_terms import (
     FLAP_VARIABLES,
     STATION_VARIABLES,
@@ -336,7 +337,7 @@ def exact_jacobian(model: CoupledModel, psi, q, qd, qdd, controls, inflow, *,
                          "(model.aero = 'unsteady'); use finite differences")
     psi = np.atleast_1d(np.asarray(psi, float))
     n_rows, n_psi = q.shape
-    nd, nm, fs = model.n_dof, model.n_modes, model.flap_stations
+    nd, nm = model.n_dof, model.n_modes
     n_x = model.x.size
     nu = n_rows > nd
     if nu and n_rows != nd + model.n_inflow:
@@ -347,43 +348,17 @@ def exact_jacobian(model: CoupledModel, psi, q, qd, qdd, controls, inflow, *,
                            q[nd][:, None] + model.x[None, :] * q[nd + 1][:, None])
     loc = local_variables(model, kin, q[:nd], qd[:nd], qdd[:nd])
     st = _statics(model, n_rows)
-    names, n_var, out_names = st["names"], st["n_var"], _OUT_FIELDS
-    h = EXACT_STEP
+    names = st["names"]
+    motion = (psi, q, qd, qdd, controls, inflow)
     # derivatives of the station forces per output field (summed over the pieces;
-    # by piece only when asked) and of the normal force
-    total = np.zeros((len(out_names), n_var, n_psi, n_x))
-    by_piece: dict = {}
-    fz = np.zeros((n_var, n_psi, n_x))
-    # one complex-step copy per local variable: the station variables and the
-    # flap deflection with its rates on all stations at once (the copies of the
-    # flap's change only the flap stations' forces); the other flap variables
-    # enter only the flap's inertial terms, on the flap stations
-    for seeds, sel, flap_only in st["runs"]:
-        rows = st["rows"][flap_only]
-        terms, fz_c = station_terms(model, _seeded(loc, names, seeds, sel, h),
-                                    flap_only=flap_only, aero=not flap_only,
-                                    combine=not pieces)
-        if not flap_only:
-            # the residual: the real part of any copy is the unperturbed one
-            if nu or pieces:
-                parts, thrust = model.residual_pieces(psi, q, qd, qdd, controls, inflow)
-            else:
-                real = [StationTerm(t.piece, t.field, t.flap_only, t.force[0].real)
-                        for t in terms]
-                parts = model.assemble(psi, q, qd, qdd, real)
-                fz0 = fz_c[0].real
-                thrust = fz0.sum(axis=-1) * model.scale["ct_sigma"]
-                if model.dynamic_inflow:
-                    thrust = np.stack([thrust, (fz0 * model.x).sum(axis=-1)
-                                       * model.scale["ct_sigma"]])
-            fz[rows] = fz_c.imag / h
-        for t in terms:
-            where = fs if (t.flap_only and not flap_only) else sel
-            d = t.force.imag / h
-            total[out_names.index(t.field), rows, :, where] += d
-            if pieces:
-                arr = by_piece.setdefault(t.piece, np.zeros_like(total))
-                arr[out_names.index(t.field), rows, :, where] += d
+    # by piece only when asked) and of the normal force: fused where the
+    # compiled kernel covers the model, else by complex step on whole arrays
+    fused = None if pieces else _fused(model, loc, st, motion, nu)
+    if fused is None:
+        total, by_piece, fz, (parts, thrust) = _complex_step(model, loc, st, motion, pieces,
+                                                             nu)
+    else:
+        (total, fz, (parts, thrust)), by_piece = fused, {}
     out_maps, t_flat, by_order = st["out_maps"], st["t_flat"], st["by_order"]
     up = st["up"]
     mu = model.flight.advance_ratio
@@ -404,10 +379,6 @@ def exact_jacobian(model: CoupledModel, psi, q, qd, qdd, controls, inflow, *,
         jac[0] += e[up].transpose(0, 2, 1) @ up0
         return jac
 
-    def outputs(d):
-        """(n_fields, n_var, n_psi, n_x) -> projected on the output rows."""
-        return np.einsum("fvms,fsi->vmsi", d, out_maps, optimize=True)
-
     def project_thrust(dfz):
         d = np.empty((3, n_psi, n_rows))
         for o, idx in enumerate(by_order):
@@ -419,11 +390,11 @@ def exact_jacobian(model: CoupledModel, psi, q, qd, qdd, controls, inflow, *,
     dthrust = project_thrust(ct * fz)
     if model.dynamic_inflow:
         dthrust = np.stack([dthrust, project_thrust(ct * fz * model.x)])
-    e_total = outputs(total)
+    e_total = np.einsum("fvms,fsi->vmsi", total, out_maps, optimize=True)
     if pieces:
         jac = {p: np.zeros((3, n_psi, n_rows, n_rows)) for p in parts}
         for p, d in by_piece.items():
-            jac[p] += project(outputs(d))
+            jac[p] += project(np.einsum("fvms,fsi->vmsi", d, out_maps, optimize=True))
     else:
         jac = {"all": project(e_total)}
     _linear_pieces(model, jac, psi, inflow, dthrust, nu)
@@ -458,6 +429,73 @@ def exact_jacobian(model: CoupledModel, psi, q, qd, qdd, controls, inflow, *,
             d_res[:, first] -= sigma * d_thr[0]
             d_res[:, first + 1] -= sigma * d_thr[1]
     return jac, dthrust, (sum(parts.values()), thrust), (d_res, d_thr)
+
+
+def _residual(model, motion, nu, terms=None, fz0=None):
+    """The residual's pieces and the thrust at the motion: from the real station
+    forces ``terms`` and normal force ``fz0`` where given (no inflow states), else
+    evaluated (:meth:`~tefcore.model.coupled.CoupledModel.residual_pieces`)."""
+    psi, q, qd, qdd, controls, inflow = motion
+    if nu or terms is None:
+        return model.residual_pieces(psi, q, qd, qdd, controls, inflow)
+    parts = model.assemble(psi, q, qd, qdd, terms)
+    thrust = fz0.sum(axis=-1) * model.scale["ct_sigma"]
+    if model.dynamic_inflow:
+        thrust = np.stack([thrust, (fz0 * model.x).sum(axis=-1) * model.scale["ct_sigma"]])
+    return parts, thrust
+
+
+def _fused(model, loc, st, motion, nu):
+    """The station derivatives, the residual and the thrust from the compiled kernel
+    (:mod:`tefcore.model.station_kernel`); None where it does not run."""
+    if not covers(model):
+        return None
+    out = station_derivatives(model, loc, st["n_var"], EXACT_STEP)
+    if out is None:
+        return None
+    return out[0], out[1], _fused_residual(model, motion, out, nu)
+
+
+def _fused_residual(model, motion, out, nu=False):
+    """The residual's pieces and the thrust from the kernel's forces ``out``
+    (:func:`~tefcore.model.station_kernel.station_derivatives`)."""
+    forces, fz0 = out[2], out[3]
+    # dw, dv and the flap row carry only the flap's terms
+    terms = [StationTerm("station forces", f, False, forces[i])
+             for i, f in enumerate(_OUT_FIELDS) if model.has_flap or f in ("w", "v", "phi")]
+    return _residual(model, motion, nu, terms, fz0)
+
+
+def _complex_step(model, loc, st, motion, pieces, nu):
+    """The station derivatives by complex step on whole arrays (numpy): one copy per
+    local variable, the station variables and the flap deflection with its rates
+    on all stations at once (the copies of the flap's change only the flap
+    stations' forces); the other flap variables enter only the flap's inertial
+    terms, on the flap stations.  Also the residual's pieces and the thrust (the
+    real part of any copy is the unperturbed one)."""
+    names, n_var, fs, h = st["names"], st["n_var"], model.flap_stations, EXACT_STEP
+    n_psi, n_x = loc["ut"].shape
+    total = np.zeros((len(_OUT_FIELDS), n_var, n_psi, n_x))
+    by_piece: dict = {}
+    fz = np.zeros((n_var, n_psi, n_x))
+    for seeds, sel, flap_only in st["runs"]:
+        rows = st["rows"][flap_only]
+        terms, fz_c = station_terms(model, _seeded(loc, names, seeds, sel, h),
+                                    flap_only=flap_only, aero=not flap_only,
+                                    combine=not pieces)
+        if not flap_only:
+            real = None if pieces else [StationTerm(t.piece, t.field, t.flap_only,
+                                                    t.force[0].real) for t in terms]
+            base = _residual(model, motion, nu, real, fz_c[0].real)
+            fz[rows] = fz_c.imag / h
+        for t in terms:
+            where = fs if (t.flap_only and not flap_only) else sel
+            d = t.force.imag / h
+            total[_OUT_FIELDS.index(t.field), rows, :, where] += d
+            if pieces:
+                arr = by_piece.setdefault(t.piece, np.zeros_like(total))
+                arr[_OUT_FIELDS.index(t.field), rows, :, where] += d
+    return total, by_piece, fz, base
 
 
 def _linear_pieces(model, jac, psi, inflow, dthrust, nu):

@@ -7,7 +7,8 @@ is not called ``trim`` because :func:`tefcore.trim` is the function.
 Its modules, bottom up::
 
     newton  the linear algebra of the Newton iterations (Broyden, shed-wake Schur)
-    trim    the trim: Newton iterations on the collocated residual, the result
+    newton_matrix  the Newton matrix from the residual's per-azimuth blocks
+    trim           the trim: Newton iterations on the collocated residual, the result
 
 Its public names (each loaded from its module on first use):
 

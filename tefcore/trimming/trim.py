@@ -37,9 +37,9 @@ from ..aero.states import HarmonicInflow, InflowLinearization, steady_inflow_res
 from ..errors import TefcoreError
 from ..fourier import fourier_coefficients, fourier_series, spectral_derivative
 from ..model.coupled import Controls, CoupledModel
-from ..model.jacobian import exact_jacobian, has_exact_jacobian, jacobian_blocks
 from ..runtime import blas_limit
 from .newton import BroydenSolver, WakeSchur, factor
+from .newton_matrix import newton_matrix, solution_matrices
 
 __all__ = ["MAX_FLAP_DEFLECTION_DEG", "TrimError", "TrimResult", "initial_collective", "trim"]
 
@@ -104,25 +104,39 @@ class TrimResult:
     _blocks: tuple | None = field(default=None, repr=False, compare=False)
 
     def final_blocks(self):
-        """Exact ``dR/dq, dR/dq*, dR/dq**`` at the trimmed motion on the trim grid.
+        """``dR/dq, dR/dq*, dR/dq**`` at the trimmed motion on the trim grid: the linearisation.
 
-        One evaluation of the trim's Newton Jacobian at the solution
-        (:func:`tefcore.model.jacobian.exact_jacobian`), cached: its
-        per-azimuth blocks are the linearisation about the trim
-        (:func:`tefcore.linear.stability.linear_system` reuses them where the grids
-        agree), and the Newton matrix replaces :attr:`jacobian`, so a trim
-        warm-started from this one starts from the Jacobian at this solution.
-        None where it does not apply: shed-wake states (finite differences) or
-        no record of the trim equations.
+        One Jacobian of the residual at the solution, cached, serves both the
+        linearisation and the next trim: its per-azimuth blocks are the
+        linearisation about the trim (:func:`tefcore.linear.stability.linear_system`
+        takes them as they are), and the Newton matrix built from the same
+        evaluation replaces :attr:`jacobian`, so a trim warm-started from this
+        one starts from the Jacobian at this solution.  Without aerodynamic
+        states it is the trim's exact Newton Jacobian at the solution
+        (:func:`tefcore.trimming.newton_matrix.newton_matrix`); with the
+        dynamic-inflow states the exact linearisation with the states, whose
+        rows and columns of the trim's unknowns are the Newton matrix
+        (:func:`tefcore.trimming.newton_matrix.solution_matrices`).
+
+        None with the shed-wake states: the linearisation is then
+        :func:`tefcore.linear.stability.linearize`'s forward differences, once,
+        and the Newton matrix stays the trim's last (measured on MDART at
+        mu = 0.3: a warm-started trim with the wake re-evaluates its matrix
+        after one chord step whichever it starts from, and the control columns
+        at the solution would cost six more evaluations of the residual).  None
+        too without a record of the trim equations.
 
         Returns
         -------
         tuple of numpy.ndarray or None
-            ``(K, C, M)`` blocks, each ``(n_psi, n_dof, n_dof)``.
+            ``(K, C, M)`` blocks, each ``(n_psi, n_y, n_y)`` (the coordinates,
+            then the aerodynamic states of :meth:`linear_point`).
         """
-        if self._blocks is None and self._problem is not None \
-                and has_exact_jacobian(self.model):
-            jac, _, blocks = self._problem.jacobian(self._solution)
+        if self._blocks is None and self._problem is not None and not self.model.n_wake:
+            if not self.model.n_inflow:
+                jac, _, blocks = self._problem.jacobian(self._solution)
+            else:
+                jac, blocks = solution_matrices(self._problem, self._solution, self)
             self.jacobian = jac
             self._blocks = tuple(blocks)
         return self._blocks
@@ -473,10 +487,14 @@ class _Problem:
         r = np.concatenate([res.ravel(), self.scalars(q, thrust, li)])
         return r, float(np.max(np.abs(r))), thrust, c, li
 
+    def inflow(self, li):
+        """The inflow field of the inflow unknowns ``li``."""
+        return _inflow(self.model, li)
+
     def jacobian(self, vec):
         """Newton matrix at ``vec``, ``full(vec)`` and the per-azimuth blocks."""
         q, c, li = self.unpack(vec)
-        jac, (res0, thrust), blocks = _jacobian(self, vec, c, li)
+        jac, (res0, thrust), blocks = newton_matrix(self, vec, c, li, _inflow(self.model, li))
         r = np.concatenate([res0.ravel(), self.scalars(q, thrust, li)])
         return jac, (r, float(np.max(np.abs(r))), thrust, c, li), blocks
 
@@ -517,132 +535,3 @@ def _check_flap_deflection(model, q, history) -> None:
             f"statically (its hinge-moment stiffness, actuator included, is near zero or "
             f"negative: an aerodynamically over-balanced flap, flap.overhang = "
             f"{model.cfg.flap.overhang:g})", history)
-
-
-def _inflow_tangents(model, li, psi):
-    """``d lambda / d p`` at the stations for the inflow unknowns ``p`` of the trim,
-    each ``(n_psi, n_x)`` (docs/theory.md 6.3).
-
-    Momentum inflow with Drees' gradients,
-    ``lambda = fs + l (1 + kx x cos psi + ky x sin psi)`` with ``kx`` a function of
-    ``chi = atan2(mu, fs + l)``: ``d kx / d chi = 4/3 [sin^2 chi - (1 - cos chi -
-    1.8 mu^2) cos chi] / sin^2 chi``, ``d chi / d l = -mu / (mu^2 + lambda^2)``.
-    Pitt-Peters field ``fs + l_0 + x (l_s sin psi + l_c cos psi)``: ``1, x sin psi,
-    x cos psi``.
-    """
-    x = model.x[None, :]
-    c, s = np.cos(psi)[:, None], np.sin(psi)[:, None]
-    if model.dynamic_inflow:
-        return [np.ones((psi.size, x.size)), x * s, x * c]
-    f = model.flight
-    mu, fs = f.advance_ratio, f.advance_ratio * np.tan(f.shaft_angle)
-    if model.cfg.model.inflow != "linear" or mu == 0.0:
-        return [np.ones((psi.size, x.size))]
-    kx, ky = drees_gradients(mu, fs + li)
-    lam = fs + li
-    chi = np.arctan2(mu, lam)
-    dkx = 4.0 / 3.0 * (np.sin(chi) ** 2 - (1 - np.cos(chi) - 1.8 * mu**2) * np.cos(chi)) \
-        / np.sin(chi) ** 2 * (-mu / (mu**2 + lam**2))
-    return [1.0 + kx * x * c + ky * x * s + li * dkx * x * c]
-
-
-def _jacobian(prob, x, c, li):
-    """Newton Jacobian using the per-azimuth block structure.
-
-    Returns the Jacobian, ``(R, thrust)`` at ``x`` and the per-azimuth blocks
-    ``dR/dq, dR/dq*, dR/dq**``: exact
-    (:func:`tefcore.model.jacobian.exact_jacobian`, with the control and
-    inflow columns by the chain rule) where implemented, else forward
-    differences with the control and inflow columns evaluated in the same
-    stacked call.
-    """
-    model, psi, d1, d2, n, n_psi, nq = (prob.model, prob.psi, prob.d1, prob.d2, prob.n,
-                                        prob.n_psi, prob.nq)
-    tip, hover, free_collective, n_lam = prob.tip, prob.hover, prob.free_collective, prob.n_lam
-    sigma, mu, fs, scalars = prob.sigma, prob.mu, prob.fs, prob.scalars
-    q = x[:nq].reshape(n, n_psi)
-    qd, qdd = q @ d1.T, q @ d2.T
-    infl = _inflow(model, li)
-    cols = np.arange(nq, x.size)
-    if has_exact_jacobian(model):
-        (jq, jqd, jqdd), tblocks, (res0, thr0), (d_res, d_thr) = exact_jacobian(
-            model, psi, q, qd, qdd, c, infl, inflow_tangents=_inflow_tangents(model, li, psi))
-        # the parameters of exact_jacobian: collective, cyclics, then the inflow
-        names = (["collective"] if free_collective else []) + ([] if hover else
-                                                              ["cyclic_cos", "cyclic_sin"])
-        which = [("collective", "cyclic_cos", "cyclic_sin").index(k) for k in names]
-        which += list(range(3, 3 + n_lam))
-        d_res, d_thr = d_res[which], d_thr[..., which, :]
-    else:
-        # control and inflow columns by forward differences, evaluated at the
-        # same motion in the same stacked call as the per-azimuth blocks
-        h = 1e-7
-        xs = np.repeat(x[None], cols.size, axis=0)
-        xs[np.arange(cols.size), cols] += h
-        parts = [prob.unpack(v) for v in xs]
-        (jq, jqd, jqdd), tblocks, (res0, thr0, perturbed) = jacobian_blocks(
-            model, psi, q, qd, qdd, c, infl, step=1e-7, scheme="forward",
-            extra=[(p[1], _inflow(model, p[2])) for p in parts], n_second=model.n_dof)
-    r0 = np.concatenate([res0.ravel(), scalars(q, thr0, li)])
-    blocks = [jq, jqd, jqdd]
-    # J[(i,m),(j,l)] = J0[m,i,j] I_ml + J1[m,i,j] D_ml + J2[m,i,j] D2_ml, written
-    # straight into the (i, m, j, l) view of the Newton matrix
-    n_s = r0.size - nq
-    jac = np.zeros((r0.size, r0.size))
-    j4 = jac[:nq, :nq].reshape(n, n_psi, n, n_psi)
-    j4[...] = np.einsum("mij,ml->imjl", blocks[1], d1) + np.einsum("mij,ml->imjl",
-                                                                   blocks[2], d2)
-    diag = np.arange(n_psi)
-    j4[:, diag, :, diag] += blocks[0]
-    # thrust derivative wrt Q (mean over azimuth)
-    if n_lam == 3:
-        # with dynamic inflow: the blade's C_T/sigma and its first moment
-        tblocks, t_moment = tblocks
-        harmonics = np.zeros((2, 1)) if hover else np.array([np.sin(psi), np.cos(psi)])
-        dmom = [((t_moment[0] * s).T + (t_moment[1] * s).T @ d1 + (t_moment[2] * s).T @ d2)
-                / n_psi for s in harmonics[:, :, None]]
-    dct = (tblocks[0].T + tblocks[1].T @ d1 + tblocks[2].T @ d2) / n_psi     # (n, N)
-    row = 0
-    if free_collective:
-        jac[nq, :nq] = dct.ravel()
-        row += 1
-    if not hover:
-        w_tip = np.zeros((n, n_psi))
-        w_tip[:model.n_modes] = tip[:, None]
-        jac[nq + row, :nq] = (2 / n_psi * w_tip * np.cos(psi)).ravel()
-        jac[nq + row + 1, :nq] = (2 / n_psi * w_tip * np.sin(psi)).ravel()
-        row += 2
-    if n_lam == 3:
-        denom = 2 * np.hypot(mu, fs + li[0])
-        for i, d in enumerate((dct, *dmom)):
-            jac[nq + row + i, :nq] = -sigma * d.ravel() / denom
-        row += 2
-    else:
-        denom = 2 * np.hypot(mu, fs + li)
-        jac[nq + row, :nq] = -sigma * dct.ravel() / denom
-    assert n_s == row + 1
-    if not has_exact_jacobian(model):
-        for k, (p, (res_k, thr_k)) in zip(cols, zip(parts, perturbed, strict=True),
-                                          strict=True):
-            rk = np.concatenate([res_k.ravel(), scalars(q, thr_k, p[2])])
-            jac[:, k] = (rk - r0) / h
-        return jac, (res0, thr0), blocks
-    # the trim equations are linear in the thrust: their control and inflow
-    # columns are the thrust's derivatives through them (central differences
-    # along the exact thrust derivative, exact for a linear function), plus the
-    # inflow equations' own dependence on the inflow unknowns (central
-    # differences of a scalar function: 1e-10)
-    eps = 1e-6
-    li_vec = np.atleast_1d(np.asarray(li, float))
-    for k, col in enumerate(cols):
-        dl = np.zeros(n_lam)
-        if k >= cols.size - n_lam:
-            dl[k - (cols.size - n_lam)] = eps
-        sides = []
-        for sgn in (1.0, -1.0):
-            lam_k = li_vec + sgn * dl
-            sides.append(scalars(q, thr0 + sgn * eps * d_thr[..., k, :],
-                                 tuple(lam_k) if n_lam == 3 else float(lam_k[0])))
-        jac[:nq, col] = d_res[k].ravel()
-        jac[nq:, col] = (sides[0] - sides[1]) / (2 * eps)
-    return jac, (res0, thr0), blocks
