@@ -259,6 +259,10 @@ class Report:
     figure_notes : list of str
         The sentences the figures' captions share (how to read their lines
         and markers), said once; a caption that had them links to them.
+    truncation : list of dict
+        The truncation-dependent claims (``id``, ``status``, ``converged_status``,
+        ``converged_modes``): verdicts the nine-mode basis decides otherwise
+        than a converged one (:mod:`tefcore.paper.claims.truncation`).
     """
 
     title: str
@@ -282,6 +286,7 @@ class Report:
     what_if: str = ""
     guide: str = ""
     figure_notes: list = field(default_factory=list)
+    truncation: list = field(default_factory=list)
 
 
 def _theory_url() -> str:
@@ -536,7 +541,16 @@ def build_report(out, runs, claims: pd.DataFrame, worse: pd.DataFrame, *, figure
         fanplot=_image(fan, out, "MDART blade (assumed properties): fan plot of the coupled "
                                  "modes") if fan.exists() else None,
         departures=departures_text(), variants=variants_view(variants), why=why,
-        what_if=what_if)
+        what_if=what_if, truncation=_truncation_rows(claims))
+
+
+def _truncation_rows(claims: pd.DataFrame) -> list[dict]:
+    """The claims whose verdict depends on the modal basis, as the report lists them."""
+    if "truncation" not in claims:
+        return []
+    rows = claims[claims["truncation"].fillna("").astype(str) == "truncation-dependent"]
+    return rows[["id", "status", "converged_status", "converged_modes"]].fillna("") \
+        .astype(str).to_dict("records")
 
 
 def template_environment(**filters) -> jinja2.Environment:

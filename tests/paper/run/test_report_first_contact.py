@@ -164,3 +164,25 @@ def test_the_executed_notebook_page_reads_offline(tmp_path):
     page = notebook_html(path)
     assert not re.findall(r"""(?:src|href)=["']https?://""", page)   # no CDN: MathJax, require
     assert "<math" in page and "e^{2" not in page
+
+
+def test_truncation_dependent_verdicts_are_listed_with_both(tmp_path):
+    # a claim the nine-mode basis passes and the converged basis fails is listed
+    # with both verdicts; without converged verdicts there is no such section
+    from tefcore.paper.claims.truncation import mark_truncation
+
+    conv = pd.DataFrame({"id": ["fig10b-tef-more-unstable", "fig10b-lag"],
+                         "status": ["fail", "pass"], "n_modes": [24, 24],
+                         "computed_value": [0.0, 0.0]})
+    claims = mark_truncation(CLAIMS, conv)
+    runs = [NotebookRun("04_cg_offset", status="ok")]
+    r = build_report(tmp_path, runs, claims, claims.iloc[0:0],
+                     figures_of={"04_cg_offset": ("fig10",)})
+    assert r.truncation == [{"id": "fig10b-tef-more-unstable", "status": "pass",
+                             "converged_status": "fail", "converged_modes": "24"}]
+    for fmt in ("md", "html"):
+        page = html.unescape(render(r, fmt))
+        assert "Truncation-dependent verdicts" in page and "fig10b-tef-more-unstable" in page
+    plain = build_report(tmp_path, runs, CLAIMS, CLAIMS.iloc[0:0],
+                         figures_of={"04_cg_offset": ("fig10",)})
+    assert plain.truncation == [] and "Truncation-dependent" not in render(plain, "html")
