@@ -227,3 +227,20 @@ def test_the_picture_is_notebook_04s_stored_figure_9():
     assert picture.read_bytes() == stored, (
         "docs/fig09.png is not notebook 04's Fig. 9: after refreshing the notebooks, write "
         "the notebook's first PNG output to docs/fig09.png")
+
+
+def test_the_readme_counts_are_the_recorded_statuses():
+    # "N of the paper's M validation claims pass; F fail, A are ambiguous ...,
+    # and R need data": the recorded statuses of the default rotor, which the
+    # reproduction compares with (tefcore/paper/reference_data/claims.toml)
+    from tefcore.paper.claims.reference import load_claims
+
+    text = " ".join(README.read_text(encoding="utf-8").split())
+    m = re.search(r"(\d+) of the paper's (\d+) validation claims pass; (\d+) fail, (\d+) are "
+                  r"ambiguous .*?, and (\d+) need data", text)
+    assert m, "the README no longer states the score in its usual sentence"
+    passed, total, failed, ambiguous, missing = (int(g) for g in m.groups())
+    recorded = [c.recorded_status for c in load_claims() if c.tag == "validation"]
+    assert (passed, total, failed, ambiguous, missing) == (
+        recorded.count("pass"), len(recorded), recorded.count("fail"),
+        recorded.count("ambiguous"), recorded.count("not reproducible"))
