@@ -164,7 +164,9 @@ def differences(base: NudgedRun, other: NudgedRun, rtol: float = VALUE_RTOL,
             out.append(f"{other.label}: {fig} has {len(tb)} rows, {len(ta)} without the nudge")
             continue
         for col in _NAMED if certainty else _NAMED[:1]:
-            diff = ta[col].astype(str).to_numpy() != tb[col].astype(str).to_numpy()
+            # a failed point has no name on either side (NaN == NaN here)
+            diff = (ta[col].astype(object).fillna("").astype(str).to_numpy()
+                    != tb[col].astype(object).fillna("").astype(str).to_numpy())
             for i in np.flatnonzero(diff):
                 out.append(f"{other.label}: {fig} at {ta['value'].iloc[i]} row {i}: {col} "
                            f"{ta[col].iloc[i]} -> {tb[col].iloc[i]}")
