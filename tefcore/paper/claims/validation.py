@@ -21,6 +21,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
+from ...errors import TefcoreError
 from ...safe_io import atomic_write_text
 from ...units import parse_quantity
 from ..figures.catalogue import FIGURES, KNOWN_FIGURES, variant_key
@@ -32,9 +33,15 @@ from .curves import X_SLACK, compare_curve, stability_intervals, zero_crossings
 from .files import ReferenceDataError, reference_dir
 from .reference import STATUSES, load_claims
 
-__all__ = ["COLUMNS", "claims_score", "compare_curve", "figure_frame", "figure_values",
-           "reference_curves", "stability_intervals", "sweep_values", "update_recorded_status",
-           "validate_all", "validate_figure", "worse_than_recorded", "zero_crossings"]
+__all__ = ["COLUMNS", "FIGURE_ERRORS", "claims_score", "compare_curve", "figure_frame",
+           "figure_values", "not_computable_rows", "reference_curves", "stability_intervals",
+           "sweep_values", "update_recorded_status", "validate_all", "validate_figure",
+           "worse_than_recorded", "zero_crossings"]
+
+#: What a figure that cannot be computed raises: tefcore's own errors (a trim that
+#: does not converge, Floquet accuracy), a configuration refused at the figure's own
+#: parameters (ValueError), a singular or overflowing system.
+FIGURE_ERRORS = (TefcoreError, ValueError, ArithmeticError, np.linalg.LinAlgError)
 
 
 def _value_si(name: str, v) -> float:
@@ -148,13 +155,16 @@ def validate_all(n_jobs: int = 1, progress: bool = False, *, claims=None, cfg=No
     Returns
     -------
     DataFrame
-        One row per claim (columns :data:`COLUMNS`), in reference-data order.
+        One row per claim (columns :data:`COLUMNS`), in reference-data order.  A
+        figure that cannot be computed (:data:`FIGURE_ERRORS`) gives its claims
+        (and the comparisons that read it) the status ``not computable`` with
+        the reason; the other figures are still checked.
     """
     claims = load_claims(include_examples=include_examples) if claims is None else list(claims)
     results = dict(results or {})
     active = [c for c in claims if c.kind != "not_reproducible"]
     need = {c.figure for c in active} | {c.other_figure for c in active if c.other_figure}
-    values = {}
+    values, broken = {}, {}
     for name in (n for n in KNOWN_FIGURES if n in need):
         mine = [c for c in active if c.figure == name]
         if name in FIGURES:
@@ -163,22 +173,60 @@ def validate_all(n_jobs: int = 1, progress: bool = False, *, claims=None, cfg=No
             xs = {float(v) for c in mine for v in (c.x, c.relative_to) if v is not None}
             values[name] = sorted(set(FIG7_OVERHANGS) | xs)
         if name not in results:
-            results[name] = compute_figure(name, cfg, values.get(name), None, n_jobs, progress)
+            try:
+                results[name] = compute_figure(name, cfg, values.get(name), None, n_jobs,
+                                               progress)
+            except FIGURE_ERRORS as err:
+                broken[name] = f"{name} cannot be computed: {type(err).__name__}: {err}"
     variants: dict = {}
     for c in active:
         for fig, ov in ((c.figure, c.overrides), (c.other_figure or c.figure, c.other_overrides)):
-            if ov and (fig, variant_key(ov)) not in variants:
-                variants[(fig, variant_key(ov))] = compute_figure(
-                    fig, cfg, values.get(fig), ov, n_jobs, progress)
+            if ov and (fig, variant_key(ov)) not in variants and fig not in broken:
+                try:
+                    variants[(fig, variant_key(ov))] = compute_figure(
+                        fig, cfg, values.get(fig), ov, n_jobs, progress)
+                except FIGURE_ERRORS as err:
+                    broken[fig] = (f"{fig} with {variant_key(ov)} cannot be computed: "
+                                   f"{type(err).__name__}: {err}")
     tables = []
     for name in dict.fromkeys(c.figure for c in claims):
         mine = [c for c in claims if c.figure == name]
+        dead = sorted({f for c in mine if c.kind != "not_reproducible"
+                       for f in (c.figure, c.other_figure) if f in broken})
+        if dead:
+            tables.append(not_computable_rows(mine, "; ".join(broken[f] for f in dead)))
+            continue
         tables.append(validate_figure(
             name, results.get(name), mine, cfg=cfg, others=results,
             variants={k: v for (f, k), v in variants.items() if f == name}))
     order = {c.id: i for i, c in enumerate(claims)}
     table = pd.concat(tables, ignore_index=True)
     return table.sort_values("id", key=lambda s: s.map(order), ignore_index=True)
+
+
+def not_computable_rows(claims, reason: str) -> pd.DataFrame:
+    """Rows of claims whose figure cannot be computed: status ``not computable``, the reason.
+
+    A ``not_reproducible`` claim keeps its own status and reason (it has no check).
+
+    Parameters
+    ----------
+    claims : list of Claim
+    reason : str
+        What failed (the figure and the error).
+
+    Returns
+    -------
+    pandas.DataFrame
+        Columns :data:`COLUMNS`.
+    """
+    rows = [{"id": c.id, "figure": c.figure, "panel": c.panel, "kind": c.kind, "tag": c.tag,
+             "mode": c.mode, "quantity": c.quantity, "statement": c.statement,
+             "expected": "", "computed": "", "computed_value": np.nan, "margin": np.nan,
+             "status": "not reproducible" if c.kind == "not_reproducible" else "not computable",
+             "reason": c.reason if c.kind == "not_reproducible" else reason,
+             "recorded_status": c.recorded_status} for c in claims]
+    return pd.DataFrame(rows, columns=COLUMNS)
 
 
 def reference_curves(name: str, include_examples: bool = False) -> pd.DataFrame | None:
