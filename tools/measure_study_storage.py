@@ -3,10 +3,11 @@
 For a journal file (optuna ``JournalStorage``, the default of ``tefcore infer``)
 and SQLite (``RDBStorage``):
 
-* kill -9: a worker runs trials of 2 s each and is killed with SIGKILL in the
-  middle of its third; the storage is reopened (does it load? which states?),
-  the dead trial is recovered (:func:`tefcore.paper.inference.study.recover_dead_trials`)
-  and the study resumed to its target;
+* kill -9: a worker runs trials of 2 s each and is killed with SIGKILL 1 s into
+  its third (after the storage shows two complete); the storage is reopened
+  (does it load? which states?), the dead trial is recovered
+  (:func:`tefcore.paper.inference.study.recover_dead_trials`) and the study
+  resumed to its target;
 * two workers: two processes run 15 trials of 0.1 s each on one study at once;
   every trial must be recorded once, with no error from the storage.
 
@@ -71,11 +72,28 @@ def _states(study):
     return dict(Counter(t.state.name for t in study.get_trials(deepcopy=False)))
 
 
+def _wait_for(url, name, n, timeout=120.0):
+    """Poll the storage until the study holds `n` completed trials."""
+    from optuna.trial import TrialState
+
+    end = time.time() + timeout
+    while time.time() < end:
+        try:
+            done = _study(url, name).get_trials(deepcopy=False, states=(TrialState.COMPLETE,))
+            if len(done) >= n:
+                return
+        except Exception:                # the worker is still creating the storage
+            pass
+        time.sleep(0.2)
+    raise TimeoutError(f"{n} trials not complete after {timeout} s")
+
+
 def kill_and_resume(url) -> str:
     from tefcore.paper.inference.study import open_storage, recover_dead_trials
 
     p = _spawn(url, "kill", TARGET, 2.0)
-    time.sleep(8.0)                      # imports + two trials of 2 s, inside the third
+    _wait_for(url, "kill", 2)            # two trials complete: the third is running
+    time.sleep(1.0)                      # inside the third (2 s)
     os.kill(p.pid, signal.SIGKILL)
     p.wait()
     try:

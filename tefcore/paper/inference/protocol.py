@@ -25,10 +25,11 @@ import tomllib
 from dataclasses import dataclass
 from functools import cache
 from importlib import resources
+from pathlib import Path
 
 from ...modes.roles import FLUTTER_ROOT
 
-__all__ = ["READINGS", "Protocol", "load_protocol", "read_claims"]
+__all__ = ["READINGS", "Protocol", "inference_file", "load_protocol", "read_claims"]
 
 #: The readings of the paper's "TEF": the continued root, or the flutter root.
 READINGS = ("continued", "flutter")
@@ -53,7 +54,7 @@ class Protocol:
         in the TEF's place.
     torsion : str
         ``"recalibrated"``: the torsion level is re-fitted to the stated
-        frequencies for every sample.
+        frequencies for every sample; ``"fixed"``: the baseline's is kept.
     objective : str
         ``"sum_tanh_margin"``.
     ambiguous_value, no_margin_fail_value : float
@@ -142,9 +143,17 @@ def read_claims(claims, reading: str, quantities=("real_part", "damping", "dampi
     return out
 
 
+def inference_file(name: str) -> str:
+    """A packaged inference file ``tefcore/data/inference/<name>.toml``, or a ``.toml`` path."""
+    if name.endswith(".toml"):
+        return Path(name).read_text(encoding="utf-8")
+    return resources.files("tefcore.data").joinpath(f"inference/{name}.toml").read_text(
+        encoding="utf-8")
+
+
 @cache
 def load_protocol(name: str = "protocol") -> Protocol:
-    """The packaged protocol ``tefcore/data/inference/<name>.toml``.
+    """The packaged protocol ``tefcore/data/inference/<name>.toml`` (or a ``.toml`` path).
 
     Raises
     ------
@@ -154,8 +163,7 @@ def load_protocol(name: str = "protocol") -> Protocol:
     """
     from ..figures.catalogue import KNOWN_FIGURES
 
-    raw = tomllib.loads(resources.files("tefcore.data").joinpath(
-        f"inference/{name}.toml").read_text(encoding="utf-8"))
+    raw = tomllib.loads(inference_file(name))
     p = Protocol(space=raw["space"], fit_calibration=bool(raw["fit_calibration"]),
                  fit_figures=tuple(raw["fit_figures"]), readings=tuple(raw["readings"]),
                  flutter_quantities=tuple(raw["flutter_quantities"]), torsion=raw["torsion"],
@@ -167,8 +175,8 @@ def load_protocol(name: str = "protocol") -> Protocol:
         raise ValueError(f"{name}.toml: readings {bad} not in {READINGS}")
     if p.objective != "sum_tanh_margin":
         raise ValueError(f"{name}.toml: objective = {p.objective!r}; known: sum_tanh_margin")
-    if p.torsion not in ("recalibrated", "sampled"):
-        raise ValueError(f"{name}.toml: torsion = {p.torsion!r}; known: recalibrated, sampled")
+    if p.torsion not in ("recalibrated", "fixed"):
+        raise ValueError(f"{name}.toml: torsion = {p.torsion!r}; known: recalibrated, fixed")
     unknown = [f for f in p.fit_figures if f not in KNOWN_FIGURES]
     if unknown:
         raise ValueError(f"{name}.toml: fit_figures {unknown} are not figures tefcore computes")

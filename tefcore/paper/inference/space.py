@@ -27,11 +27,11 @@ from __future__ import annotations
 import tomllib
 from dataclasses import dataclass
 from functools import cache
-from importlib import resources
 
 import numpy as np
 
 from ...config.configuration import SECTIONS, resolve_field
+from ...structure.section_inertia import check_section_inertia
 from ...units import parse_quantity
 
 __all__ = ["KINDS", "Parameter", "Refused", "apply_sample", "baseline_sample", "load_space",
@@ -71,6 +71,8 @@ class Parameter:
     keeps : str
         ``"lock_number"``: the blade's mass level follows, keeping Table 1's
         Lock number.
+    group : str
+        The group the sensitivity analysis moves it with.
     source : str
         The argument for the range, from construction.
     """
@@ -85,6 +87,7 @@ class Parameter:
     choices: tuple = ()
     from_station: float = 0.0
     keeps: str = ""
+    group: str = ""
     source: str = ""
 
     @property
@@ -114,7 +117,8 @@ def _parameter(raw: dict, where: str) -> Parameter:
                   unit=raw.get("unit", ""), log=bool(raw.get("log", False)),
                   choices=tuple(raw.get("choices", ())),
                   from_station=float(raw.get("from_station", 0.0)),
-                  keeps=raw.get("keeps", ""), source=" ".join(raw.get("source", "").split()))
+                  keeps=raw.get("keeps", ""), group=raw.get("group", raw["name"]),
+                  source=" ".join(raw.get("source", "").split()))
     if not p.source:
         raise ValueError(f"{where} ({p.name}): no source: every range needs its argument")
     if p.categorical and len(p.choices) < 2:
@@ -128,12 +132,12 @@ def _parameter(raw: dict, where: str) -> Parameter:
 
 @cache
 def load_space(name: str = "mdart-space") -> dict[str, Parameter]:
-    """The parameters of a packaged space file, by name, in file order.
+    """The parameters of a space file, by name, in file order.
 
     Parameters
     ----------
     name : str
-        ``tefcore/data/inference/<name>.toml``.
+        ``tefcore/data/inference/<name>.toml``, or a ``.toml`` path.
 
     Returns
     -------
@@ -145,9 +149,9 @@ def load_space(name: str = "mdart-space") -> dict[str, Parameter]:
         A parameter without a source, with an unknown kind, an empty range,
         or a name used twice.
     """
-    text = resources.files("tefcore.data").joinpath(f"inference/{name}.toml").read_text(
-        encoding="utf-8")
-    data = tomllib.loads(text)
+    from .protocol import inference_file
+
+    data = tomllib.loads(inference_file(name))
     out: dict[str, Parameter] = {}
     for i, raw in enumerate(data["parameter"]):
         p = _parameter(raw, f"{name}.toml parameter {i + 1}")
@@ -229,8 +233,10 @@ def apply_sample(cfg, space, sample: dict):
     Raises
     ------
     Refused
-        The configuration is physically impossible (tefcore's checks on
-        loading refuse it; the message is theirs).
+        The configuration is physically impossible: a field out of its
+        allowed range, or the flap does not fit in its section
+        (:func:`tefcore.structure.section_inertia.check_section_inertia`); the
+        message is tefcore's.
     ValueError
         A sample naming no parameter of the space.
     """
@@ -245,7 +251,12 @@ def apply_sample(cfg, space, sample: dict):
             p = space[name]
             now = cfg.with_overrides(over) if p.kind == "gyration" else cfg
             over.update(_overrides(cfg, p, sample[name], now))
-        return cfg.with_overrides(over)
+        new = cfg.with_overrides(over)
+        # the flap must fit in its section (the host, section less the balanced flap,
+        # keeps a positive inertia about its CG; moving the flap's CG, as Figs. 9-17
+        # do, moves the lumped section's CG and does not change the host)
+        check_section_inertia(new)
+        return new
     except ValueError as err:
         raise Refused(str(err)) from None
 

@@ -36,6 +36,7 @@ import math
 import os
 import socket
 import time
+import warnings
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 
@@ -45,7 +46,7 @@ from .protocol import READINGS, load_protocol
 from .space import Refused, apply_sample, load_space, recalibrated
 
 __all__ = ["SAMPLERS", "TRIAL_CPU_S", "StudySpec", "estimate", "make_sampler", "open_storage",
-           "open_study", "recover_dead_trials", "run_study", "worker"]
+           "open_study", "recover_dead_trials", "run_study", "seconds_text", "worker"]
 
 #: The samplers a study can use.
 SAMPLERS = ("tpe", "qmc", "random", "nsga2")
@@ -113,7 +114,8 @@ def open_storage(url: str):
     Parameters
     ----------
     url : str
-        A path (journal file, created if missing) or a SQLAlchemy URL.
+        A path (journal file, created with its folder if missing) or a
+        SQLAlchemy URL.
 
     Returns
     -------
@@ -122,10 +124,14 @@ def open_storage(url: str):
     import optuna
 
     if "://" in url:
-        return optuna.storages.RDBStorage(url, heartbeat_interval=60, grace_period=300)
+        with warnings.catch_warnings():     # the heartbeat is experimental in optuna
+            warnings.simplefilter("ignore", optuna.exceptions.ExperimentalWarning)
+            return optuna.storages.RDBStorage(url, heartbeat_interval=60, grace_period=300)
     from optuna.storages.journal import JournalFileBackend, JournalFileOpenLock
 
-    path = str(Path(url))
+    path = Path(url)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    path = str(path)
     return optuna.storages.JournalStorage(
         JournalFileBackend(path, lock_obj=JournalFileOpenLock(path)))
 
@@ -151,8 +157,10 @@ def make_sampler(kind: str, seed: int):
         return optuna.samplers.TPESampler(seed=seed, multivariate=True, constant_liar=True,
                                           n_startup_trials=10)
     if kind == "qmc":
-        return optuna.samplers.QMCSampler(qmc_type="sobol", scramble=True, seed=seed,
-                                          warn_independent_sampling=False)
+        with warnings.catch_warnings():     # experimental since optuna 3.0, and kept
+            warnings.simplefilter("ignore", optuna.exceptions.ExperimentalWarning)
+            return optuna.samplers.QMCSampler(qmc_type="sobol", scramble=True, seed=seed,
+                                              warn_independent_sampling=False)
     if kind == "random":
         return optuna.samplers.RandomSampler(seed=seed)
     if kind == "nsga2":
@@ -323,22 +331,28 @@ def estimate(spec: StudySpec, n_trials: int, jobs: int = 1) -> dict:
     """What a run of the study to `n_trials` finished trials would take.
 
     The CPU per trial is the median the study measured (``cpu_s`` of its
-    completed trials), else :data:`TRIAL_CPU_S`.
+    completed trials), else :data:`TRIAL_CPU_S`; the wall time is the median
+    duration of its completed trials (the pace on this machine, shared or
+    not) spread over `jobs` workers, else the CPU time on free cores.
 
     Returns
     -------
     dict
-        ``done``, ``to_run``, ``cpu_per_trial_s``, ``measured`` (bool) and
-        ``wall_s`` (the CPU spread over `jobs` workers, each a core).
+        ``study``, ``done``, ``to_run``, ``cpu_per_trial_s``, ``measured``
+        (bool) and ``wall_s``.
     """
+    from optuna.trial import TrialState
+
     study = open_study(spec)
     done = _finished(study)
-    cpu = [t.user_attrs["cpu_s"] for t in study.get_trials(deepcopy=False)
-           if "cpu_s" in t.user_attrs]
+    complete = study.get_trials(deepcopy=False, states=(TrialState.COMPLETE,))
+    cpu = [t.user_attrs["cpu_s"] for t in complete if "cpu_s" in t.user_attrs]
+    wall = [t.duration.total_seconds() for t in complete if t.duration is not None]
     per = float(np.median(cpu)) if cpu else TRIAL_CPU_S
+    pace = float(np.median(wall)) if wall else per
     to_run = max(n_trials - done, 0)
     return {"study": spec.study_name, "done": done, "to_run": to_run, "cpu_per_trial_s": per,
-            "measured": bool(cpu), "wall_s": to_run * per / max(jobs, 1)}
+            "measured": bool(cpu), "wall_s": to_run * pace / max(jobs, 1)}
 
 
 def _best_text(study, reading) -> str:
@@ -425,8 +439,14 @@ def run_study(spec: StudySpec, n_trials: int, jobs: int = 1, *, evaluator=None,
     return open_study(replace(spec))
 
 
-def _seconds(s: float) -> str:
-    """A duration in words (``"3 min"``, ``"1.5 h"``)."""
+def seconds_text(s: float) -> str:
+    """A duration in words.
+
+    Examples
+    --------
+    >>> seconds_text(90), seconds_text(600), seconds_text(7200)
+    ('90 s', '10 min', '2.0 h')
+    """
     if not math.isfinite(s):
         return "?"
     return f"{s:.0f} s" if s < 120 else f"{s / 60:.0f} min" if s < 5400 else f"{s / 3600:.1f} h"
