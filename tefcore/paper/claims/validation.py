@@ -173,35 +173,42 @@ def validate_all(n_jobs: int = 1, progress: bool = False, *, claims=None, cfg=No
             xs = {float(v) for c in mine for v in (c.x, c.relative_to) if v is not None}
             values[name] = sorted(set(FIG7_OVERHANGS) | xs)
         if name not in results:
-            try:
-                results[name] = compute_figure(name, cfg, values.get(name), None, n_jobs,
-                                               progress)
-            except FIGURE_ERRORS as err:
-                broken[name] = f"{name} cannot be computed: {type(err).__name__}: {err}"
-    variants: dict = {}
-    for c in active:
-        for fig, ov in ((c.figure, c.overrides), (c.other_figure or c.figure, c.other_overrides)):
-            if ov and (fig, variant_key(ov)) not in variants and fig not in broken:
-                try:
-                    variants[(fig, variant_key(ov))] = compute_figure(
-                        fig, cfg, values.get(fig), ov, n_jobs, progress)
-                except FIGURE_ERRORS as err:
-                    broken[fig] = (f"{fig} with {variant_key(ov)} cannot be computed: "
-                                   f"{type(err).__name__}: {err}")
+            _survive(broken, name, name, lambda n=name: results.__setitem__(n, compute_figure(
+                n, cfg, values.get(n), None, n_jobs, progress)))
+    variants = _variants(active, cfg, values, broken, n_jobs, progress)
     tables = []
     for name in dict.fromkeys(c.figure for c in claims):
         mine = [c for c in claims if c.figure == name]
         dead = sorted({f for c in mine if c.kind != "not_reproducible"
                        for f in (c.figure, c.other_figure) if f in broken})
-        if dead:
-            tables.append(not_computable_rows(mine, "; ".join(broken[f] for f in dead)))
-            continue
-        tables.append(validate_figure(
-            name, results.get(name), mine, cfg=cfg, others=results,
-            variants={k: v for (f, k), v in variants.items() if f == name}))
+        tables.append(not_computable_rows(mine, "; ".join(broken[f] for f in dead)) if dead
+                      else validate_figure(
+                          name, results.get(name), mine, cfg=cfg, others=results,
+                          variants={k: v for (f, k), v in variants.items() if f == name}))
     order = {c.id: i for i, c in enumerate(claims)}
     table = pd.concat(tables, ignore_index=True)
     return table.sort_values("id", key=lambda s: s.map(order), ignore_index=True)
+
+
+def _variants(active, cfg, values, broken, n_jobs, progress) -> dict:
+    """The claims' configuration variants of their figures, by (figure, variant key)."""
+    variants: dict = {}
+    for c in active:
+        for fig, ov in ((c.figure, c.overrides), (c.other_figure or c.figure, c.other_overrides)):
+            key = (fig, variant_key(ov))
+            if ov and key not in variants and fig not in broken:
+                _survive(broken, fig, f"{fig} with {key[1]}", lambda f=fig, o=ov, k=key:
+                         variants.__setitem__(k, compute_figure(f, cfg, values.get(f), o,
+                                                                n_jobs, progress)))
+    return variants
+
+
+def _survive(broken: dict, figure: str, label: str, compute) -> None:
+    """Run `compute`; a figure that cannot be computed is recorded in `broken` with why."""
+    try:
+        compute()
+    except FIGURE_ERRORS as err:
+        broken[figure] = f"{label} cannot be computed: {type(err).__name__}: {err}"
 
 
 def not_computable_rows(claims, reason: str) -> pd.DataFrame:

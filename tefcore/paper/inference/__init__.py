@@ -10,9 +10,10 @@ support.  Its modules, bottom up::
     protocol     fitted and held-out claims, readings of the TEF (protocol.toml)
     evaluate     one rotor checked against claims, surviving figures that fail
     study        the optuna study: storage, samplers, workers, progress, resume
-    analysis     best rotors, held-out and leave-one-figure-out checks, Pareto fronts
+    analysis     best rotors, failures, leave-one-figure-out, conflicts, Pareto fronts
     sensitivity  Sobol indices of each claim's margin over the space (SALib)
     inferred     the packaged variant mdart-inferred written from a study
+    command      tefcore infer
 """
 
 import sys
@@ -28,6 +29,16 @@ API = {
     "read_claims": "tefcore.paper.inference.protocol",
     "evaluate_rotor": "tefcore.paper.inference.evaluate",
     "objective": "tefcore.paper.inference.evaluate",
+    "StudySpec": "tefcore.paper.inference.study",
+    "run_study": "tefcore.paper.inference.study",
+    "open_study": "tefcore.paper.inference.study",
+    "trials_frame": "tefcore.paper.inference.analysis",
+    "failures": "tefcore.paper.inference.analysis",
+    "leave_one_figure_out": "tefcore.paper.inference.analysis",
+    "pareto_front": "tefcore.paper.inference.analysis",
+    "check_rotor": "tefcore.paper.inference.analysis",
+    "sobol_indices": "tefcore.paper.inference.sensitivity",
+    "inferred_rotor": "tefcore.paper.inference.inferred",
 }
 
 __all__ = list(API)

@@ -89,9 +89,10 @@ def cmd_infer(args) -> int:
         raise ValueError("tefcore infer needs optuna: pip install 'tefcore[inference]'") from None
     from .study import StudySpec, estimate, open_study, run_study, seconds_text
 
-    if args.trials < 0 or args.jobs < 1:
-        raise ValueError(f"--trials {args.trials} --jobs {args.jobs}: trials must be >= 0 "
-                         "and jobs >= 1")
+    if args.trials < 0:
+        raise ValueError(f"--trials {args.trials}: must be at least 0")
+    if args.jobs < 1:
+        raise ValueError(f"--jobs {args.jobs}: must be at least 1")
     spec = StudySpec(reading=args.reading, sampler=args.sampler, seed=args.seed,
                      storage=args.storage)
     e = estimate(spec, args.trials, args.jobs)

@@ -18,9 +18,9 @@ Examples
 >>> t = pd.DataFrame({"status": ["pass", "fail", "ambiguous", "not computable", "fail"],
 ...                   "margin": [2.0, -0.5, np.nan, np.nan, -0.0]})
 >>> round(objective(t), 4)
--1.498
+-1.4981
 >>> round(float(np.tanh(2.0) + np.tanh(-0.5) - 1 - 1), 4)
--1.498
+-1.4981
 """
 
 from __future__ import annotations
