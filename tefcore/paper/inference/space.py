@@ -35,7 +35,7 @@ from ...structure.section_inertia import check_section_inertia
 from ...units import parse_quantity
 
 __all__ = ["KINDS", "Parameter", "Refused", "apply_sample", "baseline_sample", "load_space",
-           "recalibrated"]
+           "recalibrated", "sample_of"]
 
 #: How a parameter moves its field(s) (the space file's header says each).
 KINDS = ("factor", "value", "shift", "outboard", "gyration", "choice")
@@ -175,19 +175,52 @@ def baseline_sample(cfg, space) -> dict:
     dict
         Parameter name -> value in its own unit.
     """
+    return sample_of(cfg, cfg, space)
+
+
+def sample_of(cfg, base, space) -> dict:
+    """The sample of the space that makes `cfg` from the baseline `base` (inverse of
+    :func:`apply_sample`).
+
+    Parameters
+    ----------
+    cfg, base : tefcore.config.configuration.Config
+    space : dict of str to Parameter
+
+    Returns
+    -------
+    dict
+        Parameter name -> value in its own unit.
+
+    Examples
+    --------
+    >>> from tefcore.config.io import load_config
+    >>> mdart = load_config("mdart")
+    >>> space = load_space()
+    >>> s = sample_of(apply_sample(mdart, space, {"outboard GJ": 1.2}), mdart, space)
+    >>> round(s["outboard GJ"], 6), round(s["flap mass"], 6)
+    (1.2, 0.3)
+    """
     out = {}
     for p in space.values():
-        if p.kind in ("factor", "outboard"):
-            out[p.name] = 1.0
+        now, was = (np.ravel(np.asarray(c.get(p.fields[0]), dtype=object if p.categorical
+                                        else float)) for c in (cfg, base))
+        if p.kind == "choice":
+            out[p.name] = str(now[0])
+        elif p.kind == "factor":
+            k = int(np.argmax(np.abs(was)))
+            out[p.name] = float(now[k] / was[k])
         elif p.kind == "shift":
-            out[p.name] = 0.0
-        elif p.kind == "choice":
-            out[p.name] = str(cfg.get(p.fields[0]))
+            out[p.name] = float((now[0] - was[0]) / p.si(1.0))
+        elif p.kind == "outboard":
+            st = np.asarray(base.blade.stations, float)
+            r = now / was
+            out[p.name] = float(r[st >= p.from_station][0] / r[st < p.from_station][0])
         elif p.kind == "gyration":
             chord = cfg.flap.reference_chord_ratio * cfg.rotor.chord
             out[p.name] = float(np.sqrt(cfg.flap.inertia_cg / cfg.flap.mass) / chord)
         else:
-            out[p.name] = float(cfg.get(p.fields[0])) / p.si(1.0)
+            out[p.name] = float(now[0] / p.si(1.0))
     return out
 
 

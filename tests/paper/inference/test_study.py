@@ -158,3 +158,18 @@ def test_optuna_is_what_holds_the_study(tmp_path, fixed_protocol):
 
     summaries = optuna.get_all_study_summaries(open_storage(spec.storage))
     assert [s.study_name for s in summaries] == ["s"]
+
+
+def test_nsga2_scores_each_fitted_figure_apart(tmp_path, fixed_protocol):
+    from tefcore.paper.inference.protocol import load_protocol
+
+    study = run_study(_spec(tmp_path, fixed_protocol, sampler="nsga2", seed=2), 4,
+                      evaluator=fakes.quick)
+    figures = load_protocol(fixed_protocol).fit_figures
+    done = [t for t in study.trials if t.state == TrialState.COMPLETE]
+    assert done and all(len(t.values) == len(figures) for t in done)
+    # the stand-in gives each fitted claim the same margin m: a figure's objective is
+    # its fitted claims' count times tanh(m)
+    t = done[0]
+    m = t.user_attrs["continued:margins"]["fig6-response-15pct-above-input"]
+    assert t.values[figures.index("fig6")] == pytest.approx(np.tanh(m))
