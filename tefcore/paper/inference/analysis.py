@@ -44,6 +44,8 @@ def claim_scores(statuses: dict, margins: dict, ambiguous: float = 0.0,
     ----------
     statuses, margins : dict
         Claim id -> status, and -> margin (None where there is none).
+    ambiguous, no_margin_fail : float
+        The protocol's values for claims without a margin.
 
     Returns
     -------
@@ -70,7 +72,9 @@ def trials_frame(study, readings=("continued", "flutter")) -> pd.DataFrame:
     Parameters
     ----------
     study : optuna.Study
+        The study.
     readings : tuple of str
+        The readings whose columns are wanted.
 
     Returns
     -------
@@ -92,7 +96,19 @@ def trials_frame(study, readings=("continued", "flutter")) -> pd.DataFrame:
 
 
 def trial_claims(trial, reading: str) -> pd.DataFrame:
-    """A trial's fitted claims under `reading`: ``id``, ``status``, ``margin``, ``score``."""
+    """A trial's fitted claims under `reading`: ``id``, ``status``, ``margin``, ``score``.
+
+    Parameters
+    ----------
+    trial : optuna.trial.FrozenTrial
+        A completed trial of a study.
+    reading : str
+        The reading.
+
+    Returns
+    -------
+    pandas.DataFrame
+    """
     st = trial.user_attrs[f"{reading}:statuses"]
     mg = trial.user_attrs[f"{reading}:margins"]
     sc = claim_scores(st, mg)
@@ -103,6 +119,11 @@ def trial_claims(trial, reading: str) -> pd.DataFrame:
 
 def failures(study) -> dict:
     """What the study met in the space: refused samples, failed trials, figures not computable.
+
+    Parameters
+    ----------
+    study : optuna.Study
+        The study.
 
     Returns
     -------
@@ -138,7 +159,9 @@ def leave_one_figure_out(study, reading: str, figures) -> pd.DataFrame:
     Parameters
     ----------
     study : optuna.Study
+        The study.
     reading : str
+        The reading the objective is read under.
     figures : iterable of str
         The fitted figures (the protocol's ``fit_figures``).
 
@@ -177,6 +200,15 @@ def conflicts(study, reading: str, threshold: float = -0.3) -> pd.DataFrame:
     Spearman's rank correlation of the two claims' terms of the objective over
     the completed trials; pairs below `threshold` (and where both vary).
 
+    Parameters
+    ----------
+    study : optuna.Study
+        The study (a sample independent of the objective, QMC, reads best).
+    reading : str
+        The reading.
+    threshold : float
+        The largest rank correlation reported.
+
     Returns
     -------
     pandas.DataFrame
@@ -197,6 +229,15 @@ def conflicts(study, reading: str, threshold: float = -0.3) -> pd.DataFrame:
 
 def pareto_front(study, reading: str, claim_ids) -> pd.DataFrame:
     """The trials no other trial beats on every one of `claim_ids` (their objective terms).
+
+    Parameters
+    ----------
+    study : optuna.Study
+        The study.
+    reading : str
+        The reading.
+    claim_ids : sequence of str
+        The claims whose terms are compared.
 
     Returns
     -------
@@ -232,11 +273,15 @@ def check_rotor(params: dict, claims, readings=("continued", "flutter"), *, cach
     params : dict
         Parameter name -> value (a trial's ``params``).
     claims : list of Claim
+        Every claim to check.
     readings : tuple of str
+        The readings of the mode names.
     cache : tefcore.paper.attribution.evaluate.FigureCache
+        Where the figures are kept.
     protocol : Protocol, optional
         Default the packaged one.
     refine : bool
+        Refine the mode identity between sweep points (the notebooks' way).
 
     Returns
     -------

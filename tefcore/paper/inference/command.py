@@ -39,6 +39,7 @@ def summary_text(study, reading: str, top: int = 3) -> str:
     Parameters
     ----------
     study : optuna.Study
+        The study.
     reading : str
         The reading the best rotors are ranked by.
     top : int
@@ -113,6 +114,7 @@ def add_infer_command(sub, formatter_class) -> None:
     Parameters
     ----------
     sub : argparse._SubParsersAction
+        From :meth:`argparse.ArgumentParser.add_subparsers`.
     formatter_class : type
         The ``tefcore`` command's help formatter.
     """

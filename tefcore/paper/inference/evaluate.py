@@ -181,6 +181,18 @@ def objective(table: pd.DataFrame, ambiguous: float = 0.0, no_margin_fail: float
 
 
 def pass_count(table: pd.DataFrame, tag: str | None = None) -> int:
-    """Claims of `table` (of one `tag`, if given) whose status is ``pass``."""
+    """Claims of `table` (of one `tag`, if given) whose status is ``pass``.
+
+    Parameters
+    ----------
+    table : pandas.DataFrame
+        A checked claims table (``status``, ``tag``).
+    tag : str, optional
+        ``"validation"`` or ``"calibration"``; None: every claim.
+
+    Returns
+    -------
+    int
+    """
     t = table if tag is None else table[table["tag"] == tag]
     return int((t["status"] == "pass").sum())

@@ -29,8 +29,35 @@ WITHIN = 1.0
 
 
 def spread_text(lo: float, hi: float, unit: str = "") -> str:
-    """``"spread [lo, hi] unit"`` with 3 significant digits."""
+    """``"spread [lo, hi] unit"`` with 3 significant digits.
+
+    Parameters
+    ----------
+    lo, hi : float
+        The ends.
+    unit : str
+        Written after them.
+
+    Returns
+    -------
+    str
+    """
     return f"spread [{lo:.3g}, {hi:.3g}]" + (f" {unit}" if unit else "")
+
+
+def _claims_text(fitted_ids) -> str:
+    """``"the 28 fitted claims (6 calibration, Figs. 10a, 11a; 22 of Figs. 6, 7, ...)"``."""
+    from ..claims.reference import load_claims
+
+    tags = {c.id: (c.tag, c.figure, c.panel) for c in load_claims()}
+    cal = [tags[i] for i in fitted_ids if tags[i][0] == "calibration"]
+    val = [tags[i] for i in fitted_ids if tags[i][0] != "calibration"]
+
+    def figs(rows, panel):
+        names = {f.removeprefix("fig") + (p if panel else "") for _, f, p in rows}
+        return ", ".join(sorted(names, key=lambda n: (int(n.rstrip("ab")), n)))
+    return (f"the {len(fitted_ids)} fitted claims ({len(cal)} calibration, Figs. "
+            f"{figs(cal, True)}; {len(val)} of Figs. {figs(val, False)})")
 
 
 def inferred_rotor(studies, reading: str, within: float = WITHIN) -> dict:
@@ -41,6 +68,7 @@ def inferred_rotor(studies, reading: str, within: float = WITHIN) -> dict:
     studies : sequence of optuna.Study
         Studies of one protocol (their trials are pooled).
     reading : str
+        The reading whose objective ranks the trials.
     within : float
         The spread is taken over the trials whose objective is within this of
         the best.
@@ -84,7 +112,9 @@ def inferred_config(rotor: dict, fitted_ids, *, name: str = "mdart-inferred",
     fitted_ids : sequence of str
         The claims the study fitted (named in each source).
     name : str
+        The configuration's name.
     protocol : Protocol, optional
+        Default the packaged one.
 
     Returns
     -------
@@ -101,8 +131,7 @@ def inferred_config(rotor: dict, fitted_ids, *, name: str = "mdart-inferred",
     if protocol.torsion == "recalibrated":
         cfg = recalibrated(cfg)
     study, number = rotor["trial"]
-    figures = sorted({i.split("-", 1)[0].rstrip("ab") for i in fitted_ids})
-    claims = f"the {len(fitted_ids)} fitted claims of {', '.join(figures)}"
+    claims = _claims_text(fitted_ids)
     sources = dict(cfg.sources)
     for pname, p in space.items():
         v, s = rotor["params"][pname], rotor["spread"][pname]
@@ -133,6 +162,7 @@ def write_inferred(cfg, path, header: str) -> None:
     cfg : tefcore.config.configuration.Config
         :func:`inferred_config`.
     path : path
+        The file written.
     header : str
         Lines of text put first as ``#`` comments.
     """

@@ -112,6 +112,7 @@ def read_claims(claims, reading: str, quantities=("real_part", "damping", "dampi
     Parameters
     ----------
     claims : iterable of Claim
+        The claims (:func:`tefcore.paper.claims.reference.load_claims`).
     reading : {"continued", "flutter"}
         ``continued``: unchanged (the root the uncoupled flap mode continues
         into); ``flutter``: the flutter root
@@ -144,7 +145,17 @@ def read_claims(claims, reading: str, quantities=("real_part", "damping", "dampi
 
 
 def inference_file(name: str) -> str:
-    """A packaged inference file ``tefcore/data/inference/<name>.toml``, or a ``.toml`` path."""
+    """The text of a packaged inference file, or of a ``.toml`` path.
+
+    Parameters
+    ----------
+    name : str
+        ``tefcore/data/inference/<name>.toml``, or a path ending in ``.toml``.
+
+    Returns
+    -------
+    str
+    """
     if name.endswith(".toml"):
         return Path(name).read_text(encoding="utf-8")
     return resources.files("tefcore.data").joinpath(f"inference/{name}.toml").read_text(

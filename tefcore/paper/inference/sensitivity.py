@@ -34,7 +34,18 @@ __all__ = ["load_space", "sobol_design", "sobol_indices", "sobol_problem"]
 
 
 def sobol_problem(space) -> tuple[dict, list]:
-    """SALib's problem over the numeric parameters (log-scaled ones in log), and their groups."""
+    """SALib's problem over the numeric parameters (log-scaled ones in log), and their groups.
+
+    Parameters
+    ----------
+    space : dict of str to Parameter
+        :func:`load_space`.
+
+    Returns
+    -------
+    tuple of (dict, list)
+        The problem (``num_vars``, ``names``, ``bounds``, ``groups``) and the groups.
+    """
     numeric = [p for p in space.values() if not p.categorical]
     bounds = [[np.log(p.low), np.log(p.high)] if p.log else [p.low, p.high] for p in numeric]
     groups = [p.group for p in numeric]
@@ -48,9 +59,11 @@ def sobol_design(space, n: int, seed: int = 0) -> list[dict]:
     Parameters
     ----------
     space : dict of str to Parameter
+        :func:`load_space`.
     n : int
         SALib's base sample size N (a power of 2): ``N * (groups + 2)`` samples.
     seed : int
+        The design's scrambling seed.
 
     Returns
     -------
@@ -76,12 +89,16 @@ def sobol_indices(claims, n: int = 8, *, seed: int = 0, cache, evaluate=None,
     n : int
         SALib's base sample size (a power of 2).
     seed : int
+        The design's and the bootstrap's seed.
     cache : tefcore.paper.attribution.evaluate.FigureCache
+        Where the figures are kept.
     evaluate : callable, optional
         ``(cfg, claims) -> table`` (status, margin, id); default the claims'
         own checks without refinement.
     reading : str
+        The reading of the mode names.
     progress : bool
+        Show a progress bar over the design.
 
     Returns
     -------

@@ -169,6 +169,7 @@ def baseline_sample(cfg, space) -> dict:
     cfg : tefcore.config.configuration.Config
         The baseline configuration (``mdart``).
     space : dict of str to Parameter
+        :func:`load_space`.
 
     Returns
     -------
@@ -185,7 +186,9 @@ def sample_of(cfg, base, space) -> dict:
     Parameters
     ----------
     cfg, base : tefcore.config.configuration.Config
+        The configuration, and the baseline the space is about.
     space : dict of str to Parameter
+        :func:`load_space`.
 
     Returns
     -------
@@ -303,6 +306,7 @@ def recalibrated(cfg):
     Parameters
     ----------
     cfg : tefcore.config.configuration.Config
+        A sample's configuration.
 
     Returns
     -------

@@ -144,6 +144,7 @@ def make_sampler(kind: str, seed: int):
     kind : str
         One of :data:`SAMPLERS`.
     seed : int
+        The sampler's seed.
 
     Returns
     -------
@@ -170,6 +171,11 @@ def make_sampler(kind: str, seed: int):
 
 def open_study(spec: StudySpec):
     """The study of `spec`, created on first use, loaded after.
+
+    Parameters
+    ----------
+    spec : StudySpec
+        The study.
 
     Returns
     -------
@@ -297,6 +303,7 @@ def recover_dead_trials(study, storage) -> int:
     Parameters
     ----------
     study : optuna.Study
+        The study.
     storage : optuna.storages.BaseStorage
         The study's storage.
 
@@ -335,6 +342,15 @@ def estimate(spec: StudySpec, n_trials: int, jobs: int = 1) -> dict:
     duration of its completed trials (the pace on this machine, shared or
     not) spread over `jobs` workers, else the CPU time on free cores.
 
+    Parameters
+    ----------
+    spec : StudySpec
+        The study.
+    n_trials : int
+        Its target of finished trials.
+    jobs : int
+        Workers.
+
     Returns
     -------
     dict
@@ -370,6 +386,7 @@ def worker(spec: StudySpec, n_trials: int, evaluator=None, progress: bool = Fals
     Parameters
     ----------
     spec : StudySpec
+        The study.
     n_trials : int
         The study's target of finished (completed or refused) trials.
     evaluator : callable, optional
@@ -416,6 +433,19 @@ def run_study(spec: StudySpec, n_trials: int, jobs: int = 1, *, evaluator=None,
     sequence of samples depends on their timing: only a study of one worker
     is re-created exactly from its seed.
 
+    Parameters
+    ----------
+    spec : StudySpec
+        The study.
+    n_trials : int
+        Its target of finished (completed or refused) trials.
+    jobs : int
+        Workers (this process and ``jobs - 1`` more).
+    evaluator : callable, optional
+        :class:`Objective`'s evaluator (default the claims' own checks).
+    progress : bool
+        Show the progress bar.
+
     Returns
     -------
     optuna.Study
@@ -441,6 +471,15 @@ def run_study(spec: StudySpec, n_trials: int, jobs: int = 1, *, evaluator=None,
 
 def seconds_text(s: float) -> str:
     """A duration in words.
+
+    Parameters
+    ----------
+    s : float
+        Seconds.
+
+    Returns
+    -------
+    str
 
     Examples
     --------
