@@ -33,7 +33,7 @@ import pandas as pd
 from .evaluate import objective
 
 __all__ = ["check_rotor", "claim_scores", "conflicts", "failures", "leave_one_figure_out",
-           "pareto_front", "trial_claims", "trials_frame"]
+           "pareto_front", "pass_rates", "trial_claims", "trials_frame"]
 
 
 def claim_scores(statuses: dict, margins: dict, ambiguous: float = 0.0,
@@ -225,6 +225,40 @@ def conflicts(study, reading: str, threshold: float = -0.3) -> pd.DataFrame:
     rows = [{"a": a, "b": b, "rho": float(rho.loc[a, b])}
             for i, a in enumerate(cols) for b in cols[i + 1:] if rho.loc[a, b] < threshold]
     return pd.DataFrame(rows, columns=["a", "b", "rho"]).sort_values("rho", ignore_index=True)
+
+
+def pass_rates(studies, reading: str) -> pd.DataFrame:
+    """How often each fitted claim passes over the completed trials, and its best margin.
+
+    A claim no sampled rotor passes is out of reach of the space as far as the
+    sample shows: no buildable choice of the assumed properties fixes it.
+
+    Parameters
+    ----------
+    studies : sequence of optuna.Study
+        Studies of one protocol (their trials are pooled).
+    reading : str
+        The reading.
+
+    Returns
+    -------
+    pandas.DataFrame
+        ``id``, ``passes``, ``trials``, ``best margin``; the rarest passes first.
+    """
+    rows: dict = {}
+    for s in studies:
+        for t in _completed(s):
+            if f"{reading}:statuses" not in t.user_attrs:
+                continue
+            for _, r in trial_claims(t, reading).iterrows():
+                e = rows.setdefault(r["id"], {"id": r["id"], "passes": 0, "trials": 0,
+                                              "best margin": -np.inf})
+                e["passes"] += r["status"] == "pass"
+                e["trials"] += 1
+                if np.isfinite(r["margin"]):
+                    e["best margin"] = max(e["best margin"], float(r["margin"]))
+    out = pd.DataFrame(list(rows.values()), columns=["id", "passes", "trials", "best margin"])
+    return out.sort_values(["passes", "best margin"], ignore_index=True)
 
 
 def pareto_front(study, reading: str, claim_ids) -> pd.DataFrame:

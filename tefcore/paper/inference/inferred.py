@@ -63,6 +63,11 @@ def _claims_text(fitted_ids) -> str:
 def inferred_rotor(studies, reading: str, within: float = WITHIN) -> dict:
     """The best rotor of one or more studies by `reading`, and each parameter's spread.
 
+    Only a rotor whose calibration claims pass (the four stated torsion
+    frequencies and their trends: facts of the paper, not fitted preferences)
+    can be the inferred rotor; the torsion re-fit leaves some samples outside
+    their 2 % tolerance.
+
     Parameters
     ----------
     studies : sequence of optuna.Study
@@ -82,11 +87,20 @@ def inferred_rotor(studies, reading: str, within: float = WITHIN) -> dict:
     """
     from optuna.trial import TrialState
 
+    from ..claims.reference import load_claims
+
+    stated = [c.id for c in load_claims() if c.tag == "calibration"]
+
+    def keeps_stated(t):
+        st = t.user_attrs[f"{reading}:statuses"]
+        return all(st.get(i) == "pass" for i in stated if i in st)
+
     pooled = [(s.study_name, t) for s in studies
               for t in s.get_trials(deepcopy=False, states=(TrialState.COMPLETE,))
-              if f"{reading}:objective" in t.user_attrs]
+              if f"{reading}:objective" in t.user_attrs and keeps_stated(t)]
     if not pooled:
-        raise ValueError(f"no completed trial with the {reading} reading")
+        raise ValueError(f"no completed trial with the {reading} reading passes the "
+                         "calibration claims")
     key = f"{reading}:objective"
     name, best = max(pooled, key=lambda p: p[1].user_attrs[key])
     top = best.user_attrs[key]
