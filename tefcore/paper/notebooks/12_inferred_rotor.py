@@ -179,6 +179,6 @@ print(leave_one_figure_out(study, "continued", small.fit_figures).to_string(inde
 inferred, mdart = load_config("mdart-inferred"), load_config("mdart")
 for field in ("flap.mass", "flap.inertia_cg", "actuator.reflected_inertia",
               "blade.ei_flap_scale", "rotor.lift_slope", "hub.lag_damper"):
-    print(f"{field:28s} mdart {mdart.get(field):.4g}   inferred {inferred.get(field):.4g}")
+    print(f"{field:28s} mdart {mdart.get(field):.4g}   inferred {inferred.get(field):.4g}  (SI)")
 print()
 print(load_variants()["mdart-inferred"].summary)
