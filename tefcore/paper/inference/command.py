@@ -22,7 +22,7 @@ The study lives in STORAGE (a journal file, default inference.journal, or an
 RDB URL such as sqlite:///inference.db or postgresql://host/db for workers on
 many machines).  Run the same command again to resume it: a trial left
 running by a killed worker is run again.  --jobs starts that many workers on
-the one study.  A trial costs about 16 s of CPU (the estimate is shown before
+the one study.  A trial costs about 12 s of CPU (the estimate is shown before
 the study starts, from the study's own trials once it has some).
 
 examples:

@@ -52,9 +52,9 @@ __all__ = ["SAMPLERS", "TRIAL_CPU_S", "StudySpec", "estimate", "make_sampler", "
 SAMPLERS = ("tpe", "qmc", "random", "nsga2")
 
 #: CPU seconds of one trial on the packaged protocol, before a study has measured its
-#: own (the cheap evaluation of the fitted figures 6-9 and 12 plus the torsion re-fit,
-#: measured on the baseline rotor: 15 s of fitted figures, 0.7 s of calibration).
-TRIAL_CPU_S = 16.0
+#: own: the cheap evaluation of the fitted Figs. 6-9 and 12 plus the torsion re-fit
+#: (0.7 s); the median of 83 trials over the space was 10.4-13.0 s per study (5-24 s).
+TRIAL_CPU_S = 12.0
 
 
 @dataclass(frozen=True)

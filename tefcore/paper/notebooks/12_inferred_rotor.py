@@ -169,7 +169,7 @@ print(leave_one_figure_out(study, "continued", small.fit_figures).to_string(inde
 # %% [markdown]
 # ## The packaged result: `mdart-inferred`
 #
-# `tefcore infer` runs the full protocol (a few dozen trials of 12-16 s of CPU
+# `tefcore infer` runs the full protocol (a few dozen trials of about 12 s of CPU
 # each). Its best rotor is shipped as the variant `mdart-inferred`
 # (`load_config("mdart-inferred")`); every inferred value's source names the
 # claims, the study and the spread of the rotors as good to one claim. The default
