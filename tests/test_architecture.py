@@ -65,6 +65,7 @@ PAPER_LAYERS = (
     ("calibration", "figures"),          # the stated frequencies; the figures as analyses
     ("claims",),                         # the paper's statements and their checks
     ("attribution", "fig6_calibration", "explorer", "summaries"),
+    ("inference",),                      # the unknown properties inferred from the claims
     ("explorer_app", "notebook_tools"),  # the web page; the notebooks' vocabulary
     ("run",),                            # reproduce, report, batches, the subcommands
 )

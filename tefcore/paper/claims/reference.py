@@ -41,9 +41,11 @@ TAGS = ("calibration", "validation")
 #: best first; a status later in the tuple is "worse".  ``ambiguous``: an
 #: exceptional point of the claim's mode (two roots coalescing in the plane of
 #: the swept parameter and the blade-flap coupling) lies inside the claim's
-#: range, where which root carries the name has no answer
+#: range, where which root carries the name has no answer; ``not computable``: the
+#: figure the claim reads could not be computed for this rotor (a trim that does not
+#: converge, a configuration refused at the figure's parameters)
 #: (:data:`tefcore.paper.run.report.STATUS_MEANINGS` words each status)
-STATUSES = ("pass", "ambiguous", "not reproducible", "fail")
+STATUSES = ("pass", "ambiguous", "not reproducible", "not computable", "fail")
 #: kinds of root a mechanism claim can expect (:func:`tefcore.linear.mechanism.mechanism`)
 ROOT_KINDS = ("flutter", "divergence")
 _ID = re.compile(r"^[a-z0-9][a-z0-9._:-]*$")

@@ -21,6 +21,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
+from ...errors import TefcoreError
 from ...safe_io import atomic_write_text
 from ...units import parse_quantity
 from ..figures.catalogue import FIGURES, KNOWN_FIGURES, variant_key
@@ -32,10 +33,15 @@ from .curves import X_SLACK, compare_curve, stability_intervals, zero_crossings
 from .files import ReferenceDataError, reference_dir
 from .reference import STATUSES, load_claims
 
-__all__ = ["COLUMNS", "claim_values", "claims_score", "compare_curve", "figure_frame",
-           "figure_values", "reference_curves", "stability_intervals", "sweep_values",
-           "update_recorded_status", "validate_all", "validate_figure", "worse_than_recorded",
-           "zero_crossings"]
+__all__ = ["COLUMNS", "FIGURE_ERRORS", "claim_values", "claims_score", "compare_curve",
+           "figure_frame", "figure_values", "not_computable_rows", "reference_curves", "stability_intervals",
+           "sweep_values", "update_recorded_status", "validate_all", "validate_figure",
+           "worse_than_recorded", "zero_crossings"]
+
+#: What a figure that cannot be computed raises: tefcore's own errors (a trim that
+#: does not converge, Floquet accuracy), a configuration refused at the figure's own
+#: parameters (ValueError), a singular or overflowing system.
+FIGURE_ERRORS = (TefcoreError, ValueError, ArithmeticError, np.linalg.LinAlgError)
 
 
 def _value_si(name: str, v) -> float:
@@ -153,17 +159,6 @@ def claim_values(claims) -> dict:
     return values
 
 
-def _variant_results(claims, cfg, values, n_jobs, progress) -> dict:
-    """``(figure, variant key) -> result`` of every variant a claim reads (its overrides)."""
-    variants: dict = {}
-    for c in claims:
-        for fig, ov in ((c.figure, c.overrides), (c.other_figure or c.figure, c.other_overrides)):
-            if ov and (fig, variant_key(ov)) not in variants:
-                variants[(fig, variant_key(ov))] = compute_figure(
-                    fig, cfg, values.get(fig), ov, n_jobs, progress)
-    return variants
-
-
 def validate_all(n_jobs: int = 1, progress: bool = False, *, claims=None, cfg=None,
                  results=None, include_examples: bool = False) -> pd.DataFrame:
     """Run every figure that has a checkable claim and check all claims.
@@ -187,25 +182,79 @@ def validate_all(n_jobs: int = 1, progress: bool = False, *, claims=None, cfg=No
     Returns
     -------
     DataFrame
-        One row per claim (columns :data:`COLUMNS`), in reference-data order.
+        One row per claim (columns :data:`COLUMNS`), in reference-data order.  A
+        figure that cannot be computed (:data:`FIGURE_ERRORS`) gives its claims
+        (and the comparisons that read it) the status ``not computable`` with
+        the reason; the other figures are still checked.
     """
     claims = load_claims(include_examples=include_examples) if claims is None else list(claims)
     results = dict(results or {})
     active = [c for c in claims if c.kind != "not_reproducible"]
     values = claim_values(active)
-    for name, vals in values.items():
+    broken: dict = {}
+    for name in values:
         if name not in results:
-            results[name] = compute_figure(name, cfg, vals, None, n_jobs, progress)
-    variants = _variant_results(active, cfg, values, n_jobs, progress)
+            _survive(broken, name, name, lambda n=name: results.__setitem__(n, compute_figure(
+                n, cfg, values[n], None, n_jobs, progress)))
+    variants = _variants(active, cfg, values, broken, n_jobs, progress)
     tables = []
     for name in dict.fromkeys(c.figure for c in claims):
         mine = [c for c in claims if c.figure == name]
-        tables.append(validate_figure(
-            name, results.get(name), mine, cfg=cfg, others=results,
-            variants={k: v for (f, k), v in variants.items() if f == name}))
+        dead = sorted({f for c in mine if c.kind != "not_reproducible"
+                       for f in (c.figure, c.other_figure) if f in broken})
+        tables.append(not_computable_rows(mine, "; ".join(broken[f] for f in dead)) if dead
+                      else validate_figure(
+                          name, results.get(name), mine, cfg=cfg, others=results,
+                          variants={k: v for (f, k), v in variants.items() if f == name}))
     order = {c.id: i for i, c in enumerate(claims)}
     table = pd.concat(tables, ignore_index=True)
     return table.sort_values("id", key=lambda s: s.map(order), ignore_index=True)
+
+
+def _variants(active, cfg, values, broken, n_jobs, progress) -> dict:
+    """The claims' configuration variants of their figures, by (figure, variant key)."""
+    variants: dict = {}
+    for c in active:
+        for fig, ov in ((c.figure, c.overrides), (c.other_figure or c.figure, c.other_overrides)):
+            key = (fig, variant_key(ov))
+            if ov and key not in variants and fig not in broken:
+                _survive(broken, fig, f"{fig} with {key[1]}", lambda f=fig, o=ov, k=key:
+                         variants.__setitem__(k, compute_figure(f, cfg, values.get(f), o,
+                                                                n_jobs, progress)))
+    return variants
+
+
+def _survive(broken: dict, figure: str, label: str, compute) -> None:
+    """Run `compute`; a figure that cannot be computed is recorded in `broken` with why."""
+    try:
+        compute()
+    except FIGURE_ERRORS as err:
+        broken[figure] = f"{label} cannot be computed: {type(err).__name__}: {err}"
+
+
+def not_computable_rows(claims, reason: str) -> pd.DataFrame:
+    """Rows of claims whose figure cannot be computed: status ``not computable``, the reason.
+
+    A ``not_reproducible`` claim keeps its own status and reason (it has no check).
+
+    Parameters
+    ----------
+    claims : list of Claim
+    reason : str
+        What failed (the figure and the error).
+
+    Returns
+    -------
+    pandas.DataFrame
+        Columns :data:`COLUMNS`.
+    """
+    rows = [{"id": c.id, "figure": c.figure, "panel": c.panel, "kind": c.kind, "tag": c.tag,
+             "mode": c.mode, "quantity": c.quantity, "statement": c.statement,
+             "expected": "", "computed": "", "computed_value": np.nan, "margin": np.nan,
+             "status": "not reproducible" if c.kind == "not_reproducible" else "not computable",
+             "reason": c.reason if c.kind == "not_reproducible" else reason,
+             "recorded_status": c.recorded_status} for c in claims]
+    return pd.DataFrame(rows, columns=COLUMNS)
 
 
 def reference_curves(name: str, include_examples: bool = False) -> pd.DataFrame | None:

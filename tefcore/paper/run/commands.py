@@ -1,4 +1,4 @@
-"""The paper layer's subcommands of ``tefcore``: ``reproduce``, ``batch`` and ``notebooks``.
+"""The paper layer's subcommands of ``tefcore``: ``reproduce``, ``batch``, ``notebooks``, ``infer``.
 
 :func:`add_commands` adds them to the ``tefcore`` parser (:mod:`tefcore.cli`
 calls it); the work is done by :mod:`tefcore.paper.run.reproduce`,
@@ -203,7 +203,7 @@ def cmd_notebooks(args) -> int:
 
 
 def add_commands(sub, formatter_class=argparse.RawDescriptionHelpFormatter) -> None:
-    """Add ``reproduce``, ``batch`` and ``notebooks`` to the ``tefcore`` subparsers ``sub``.
+    """Add ``reproduce``, ``batch``, ``notebooks`` and ``infer`` to the ``tefcore`` subparsers.
 
     Parameters
     ----------
@@ -259,3 +259,6 @@ def add_commands(sub, formatter_class=argparse.RawDescriptionHelpFormatter) -> N
     p.add_argument("--only", nargs="+", metavar="NOTEBOOK", default=None,
                    help="only these notebooks (e.g. 04 05_stiffness)")
     p.set_defaults(func=cmd_notebooks)
+    from ..inference.command import add_infer_command  # infer: the study of the rotor
+
+    add_infer_command(sub, fmt)

@@ -40,6 +40,7 @@ NOTEBOOKS = (
     "09_design_maps",
     "10_unsteady",
     "11_watch_it_flutter",
+    "12_inferred_rotor",
 )
 #: Wall seconds of each notebook in ``tefcore reproduce`` (kernel start, imports, HTML
 #: export included; measured on 2 shared cores at load 3-4): the
@@ -58,6 +59,7 @@ NOTEBOOK_SECONDS = {
     # an entry per notebook: a notebook without one would run last whatever
     # it costs
     "11_watch_it_flutter": 10.7,
+    "12_inferred_rotor": 90.0,
 }
 
 #: Which paper figures each notebook reproduces.
@@ -73,6 +75,7 @@ NOTEBOOK_FIGURES = {
     "09_design_maps": (),               # beyond the paper: two-parameter stability maps
     "10_unsteady": (),                  # beyond the paper: shed wake and dynamic inflow
     "11_watch_it_flutter": (),          # beyond the paper: the Floquet growth in the time domain
+    "12_inferred_rotor": (),            # the unknown properties inferred from the claims
 }
 
 

@@ -74,7 +74,7 @@ FIGURE_TITLES = {
              "stability",
 }
 _STATUS_CLASS = {"pass": "pass", "fail": "fail", "ambiguous": "ambig",
-                 "not reproducible": "notrep"}
+                 "not reproducible": "notrep", "not computable": "notrep"}
 
 #: What each claim status means, one sentence each (the report's header;
 #: :data:`tefcore.paper.claims.reference.STATUSES` lists them best first).
@@ -92,6 +92,9 @@ STATUS_MEANINGS = {
                         "does not have (wind-tunnel tests, other analyses, the paper's "
                         "tables), its digitised points all lie outside the computed range, "
                         "or a result it needs was not computed; the reason says which.",
+    "not computable": "the figure the claim reads could not be computed for this rotor (the "
+                      "trim did not converge, or the configuration is refused at the figure's "
+                      "own parameters); the reason names the figure and the error.",
 }
 
 #: What each claim tag means, one sentence each.

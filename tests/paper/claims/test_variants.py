@@ -51,8 +51,8 @@ def test_registry_default_and_comparisons():
     assert list(v)[0] == DEFAULT_VARIANT == "mdart"
     assert v["mdart"].calibration == () and v["mdart"].recorded_status == {}
     assert v["mdart-fig6"].calibration == (f6.FIG6_CLAIM,)
-    assert comparison_variants(None) == ["mdart-fig6"]
-    assert comparison_variants("mdart-fig6") == ["mdart"]
+    assert comparison_variants(None) == ["mdart-fig6", "mdart-inferred"]
+    assert comparison_variants("mdart-fig6") == ["mdart", "mdart-inferred"]
     assert comparison_variants("rotor.toml") == []
 
 
