@@ -35,8 +35,8 @@ from .reference import STATUSES, load_claims
 
 __all__ = ["COLUMNS", "FIGURE_ERRORS", "claim_values", "claims_score", "compare_curve",
            "figure_frame", "figure_values", "not_computable_rows", "reference_curves",
-           "stability_intervals", "sweep_values", "update_recorded_status", "validate_all", "validate_figure",
-           "worse_than_recorded", "zero_crossings"]
+           "stability_intervals", "sweep_values", "update_recorded_status", "validate_all",
+           "validate_figure", "worse_than_recorded", "zero_crossings"]
 
 #: What a figure that cannot be computed raises: tefcore's own errors (a trim that
 #: does not converge, Floquet accuracy), a configuration refused at the figure's own
