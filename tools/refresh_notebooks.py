@@ -102,6 +102,18 @@ def resync_sources(source: Path) -> str:
     return source.stem
 
 
+def write_readme_picture() -> None:
+    """docs/fig09.png: notebook 04's first stored PNG (the README's picture of Fig. 9)."""
+    import base64
+    import json
+
+    nb = json.loads((NB_DIR / "04_cg_offset.ipynb").read_text("utf-8"))
+    png = next(base64.b64decode(out["data"]["image/png"])
+               for cell in nb["cells"] for out in cell.get("outputs", [])
+               if "image/png" in out.get("data", {}))
+    (NB_DIR.parents[2] / "docs" / "fig09.png").write_bytes(png)
+
+
 def main(argv=None) -> int:
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("notebooks", nargs="*", help="numbers or names (default: all)")
@@ -125,6 +137,8 @@ def main(argv=None) -> int:
             for name, seconds in pool.map(lambda s: refresh(s, Path(tmp)), sources):
                 print(f"{name}: {seconds:.1f} s", file=sys.stderr)
         os.chdir(NB_DIR)
+    if any(s.stem.startswith("04") for s in sources):
+        write_readme_picture()
     return 0
 
 

@@ -118,10 +118,12 @@ def _check_threshold(c: Claim, ctx: Context):
     onset, end_ok, early = threshold_onset(x, y, c.direction,
                                            None if band is None else (c.expected - band) * f)
     if onset is None:
-        # how far the root stays from crossing: its extreme real part against
-        # the panel's range
+        # never crossing: how far the root stays from zero, its extreme real part
+        # against the panel's range; crossing only the other way: the opposite
+        # change of state, a fail by structure (-1), never a near tie
         far = y.max() if c.direction == "destabilising" else -y.min()
-        ctx.margin = float(min(far, 0.0) / max(np.ptp(y), abs(far), 1e-12))
+        ctx.margin = (-1.0 if cross else
+                      float(min(far, 0.0) / max(np.ptp(y), abs(far), 1e-12)))
         return expected, f"crossings: {desc}", np.nan, False, f"no {c.direction} crossing"
     state, other = ("unstable", "stable")[::1 if c.direction == "destabilising" else -1]
     reasons = [] if end_ok else [f"the last crossing is {cross[-1][1]}: the end state is not "

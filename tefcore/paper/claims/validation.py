@@ -240,6 +240,7 @@ def not_computable_rows(claims, reason: str) -> pd.DataFrame:
     Parameters
     ----------
     claims : list of Claim
+        The claims of the figure (or figures) that could not be computed.
     reason : str
         What failed (the figure and the error).
 

@@ -1,9 +1,10 @@
 """The packaged configuration variants, and every claim checked on each of them.
 
-tefcore ships two configurations of the MDART rotor (``tefcore/data``):
-``mdart``, the default, and ``mdart-fig6``, the same rotor with the actuator's
+tefcore ships three configurations of the MDART rotor (``tefcore/data``):
+``mdart``, the default; ``mdart-fig6``, the same rotor with the actuator's
 moving parts reflected to the flap hinge fitted to Fig. 6
-(:mod:`tefcore.paper.fig6_calibration`).  ``variants.toml`` beside this module
+(:mod:`tefcore.paper.fig6_calibration`); and ``mdart-inferred``, its unknown
+properties inferred from the paper's claims (:mod:`tefcore.paper.inference`).  ``variants.toml`` beside this module
 says which is the default and why, which claims each variant is calibrated to
 (``mdart-fig6``: Fig. 6's, a validation claim of ``mdart``), each variant's
 recorded claim statuses (``mdart``'s are those of the reference data), and the
@@ -22,7 +23,7 @@ Examples
 --------
 >>> v = load_variants()
 >>> DEFAULT_VARIANT, sorted(v)
-('mdart', ['mdart', 'mdart-fig6'])
+('mdart', ['mdart', 'mdart-fig6', 'mdart-inferred'])
 >>> v["mdart-fig6"].calibration
 ('fig6-response-15pct-above-input',)
 """

@@ -118,8 +118,7 @@ def add_infer_command(sub, formatter_class) -> None:
     formatter_class : type
         The ``tefcore`` command's help formatter.
     """
-    from .protocol import READINGS
-    from .study import SAMPLERS
+    from .protocol import READINGS, SAMPLERS
 
     p = sub.add_parser("infer", formatter_class=formatter_class, description=DESCRIPTION,
                        help="infer the paper's unknown rotor properties from its claims "

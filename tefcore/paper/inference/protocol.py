@@ -27,12 +27,13 @@ from functools import cache
 from importlib import resources
 from pathlib import Path
 
-from ...modes.roles import FLUTTER_ROOT
-
-__all__ = ["READINGS", "Protocol", "inference_file", "load_protocol", "read_claims"]
+__all__ = ["READINGS", "SAMPLERS", "Protocol", "inference_file", "load_protocol", "read_claims"]
 
 #: The readings of the paper's "TEF": the continued root, or the flutter root.
 READINGS = ("continued", "flutter")
+
+#: The samplers a study may use (:func:`tefcore.paper.inference.study.make_sampler`).
+SAMPLERS = ("tpe", "qmc", "random", "nsga2")
 
 
 @dataclass(frozen=True)
@@ -136,6 +137,8 @@ def read_claims(claims, reading: str, quantities=("real_part", "damping", "dampi
         raise ValueError(f"reading = {reading!r} is not one of {', '.join(READINGS)}")
     if reading == "continued":
         return list(claims)
+    from ...modes.roles import FLUTTER_ROOT  # numpy: not imported at the CLI's start
+
     out = []
     for c in claims:
         q = {"mode": c.quantity, "other_mode": c.other_quantity or c.quantity}

@@ -42,14 +42,13 @@ from pathlib import Path
 
 import numpy as np
 
-from .protocol import READINGS, load_protocol
+from .protocol import READINGS, SAMPLERS, load_protocol
 from .space import Refused, apply_sample, load_space, recalibrated
 
 __all__ = ["SAMPLERS", "TRIAL_CPU_S", "StudySpec", "estimate", "make_sampler", "open_storage",
            "open_study", "recover_dead_trials", "run_study", "seconds_text", "worker"]
 
 #: The samplers a study can use.
-SAMPLERS = ("tpe", "qmc", "random", "nsga2")
 
 #: CPU seconds of one trial on the packaged protocol, before a study has measured its
 #: own: the cheap evaluation of the fitted Figs. 6-9 and 12 plus the torsion re-fit

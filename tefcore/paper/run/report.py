@@ -33,7 +33,15 @@ import pandas as pd
 from ...safe_io import atomic_write_text
 from ..attribution.departures import departures_text, load_departures
 from ..claims.reference import STATUSES, TAGS
-from .report_views import check_rows, headline, notebook_title, shared_notes, why_view
+from ..inference.packaged import load_results
+from .report_views import (
+    check_rows,
+    headline,
+    inference_view,
+    notebook_title,
+    shared_notes,
+    why_view,
+)
 
 __all__ = ["FIGURE_TITLES", "Image", "Report", "STATUS_MEANINGS", "Section", "TAG_MEANINGS",
            "WORSE_MEANING", "build_report", "render", "template_environment", "variants_view",
@@ -266,6 +274,9 @@ class Report:
         The truncation-dependent claims (``id``, ``status``, ``converged_status``,
         ``converged_modes``): verdicts the nine-mode basis decides otherwise
         than a converged one (:mod:`tefcore.paper.claims.truncation`).
+    inference : dict or None
+        "What the paper's rotor must have been": the packaged inference studies
+        (:func:`tefcore.paper.run.report_views.inference_view`); None without them.
     """
 
     title: str
@@ -290,6 +301,7 @@ class Report:
     guide: str = ""
     figure_notes: list = field(default_factory=list)
     truncation: list = field(default_factory=list)
+    inference: dict | None = None
 
 
 def _theory_url() -> str:
@@ -544,7 +556,8 @@ def build_report(out, runs, claims: pd.DataFrame, worse: pd.DataFrame, *, figure
         fanplot=_image(fan, out, "MDART blade (assumed properties): fan plot of the coupled "
                                  "modes") if fan.exists() else None,
         departures=departures_text(), variants=variants_view(variants), why=why,
-        what_if=what_if, truncation=_truncation_rows(claims))
+        what_if=what_if, truncation=_truncation_rows(claims),
+        inference=inference_view(load_results()))
 
 
 def _truncation_rows(claims: pd.DataFrame) -> list[dict]:

@@ -10,7 +10,10 @@
   repeats (how to read the lines and markers), said once;
 * :func:`check_rows` -- the stated blade frequencies with named columns and
   units;
-* :func:`notebook_title` -- a notebook's own title (its first heading).
+* :func:`notebook_title` -- a notebook's own title (its first heading);
+* :func:`inference_view` -- "what the paper's rotor must have been": the
+  packaged inference studies, the inferred rotor against the assumed one, the
+  fitted and held-out pass rates.
 
 Examples
 --------
@@ -33,8 +36,8 @@ from pathlib import Path
 
 import pandas as pd
 
-__all__ = ["CHECK_COLUMNS", "check_rows", "headline", "notebook_title", "setting_unit",
-           "shared_notes", "why_view"]
+__all__ = ["CHECK_COLUMNS", "check_rows", "headline", "inference_view", "notebook_title",
+           "setting_unit", "shared_notes", "why_view"]
 
 #: The stated blade frequencies' columns as the report names them.
 CHECK_COLUMNS = {"case": "case", "stated_per_rev": "stated torsion 1 [/rev]",
@@ -347,3 +350,110 @@ def notebook_title(out, name: str) -> str:
         if m:
             return m.group(1).strip().replace(" -- ", " — ")
     return f"Further results of {name}"
+
+
+def _passes(counts: dict, part: str) -> str:
+    n, of = counts[part]
+    return f"{n} of {of}"
+
+
+def _rotor_rows(checks: dict) -> list[dict]:
+    """Each checked rotor's validation passes by each reading: fitted, held out, all."""
+    names = {"baseline": "mdart (assumed; its sample of the space)",
+             "best continued": "inferred, by the continued TEF",
+             "best flutter": "inferred, by the flutter root"}
+    return [{"rotor": names.get(k, k), "reading": r, "fitted": _passes(v[r], "fitted"),
+             "held_out": _passes(v[r], "held out"), "all": _passes(v[r], "all")}
+            for k, v in checks.items() for r in ("continued", "flutter") if r in v]
+
+
+def _parameter_rows(best: dict, baseline: dict, space: dict) -> list[dict]:
+    """The inferred value of each parameter of the space against mdart's, with its spread."""
+    def show(v, unit):
+        return str(v) if isinstance(v, str) else f"{v:.3g}" + (f" {unit}" if unit else "")
+
+    rows = []
+    for name, v in best["params"].items():
+        p = space.get(name)
+        unit = p.unit if p is not None else ""
+        lo_hi = best["spread"].get(name, [])
+        spread = (", ".join(map(str, lo_hi)) if isinstance(v, str)
+                  else f"{lo_hi[0]:.3g} to {lo_hi[1]:.3g}" if len(lo_hi) == 2 else "")
+        rows.append({"name": name, "assumed": show(baseline[name], unit) if name in baseline
+                     else "", "inferred": show(v, unit), "spread": spread})
+    return rows
+
+
+def inference_view(results: dict) -> dict | None:
+    """"What the paper's rotor must have been": the packaged studies in words and tables.
+
+    Parameters
+    ----------
+    results : dict
+        :func:`tefcore.paper.inference.packaged.load_results` (empty: no section).
+
+    Returns
+    -------
+    dict or None
+        ``studies`` (name, command, trials, refused, not computable), ``rotors``
+        (each checked rotor's validation passes by reading: fitted, held out,
+        all), ``parameters`` (inferred against assumed, with the spread of the
+        trials within one claim of the best), ``lofo`` (leave-one-figure-out on
+        the Sobol sample), ``unreached`` (fitted claims no sampled rotor
+        passes), ``best`` (study and trial of the inferred rotor).
+    """
+    if not results:
+        return None
+    from ..figures.runs import base_config
+    from ..inference.packaged import study_command
+    from ..inference.protocol import load_protocol
+    from ..inference.space import baseline_sample, load_space
+
+    summary = results["summary"]
+    space = load_space(load_protocol().space)
+    trials = results["trials"]
+    studies = []
+    for s in summary["studies"]:
+        mine = trials[trials["study"] == s["name"]]
+        f = summary["failures"].get(s["name"], {})
+        studies.append({"name": s["name"], "command": study_command(s),
+                        "trials": int((mine["state"] == "COMPLETE").sum()),
+                        "refused": int(f.get("refused", 0)),
+                        "not_computable": ", ".join(f"{k} {v}" for k, v in
+                                                    sorted(f.get("not_computable", {}).items()))
+                        or "none"})
+    best = summary["best"].get("continued", {})
+    qmc = next((s["name"] for s in summary["studies"] if s["sampler"] == "qmc"), None)
+    lofo = summary["lofo"].get(f"{qmc}:continued", []) if qmc else []
+    rates = summary["pass_rates"].get("continued", [])
+    return {
+        "verdict": _inference_verdict(summary.get("checks", {})),
+        "studies": studies,
+        "rotors": _rotor_rows(summary.get("checks", {})),
+        "parameters": (_parameter_rows(best, baseline_sample(base_config("thin_airfoil"),
+                                                             space), space)
+                       if "params" in best else []),
+        "best": f"{best['trial'][0]} trial {best['trial'][1]}" if "trial" in best else "",
+        "lofo": [{"figure": r["figure"], "claims": r["claims"],
+                  "without": r["passes there"], "with": r["passes at best"]} for r in lofo],
+        "unreached": [r["id"] for r in rates if r["passes"] == 0],
+    }
+
+
+def _inference_verdict(checks: dict) -> str:
+    """One sentence: does the fit carry over to the claims it did not see?"""
+    base, best = checks.get("baseline"), checks.get("best continued")
+    if not base or not best:
+        return ""
+    fb, hb = base["continued"]["fitted"][0], base["continued"]["held out"][0]
+    fi, hi = best["continued"]["fitted"][0], best["continued"]["held out"][0]
+    if fi > fb and hi < hb:
+        return (f"The inferred rotor passes more of the fitted claims than mdart ({fi} against "
+                f"{fb}) and fewer of the held-out ones ({hi} against {hb}): the fit does not "
+                "carry over to the figures it did not see, so the data of these studies do not "
+                "pin the unknown properties, and mdart stays the default.")
+    if hi > hb:
+        return (f"The inferred rotor passes {hi} of the held-out claims against mdart's {hb}: "
+                "the fit carries over to figures it did not see.")
+    return (f"The inferred rotor passes {fi} fitted and {hi} held-out claims against mdart's "
+            f"{fb} and {hb}.")

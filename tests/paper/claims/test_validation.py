@@ -142,6 +142,19 @@ def test_threshold_with_units_and_no_crossing():
     assert res["status"] == "fail" and "no stabilising crossing" in res["reason"]
 
 
+def test_threshold_margin_without_a_claimed_crossing():
+    # a root that never crosses: its margin is how far it stays from zero against the
+    # panel's range (here always stable, 1 from zero on a range of 2: -0.5)
+    c = claim(kind="threshold", mode="TEF", direction="destabilising")
+    _, row = check(c, sweep_table(TEF=(np.linspace(-3.0, -1.0, len(X)), 10.0)))
+    assert row["status"] == "fail" and row["margin"] == pytest.approx(-0.5)
+    # a root that crosses only the other way (unstable, then stable) changes state
+    # opposite to the claim: a fail by structure, margin -1, never a near tie at 0
+    _, row = check(c, sweep_table(TEF=(-4 * (X - 0.25), 10.0)))
+    assert row["status"] == "fail" and "no destabilising crossing" in row["reason"]
+    assert row["margin"] == -1.0
+
+
 @pytest.mark.parametrize("interval, tol, status", [
     ([0.25, 0.40], 0.01, "pass"), ([0.15, 0.40], 0.05, "fail"), ([0.25, 0.35], 0.02, "fail")])
 def test_range(interval, tol, status):
