@@ -4,11 +4,12 @@ tefcore ships three configurations of the MDART rotor (``tefcore/data``):
 ``mdart``, the default; ``mdart-fig6``, the same rotor with the actuator's
 moving parts reflected to the flap hinge fitted to Fig. 6
 (:mod:`tefcore.paper.fig6_calibration`); and ``mdart-inferred``, its unknown
-properties inferred from the paper's claims (:mod:`tefcore.paper.inference`).  ``variants.toml`` beside this module
-says which is the default and why, which claims each variant is calibrated to
-(``mdart-fig6``: Fig. 6's, a validation claim of ``mdart``), each variant's
-recorded claim statuses (``mdart``'s are those of the reference data), and the
-physics of every claim whose status differs between them.
+properties inferred from the paper's claims (:mod:`tefcore.paper.inference`).
+``variants.toml`` beside this module says which is the default and why, which
+claims each variant is calibrated to (``mdart-fig6``: Fig. 6's, a validation
+claim of ``mdart``), each variant's recorded claim statuses (``mdart``'s are
+those of the reference data), and the physics of every claim whose status
+differs between them.
 
 * :func:`apply_variant` tags and records a claims table for the variant it was
   computed on (the notebooks' claims on ``-p config mdart-fig6``);
