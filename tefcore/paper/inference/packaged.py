@@ -12,7 +12,8 @@ them without running a study:
   and margin (long form);
 * ``summary.json``: what :mod:`tefcore.paper.inference.analysis` reads from
   them -- the failures met, the pass rates of the fitted claims, the
-  leave-one-figure-out table of each study, the best rotor of each reading --
+  leave-one-figure-out table of each study, the best rotor of each reading,
+  the fitted claims that pull against each other over the Sobol sample --
   and the check after the studies: the baseline (mdart's sample of the space)
   and each reading's best rotor checked with refinement on every claim, fitted
   and held out, by both readings (:func:`tefcore.paper.inference.analysis.check_rotor`).
@@ -58,6 +59,12 @@ STUDIES = (
 RESULTS = Path(__file__).resolve().parents[2] / "data" / "inference" / "results"
 
 _READINGS = ("continued", "flutter")
+
+#: Fitted claims whose terms of the objective have a rank correlation below this
+#: over a sample independent of the objective pull against each other: as one
+#: rises toward passing the other falls (Spearman; -0.5 is a strong opposition
+#: over 25 rotors, where chance correlations stay within about +-0.4).
+CONFLICT_RHO = -0.5
 
 
 def study_command(study: dict) -> str:
@@ -111,13 +118,16 @@ def trial_rows(study) -> tuple[pd.DataFrame, pd.DataFrame]:
 
 
 def _summary(studies, declared, protocol) -> dict:
-    from .analysis import failures, leave_one_figure_out, pass_rates
+    from .analysis import conflicts, failures, leave_one_figure_out, pass_rates
     from .inferred import inferred_rotor
 
     out: dict = {"studies": [dict(s) for s in declared], "failures": {}, "lofo": {},
-                 "pass_rates": {}, "best": {}}
-    for s in studies:
+                 "pass_rates": {}, "best": {}, "conflicts": {}}
+    for s, d in zip(studies, declared, strict=True):
         out["failures"][s.study_name] = failures(s)
+        if d["sampler"] in ("qmc", "random"):     # a sample the objective did not steer
+            out["conflicts"][s.study_name] = conflicts(s, "continued", CONFLICT_RHO) \
+                .to_dict("records")
         for r in _READINGS:
             lofo = leave_one_figure_out(s, r, protocol.fit_figures)
             out["lofo"][f"{s.study_name}:{r}"] = lofo.to_dict("records")

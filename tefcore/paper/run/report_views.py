@@ -400,7 +400,8 @@ def inference_view(results: dict) -> dict | None:
         all), ``parameters`` (inferred against assumed, with the spread of the
         trials within one claim of the best), ``lofo`` (leave-one-figure-out on
         the Sobol sample), ``unreached`` (fitted claims no sampled rotor
-        passes), ``best`` (study and trial of the inferred rotor).
+        passes), ``conflicts`` (fitted claims that pull against each other over
+        the Sobol sample), ``best`` (study and trial of the inferred rotor).
     """
     if not results:
         return None
@@ -437,6 +438,8 @@ def inference_view(results: dict) -> dict | None:
         "lofo": [{"figure": r["figure"], "claims": r["claims"],
                   "without": r["passes there"], "with": r["passes at best"]} for r in lofo],
         "unreached": [r["id"] for r in rates if r["passes"] == 0],
+        "conflicts": [{"a": c["a"], "b": c["b"], "rho": f"{c['rho']:.2f}"}
+                      for c in summary.get("conflicts", {}).get(qmc, [])] if qmc else [],
     }
 
 

@@ -101,6 +101,7 @@ def test_the_report_says_what_the_studies_found():
     assert view["verdict"]
     assert {p["name"] for p in view["parameters"]} == set(load_space())
     assert {x["figure"] for x in view["lofo"]} == {"fig6", "fig7", "fig8", "fig9", "fig12"}
+    assert view["conflicts"] and all(float(c["rho"]) < -0.5 for c in view["conflicts"])
 
 
 def test_export_writes_what_load_reads(tmp_path, fixed_protocol):
