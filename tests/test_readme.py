@@ -244,3 +244,18 @@ def test_the_readme_counts_are_the_recorded_statuses():
     assert (passed, total, failed, ambiguous, missing) == (
         recorded.count("pass"), len(recorded), recorded.count("fail"),
         recorded.count("ambiguous"), recorded.count("not reproducible"))
+
+
+def test_the_readme_score_of_the_inferred_rotor_is_its_recorded_one():
+    # "(the variant `mdart-inferred`) passes N of M": its recorded statuses, the
+    # claims it was fitted to (tagged calibration for it) counted with the rest
+    from tefcore.paper.claims.reference import load_claims
+    from tefcore.paper.claims.variants import load_variants
+
+    text = " ".join(README.read_text(encoding="utf-8").split())
+    m = re.search(r"\(the variant `mdart-inferred`\) passes (\d+) of (\d+)", text)
+    assert m, "the README no longer states the inferred rotor's score"
+    v = load_variants()["mdart-inferred"]
+    validation = [c.id for c in load_claims() if c.tag == "validation"]
+    passed = sum(v.recorded_status[i] == "pass" for i in validation)
+    assert (int(m.group(1)), int(m.group(2))) == (passed, len(validation))
