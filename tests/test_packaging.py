@@ -39,6 +39,12 @@ def test_the_packaged_data_files_are_in_the_package_data():
     for package, rel in (("tefcore", "data/mdart.toml"), ("tefcore", "data/mdart-fig6.toml"),
                          ("tefcore.paper.claims", "variants.toml"),
                          ("tefcore.paper.run", "templates/report.html.j2"),
-                         ("tefcore.paper.attribution", "departures.toml")):
+                         ("tefcore.paper.attribution", "departures.toml"),
+                         ("tefcore", "data/mdart-inferred.toml"),
+                         ("tefcore", "data/inference/results/summary.json"),
+                         ("tefcore", "data/inference/results/trials.csv"),
+                         ("tefcore", "data/inference/results/claims.csv"),
+                         ("tefcore.paper", "reference_data/converged_basis.csv"),
+                         ("tefcore.paper", "reference_data/converged_basis.json")):
         assert (ROOT / package.replace(".", "/") / rel).is_file(), rel
         assert any(fnmatch.fnmatch(rel, pat) for pat in data[package]), rel

@@ -426,6 +426,10 @@ def reference_curves(name: str):
 def show_claims(table: pd.DataFrame, width: int = 70) -> None:
     """Print a claims table compactly and deterministically (claim, status, computed).
 
+    A claim whose verdict depends on the modal basis (column ``truncation``,
+    :func:`tefcore.paper.claims.truncation.mark_truncation`) gets a line saying
+    both verdicts.
+
     Parameters
     ----------
     table : pandas.DataFrame
@@ -443,6 +447,11 @@ def show_claims(table: pd.DataFrame, width: int = 70) -> None:
     cols = [c for c in ("id", "status", "computed") if c in t.columns]
     with pd.option_context("display.max_colwidth", width, "display.width", 200):
         print(t[cols or list(t.columns)].to_string(index=False))
+    if "truncation" in t:
+        # a verdict the paper's nine modes decide otherwise than a converged basis
+        for _, r in t[t["truncation"].fillna("").astype(str) == "truncation-dependent"].iterrows():
+            print(f"{r['id']}: truncation-dependent, {r['status']} with the paper's 9 modes, "
+                  f"{r['converged_status']} with {int(r['converged_modes'])} (converged basis)")
 
 
 _NUMBER = re.compile(r"(?<![\w.])-?\d+(?:\.\d+)?(?:e[-+]?\d+)?(?![\w.])")

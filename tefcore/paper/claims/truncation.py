@@ -244,13 +244,21 @@ def mark_truncation(claims: pd.DataFrame, converged: pd.DataFrame | None) -> pd.
 
 
 def _main(argv) -> int:
-    """``python -m tefcore.paper.claims.truncation [FIGURE ...]``: compute and store."""
+    """``python -m tefcore.paper.claims.truncation [FIGURE ...]``: compute and store.
+
+    With figures named, their verdicts replace theirs in the stored table and
+    the other figures' stay (one figure at a time fits a short session).
+    """
     from ...config.io import load_config
     from ...runtime import apply_defaults
 
     apply_defaults()
     cfg = load_config("mdart")
     table = converged_verdicts(cfg, argv or None)
+    stored = load_converged(cfg) if argv else None
+    if stored is not None:
+        kept = stored[~stored["figure"].isin(set(table["figure"]))]
+        table = pd.concat([kept, table[list(stored.columns)]], ignore_index=True)
     write_converged(table, cfg)
     for fig, n in table.groupby("figure")["n_modes"].first().items():
         print(f"{fig}: converged with {n} modes")
