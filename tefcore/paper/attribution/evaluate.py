@@ -33,14 +33,15 @@ from ...config.configuration import Config
 from ...units import parse_quantity
 from ..claims.checks import validate_figure
 from ..claims.curves import X_SLACK
-from ..claims.validation import figure_values
+from ..claims.validation import figure_values, not_computable_rows
 from ..figures.catalogue import FIGURES, variant_key
 from ..figures.frames import FIG7_OVERHANGS
 from ..figures.quantities import swept_dimension, x_to_si
 from ..figures.responses import flap_response_figure, hinge_moment_figure
 from ..figures.runs import base_config, quiet_stability, run_config
 
-__all__ = ["FigureCache", "RunSettings", "check_claims", "claim_needs", "claim_values"]
+__all__ = ["FigureCache", "RunSettings", "check_claims", "checked_claims", "claim_needs",
+           "claim_values"]
 
 
 @dataclass(frozen=True)
@@ -327,11 +328,41 @@ def check_claims(claims, cfg, settings: RunSettings, cache: FigureCache) -> pd.D
     results = {key: cache.result(key[0], cfg, settings, over, values)
                for key, (over, values) in needed.items()}
     claims_cfg = cfg.with_overrides(settings.overrides) if settings.overrides else cfg
+    return checked_claims(claims, claims_cfg, results)
+
+
+def checked_claims(claims, cfg, results: dict, broken: dict | None = None) -> pd.DataFrame:
+    """Each claim checked on its figures' computed results, in the claims' order.
+
+    Parameters
+    ----------
+    claims : sequence of tefcore.paper.claims.reference.Claim
+        Claims (any figures).
+    cfg : tefcore.config.configuration.Config
+        The configuration the claims are checked with.
+    results : dict
+        ``(figure, variant key) -> result`` (``""``: the figure itself), as
+        :meth:`FigureCache.result` gives them.
+    broken : dict, optional
+        Figure -> why it could not be computed: its claims, and those that
+        read it, get the status ``not computable`` with that reason.
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per claim (:data:`tefcore.paper.claims.checks.COLUMNS`).
+    """
+    broken = broken or {}
     tables = []
     for fig in dict.fromkeys(c.figure for c in claims):
         mine = [c for c in claims if c.figure == fig]
+        # a claim reads its own figure and, for a comparison, another one
+        dead = {f for c in mine for f in (c.figure, c.other_figure) if f in broken}
+        if dead:
+            tables.append(not_computable_rows(mine, "; ".join(broken[f] for f in sorted(dead))))
+            continue
         tables.append(validate_figure(
-            fig, results.get((fig, "")), mine, cfg=claims_cfg, compute_missing=False,
+            fig, results.get((fig, "")), mine, cfg=cfg, compute_missing=False,
             variants={k: r for (f, k), r in results.items() if f == fig and k},
             others={f: r for (f, k), r in results.items() if not k}))
     order = {c.id: i for i, c in enumerate(claims)}

@@ -29,9 +29,7 @@ import numpy as np
 import pandas as pd
 
 from ...errors import TefcoreError
-from ..attribution.evaluate import FigureCache, RunSettings, claim_needs
-from ..claims.checks import validate_figure
-from ..claims.validation import not_computable_rows
+from ..attribution.evaluate import FigureCache, RunSettings, checked_claims, claim_needs
 from ..figures.catalogue import FIGURES, variant_key
 from ..figures.quantities import swept_dimension
 from .protocol import read_claims
@@ -90,24 +88,6 @@ def _results(cfg, claims, settings, cache):
     return results, broken
 
 
-def _check(claims, cfg, results, broken) -> pd.DataFrame:
-    tables = []
-    for fig in dict.fromkeys(c.figure for c in claims):
-        mine = [c for c in claims if c.figure == fig]
-        # a claim reads its own figure and, for a comparison, another one
-        dead = {f for c in mine for f in (c.figure, c.other_figure) if f in broken}
-        if dead:
-            tables.append(not_computable_rows(mine, "; ".join(broken[f] for f in sorted(dead))))
-            continue
-        tables.append(validate_figure(
-            fig, results.get((fig, "")), mine, cfg=cfg, compute_missing=False,
-            variants={k: r for (f, k), r in results.items() if f == fig and k},
-            others={f: r for (f, k), r in results.items() if not k}))
-    order = {c.id: i for i, c in enumerate(claims)}
-    table = pd.concat(tables, ignore_index=True)
-    return table.sort_values("id", key=lambda s: s.map(order), ignore_index=True)
-
-
 def evaluate_rotor(cfg, claims, readings=("continued",), *, settings=None, cache=None,
                    flutter_quantities=("real_part", "damping", "damping_ratio")) -> dict:
     """Check `claims` on the rotor `cfg` under each reading, computing only what they read.
@@ -143,7 +123,7 @@ def evaluate_rotor(cfg, claims, readings=("continued",), *, settings=None, cache
     results, broken = _results(cfg, claims, settings, cache)
     out: dict = {"broken": broken}
     for r in readings:
-        out[r] = _check(read_claims(claims, r, flutter_quantities), cfg, results, broken)
+        out[r] = checked_claims(read_claims(claims, r, flutter_quantities), cfg, results, broken)
     return out
 
 

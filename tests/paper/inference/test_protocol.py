@@ -6,10 +6,10 @@ import pandas as pd
 import pytest
 
 from tefcore.modes.roles import FLUTTER_ROOT
+from tefcore.paper.attribution import evaluate as attribution_evaluate
 from tefcore.paper.attribution.evaluate import FigureCache
 from tefcore.paper.claims.reference import load_claims
 from tefcore.paper.figures.runs import base_config
-from tefcore.paper.inference import evaluate as inference_evaluate
 from tefcore.paper.inference.protocol import load_protocol, read_claims
 from tefcore.paper.inference.space import baseline_sample, load_space
 from tefcore.paper.inference.study import Objective, StudySpec
@@ -64,7 +64,8 @@ def test_the_objective_never_evaluates_a_held_out_claim(monkeypatch, tmp_path):
                              "figure": name, "tag": [c.tag for c in claims]})
 
     monkeypatch.setattr(FigureCache, "result", result)
-    monkeypatch.setattr(inference_evaluate, "validate_figure", validate_figure)
+    # the claims are checked where every rotor's are (attribution.evaluate.checked_claims)
+    monkeypatch.setattr(attribution_evaluate, "validate_figure", validate_figure)
     spec = StudySpec(storage=str(tmp_path / "s.journal"))
     study = optuna.create_study(direction="maximize")
     study.enqueue_trial(baseline_sample(base_config(), load_space()))
