@@ -10,6 +10,8 @@ them without running a study:
   could not be computed, why a sample was refused);
 * ``claims.csv``: every completed trial's fitted claims, each reading's status
   and margin (long form);
+* ``sobol.csv``, ``sobol.json``: the Sobol indices of every claim that fails
+  or is ambiguous on mdart, per group of the space (:data:`SOBOL`);
 * ``summary.json``: what :mod:`tefcore.paper.inference.analysis` reads from
   them -- the failures met, the pass rates of the fitted claims, the
   leave-one-figure-out table of each study, the best rotor of each reading,
@@ -38,8 +40,8 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-__all__ = ["RESULTS", "STUDIES", "export_results", "load_results", "study_command",
-           "trial_rows"]
+__all__ = ["RESULTS", "SOBOL", "STUDIES", "export_results", "export_sobol", "load_results",
+           "sobol_claims", "study_command", "trial_rows"]
 
 #: The packaged studies, in the order they are run: a Sobol sample (independent of
 #: the objective: its leave-one-figure-out is exact), TPE on each reading with seed
@@ -54,6 +56,11 @@ STUDIES = (
     {"name": "protocol-continued-tpe-seed1", "reading": "continued", "sampler": "tpe",
      "seed": 1, "trials": 16},
 )
+
+#: The packaged Sobol analysis: every validation claim that fails or is ambiguous on
+#: mdart (its recorded status), the space's six groups, Saltelli's design of base
+#: size ``n`` (``n * 8`` rotors), seeded.
+SOBOL = {"n": 8, "seed": 0, "reading": "continued"}
 
 #: Where the packaged results are.
 RESULTS = Path(__file__).resolve().parents[2] / "data" / "inference" / "results"
@@ -234,6 +241,52 @@ def _plain(v):
     raise TypeError(f"{type(v).__name__} is not JSON")
 
 
+def sobol_claims() -> list:
+    """The claims of the packaged Sobol analysis: mdart's failing and ambiguous validation claims.
+
+    Returns
+    -------
+    list of Claim
+    """
+    from ..claims.reference import load_claims
+
+    return [c for c in load_claims() if c.tag == "validation"
+            and c.recorded_status in ("fail", "ambiguous")]
+
+
+def export_sobol(folder=RESULTS, *, cache_folder, n_jobs: int = 1) -> Path:
+    """Run the packaged Sobol analysis (:data:`SOBOL`) and write ``sobol.csv`` and ``sobol.json``.
+
+    Parameters
+    ----------
+    folder : path
+        Where the files go.
+    cache_folder : path
+        Where its rotors' figures are kept.
+    n_jobs : int
+        Processes over the design.
+
+    Returns
+    -------
+    pathlib.Path
+        The folder.
+    """
+    from ...safe_io import atomic_write_text
+    from ..attribution.evaluate import FigureCache
+    from .sensitivity import sobol_indices
+
+    claims = sobol_claims()
+    table, info = sobol_indices(claims, SOBOL["n"], seed=SOBOL["seed"],
+                                cache=FigureCache(cache_folder), reading=SOBOL["reading"],
+                                n_jobs=n_jobs)
+    folder = Path(folder)
+    folder.mkdir(parents=True, exist_ok=True)
+    atomic_write_text(folder / "sobol.csv", table.to_csv(index=False, float_format="%.6g"))
+    atomic_write_text(folder / "sobol.json", json.dumps(
+        {**SOBOL, **info, "claims": [c.id for c in claims]}, indent=1, default=_plain) + "\n")
+    return folder
+
+
 def load_results(folder=RESULTS) -> dict:
     """The packaged results: ``trials``, ``claims`` (DataFrames) and ``summary`` (dict).
 
@@ -245,11 +298,17 @@ def load_results(folder=RESULTS) -> dict:
     Returns
     -------
     dict
-        Empty when the folder holds no results.
+        ``trials``, ``claims``, ``summary`` and, where the Sobol analysis is
+        stored, ``sobol`` and ``sobol_info``; empty when the folder holds no
+        results.
     """
     folder = Path(folder)
     if not (folder / "summary.json").exists():
         return {}
-    return {"trials": pd.read_csv(folder / "trials.csv"),
-            "claims": pd.read_csv(folder / "claims.csv"),
-            "summary": json.loads((folder / "summary.json").read_text())}
+    out = {"trials": pd.read_csv(folder / "trials.csv"),
+           "claims": pd.read_csv(folder / "claims.csv"),
+           "summary": json.loads((folder / "summary.json").read_text())}
+    if (folder / "sobol.json").exists():
+        out["sobol"] = pd.read_csv(folder / "sobol.csv")
+        out["sobol_info"] = json.loads((folder / "sobol.json").read_text())
+    return out

@@ -78,8 +78,29 @@ def sobol_design(space, n: int, seed: int = 0) -> list[dict]:
             for row in x]
 
 
+def _scores(sample, space, base, claims, reading, cache, evaluate):
+    """One rotor of the design: each claim's term of the objective; None if refused."""
+    from ..attribution.evaluate import RunSettings
+    from .analysis import claim_scores
+    from .evaluate import evaluate_rotor
+
+    try:
+        cfg = recalibrated(apply_sample(base, space, sample))
+    except Refused:
+        return None
+    if evaluate is None:
+        t = evaluate_rotor(cfg, claims, (reading,), cache=cache,
+                           settings=RunSettings(base=cfg))[reading]
+    else:
+        t = evaluate(cfg, claims)
+    return claim_scores(dict(zip(t["id"], t["status"], strict=True)),
+                        {i: (None if not np.isfinite(m) else m)
+                         for i, m in zip(t["id"], t["margin"].to_numpy(float), strict=True)})
+
+
 def sobol_indices(claims, n: int = 8, *, seed: int = 0, cache, evaluate=None,
-                  reading: str = "continued", progress: bool = False) -> tuple[pd.DataFrame, dict]:
+                  reading: str = "continued", progress: bool = False,
+                  n_jobs: int = 1) -> tuple[pd.DataFrame, dict]:
     """S1 and ST of each claim's term of the objective, per group of parameters.
 
     Parameters
@@ -99,6 +120,9 @@ def sobol_indices(claims, n: int = 8, *, seed: int = 0, cache, evaluate=None,
         The reading of the mode names.
     progress : bool
         Show a progress bar over the design.
+    n_jobs : int
+        Processes over the design's rotors (joblib; bounded by the machine,
+        :func:`tefcore.runtime.process_cap`); 1 runs them here, in order.
 
     Returns
     -------
@@ -108,37 +132,29 @@ def sobol_indices(claims, n: int = 8, *, seed: int = 0, cache, evaluate=None,
     """
     from SALib.analyze import sobol as analyze
 
-    from ..attribution.evaluate import RunSettings
     from ..figures.runs import base_config
-    from .analysis import claim_scores
-    from .evaluate import evaluate_rotor
 
     space = load_space()
     problem, _ = sobol_problem(space)
     samples = sobol_design(space, n, seed)
     base = base_config("thin_airfoil")
-    rows, refused = [], 0
-    it = samples
+    args = (space, base, claims, reading, cache, evaluate)
+    if n_jobs > 1:
+        from joblib import Parallel, delayed
+
+        from ...runtime import process_cap
+
+        jobs = Parallel(n_jobs=process_cap(n_jobs, len(samples), "rotor")[0],
+                        return_as="generator")(
+            delayed(_scores)(s, *args) for s in samples)
+    else:
+        jobs = (_scores(s, *args) for s in samples)
     if progress:
         from tqdm.auto import tqdm
 
-        it = tqdm(samples, unit="rotor", desc="Sobol design")
-    for s in it:
-        try:
-            cfg = recalibrated(apply_sample(base, space, s))
-        except Refused:
-            refused += 1
-            rows.append(None)
-            continue
-        if evaluate is None:
-            t = evaluate_rotor(cfg, claims, (reading,), cache=cache,
-                               settings=RunSettings(base=cfg))[reading]
-        else:
-            t = evaluate(cfg, claims)
-        sc = claim_scores(dict(zip(t["id"], t["status"], strict=True)),
-                          {i: (None if not np.isfinite(m) else m)
-                           for i, m in zip(t["id"], t["margin"].to_numpy(float), strict=True)})
-        rows.append(sc)
+        jobs = tqdm(jobs, total=len(samples), unit="rotor", desc="Sobol design")
+    rows = list(jobs)
+    refused = sum(r is None for r in rows)
     ids = [c.id for c in claims]
     y = pd.DataFrame([r if r is not None else {} for r in rows], columns=ids, dtype=float)
     y = y.fillna(y.mean())

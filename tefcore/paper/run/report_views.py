@@ -401,7 +401,10 @@ def inference_view(results: dict) -> dict | None:
         trials within one claim of the best), ``lofo`` (leave-one-figure-out on
         the Sobol sample), ``unreached`` (fitted claims no sampled rotor
         passes), ``conflicts`` (fitted claims that pull against each other over
-        the Sobol sample), ``best`` (study and trial of the inferred rotor).
+        the Sobol sample), ``sobol`` (per failing or ambiguous claim of mdart:
+        the group of the largest total Sobol index, with its interval, and the
+        next), ``sobol_info``, ``sobol_unmoved`` (analysed claims no rotor of
+        the design moved), ``best`` (study and trial of the inferred rotor).
     """
     if not results:
         return None
@@ -440,7 +443,38 @@ def inference_view(results: dict) -> dict | None:
         "unreached": [r["id"] for r in rates if r["passes"] == 0],
         "conflicts": [{"a": c["a"], "b": c["b"], "rho": f"{c['rho']:.2f}"}
                       for c in summary.get("conflicts", {}).get(qmc, [])] if qmc else [],
+        "sobol": _sobol_rows(results.get("sobol")),
+        "sobol_info": results.get("sobol_info", {}),
+        "sobol_unmoved": _sobol_unmoved(results),
     }
+
+
+def _sobol_unmoved(results: dict) -> list[str]:
+    """The analysed claims whose term did not vary over the Sobol design: nothing moves them."""
+    info, table = results.get("sobol_info"), results.get("sobol")
+    if not info or table is None:
+        return []
+    return [c for c in info.get("claims", []) if c not in set(table["claim"])]
+
+
+def _sobol_rows(table) -> list[dict]:
+    """Per claim: the groups by total Sobol index, largest first, with its 95 % interval.
+
+    ``above``: whether the largest total index's interval stays above zero
+    (``ST - ST_conf > 0``).
+    """
+    if table is None or table.empty:
+        return []
+    rows = []
+    for cid, t in table.groupby("claim", sort=False):
+        t = t.sort_values("ST", ascending=False)
+        top = t.iloc[0]
+        rows.append({"claim": cid, "group": top["group"],
+                     "st": f"{top['ST']:.2f} ± {top['ST_conf']:.2f}",
+                     "above": "yes" if top["ST"] - top["ST_conf"] > 0 else "no",
+                     "next": f"{t.iloc[1]['group']} {t.iloc[1]['ST']:.2f}" if len(t) > 1
+                     else ""})
+    return rows
 
 
 def _inference_verdict(checks: dict) -> str:

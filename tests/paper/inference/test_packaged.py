@@ -16,6 +16,7 @@ from tefcore.paper.inference.packaged import (
     STUDIES,
     export_results,
     load_results,
+    sobol_claims,
     study_command,
     trial_rows,
 )
@@ -117,3 +118,18 @@ def test_export_writes_what_load_reads(tmp_path, fixed_protocol):
     assert isinstance(out["summary"]["pass_rates"]["continued"], list)
     assert load_results(tmp_path / "empty") == {}
     assert pd.api.types.is_float_dtype(out["claims"]["margin"])
+
+
+def test_the_sobol_indices_cover_every_claim_mdart_fails_or_leaves_ambiguous():
+    info, table = RESULTS["sobol_info"], RESULTS["sobol"]
+    assert info["claims"] == [c.id for c in sobol_claims()]
+    assert info["rotors"] == info["n"] * 8            # Saltelli, six groups, no second order
+    view = inference_view(RESULTS)
+    named = [x["claim"] for x in view["sobol"]]
+    # every analysed claim is either indexed (its term varied) or said unmoved
+    assert sorted(named + view["sobol_unmoved"]) == sorted(info["claims"])
+    for x in view["sobol"]:
+        mine = table[table["claim"] == x["claim"]]
+        assert x["group"] == mine.loc[mine["ST"].idxmax(), "group"]
+        assert set(mine["group"]) == {"flap", "actuator", "section", "blade stiffness",
+                                      "aerodynamics", "hub"}
