@@ -6,7 +6,7 @@ import math
 from pathlib import Path
 
 from ..safe_io import atomic_output, check_outputs
-from .common import inputs, load, number, write_csv
+from .common import inputs, load, load_for_csv, number, write_csv
 
 __all__ = ["add_arguments", "run_fanplot", "run_modes"]
 
@@ -26,8 +26,7 @@ def run_modes(args) -> int:
     """
     from ..structure.blade import blade_modes
 
-    cfg = load(args)
-    check_outputs([(args.csv, "--csv")], inputs=inputs(args, cfg))
+    cfg = load_for_csv(args)
     table = blade_modes(cfg, n_modes=args.n_modes,
                         collective=math.radians(args.collective)).table()
     if args.csv:

@@ -9,7 +9,7 @@ import os
 
 from ..safe_io import atomic_output
 
-__all__ = ["config_file", "inputs", "jobs", "load", "number", "write_csv"]
+__all__ = ["config_file", "inputs", "jobs", "load", "load_for_csv", "number", "write_csv"]
 
 
 def load(args):
@@ -73,6 +73,25 @@ def config_file(config: str) -> str | None:
     (None, 'rotor.toml', 'runs/rotor')
     """
     return config if config.endswith(".toml") or os.sep in config or "/" in config else None
+
+
+def load_for_csv(args):
+    """:func:`load`, then refuse a ``--csv`` that is one of the files it reads.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        The parsed options (``config``, ``set``, ``csv``).
+
+    Returns
+    -------
+    tefcore.config.configuration.Config
+    """
+    from ..safe_io import check_outputs
+
+    cfg = load(args)
+    check_outputs([(args.csv, "--csv")], inputs=inputs(args, cfg))
+    return cfg
 
 
 def inputs(args, cfg) -> list[tuple[str, str]]:

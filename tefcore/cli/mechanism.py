@@ -2,8 +2,7 @@
 
 from __future__ import annotations
 
-from ..safe_io import check_outputs
-from .common import inputs, load, write_csv
+from .common import load_for_csv, write_csv
 
 __all__ = ["add_arguments", "run"]
 
@@ -25,8 +24,7 @@ def run(args) -> int:
     from ..linear.stability import stability
     from .text import mechanism_choice, wrap
 
-    cfg = load(args)
-    check_outputs([(args.csv, "--csv")], inputs=inputs(args, cfg))
+    cfg = load_for_csv(args)
     point = stability(cfg)
     # no --mode: mechanism's default, the flutter root when unstable, else the TEF mode
     res = mechanism(cfg, mode=args.mode, knockouts=not args.no_knockouts,

@@ -2,8 +2,7 @@
 
 from __future__ import annotations
 
-from ..safe_io import check_outputs
-from .common import inputs, load, write_csv
+from .common import load_for_csv, write_csv
 
 __all__ = ["add_arguments", "run"]
 
@@ -24,8 +23,7 @@ def run(args) -> int:
     from ..linear.stability import stability
     from .text import flutter_text, legend, modes_text, trim_lines, wrap
 
-    cfg = load(args)
-    check_outputs([(args.csv, "--csv")], inputs=inputs(args, cfg))
+    cfg = load_for_csv(args)
     res = stability(cfg)
     # the table's columns: printing them needs no pandas (the CSV does)
     table = res.columns if hasattr(res, "columns") else res.modes
