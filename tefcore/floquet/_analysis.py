@@ -584,7 +584,7 @@ def floquet_motions(A, n_steps, n_sub=4, period=TWO_PI, method="magnus", max_sub
         _check_trust(name, value)
     a, n_steps, constant = sample(A, n_steps, period)
     p = propagators(a, period / n_steps, constant, method)
-    k_sub, mu, blocks, _, (stack, bounds, valid), _, _, split = _lift(
+    k_sub, mu, blocks, _, (stack, bounds, valid), _, znorm, split = _lift(
         p, period, n_sub, check_int("max_sub", max_sub, 1), frozen_rate=_frozen(a),
         min_root=min_root, root_rtol=root_rtol)
     if not split:
@@ -595,12 +595,26 @@ def floquet_motions(A, n_steps, n_sub=4, period=TWO_PI, method="magnus", max_sub
     # multipliers are (to round-off)
     angle = np.angle(np.exp(1j * k_sub * log_mu.imag))
     # a real multiplier (a frequency locked to k/2 /rev, or no oscillation) is
-    # its own conjugate: kept, at angle 0 or pi (the two of a locked pair both).
-    # Measured on Fig. 9's points (c_cg 0-0.36, eps 0.25-0.75): |sin| of a real
-    # multiplier's angle at most 7e-14 (round-off), of a complex one at least
-    # 0.04; 1e-8 lies between with five decades to spare on either side
-    real = np.abs(np.sin(angle)) <= 1e-8
-    angle = np.where(real, np.abs(angle), angle)
+    # its own conjugate: kept, snapped onto the real axis (angle 0 or pi
+    # exactly; the two of a locked pair both).  Whether a root is on the axis
+    # is decided within its accuracy, the angle its multiplier can have by
+    # round-off: a lifted root carries a relative error of about
+    # eps ||Z|| / |mu| (``||Z||`` = max ||Phi_k||), and where two real roots
+    # meet (the roots of a lock at k/2 just formed) the error is its square
+    # root -- K times that in the multiplier's angle.  A fixed threshold below
+    # that error let round-off decide: measured on Fig. 14's 0.2175 R at eps
+    # 0.99414 (TEF pair at 5.5 /rev, -4.96 /rev, |mu| = 4e-4, ||Z|| = 2.3e6),
+    # the two real multipliers of the lock read |sin| 1.5e-4 and 8e-7 and were
+    # both dropped as the negative member of a complex pair, or one was kept,
+    # as a relative nudge of 1e-12 of the blade mass decided; the bound there
+    # is 4.5e-3.  Real roots elsewhere read |sin| at most 7e-14 and complex ones
+    # at least 0.04 (Fig. 9's points, c_cg 0-0.36, eps 0.25-0.75); the floor
+    # 1e-8 keeps well-resolved roots decided as before.
+    with np.errstate(divide="ignore"):
+        near_axis = np.maximum(1e-8, k_sub * np.sqrt(np.finfo(float).eps * znorm
+                                                     / np.abs(mu)))
+    real = np.abs(np.sin(angle)) <= near_axis
+    angle = np.where(real, np.where(np.cos(angle) < 0.0, np.pi, 0.0), angle)
     keep = real | (angle > 0)
     # only the kept roots' motions are propagated: half the columns (measured
     # with 20 states, 72 steps: 0.19 ms for the 10 kept against 0.77 for all 20)

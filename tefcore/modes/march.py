@@ -493,10 +493,21 @@ class March:
         active = share >= FLAP_ACTIVE
         moved = self.share >= FLAP_ACTIVE
         path_of = dict(zip(cols, rows, strict=True))
+        # the two real roots of a lock forming at this step: a path that
+        # reaches either has reached its mode, and the other root is its
+        # partner (named as a pair by the caller, never by which of the two
+        # the assignment chose): an exchange with the appearing partner is not
+        # undecided (measured on Fig. 14's 0.14 R: the TEF touched the lock at
+        # 8.5 /rev near eps 0.984 and left it a step later, and the regret
+        # between the lock's two roots, equal to round-off, had flagged the
+        # TEF's name as undecided)
+        partner = lock_matrix(eig) if self.periodic else None
         meet, lock = [], []
         for r, c, ok, k in zip(rows, cols, clear, rival, strict=True):
             other = path_of.get(k)
             if ok or (other is not None and self._base(other) == self._base(r)):
+                continue
+            if other is None and k >= 0 and partner is not None and partner[c, k]:
                 continue
             mine = moved[r] or active[c]
             theirs = (k >= 0 and active[k]) or (other is not None and moved[other])

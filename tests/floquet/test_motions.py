@@ -166,3 +166,41 @@ def test_transient_coefficients_give_the_same_values_and_keep_nothing():
     with fresh.transient_coefficients():
         for g, w in zip(fresh.matrices(psi), (m, c, k), strict=True):
             np.testing.assert_allclose(g, w, rtol=1e-13, atol=1e-13)
+
+
+def _locked_jordan(sigma, omega):
+    """Two coincident damped modes at ``omega`` /rev, one Jordan block: at omega = 1/2
+    every multiplier is ``-exp(2 pi sigma)`` and the monodromy matrix is defective."""
+    a = np.array([[sigma, -omega, 1.0, 0.0], [omega, sigma, 0.0, 1.0],
+                  [0.0, 0.0, sigma, -omega], [0.0, 0.0, omega, sigma]])
+    return lambda psi: np.broadcast_to(a, (len(psi), 4, 4))
+
+
+@pytest.mark.parametrize("sigma", [-0.2, -2.0, -4.5])
+def test_roots_at_a_lock_are_snapped_to_the_axis_whatever_the_round_off(sigma):
+    # A defective multiplier on the negative real axis is where a k/2 lock forms:
+    # round-off moves its roots off the axis by the square root of the machine
+    # precision (more for a heavily damped, lifted root), with either sign.  A
+    # fixed threshold on the angle made the count of roots (3 or 4 here, as a
+    # relative 1e-12 nudge of sigma or omega decided: 9 of 30 draws at sigma -0.2)
+    # a matter of round-off; within its accuracy a root is snapped onto the axis,
+    # so every draw reads four real roots at exactly 1/2 /rev.
+    rng = np.random.default_rng(0)
+    for _ in range(30):
+        s, w = (v * (1 + 1e-12 * rng.standard_normal()) for v in (sigma, 0.5))
+        eta, _ = floquet_motions(_locked_jordan(s, w), 72)
+        assert eta.size == 4
+        assert np.all(eta.imag == 0.5)              # snapped: exactly k/2, no round-off
+        np.testing.assert_allclose(eta.real, sigma, rtol=1e-5)
+
+
+def test_a_complex_pair_clear_of_the_axis_is_not_snapped():
+    # the snap is the root's own accuracy, not a band of frequency: a lightly damped
+    # pair 1e-4 /rev from 1/2 /rev stays one complex root (a real root would be two)
+    eta, _ = floquet_motions(_oscillator_at(0.5 - 1e-4), 72)
+    assert eta.size == 1 and abs(eta.imag[0] - (0.5 - 1e-4)) < 1e-8
+
+
+def _oscillator_at(omega, sigma=-0.05):
+    b = np.array([[0.0, 1.0], [-(sigma**2 + omega**2), 2 * sigma]])
+    return lambda psi: np.broadcast_to(b, (len(psi), 2, 2))

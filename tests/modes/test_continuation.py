@@ -757,6 +757,26 @@ def test_the_names_do_not_depend_on_round_off_where_a_lock_forms(monkeypatch, fi
     shaken = stability(cfg).modes
     assert all(str(x).strip() and not str(x).startswith(" ") for x in shaken["label"])
     assert list(shaken["label"]) == list(plain["label"])
+    # and the certainty of each name: at 0.2175 R the lock's two real roots were
+    # both dropped at one path step or both kept, as round-off decided (their
+    # multipliers' angles 1.5e-4 off the axis against a fixed 1e-8), and three
+    # blade names lost their certainty with it
+    assert list(shaken["identity_certain"]) == list(plain["identity_certain"])
+
+
+def test_a_lock_the_flap_touches_on_the_way_leaves_its_name_certain():
+    """At Fig. 14's 0.14 R the TEF reaches 8.5 /rev near eps 0.984, locks there
+    for a step and leaves: a root appears beside it and goes.  Which of the
+    lock's two real roots the path took is a tie by construction (one mode's
+    pair, named as a pair); it is not an undecided match, and the TEF's name
+    stays certain (it was flagged undecided by the tie, measured)."""
+    from tefcore.linear.stability import stability
+    from tefcore.paper.figures.catalogue import figure_config
+
+    modes = stability(figure_config("fig14").with_overrides({"flap.span": 0.14})).modes
+    tef = modes[modes["label"] == "TEF"].iloc[0]
+    assert bool(tef["identity_certain"])
+    assert abs(tef["frequency_per_rev"] - 8.913) < 0.01     # past the lock, as continued
 
 
 def test_a_lock_at_zero_coupling_is_named_from_its_own_mode():
@@ -918,3 +938,22 @@ def test_an_exceptional_point_says_how_near_its_uncoupled_modes_lie():
         "uncoupled TEF 3.00, blade flap 3 2.00 /rev: TEF - blade flap 3 = 1.00 /rev"]
     assert uncoupled_relation(floquet.drop(columns="frequency_uncoupled"),
                               "TEF / blade flap 5", 0.27, 0.275) == ""
+
+
+@pytest.mark.parametrize("field, rel", [("blade.mass_scale", 1e-12),
+                                        ("rotor.air_density", -1e-12)])
+def test_a_nudge_leaves_every_name_and_its_certainty_where_a_lock_forms(field, rel):
+    """Fig. 14's 0.2175 R, where the TEF's lock at 5.5 /rev forms near eps 0.994:
+    a relative nudge of 1e-12 (no engineering meaning; the round-off of another
+    BLAS kernel) left the names but flipped the certainty of three of them
+    (measured while a fixed angle threshold decided whether the lock's roots
+    were real, and the lock's appearing root counted as a rival of the path
+    that reached its partner; either rule alone keeps them here)."""
+    from tefcore.paper.claims.robustness import nudge
+    from tefcore.paper.figures.frames import compute_figure
+
+    cfg = load_config("mdart")
+    plain = compute_figure("fig14", cfg, [0.2175]).table.sort_values("label")
+    shaken = compute_figure("fig14", nudge(cfg, field, rel), [0.2175]).table.sort_values("label")
+    assert list(shaken["label"]) == list(plain["label"])
+    assert list(shaken["identity_certain"]) == list(plain["identity_certain"])

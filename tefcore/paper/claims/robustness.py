@@ -7,7 +7,9 @@ another machine does.  A verdict that such a nudge moves was decided by
 round-off.  :func:`nudged_runs` checks a set of figures' claims on the
 configuration and on nudged copies of it; :func:`differences` lists what
 moved: a claim's status, a computed value beyond a relative 1e-6, a root's
-name or the certainty of its name at any point of any figure.  The test suite
+name or the certainty of its name at any point of any figure.  A value is
+compared relative to the larger of its own size and the scale its claim's
+margin measures it against (a near-zero slope against the panel's change).  The test suite
 runs it on the figures whose roots lock at k/2 (Figs. 12 and 15).
 
 Examples
@@ -128,6 +130,37 @@ def nudged_runs(cfg, figures, nudges=NUDGES) -> list[NudgedRun]:
     return out
 
 
+def _allowed(va: float, vb: float, claims, cid, rtol: float) -> float:
+    """How far a claim's computed value may move under a nudge.
+
+    ``rtol`` of the value's own size, or of the size its claim measures it
+    against, whichever is larger: a statistic near zero -- a slope whose sign
+    is the claim, a difference of two larger numbers -- is compared to the
+    change the panel shows (the scale of the claim's signed ``margin``,
+    ``value / margin``), as the verdict is.  (Measured: Fig. 10b's slope
+    -1.08e-5 /rev per lb/in at margin -0.060, a scale of 1.8e-4, moves by
+    5.5e-11 under a radius nudge of 1e-9: 5e-6 of the slope, 3e-7 of the
+    scale.)  Other values: never below :data:`VALUE_ATOL`.
+    """
+    size = max(abs(va), abs(vb))
+    if _signed_statistic(claims, cid):
+        margin = float(claims.at[cid, "margin"])
+        if np.isfinite(margin) and margin != 0 and np.isfinite(va):
+            # the claim's own units, whatever they are (a slope per lb/in is
+            # 1e-5 where an absolute 1e-8 would be a thousandth of it)
+            return rtol * max(size, abs(va / margin))
+    return max(rtol * size, VALUE_ATOL)
+
+
+def _signed_statistic(claims, cid) -> bool:
+    """Whether the claim's margin is its value over a scale: a trend with a direction
+    (slope or net change, :func:`tefcore.paper.claims.kinds._check_trend`)."""
+    if "margin" not in claims.columns or "kind" not in claims.columns:
+        return False
+    return claims.at[cid, "kind"] == "trend" and str(claims.at[cid, "expected"]).startswith(
+        ("increasing", "decreasing"))
+
+
 def differences(base: NudgedRun, other: NudgedRun, rtol: float = VALUE_RTOL,
                 certainty: bool = True) -> list[str]:
     """What a nudge moved: statuses, values, names and their certainty.
@@ -156,7 +189,7 @@ def differences(base: NudgedRun, other: NudgedRun, rtol: float = VALUE_RTOL,
             out.append(f"{other.label}: {cid} {a.at[cid, 'status']} -> {b.at[cid, 'status']}")
         va, vb = float(a.at[cid, "computed_value"]), float(b.at[cid, "computed_value"])
         if np.isnan(va) != np.isnan(vb) or (
-                np.isfinite(va) and abs(va - vb) > max(rtol * max(abs(va), abs(vb)), VALUE_ATOL)):
+                np.isfinite(va) and abs(va - vb) > _allowed(va, vb, a, cid, rtol)):
             out.append(f"{other.label}: {cid} value {va:.10g} -> {vb:.10g}")
     for fig, ta in base.tables.items():
         tb = other.tables[fig]

@@ -313,6 +313,8 @@ def _dry_run(out, specs, params_of, force, nb_dir) -> BatchResult:
     for p in plans:
         print(f"{p.spec.name:40s} {p.action:6s} {' '.join(p.spec.notebooks)}"
               f"{'  (' + p.reason + ')' if p.reason else ''}")
+        if p.note:
+            print(f"tefcore batch: note: {p.note}", file=sys.stderr)
     return BatchResult(out, [RunOutcome(p.spec, p.action) for p in plans])
 
 
@@ -325,6 +327,8 @@ def _start_runs(out: Path, plans) -> tuple[list, dict]:
     for p in plans:
         if p.action == "skip":
             print(f"{p.spec.name:40s} skipped: inputs unchanged since it finished")
+        if p.note:
+            print(f"tefcore batch: note: {p.note}", file=sys.stderr)
     for p in todo:
         folder = out / p.spec.name
         folder.mkdir(parents=True, exist_ok=True)

@@ -4,7 +4,7 @@ Each run folder ``OUT/<run>/`` holds ``batch_run.json``, written atomically
 when the run starts (``"status": "running"``) and again when it ends::
 
     {"format": "tefcore.batch_run", "version": 1, "run": "group-overhang=0.2",
-     "inputs": {...}, "status": "ok", "error": "",
+     "inputs": {...}, "environment": {...}, "status": "ok", "error": "",
      "notebooks": [{"name": "04_cg_offset", "status": "ok", "error": "", "seconds": 12.1}],
      "claims": {"passed": 2, "total": 5, "worse": 1}}
 
@@ -26,6 +26,12 @@ results, the same ideas as a sweep file's header
   make a run stale, editing a cell does);
 * ``reference_data`` -- a digest of the paper's reference data (claims and
   digitised curves), which decides the claims' statuses.
+
+``environment`` (:func:`tefcore.provenance.numerical_environment`: the
+versions of tefcore, numpy, scipy and the BLAS) is recorded beside the
+inputs, not among them: names and verdicts do not depend on it, so a run
+kept from another stack is not stale, and the plan says what differs
+(``RunPlan.note``).
 
 :func:`plan_runs` compares a folder's record with the batch: unchanged and
 finished -> ``skip``; unchanged but failed or cut short -> ``retry``; no
@@ -49,7 +55,14 @@ from importlib import resources
 from pathlib import Path
 
 from ...errors import TefcoreError
-from ...provenance import describe_digest, file_digest, input_digests, model_stamp
+from ...provenance import (
+    describe_digest,
+    environment_note,
+    file_digest,
+    input_digests,
+    model_stamp,
+    numerical_environment,
+)
 from ...safe_io import atomic_write_text
 from ..claims.files import reference_dir
 from .notebook_files import notebooks_dir
@@ -86,12 +99,17 @@ class RunPlan:
         (unchanged, but failed or cut short) or ``"redo"`` (stale, forced).
     reason : str
         Why, for the log (what changed, for ``redo``).
+    note : str
+        For a run kept (``skip``, ``retry``): what differs in the numerical
+        stack since it was computed (:func:`tefcore.provenance.environment_note`),
+        else empty.
     """
 
     spec: object
     inputs: dict
     action: str
     reason: str = ""
+    note: str = ""
 
 
 @functools.lru_cache(maxsize=1)
@@ -330,7 +348,7 @@ def write_record(folder, run: str, inputs: dict, status: str, **more) -> Path:
         The record's path.
     """
     rec = {"format": FORMAT, "version": VERSION, "run": run, "inputs": inputs,
-           "status": status, **more}
+           "environment": numerical_environment(), "status": status, **more}
     return atomic_write_text(Path(folder) / RECORD,
                              json.dumps(rec, indent=1, sort_keys=True) + "\n")
 
@@ -380,8 +398,11 @@ def plan_runs(out, specs, params_of, *, force: bool = False, nb_dir=None) -> lis
                 else changes(rec["inputs"], inputs)
         if not why:
             done = rec.get("status") == "ok"
+            note = environment_note(folder / RECORD, rec.get("environment"),
+                                    numerical_environment()) or ""
             plans.append(RunPlan(spec, inputs, "skip" if done else "retry",
-                                 "unchanged" if done else f"unchanged, {rec.get('status')}"))
+                                 "unchanged" if done else f"unchanged, {rec.get('status')}",
+                                 note))
         elif force:
             plans.append(RunPlan(spec, inputs, "redo", "; ".join(why)))
         else:

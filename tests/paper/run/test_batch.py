@@ -23,6 +23,7 @@ from tefcore.paper.run import batch as bt
 from tefcore.paper.run.batch_report import headlines
 from tefcore.paper.run.batch_state import RECORD, StaleRunError, read_record
 from tefcore.paper.run.reproduce import NotebookRun
+from tefcore.provenance import numerical_environment
 from tefcore.safe_io import FileLock
 from tests.paper.run.test_report_html import check_page
 
@@ -259,6 +260,30 @@ def test_record_keeps_what_decides_the_results(tmp_path, fake):
                            "reference_data"}
     assert inputs["parameters"]["04_cg_offset"] == {"n_points": 3, "interactive": False}
     assert inputs["notebook_sources"]["04_cg_offset"].startswith("sha256:")
+    assert rec["environment"] == numerical_environment()
+
+
+def test_a_run_from_another_numerical_stack_is_kept_and_says_so(tmp_path, fake, capsys):
+    # names and verdicts do not depend on the numpy/scipy/BLAS build, so a finished run
+    # computed on another stack is skipped, not refused, and the batch names what differs
+    fake()
+    f = _file(tmp_path, "notebooks: [04]\nname: a\n")
+    out = tmp_path / "out"
+    bt.batch(f, out, progress=False)
+    rec = json.loads((out / "a" / RECORD).read_text())
+    rec["environment"] = {**rec["environment"], "numpy": "1.26.4"}
+    (out / "a" / RECORD).write_text(json.dumps(rec))
+    capsys.readouterr()
+    log = []
+    fake(log=log)
+    res = bt.batch(f, out, progress=False)
+    assert [r.action for r in res.runs] == ["skip"] and log == []
+    err = capsys.readouterr().err
+    assert "numpy 1.26.4 (now " + numerical_environment()["numpy"] + ")" in err
+    rec["environment"] = numerical_environment()           # the same stack: nothing said
+    (out / "a" / RECORD).write_text(json.dumps(rec))
+    bt.batch(f, out, progress=False)
+    assert "note" not in capsys.readouterr().err
 
 
 # ------------------------------------------------------------------ headlines and curves
