@@ -28,3 +28,21 @@ def test_the_stored_converged_verdicts_are_mdarts_and_cover_every_stability_figu
             "fig16b", "fig17"} <= set(conv["figure"])
     assert (conv["n_modes"] >= 9).all()
     assert load_converged(load_config("mdart-fig6")) is None      # computed for mdart only
+
+
+def test_each_configuration_keeps_its_own_converged_verdicts(tmp_path):
+    # another configuration's verdicts sit beside mdart's under their own name and are
+    # read back only for that configuration (its hash: a changed rotor has none)
+    from tefcore.paper.claims.truncation import write_converged
+
+    table = pd.DataFrame({"id": ["a"], "figure": ["fig9"], "status": ["fail"],
+                          "computed_value": [1.5], "n_modes": [16]})
+    fig6 = load_config("mdart-fig6")
+    write_converged(table, fig6, root=tmp_path)
+    assert (tmp_path / "converged_basis-mdart-fig6.csv").is_file()
+    assert not (tmp_path / "converged_basis.csv").exists()
+    back = load_converged(fig6, root=tmp_path)
+    assert back["status"].tolist() == ["fail"] and back["n_modes"].tolist() == [16]
+    assert load_converged(load_config("mdart"), root=tmp_path) is None
+    moved = fig6.with_overrides({"flap.cg_offset": 0.2})
+    assert load_converged(moved, root=tmp_path) is None

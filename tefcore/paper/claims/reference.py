@@ -153,7 +153,8 @@ class Claim:
         ``"destabilising"``/``"stabilising"`` with increasing x (threshold),
         or ``"increasing"``/``"decreasing"``/``"constant"`` (trend).
     method : str
-        Sign of a trend: ``"slope"`` (least-squares slope) or ``"net_change"``
+        Sign of a trend: ``"slope"`` (least-squares slope of the curve,
+        :func:`tefcore.paper.claims.kinds.curve_slope`) or ``"net_change"``
         (last minus first).
     reference_mode : str
         Mode whose peak-to-peak scales a ``relative_to_mode`` tolerance.

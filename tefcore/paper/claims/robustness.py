@@ -138,8 +138,8 @@ def _allowed(va: float, vb: float, claims, cid, rtol: float) -> float:
     is the claim, a difference of two larger numbers -- is compared to the
     change the panel shows (the scale of the claim's signed ``margin``,
     ``value / margin``), as the verdict is.  (Measured: Fig. 10b's slope
-    -1.08e-5 /rev per lb/in at margin -0.060, a scale of 1.8e-4, moves by
-    5.5e-11 under a radius nudge of 1e-9: 5e-6 of the slope, 3e-7 of the
+    4.96e-6 /rev per lb/in at margin 0.028, a scale of 1.8e-4, moves by
+    7.5e-11 under a radius nudge of 1e-9: 1.5e-5 of the slope, 4e-7 of the
     scale.)  Other values: never below :data:`VALUE_ATOL`.
     """
     size = max(abs(va), abs(vb))

@@ -15,9 +15,10 @@ whose verdict differs between the paper's basis and the converged one is
 The converged verdicts cost many times the claims themselves (Figs. 10-11
 take 7 s of CPU with 9 modes, 132 s with 30), so they are computed once by
 ``python -m tefcore.paper.claims.truncation`` and stored with the reference
-data (:data:`CONVERGED_FILE`), with the tefcore version and the configuration
-they were computed for; a reproduction of another configuration says that it
-has none.
+data (:data:`CONVERGED_FILE`; another packaged configuration's, such as the
+inferred rotor's, as ``converged_basis-<name>.csv``), with the tefcore version
+and the configuration they were computed for; a reproduction of a
+configuration without them says that it has none.
 
 Examples
 --------
@@ -58,9 +59,17 @@ MODE_COUNTS = (9, 16, 24, 30, 36)
 #: converged: the resolution of the paper's damping plots (about 0.01 /rev).
 GROWTH_TOL = 0.01
 
-#: The stored converged verdicts (beside the claims) and what they were computed for.
+#: The stored converged verdicts of the default rotor (beside the claims) and what they
+#: were computed for; another configuration's are ``converged_basis-<name>.csv``.
 CONVERGED_FILE = "converged_basis.csv"
 _META = "converged_basis.json"
+
+
+def _files(root, name: str):
+    """The verdicts' table and its record for configuration ``name`` in ``root``."""
+    if name in ("mdart", ""):
+        return root / CONVERGED_FILE, root / _META
+    return root / f"converged_basis-{name}.csv", root / f"converged_basis-{name}.json"
 
 
 def flutter_growth(table: pd.DataFrame) -> float:
@@ -170,10 +179,10 @@ def write_converged(table: pd.DataFrame, cfg, root=None) -> None:
     from ...sweeps.store import config_hash
 
     root = reference_dir() if root is None else root
-    atomic_write_text(root / CONVERGED_FILE,
-                      table[["id", "figure", "status", "computed_value", "n_modes"]]
+    data, meta = _files(root, cfg.name)
+    atomic_write_text(data, table[["id", "figure", "status", "computed_value", "n_modes"]]
                       .to_csv(index=False, float_format="%.10g"))
-    atomic_write_text(root / _META, json.dumps({
+    atomic_write_text(meta, json.dumps({
         "tefcore_version": __version__, "config": cfg.name, "config_hash": config_hash(cfg),
         "mode_counts": sorted(set(int(n) for n in table["n_modes"]))}, indent=1) + "\n")
 
@@ -197,7 +206,7 @@ def load_converged(cfg, root=None) -> pd.DataFrame | None:
     from ...sweeps.store import config_hash
 
     root = reference_dir() if root is None else root
-    meta, data = root / _META, root / CONVERGED_FILE
+    data, meta = _files(root, cfg.name)
     if not (meta.is_file() and data.is_file()):
         return None
     info = json.loads(meta.read_text())
@@ -244,16 +253,26 @@ def mark_truncation(claims: pd.DataFrame, converged: pd.DataFrame | None) -> pd.
 
 
 def _main(argv) -> int:
-    """``python -m tefcore.paper.claims.truncation [FIGURE ...]``: compute and store.
+    """``python -m tefcore.paper.claims.truncation [--config NAME] [FIGURE ...]``: compute
+    and store.
 
     With figures named, their verdicts replace theirs in the stored table and
     the other figures' stay (one figure at a time fits a short session).
+    ``--config`` names a packaged configuration (default ``mdart``); its
+    verdicts are stored as ``converged_basis-<name>.csv``.
     """
+    import argparse
+
     from ...config.io import load_config
     from ...runtime import apply_defaults
 
+    ap = argparse.ArgumentParser(prog="python -m tefcore.paper.claims.truncation")
+    ap.add_argument("--config", default="mdart")
+    ap.add_argument("figures", nargs="*")
+    args = ap.parse_args(argv)
+    argv = args.figures
     apply_defaults()
-    cfg = load_config("mdart")
+    cfg = load_config(args.config)
     table = converged_verdicts(cfg, argv or None)
     stored = load_converged(cfg) if argv else None
     if stored is not None:

@@ -206,7 +206,8 @@ def variant_claims(name: str, figures=None, n_jobs: int = 1) -> pd.DataFrame:
     -------
     pandas.DataFrame
         :func:`tefcore.paper.claims.validation.validate_all`'s table through
-        :func:`apply_variant`.
+        :func:`apply_variant`, with the converged-basis columns of
+        :func:`tefcore.paper.claims.truncation.mark_truncation`.
     """
     from ...config.io import load_config
     from .reference import load_claims
@@ -216,8 +217,14 @@ def variant_claims(name: str, figures=None, n_jobs: int = 1) -> pd.DataFrame:
     if figures is not None:
         figures = set(figures)
         claims = [c for c in claims if c.figure in figures]
-    table = validate_all(n_jobs=n_jobs, claims=claims, cfg=load_config(name))
-    return apply_variant(table, name)
+    from .truncation import load_converged, mark_truncation
+
+    cfg = load_config(name)
+    table = validate_all(n_jobs=n_jobs, claims=claims, cfg=cfg)
+    # each claim's verdict on its figure's converged basis, where one is stored
+    # for this variant (converged_basis-<name>.csv): a differing verdict is
+    # truncation-dependent
+    return mark_truncation(apply_variant(table, name), load_converged(cfg))
 
 
 def _why(row: dict, names) -> str:

@@ -404,7 +404,9 @@ def inference_view(results: dict) -> dict | None:
         the Sobol sample), ``sobol`` (per failing or ambiguous claim of mdart:
         the group of the largest total Sobol index, with its interval, and the
         next), ``sobol_info``, ``sobol_unmoved`` (analysed claims no rotor of
-        the design moved), ``best`` (study and trial of the inferred rotor).
+        the design moved), ``best`` (study and trial of the inferred rotor),
+        ``truncation`` (:func:`truncation_text` of the inferred rotor; empty
+        where its converged-basis verdicts are not stored).
     """
     if not results:
         return None
@@ -446,7 +448,64 @@ def inference_view(results: dict) -> dict | None:
         "sobol": _sobol_rows(results.get("sobol")),
         "sobol_info": results.get("sobol_info", {}),
         "sobol_unmoved": _sobol_unmoved(results),
+        "truncation": truncation_text(
+            summary.get("checks", {}).get("best continued", {}).get("continued", {})
+            .get("statuses", {}), _inferred_converged()),
     }
+
+
+def _inferred_converged():
+    """The stored converged-basis verdicts of ``mdart-inferred``, or None."""
+    from ...config.io import load_config
+    from ..claims.truncation import load_converged
+
+    return load_converged(load_config("mdart-inferred"))
+
+
+def truncation_text(statuses: dict, converged) -> str:
+    """One sentence: which of a rotor's verdicts hold on its figures' converged bases.
+
+    Parameters
+    ----------
+    statuses : dict
+        Claim id -> status with the paper's nine modes (validation claims).
+    converged : pandas.DataFrame or None
+        :func:`tefcore.paper.claims.truncation.load_converged` of the rotor.
+
+    Returns
+    -------
+    str
+        Empty without either.
+
+    Examples
+    --------
+    >>> import pandas as pd
+    >>> conv = pd.DataFrame({"id": ["a", "b", "c"], "status": ["pass", "fail", "pass"],
+    ...                      "n_modes": [16, 24, 16]})
+    >>> print(truncation_text({"a": "pass", "b": "pass", "c": "fail"}, conv))
+    On its figures' converged bases (16-24 modes) 1 of its 2 passes with the paper's nine modes is truncation-dependent: b (fail with 24); and 1 verdict that is not a pass becomes one: c (fail with nine, pass with 16).
+    """
+    if not statuses or converged is None or converged.empty:
+        return ""
+    conv = converged.set_index("id")
+    ids = [i for i in statuses if i in conv.index]
+    passes = [i for i in ids if statuses[i] == "pass"]
+    lost = [i for i in passes if conv.at[i, "status"] != "pass"]
+    won = [i for i in ids if statuses[i] != "pass" and conv.at[i, "status"] == "pass"]
+    modes = sorted({int(n) for n in conv["n_modes"]})
+    span = f"{modes[0]}-{modes[-1]}" if len(modes) > 1 else f"{modes[0]}"
+    out = (f"On its figures' converged bases ({span} modes) {len(lost)} of its {len(passes)} "
+           f"passes with the paper's nine modes "
+           f"{'is' if len(lost) == 1 else 'are'} truncation-dependent")
+    out += (": " + ", ".join(f"{i} ({conv.at[i, 'status']} with {int(conv.at[i, 'n_modes'])})"
+                             for i in lost)) if lost else ""
+    if won:
+        out += (f"; and {len(won)} verdict{'' if len(won) == 1 else 's'} that "
+                f"{'is' if len(won) == 1 else 'are'} not a pass "
+                f"become{'s' if len(won) == 1 else ''} one: "
+                + ", ".join(f"{i} ({statuses[i]} with nine, pass with "
+                            f"{int(conv.at[i, 'n_modes'])})" for i in won))
+    return out + "."
 
 
 def _sobol_unmoved(results: dict) -> list[str]:
