@@ -15,7 +15,10 @@ after the study: never inside it).
   fit without F over that sample; on TPE the sampling itself was guided by F
   too, which the result says;
 * :func:`conflicts` and :func:`pareto_front`: claims whose margins pull against
-  each other over the trials, and the trials no other beats on all of them.
+  each other over the trials, and the trials no other beats on all of them;
+* :func:`agreement`: whether the studies of one reading (other samplers, other
+  seeds) end at the same rotor -- each study's best, and the parameters on
+  which the bests lie further apart than :data:`AGREE` of their range.
 
 Examples
 --------
@@ -32,8 +35,16 @@ import pandas as pd
 
 from .evaluate import objective
 
-__all__ = ["check_rotor", "claim_scores", "conflicts", "failures", "leave_one_figure_out",
-           "pareto_front", "pass_rates", "trial_claims", "trials_frame"]
+__all__ = ["AGREE", "agreement", "check_rotor", "claim_scores", "conflicts", "failures",
+           "leave_one_figure_out", "pareto_front", "pass_rates", "trial_claims",
+           "trials_frame"]
+
+#: Two studies' best rotors agree on a parameter when they lie within this share of
+#: its declared range (a log range measured in its logarithm; a choice: the same
+#: one).  A quarter: the spread of the trials within one claim of the best is
+#: itself a third to a half of most ranges (the packaged studies), so a closer
+#: agreement would ask more of the bests than the landscape can say.
+AGREE = 0.25
 
 
 def claim_scores(statuses: dict, margins: dict, ambiguous: float = 0.0,
@@ -335,3 +346,80 @@ def check_rotor(params: dict, claims, readings=("continued", "flutter"), *, cach
     return evaluate_rotor(cfg, claims, readings, cache=cache,
                           settings=RunSettings(base=cfg, refine=refine),
                           flutter_quantities=protocol.flutter_quantities)
+
+
+def _position(p, v) -> float:
+    """Where `v` lies in parameter `p`'s declared range, 0 at ``low`` and 1 at ``high``."""
+    if p.log:
+        return float((np.log(v) - np.log(p.low)) / (np.log(p.high) - np.log(p.low)))
+    return float((v - p.low) / (p.high - p.low))
+
+
+def agreement(studies, reading: str, space, within: float = AGREE) -> dict:
+    """Do the studies of one reading, by other samplers and seeds, end at the same rotor?
+
+    Parameters
+    ----------
+    studies : sequence of optuna.Study
+        The studies (those without a completed trial of `reading` are left out).
+    reading : str
+        The reading whose objective ranks the trials.
+    space : dict
+        :func:`tefcore.paper.inference.space.load_space` (the declared ranges).
+    within : float
+        Share of a range within which two bests agree (:data:`AGREE`).
+
+    Returns
+    -------
+    dict
+        ``studies``: per study its name, best trial, objective and fitted
+        passes; ``apart``: per parameter on which the bests disagree, the
+        parameter and each study's value there (its position in the range
+        for a number); ``objective_spread``: the best objective's range over
+        the studies; ``same``: True when no parameter is apart.
+
+    Examples
+    --------
+    >>> from types import SimpleNamespace as NS
+    >>> import optuna
+    >>> optuna.logging.set_verbosity(optuna.logging.WARNING)
+    >>> from tefcore.paper.inference.space import Parameter
+    >>> space = {"m": Parameter("m", "value", ("flap.mass",), low=0.0, high=1.0)}
+    >>> def study(name, m, obj):
+    ...     s = optuna.create_study(study_name=name, direction="maximize")
+    ...     t = optuna.trial.create_trial(params={"m": m}, value=obj,
+    ...         distributions={"m": optuna.distributions.FloatDistribution(0, 1)},
+    ...         user_attrs={"continued:objective": obj, "continued:passes": 3})
+    ...     s.add_trial(t)
+    ...     return s
+    >>> a = agreement([study("a", 0.2, 5.0), study("b", 0.7, 4.0)], "continued", space)
+    >>> a["same"], a["apart"][0]["parameter"], a["objective_spread"]
+    (False, 'm', 1.0)
+    """
+    bests = []
+    for s in studies:
+        done = [t for t in _completed(s) if f"{reading}:objective" in t.user_attrs]
+        if done:
+            best = max(done, key=lambda t: t.user_attrs[f"{reading}:objective"])
+            bests.append((s.study_name, best))
+    rows = [{"study": n, "trial": t.number, "objective": t.user_attrs[f"{reading}:objective"],
+             "passes": t.user_attrs[f"{reading}:passes"]} for n, t in bests]
+    apart = []
+    for name, p in space.items():
+        values = [t.params.get(name) for _, t in bests]
+        if len(values) < 2 or any(v is None for v in values):
+            continue
+        if p.categorical:
+            far = len(set(values)) > 1
+            shown = [str(v) for v in values]
+        else:
+            pos = [_position(p, float(v)) for v in values]
+            far = max(pos) - min(pos) > within
+            shown = [round(x, 2) for x in pos]
+        if far:
+            apart.append({"parameter": name, "values": dict(zip([n for n, _ in bests], shown,
+                                                                 strict=True))})
+    objs = [r["objective"] for r in rows]
+    return {"studies": rows, "apart": apart,
+            "objective_spread": float(max(objs) - min(objs)) if objs else 0.0,
+            "same": not apart}

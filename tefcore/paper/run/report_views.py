@@ -405,8 +405,10 @@ def inference_view(results: dict) -> dict | None:
         the group of the largest total Sobol index, with its interval, and the
         next), ``sobol_info``, ``sobol_unmoved`` (analysed claims no rotor of
         the design moved), ``best`` (study and trial of the inferred rotor),
-        ``truncation`` (:func:`truncation_text` of the inferred rotor; empty
-        where its converged-basis verdicts are not stored).
+        ``agreement`` (:func:`agreement_text`: do the studies of the continued
+        reading end at the same rotor?), ``truncation`` (:func:`truncation_text`
+        of the inferred rotor; empty where its converged-basis verdicts are
+        not stored).
     """
     if not results:
         return None
@@ -448,10 +450,53 @@ def inference_view(results: dict) -> dict | None:
         "sobol": _sobol_rows(results.get("sobol")),
         "sobol_info": results.get("sobol_info", {}),
         "sobol_unmoved": _sobol_unmoved(results),
+        "agreement": agreement_text(summary.get("agreement", {}).get("continued")),
         "truncation": truncation_text(
             summary.get("checks", {}).get("best continued", {}).get("continued", {})
             .get("statuses", {}), _inferred_converged()),
     }
+
+
+def agreement_text(agreement: dict | None) -> str:
+    """One sentence: do the studies of a reading end at the same rotor?
+
+    Parameters
+    ----------
+    agreement : dict or None
+        :func:`tefcore.paper.inference.analysis.agreement`.
+
+    Returns
+    -------
+    str
+        Empty without one, or with fewer than two studies.
+
+    Examples
+    --------
+    >>> print(agreement_text({"studies": [
+    ...     {"study": "a", "trial": 3, "objective": 12.9, "passes": 17},
+    ...     {"study": "b", "trial": 9, "objective": 11.2, "passes": 15}],
+    ...     "apart": [{"parameter": "flap mass", "values": {"a": 0.1, "b": 0.8}}],
+    ...     "objective_spread": 1.7, "same": False}))  # doctest: +NORMALIZE_WHITESPACE
+    The answer depends on the sampler and the seed: the best rotors of a (objective 12.9,
+    17 fitted passes) and b (objective 11.2, 15 fitted passes) lie more than a quarter of
+    their ranges apart in flap mass (0.1, 0.8 of the range).
+    """
+    if not agreement or len(agreement.get("studies", [])) < 2:
+        return ""
+    bests = " and ".join(f"{r['study']} (objective {r['objective']:.1f}, {r['passes']} fitted "
+                         "passes)" for r in agreement["studies"])
+    if agreement["same"]:
+        return (f"The answer does not depend on the sampler or the seed: the best rotors of "
+                f"{bests} lie within a quarter of every range of each other.")
+    def where(a):
+        values = list(a["values"].values())
+        numbers = all(isinstance(v, (int, float)) for v in values)
+        return (f"{a['parameter']} ({', '.join(str(v) for v in values)}"
+                f"{' of the range' if numbers else ''})")
+
+    apart = "; ".join(where(a) for a in agreement["apart"])
+    return (f"The answer depends on the sampler and the seed: the best rotors of {bests} lie "
+            f"more than a quarter of their ranges apart in {apart}.")
 
 
 def _inferred_converged():
@@ -483,7 +528,10 @@ def truncation_text(statuses: dict, converged) -> str:
     >>> conv = pd.DataFrame({"id": ["a", "b", "c"], "status": ["pass", "fail", "pass"],
     ...                      "n_modes": [16, 24, 16]})
     >>> print(truncation_text({"a": "pass", "b": "pass", "c": "fail"}, conv))
-    On its figures' converged bases (16-24 modes) 1 of its 2 passes with the paper's nine modes is truncation-dependent: b (fail with 24); and 1 verdict that is not a pass becomes one: c (fail with nine, pass with 16).
+    ... # doctest: +NORMALIZE_WHITESPACE
+    On its figures' converged bases (16-24 modes) 1 of its 2 passes with the paper's nine
+    modes is truncation-dependent: b (fail with 24); and 1 verdict that is not a pass
+    becomes one: c (fail with nine, pass with 16).
     """
     if not statuses or converged is None or converged.empty:
         return ""
