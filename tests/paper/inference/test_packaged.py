@@ -133,3 +133,19 @@ def test_the_sobol_indices_cover_every_claim_mdart_fails_or_leaves_ambiguous():
         assert x["group"] == mine.loc[mine["ST"].idxmax(), "group"]
         assert set(mine["group"]) == {"flap", "actuator", "section", "blade stiffness",
                                       "aerodynamics", "hub"}
+
+
+def test_the_report_says_whether_the_answer_depends_on_the_sampler_or_the_seed():
+    # each reading's agreement names its studies' bests as trials.csv holds them, and
+    # the report says the answer depends on them exactly when a parameter lies apart
+    trials = RESULTS["trials"]
+    for reading, ag in RESULTS["summary"]["agreement"].items():
+        own = [s["name"] for s in STUDIES if s["reading"] == reading]
+        assert [r["study"] for r in ag["studies"]] == own
+        for r in ag["studies"]:
+            mine = trials[(trials["study"] == r["study"]) & (trials["state"] == "COMPLETE")]
+            assert r["objective"] == pytest.approx(mine[f"{reading} objective"].max())
+        assert ag["same"] == (not ag["apart"])
+    text = inference_view(RESULTS)["agreement"]
+    depends = not RESULTS["summary"]["agreement"]["continued"]["same"]
+    assert text.startswith("The answer depends" if depends else "The answer does not depend")
