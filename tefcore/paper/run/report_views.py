@@ -452,8 +452,8 @@ def inference_view(results: dict) -> dict | None:
         "sobol_unmoved": _sobol_unmoved(results),
         "agreement": agreement_text(summary.get("agreement", {}).get("continued")),
         "truncation": truncation_text(
-            summary.get("checks", {}).get("best continued", {}).get("continued", {})
-            .get("statuses", {}), _inferred_converged()),
+            _validation(summary.get("checks", {}).get("best continued", {})
+                        .get("continued", {}).get("statuses", {})), _inferred_converged()),
     }
 
 
@@ -499,6 +499,15 @@ def agreement_text(agreement: dict | None) -> str:
             f"more than a quarter of their ranges apart in {apart}.")
 
 
+def _validation(statuses: dict) -> dict:
+    """The validation claims' entries of a claim id -> status table (the counts the
+    report gives are of the 58 validation statements)."""
+    from ..claims.reference import load_claims
+
+    keep = {c.id for c in load_claims() if c.tag == "validation"}
+    return {k: v for k, v in statuses.items() if k in keep}
+
+
 def _inferred_converged():
     """The stored converged-basis verdicts of ``mdart-inferred``, or None."""
     from ...config.io import load_config
@@ -509,6 +518,9 @@ def _inferred_converged():
 
 def truncation_text(statuses: dict, converged) -> str:
     """One sentence: which of a rotor's verdicts hold on its figures' converged bases.
+
+    Only the claims with a converged verdict count (those of the stability
+    figures; Figs. 6 and 7 have no modal basis to converge).
 
     Parameters
     ----------
@@ -529,9 +541,9 @@ def truncation_text(statuses: dict, converged) -> str:
     ...                      "n_modes": [16, 24, 16]})
     >>> print(truncation_text({"a": "pass", "b": "pass", "c": "fail"}, conv))
     ... # doctest: +NORMALIZE_WHITESPACE
-    On its figures' converged bases (16-24 modes) 1 of its 2 passes with the paper's nine
-    modes is truncation-dependent: b (fail with 24); and 1 verdict that is not a pass
-    becomes one: c (fail with nine, pass with 16).
+    On its figures' converged bases (16-24 modes) 1 of the 2 passes of its stability
+    figures with the paper's nine modes is truncation-dependent: b (fail with 24); and 1
+    verdict that is not a pass becomes one: c (fail with nine, pass with 16).
     """
     if not statuses or converged is None or converged.empty:
         return ""
@@ -542,8 +554,8 @@ def truncation_text(statuses: dict, converged) -> str:
     won = [i for i in ids if statuses[i] != "pass" and conv.at[i, "status"] == "pass"]
     modes = sorted({int(n) for n in conv["n_modes"]})
     span = f"{modes[0]}-{modes[-1]}" if len(modes) > 1 else f"{modes[0]}"
-    out = (f"On its figures' converged bases ({span} modes) {len(lost)} of its {len(passes)} "
-           f"passes with the paper's nine modes "
+    out = (f"On its figures' converged bases ({span} modes) {len(lost)} of the "
+           f"{len(passes)} passes of its stability figures with the paper's nine modes "
            f"{'is' if len(lost) == 1 else 'are'} truncation-dependent")
     out += (": " + ", ".join(f"{i} ({conv.at[i, 'status']} with {int(conv.at[i, 'n_modes'])})"
                              for i in lost)) if lost else ""

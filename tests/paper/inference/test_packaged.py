@@ -149,3 +149,21 @@ def test_the_report_says_whether_the_answer_depends_on_the_sampler_or_the_seed()
     text = inference_view(RESULTS)["agreement"]
     depends = not RESULTS["summary"]["agreement"]["continued"]["same"]
     assert text.startswith("The answer depends" if depends else "The answer does not depend")
+
+
+def test_the_report_says_which_passes_of_the_inferred_rotor_hold_on_the_converged_basis():
+    # the inferred rotor's converged-basis verdicts are stored for it (its config hash),
+    # and the report counts its validation passes that have one and names each that is
+    # lost there
+    from tefcore.paper.claims.truncation import load_converged
+
+    conv = load_converged(load_config("mdart-inferred"))
+    assert conv is not None and (conv["n_modes"] >= 9).all()
+    statuses = RESULTS["summary"]["checks"]["best continued"]["continued"]["statuses"]
+    validation = {c.id for c in load_claims() if c.tag == "validation"}
+    by_id = conv.set_index("id")["status"]
+    passes = [i for i in validation if statuses.get(i) == "pass" and i in by_id.index]
+    lost = sorted(i for i in passes if by_id[i] != "pass")
+    text = inference_view(RESULTS)["truncation"]
+    assert f"{len(lost)} of the {len(passes)} passes of its stability figures" in text
+    assert all(i in text for i in lost)
