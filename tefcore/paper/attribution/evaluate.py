@@ -217,6 +217,14 @@ class FigureCache:
     same configuration at other values loads the points already there and
     computes the rest.  Figs. 5-7 are kept in memory, Fig. 7 by overhang.
 
+    A sweep file another tefcore wrote (another version or model code: its
+    header's ``tefcore_version`` and ``model_stamp``) is not resumed -- the
+    sweep would refuse it as stale, and every figure read from the cache
+    would be "not computable" -- but removed and computed again: the files
+    are this cache's own, derived data (measured: notebook 12's small study,
+    re-run in a checkout whose cache held an older solver's Fig. 8, counted
+    Fig. 8 not computable in all 8 trials).
+
     Parameters
     ----------
     folder : path
@@ -226,6 +234,28 @@ class FigureCache:
     def __init__(self, folder):
         self.folder = Path(folder)
         self.memory: dict = {}
+        self.checked: set = set()       # sweep files whose header was read
+
+    def _drop_stale(self, path: Path) -> None:
+        """Remove `path` if another tefcore version or model code wrote it (once per file)."""
+        if path in self.checked:
+            return
+        self.checked.add(path)
+        import json
+
+        from ..._version import __version__
+        from ...provenance import model_stamp
+
+        try:
+            with open(path, "rb") as f:
+                head = json.loads(f.readline())
+        except (OSError, ValueError):
+            return                      # absent, or damaged: the sweep says which
+        if not isinstance(head, dict):
+            return
+        if (head.get("model_stamp"), head.get("tefcore_version")) != (model_stamp(),
+                                                                      __version__):
+            path.unlink(missing_ok=True)
 
     def result(self, figure: str, cfg, settings: RunSettings, overrides: dict, values):
         """The result of `figure` for the base `cfg`, with a variant's `overrides`.
@@ -261,9 +291,11 @@ class FigureCache:
         if key not in self.memory:
             from ...sweeps.sweep import sweep
 
+            out = self.folder / f"{figure}-{chash}.jsonl"
+            self._drop_stale(out)
             self.memory[key] = sweep(fig_cfg, parameter, list(values), point=settings.point,
-                                     out=self.folder / f"{figure}-{chash}.jsonl",
-                                     progress=False, warn=False, refine=settings.refine)
+                                     out=out, progress=False, warn=False,
+                                     refine=settings.refine)
         return self.memory[key]
 
     def _response(self, figure, cfg, over, values, chash):

@@ -246,3 +246,28 @@ def test_notebooks_with_one_base_share_each_moved_configuration(tmp_path):
     assert task.config("07", 0.5).flap.cg_offset == 0.1 and len(moved) == 2
     assert task.config("04", -0.5) is not a and len(moved) == 3
     assert task.config("05", None) is settings["05"].base and len(moved) == 3
+
+
+def test_a_cached_sweep_of_another_model_code_is_computed_again(tmp_path):
+    # the cache's sweep files are derived data: one written by another model code is
+    # not resumed (the sweep would refuse it and the figure read "not computable") but
+    # replaced, and the figure's values are this code's
+    import json
+
+    from tefcore.paper.attribution.evaluate import FigureCache
+    from tefcore.provenance import model_stamp
+
+    cfg = load_config("mdart")
+    settings = RunSettings(base=cfg)
+    first = FigureCache(tmp_path).result("fig12", cfg, settings, {}, [65.625, 131.25])
+    (path,) = tmp_path.glob("fig12-*.jsonl")
+    lines = path.read_text().splitlines()
+    head = json.loads(lines[0])
+    path.write_text("\n".join([json.dumps({**head, "model_stamp": "0" * 16})] + lines[1:])
+                    + "\n")
+    again = FigureCache(tmp_path).result("fig12", cfg, settings, {}, [65.625, 131.25])
+    assert json.loads(path.read_text().splitlines()[0])["model_stamp"] == model_stamp()
+    assert first.ok and again.ok
+    assert again.table["label"].tolist() == first.table["label"].tolist()
+    np.testing.assert_allclose(again.table["real_part"].astype(float),
+                               first.table["real_part"].astype(float), atol=1e-9)
