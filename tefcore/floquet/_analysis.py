@@ -602,12 +602,12 @@ def floquet_motions(A, n_steps, n_sub=4, period=TWO_PI, method="magnus", max_sub
     # eps ||Z|| / |mu| (``||Z||`` = max ||Phi_k||), and where two real roots
     # meet (the roots of a lock at k/2 just formed) the error is its square
     # root -- K times that in the multiplier's angle.  A fixed threshold below
-    # that error let round-off decide: measured on Fig. 14's 0.2175 R at eps
-    # 0.99414 (TEF pair at 5.5 /rev, -4.96 /rev, |mu| = 4e-4, ||Z|| = 2.3e6),
-    # the two real multipliers of the lock read |sin| 1.5e-4 and 8e-7 and were
-    # both dropped as the negative member of a complex pair, or one was kept,
-    # as a relative nudge of 1e-12 of the blade mass decided; the bound there
-    # is 4.5e-3.  Real roots elsewhere read |sin| at most 7e-14 and complex ones
+    # that error leaves the decision to round-off: measured on Fig. 14's 0.2175 R
+    # at eps 0.99414 (TEF pair at 5.5 /rev, -4.96 /rev, |mu| = 4e-4, ||Z|| =
+    # 2.3e6), the two real multipliers of the lock read |sin| 1.5e-4 and 8e-7;
+    # against 1e-8 both are dropped as the negative member of a complex pair,
+    # or one is kept, as a relative nudge of 1e-12 of the blade mass decides;
+    # the bound there is 4.5e-3.  Real roots elsewhere read |sin| at most 7e-14 and complex ones
     # at least 0.04 (Fig. 9's points, c_cg 0-0.36, eps 0.25-0.75); the floor
     # 1e-8 keeps well-resolved roots decided as before.
     with np.errstate(divide="ignore"):

@@ -497,10 +497,10 @@ class March:
         # reaches either has reached its mode, and the other root is its
         # partner (named as a pair by the caller, never by which of the two
         # the assignment chose): an exchange with the appearing partner is not
-        # undecided (measured on Fig. 14's 0.14 R: the TEF touched the lock at
-        # 8.5 /rev near eps 0.984 and left it a step later, and the regret
-        # between the lock's two roots, equal to round-off, had flagged the
-        # TEF's name as undecided)
+        # undecided (measured on Fig. 14's 0.14 R: the TEF touches the lock at
+        # 8.5 /rev near eps 0.984 and leaves it a step later; counted as a
+        # rival, the appearing root's regret, equal to round-off, flags the
+        # TEF's name undecided)
         partner = lock_matrix(eig) if self.periodic else None
         meet, lock = [], []
         for r, c, ok, k in zip(rows, cols, clear, rival, strict=True):

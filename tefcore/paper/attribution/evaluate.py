@@ -221,9 +221,9 @@ class FigureCache:
     header's ``tefcore_version`` and ``model_stamp``) is not resumed -- the
     sweep would refuse it as stale, and every figure read from the cache
     would be "not computable" -- but removed and computed again: the files
-    are this cache's own, derived data (measured: notebook 12's small study,
-    re-run in a checkout whose cache held an older solver's Fig. 8, counted
-    Fig. 8 not computable in all 8 trials).
+    are this cache's own, derived data (a study or notebook 12's small study
+    resumed over an older solver's Fig. 8 would count Fig. 8 not computable
+    in every trial).
 
     Parameters
     ----------

@@ -170,8 +170,8 @@ def curve_slope(x, y) -> float:
     segment by segment.  A point added on a straight stretch changes nothing,
     so the slope is the curve's whatever the sampling: a sweep's refinement
     points cluster where names exchange, and an unweighted fit of the points
-    counted those stretches many times over (Fig. 12a's imbalanced-flap slope
-    read 0.0824 with the refinement points and 0.0876 without them).
+    counts those stretches once per point (Fig. 12a's imbalanced-flap slope
+    reads 0.0824 that way with the refinement points and 0.0876 without them).
 
     Parameters
     ----------
