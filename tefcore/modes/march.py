@@ -501,14 +501,17 @@ class March:
         # 8.5 /rev near eps 0.984 and leaves it a step later; counted as a
         # rival, the appearing root's regret, equal to round-off, flags the
         # TEF's name undecided)
-        partner = lock_matrix(eig) if self.periodic else None
+        partner = None                  # lock_matrix(eig), on the first undecided row
         meet, lock = [], []
         for r, c, ok, k in zip(rows, cols, clear, rival, strict=True):
             other = path_of.get(k)
             if ok or (other is not None and self._base(other) == self._base(r)):
                 continue
-            if other is None and k >= 0 and partner is not None and partner[c, k]:
-                continue
+            if other is None and k >= 0 and self.periodic:
+                if partner is None:
+                    partner = lock_matrix(eig)
+                if partner[c, k]:
+                    continue
             mine = moved[r] or active[c]
             theirs = (k >= 0 and active[k]) or (other is not None and moved[other])
             unresolved = shape[r, c] > CLEAR_COST
