@@ -48,3 +48,25 @@ def test_the_packaged_data_files_are_in_the_package_data():
                          ("tefcore.paper", "reference_data/converged_basis.json")):
         assert (ROOT / package.replace(".", "/") / rel).is_file(), rel
         assert any(fnmatch.fnmatch(rel, pat) for pat in data[package]), rel
+
+
+def test_every_file_of_the_data_folders_ships():
+    """Each file of the folders the package reads its data from matches a package-data
+    pattern: a file added beside the others (a variant's converged-basis verdicts, the
+    packaged attribution) would otherwise be missing from a wheel and the installed
+    tool would say it has none."""
+    import fnmatch
+
+    data = PYPROJECT["tool"]["setuptools"]["package-data"]
+    folders = (("tefcore", "data"), ("tefcore", "data/inference"),
+               ("tefcore", "data/inference/results"), ("tefcore.paper", "reference_data"),
+               ("tefcore.paper", "reference_data/curves"))
+    missing = []
+    for package, folder in folders:
+        root = ROOT / package.replace(".", "/")
+        for f in sorted((root / folder).iterdir()):
+            if f.is_file() and not f.name.startswith("."):
+                rel = f.relative_to(root).as_posix()
+                if not any(fnmatch.fnmatch(rel, pat) for pat in data[package]):
+                    missing.append(f"{package}: {rel}")
+    assert not missing, missing

@@ -89,12 +89,17 @@ class Attribution:
         Its wall-clock time.
     tasks : int
         Parallel tasks run (one per lever and pair, plus the baseline check).
+    source : str
+        How it was obtained, in words, for the report: ``""`` for a search
+        of this run; the packaged attribution's provenance where the run read
+        it (:mod:`tefcore.paper.attribution.packaged`).
     """
 
     table: pd.DataFrame
     cpu_seconds: float
     wall_seconds: float
     tasks: int
+    source: str = ""
 
 
 def failing_claims(claims: pd.DataFrame) -> pd.DataFrame:

@@ -467,7 +467,8 @@ def build_report(out, runs, claims: pd.DataFrame, worse: pd.DataFrame, *, figure
                  checks: pd.DataFrame | None = None, version: str = "",
                  title: str = "tefcore reproduction report", up: str = "",
                  variants: dict | None = None,
-                 attribution: pd.DataFrame | None = None, what_if: str = "") -> Report:
+                 attribution: pd.DataFrame | None = None, what_if: str = "",
+                 attribution_source: str = "") -> Report:
     """Collect a reproduction's outputs in ``out`` into a :class:`Report`.
 
     Parameters
@@ -501,6 +502,10 @@ def build_report(out, runs, claims: pd.DataFrame, worse: pd.DataFrame, *, figure
     what_if : str
         The parameters that make the run a what-if (:mod:`tefcore.paper.run.outcome`);
         ``""`` for the recorded computation.
+    attribution_source : str
+        How the attribution was obtained, a sentence for "why we differ"
+        (:attr:`tefcore.paper.attribution.differences.Attribution.source`;
+        ``""``: searched by this run).
 
     Returns
     -------
@@ -532,7 +537,7 @@ def build_report(out, runs, claims: pd.DataFrame, worse: pd.DataFrame, *, figure
             im.caption = short[im.caption]
     why = None
     if attribution is not None:
-        why = why_view(attribution, claims)
+        why = {**why_view(attribution, claims), "source": attribution_source}
         for sec in sections:
             sec.attribution = why["figures"].get(sec.key, [])
     fan = out / "mdart_fanplot.png"

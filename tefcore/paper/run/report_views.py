@@ -450,20 +450,25 @@ def inference_view(results: dict) -> dict | None:
         "sobol": _sobol_rows(results.get("sobol")),
         "sobol_info": results.get("sobol_info", {}),
         "sobol_unmoved": _sobol_unmoved(results),
-        "agreement": agreement_text(summary.get("agreement", {}).get("continued")),
+        "agreement": " ".join(t for t in (
+            agreement_text(summary.get("agreement", {}).get(r), label)
+            for r, label in (("continued", "continued TEF"), ("flutter", "flutter root"))) if t),
         "truncation": truncation_text(
             _validation(summary.get("checks", {}).get("best continued", {})
                         .get("continued", {}).get("statuses", {})), _inferred_converged()),
     }
 
 
-def agreement_text(agreement: dict | None) -> str:
+def agreement_text(agreement: dict | None, reading: str = "") -> str:
     """One sentence: do the studies of a reading end at the same rotor?
 
     Parameters
     ----------
     agreement : dict or None
         :func:`tefcore.paper.inference.analysis.agreement`.
+    reading : str, optional
+        The reading's name, said first (``"flutter root"``: "Reading the
+        paper's TEF mode as the flutter root, ..."); ``""``: not said.
 
     Returns
     -------
@@ -485,9 +490,10 @@ def agreement_text(agreement: dict | None) -> str:
         return ""
     bests = " and ".join(f"{r['study']} (objective {r['objective']:.1f}, {r['passes']} fitted "
                          "passes)" for r in agreement["studies"])
+    lead = f"Reading the paper's TEF mode as the {reading}, the" if reading else "The"
     if agreement["same"]:
-        return (f"The answer does not depend on the sampler or the seed: the best rotors of "
-                f"{bests} lie within a quarter of every range of each other.")
+        return (f"{lead} answer does not depend on the sampler or the seed: the best rotors "
+                f"of {bests} lie within a quarter of every range of each other.")
     def where(a):
         values = list(a["values"].values())
         numbers = all(isinstance(v, (int, float)) for v in values)
@@ -495,8 +501,8 @@ def agreement_text(agreement: dict | None) -> str:
                 f"{' of the range' if numbers else ''})")
 
     apart = "; ".join(where(a) for a in agreement["apart"])
-    return (f"The answer depends on the sampler and the seed: the best rotors of {bests} lie "
-            f"more than a quarter of their ranges apart in {apart}.")
+    return (f"{lead} answer depends on the sampler and the seed: the best rotors of {bests} "
+            f"lie more than a quarter of their ranges apart in {apart}.")
 
 
 def _validation(statuses: dict) -> dict:

@@ -41,6 +41,7 @@ before anything runs (never "0 claims passed of 0").
 
 from __future__ import annotations
 
+import json
 import os
 import queue
 import sys
@@ -579,7 +580,12 @@ def attribute_claims(out: Path, claims: pd.DataFrame, attribution: dict | None):
     """The attribution of the run's failing claims, written to ``OUT/attribution.csv``.
 
     The one hook of :mod:`tefcore.paper.attribution.differences` in the reproduction: called
-    once the notebooks' claims are collected, before the report.
+    once the notebooks' claims are collected, before the report.  Where the
+    package's attribution is this run's answer (the default rotor, this code
+    and data, every claim's verdict as when it was made:
+    :func:`tefcore.paper.attribution.packaged.packaged_attribution`) it is
+    read; otherwise, or with ``again``, the failing claims are searched and
+    the search's stamp is written beside (``OUT/attribution.json``).
 
     Parameters
     ----------
@@ -589,7 +595,9 @@ def attribute_claims(out: Path, claims: pd.DataFrame, attribution: dict | None):
         The collected claims (:func:`collect_claims`).
     attribution : dict or None
         Keyword arguments of :func:`tefcore.paper.attribution.differences.attribute_run`
-        (``params``: each notebook's parameters, ``n_jobs``, ...); None skips it.
+        (``params``: each notebook's parameters, ``n_jobs``, ...) and
+        ``again`` (search even where the packaged attribution applies); None
+        skips it.
 
     Returns
     -------
@@ -597,9 +605,30 @@ def attribute_claims(out: Path, claims: pd.DataFrame, attribution: dict | None):
     """
     if attribution is None:
         return None
-    from ..attribution.differences import attribute_run
+    from ..attribution.differences import Attribution, attribute_run, write_attribution
+    from ..attribution.packaged import PACKAGED, packaged_attribution, write_stamp
 
-    return attribute_run(out, claims, **attribution)
+    args = dict(attribution)
+    again = bool(args.pop("again", False))
+    params = args.get("params") or {}
+    why = "asked to search again"
+    if not again:
+        table, why = packaged_attribution(claims, params)
+        if table is not None:
+            write_attribution(table, out / "attribution.csv")
+            stamp = json.loads((reference_dir() / PACKAGED[1]).read_text())
+            with atomic_output(out / "attribution.json") as f:
+                json.dump(stamp, f, indent=1, sort_keys=True)
+                f.write("\n")
+            return Attribution(table, 0.0, 0.0, 0, source=(
+                "This run read the packaged attribution of the default rotor: a search made "
+                f"with this code, data and settings, where every claim had the verdict it "
+                f"has here ({stamp.get('cpu_seconds', 0):.0f} s of CPU then); "
+                "`tefcore reproduce --attribute-again` searches anew."))
+    print(f"attribution: searching ({why})", file=sys.stderr)
+    result = attribute_run(out, claims, **args)
+    write_stamp(out / "attribution.json", claims, params, result)
+    return result
 
 
 def _phase(desc: str, total, progress: bool):
@@ -674,7 +703,8 @@ def finish_report(out: Path, runs, names, checks: pd.DataFrame | None, *,
         report = build_report(out, runs, claims, worse, figures_of=NOTEBOOK_FIGURES,
                               checks=checks, version=__version__, title=title, up=up,
                               variants=variants, what_if=what_if,
-                              attribution=None if attributed is None else attributed.table)
+                              attribution=None if attributed is None else attributed.table,
+                              attribution_source="" if attributed is None else attributed.source)
         bar.update()
         paths = write_report(report, out)
         bar.update()
@@ -719,9 +749,13 @@ def _summary(runs, done, elapsed, out, *, what_if: str = "", changes=None) -> bo
             + f"; other variants worse than recorded: {len(v['worse'])}")
     if done.get("attribution") is not None:
         a = done["attribution"]
-        print(f"attribution: {a.table['claim'].nunique()} failing claim(s), {a.tasks} "
-              f"levers, {a.cpu_seconds:.0f} CPU s ({a.wall_seconds:.0f} s wall) -> "
-              f"{out / 'attribution.csv'}")
+        if a.source:
+            print(f"attribution: {a.table['claim'].nunique()} failing claim(s), read from the "
+                  f"package (the same code, data and verdicts) -> {out / 'attribution.csv'}")
+        else:
+            print(f"attribution: {a.table['claim'].nunique()} failing claim(s), {a.tasks} "
+                  f"levers, {a.cpu_seconds:.0f} CPU s ({a.wall_seconds:.0f} s wall) -> "
+                  f"{out / 'attribution.csv'}")
     print(f"wrote {out / 'report.md'} and {out / 'report.html'} in {elapsed:.1f} s")
     failed = [r.name for r in runs if r.status != "ok"]
     if failed:

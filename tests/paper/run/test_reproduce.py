@@ -36,7 +36,7 @@ def test_unknown_notebook_or_bad_name_is_an_error():
         run_params.parse_cli_params([("n-points", "3")])
 
 
-def test_params_file_and_precedence(tmp_path, monkeypatch):
+def test_params_file_and_precedence(tmp_path, monkeypatch, capsys):
     f = tmp_path / "p.yaml"
     f.write_text("all:\n  n_jobs: 2\n  n_points: 4\n03:\n  n_points: 6\n"
                  "04_cg_offset:\n  damping_measure: damping_ratio\n")
@@ -64,6 +64,13 @@ def test_params_file_and_precedence(tmp_path, monkeypatch):
     main(["reproduce", "--out", str(tmp_path / "o"), "--no-variants", "--no-attribution",
           "--no-progress"])
     assert seen["variants"] is False and seen["attribution"] is False
+    # the search even where the package's attribution applies (the default rotor)
+    main(["reproduce", "--out", str(tmp_path / "o"), "--attribute-again", "--no-progress"])
+    assert seen["attribution"] == {"again": True}
+    # skipping and searching again: one or the other, said in one line
+    assert main(["reproduce", "--out", str(tmp_path / "o"), "--attribute-again",
+                 "--no-attribution"]) == 2
+    assert "not allowed with" in capsys.readouterr().err
 
 
 def test_bad_params_file_is_a_clear_error(tmp_path, capsys):

@@ -45,7 +45,8 @@ def test_only_some_notebooks_write_no_baseline_blade_files(tmp_path, fake_notebo
     out = tmp_path / "out"
     rp.reproduce(out, notebooks=["03", "04"], progress=False)
     assert sorted(p.name for p in out.iterdir()) == [
-        "03_overhang", "04_cg_offset", "attribution.csv", "claims.csv", "notebooks",
+        "03_overhang", "04_cg_offset", "attribution.csv", "attribution.json", "claims.csv",
+        "notebooks",
         "report.html", "report.md", "reproduction.json"]
     assert fake_notebooks == []
 

@@ -1,0 +1,163 @@
+"""The packaged attribution is read only where it is this run's answer.
+
+The default reproduction reads the package's attribution instead of searching
+(``tefcore/paper/reference_data/attribution-mdart.*``).  A search's rows are a
+function of the code, the data, the notebooks' settings and the claims'
+verdicts; the package may stand in for a search only while every one of them
+is the same, and a test here fails when the packaged pair is not this code's
+(re-create it: ``tefcore reproduce --out OUT --attribute-again`` and
+``python tools/package_attribution.py OUT``).
+"""
+
+import json
+
+import pandas as pd
+import pytest
+
+from tefcore.paper.attribution import packaged as pk
+from tefcore.paper.attribution.differences import COLUMNS, Attribution, failing_claims
+from tefcore.paper.claims.files import reference_dir
+from tefcore.paper.claims.reference import load_claims
+
+
+def _packaged():
+    ref = reference_dir()
+    stamp = json.loads((ref / pk.PACKAGED[1]).read_text())
+    table = pd.read_csv(ref / pk.PACKAGED[0], dtype=str, keep_default_na=False)
+    return stamp, table
+
+
+def _claims_of(stamp) -> pd.DataFrame:
+    """The claims table of the run the package was made from (id, notebook, status, tag)."""
+    tags = {c.id: c.tag for c in load_claims()}
+    return pd.DataFrame([{"id": i, "notebook": nb, "status": s, "tag": tags.get(i, "validation")}
+                         for i, (nb, s) in stamp["statuses"].items()])
+
+
+def _params(stamp) -> dict:
+    return {n: {k: v for k, v in p.items() if v is not None} for n, p in stamp["settings"].items()}
+
+
+def test_the_packaged_attribution_is_this_codes():
+    # fails after any change to the model code, the claims' code or definitions or
+    # the data, until the attribution is searched again and packaged
+    stamp, _ = _packaged()
+    now = pk.run_stamp(_params(stamp))
+    assert stamp["code_stamp"] == now["code_stamp"], (
+        "the packaged attribution was searched with other code or data: re-create it "
+        "(tefcore reproduce --out OUT --attribute-again; python tools/package_attribution.py OUT)")
+    assert stamp["tefcore_version"] == now["tefcore_version"]
+    assert stamp["inputs"] == now["inputs"]
+
+
+def test_the_packaged_run_had_the_recorded_verdicts():
+    # the default reproduction reads the package only when its claims check as they
+    # did then; the recorded statuses are what the default reproduction gives
+    stamp, table = _packaged()
+    recorded = {c.id: c.recorded_status for c in load_claims() if c.recorded_status}
+    statuses = {i: s for i, (_, s) in stamp["statuses"].items()}
+    assert {i: statuses.get(i) for i in recorded} == recorded
+    failing = set(failing_claims(_claims_of(stamp))["id"])
+    assert set(table["claim"]) == failing       # every failing claim attributed, nothing else
+    assert list(table.columns[:len(COLUMNS)]) == COLUMNS
+
+
+def test_the_package_stands_in_for_a_search_of_the_same_run_only():
+    stamp, table = _packaged()
+    claims, params = _claims_of(stamp), _params(stamp)
+    got, why = pk.packaged_attribution(claims, params)
+    assert why == "" and set(got["claim"]) == set(table["claim"])
+    # a run of some notebooks: their failing claims' rows, the same rows
+    nb = claims["notebook"].iloc[0]
+    some = claims[claims["notebook"] == nb]
+    got, why = pk.packaged_attribution(some, {nb: params.get(nb, {})})
+    assert why == "" and set(got["claim"]) == set(failing_claims(some)["id"])
+    # one verdict moved (a claim's rows read its peers' verdicts): searched
+    moved = claims.copy()
+    i = moved.index[moved["status"] == "pass"][0]
+    moved.loc[i, "status"] = "fail"
+    got, why = pk.packaged_attribution(moved, params)
+    assert got is None and moved.loc[i, "id"] in why
+    # another setting of a notebook (a what-if): searched
+    other = {**params, nb: {**params.get(nb, {}), "overrides": {"flap.cg_offset": 0.2}}}
+    got, why = pk.packaged_attribution(claims, other)
+    assert got is None and f"the settings of {nb}" in why
+
+
+def test_edited_code_or_data_is_searched_again(monkeypatch):
+    stamp, _ = _packaged()
+    monkeypatch.setattr(pk, "code_stamp", lambda: "0" * 16)
+    got, why = pk.packaged_attribution(_claims_of(stamp), _params(stamp))
+    assert got is None and "code or data" in why
+
+
+def test_the_stamp_covers_the_claims_definitions(tmp_path, monkeypatch):
+    # a claim's threshold edited in the reference data changes the stamp
+    ref = reference_dir()
+    for f in ref.iterdir():
+        if f.is_file():
+            (tmp_path / f.name).write_bytes(f.read_bytes())
+    before = pk.code_stamp()
+    text = (tmp_path / "claims.toml").read_text()
+    (tmp_path / "claims.toml").write_text(text + "\n# edited\n")
+    monkeypatch.setenv("TEFCORE_REFERENCE_DATA", str(tmp_path))
+    assert pk.code_stamp() != before
+
+
+def test_only_a_default_search_with_this_code_is_packaged(tmp_path):
+    stamp, table = _packaged()
+    claims, params = _claims_of(stamp), _params(stamp)
+    out = tmp_path / "out"
+    out.mkdir()
+    table.to_csv(out / "attribution.csv", index=False)
+    pk.write_stamp(out / "attribution.json", claims, params, Attribution(table, 12.0, 7.0, 3))
+    target = tmp_path / "ref"
+    target.mkdir()
+    csv, meta = pk.package(out, target)
+    assert csv.read_bytes() == (out / "attribution.csv").read_bytes()
+    assert json.loads(meta.read_text())["cpu_seconds"] == 12.0
+    # a what-if search is not the default rotor's
+    nb = next(iter(params))
+    what_if = {**params, nb: {**params[nb], "overrides": {"flap.cg_offset": 0.2}}}
+    pk.write_stamp(out / "attribution.json", claims, what_if, Attribution(table, 1.0, 1.0, 1))
+    with pytest.raises(ValueError, match="what-if"):
+        pk.package(out, target)
+    # a search with other code
+    rec = json.loads((out / "attribution.json").read_text())
+    rec.update(settings=stamp["settings"], code_stamp="0" * 16)
+    (out / "attribution.json").write_text(json.dumps(rec))
+    with pytest.raises(ValueError, match="code or data"):
+        pk.package(out, target)
+    (out / "attribution.csv").unlink()
+    with pytest.raises(ValueError, match="missing"):
+        pk.package(out, target)
+
+
+def test_the_reproduction_reads_the_package_or_searches_and_stamps(tmp_path, monkeypatch, capsys):
+    from tefcore.paper.attribution import differences
+    from tefcore.paper.run import reproduce as rp
+
+    stamp, table = _packaged()
+    claims, params = _claims_of(stamp), _params(stamp)
+    searched = []
+
+    def search(out, claims, params=None, n_jobs=1, **kw):
+        searched.append(out)
+        (out / "attribution.csv").write_text("claim\n")
+        return Attribution(table.iloc[0:0], 5.0, 3.0, 2)
+
+    monkeypatch.setattr(differences, "attribute_run", search)
+    got = rp.attribute_claims(tmp_path, claims, {"params": params, "n_jobs": 1})
+    assert searched == [] and got.source and got.cpu_seconds == 0.0
+    assert set(pd.read_csv(tmp_path / "attribution.csv")["claim"]) == set(table["claim"])
+    assert json.loads((tmp_path / "attribution.json").read_text()) == stamp
+    # asked to search: it searches, and stamps what it searched with
+    got = rp.attribute_claims(tmp_path, claims, {"params": params, "n_jobs": 1, "again": True})
+    assert searched == [tmp_path] and got.source == ""
+    rec = json.loads((tmp_path / "attribution.json").read_text())
+    assert rec["cpu_seconds"] == 5.0 and rec["statuses"] == stamp["statuses"]
+    # a verdict moved: the package does not apply, the run says why and searches
+    moved = claims.copy()
+    moved.loc[0, "status"] = "fail" if moved.loc[0, "status"] == "pass" else "pass"
+    rp.attribute_claims(tmp_path, moved, {"params": params, "n_jobs": 1})
+    assert len(searched) == 2 and "checked otherwise" in capsys.readouterr().err
