@@ -45,7 +45,7 @@ __all__ = ["RESULTS", "SOBOL", "STUDIES", "export_results", "export_sobol", "loa
 
 #: The packaged studies, in the order they are run: a Sobol sample (independent of
 #: the objective: its leave-one-figure-out is exact), TPE on each reading with seed
-#: 0, and TPE with another seed (does the answer depend on it?).
+#: 0, and TPE on each reading with another seed (does the answer depend on it?).
 STUDIES = (
     {"name": "protocol-continued-qmc-seed0", "reading": "continued", "sampler": "qmc",
      "seed": 0, "trials": 32},
@@ -54,6 +54,8 @@ STUDIES = (
     {"name": "protocol-flutter-tpe-seed0", "reading": "flutter", "sampler": "tpe",
      "seed": 0, "trials": 60},
     {"name": "protocol-continued-tpe-seed1", "reading": "continued", "sampler": "tpe",
+     "seed": 1, "trials": 60},
+    {"name": "protocol-flutter-tpe-seed1", "reading": "flutter", "sampler": "tpe",
      "seed": 1, "trials": 60},
 )
 
