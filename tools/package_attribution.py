@@ -2,14 +2,14 @@
 
 OUT is a finished ``tefcore reproduce --out OUT --attribute-again`` of the
 default rotor with this code and data; its ``attribution.csv`` and
-``attribution.json`` are checked (:func:`tefcore.paper.attribution.packaged.package`)
+``attribution.json`` are checked (:func:`tefcore.paper.run.attribution_phase.package`)
 and copied to ``tefcore/paper/reference_data/attribution-mdart.*``, which
 ``tefcore reproduce`` then reads instead of searching.
 """
 
 import sys
 
-from tefcore.paper.attribution.packaged import package
+from tefcore.paper.run.attribution_phase import package
 
 
 def main(argv) -> int:

@@ -23,9 +23,9 @@ Anything else -- a what-if, another variant, edited code or data, a claim
 whose verdict moved -- and the run searches (``tefcore reproduce``), as it
 does when asked to (``--attribute-again``).  A search of the default run
 writes its stamp beside ``attribution.csv`` (``attribution.json``);
-:func:`package` copies a finished default reproduction's pair into the
-package after checking the stamp against this code, and a test checks that
-the packaged pair is this code's.
+:func:`tefcore.paper.run.attribution_phase.package` copies a finished
+default reproduction's pair into the package after checking the stamp against
+this code, and a test checks that the packaged pair is this code's.
 
 Examples
 --------
@@ -40,7 +40,6 @@ from __future__ import annotations
 
 import hashlib
 import json
-import shutil
 from importlib import resources
 from pathlib import Path
 
@@ -48,8 +47,8 @@ import pandas as pd
 
 from ...safe_io import atomic_output
 
-__all__ = ["PACKAGED", "SETTINGS", "STAMPED_FOLDERS", "code_stamp", "package",
-           "packaged_attribution", "run_stamp", "stamp_record", "write_stamp"]
+__all__ = ["PACKAGED", "SETTINGS", "STAMPED_FOLDERS", "code_stamp", "packaged_attribution",
+           "run_stamp", "stamp_differences", "stamp_record", "write_stamp"]
 
 #: The packaged pair: the default reproduction's attribution and its stamp.
 PACKAGED = ("attribution-mdart.csv", "attribution-mdart.json")
@@ -188,7 +187,7 @@ def write_stamp(path, claims: pd.DataFrame, params: dict, attribution) -> Path:
     return path
 
 
-def _differences(stamp: dict, now: dict) -> list[str]:
+def stamp_differences(stamp: dict, now: dict) -> list[str]:
     """What differs between a packaged stamp and this run's, in words."""
     out = [what for key, what in (("tefcore_version", "tefcore version"),
                                    ("code_stamp", "code or data (code_stamp)"))
@@ -237,67 +236,16 @@ def packaged_attribution(claims: pd.DataFrame, params: dict):
     stamp = json.loads(meta.read_text())
     run_notebooks = {n for n in claims.get("notebook", pd.Series(dtype=str)).astype(str)}
     now = run_stamp({n: p for n, p in params.items() if n in run_notebooks})
-    differ = _differences(stamp, now)
+    differ = stamp_differences(stamp, now)
     if differ:
         return None, "the packaged attribution is for another " + ", ".join(differ)
     packaged = stamp.get("statuses", {})
     moved = [i for i, (nb, s) in _statuses(claims).items() if packaged.get(i) != [nb, s]]
     if moved:
+        more = " ..." if len(moved) > 3 else ""
         return None, (f"{len(moved)} claim(s) checked otherwise than when the attribution was "
-                      f"packaged ({', '.join(sorted(moved)[:3])}{' ...' if len(moved) > 3 else ''})")
+                      f"packaged ({', '.join(sorted(moved)[:3])}{more})")
     table = pd.read_csv(csv, dtype=str, keep_default_na=False)
     failing = set(failing_claims(claims)["id"])
     table = table[table["claim"].isin(failing)].reset_index(drop=True)
     return table.reindex(columns=COLUMNS + EXTRA_COLUMNS).fillna(""), ""
-
-
-def package(out, target=None) -> tuple[Path, Path]:
-    """Copy a default reproduction's attribution into the package, after checking it.
-
-    Parameters
-    ----------
-    out : path
-        A finished reproduction of the default rotor that searched
-        (``tefcore reproduce --out OUT --attribute-again``): its
-        ``attribution.csv`` and ``attribution.json``.
-    target : path, optional
-        The folder written (default the package's ``reference_data``).
-
-    Returns
-    -------
-    (pathlib.Path, pathlib.Path)
-        The files written.
-
-    Raises
-    ------
-    ValueError
-        A file is missing, or the stamp is not this code's (the code, data or
-        version changed since the run), or the run was not the default one.
-    """
-    from ..run.outcome import what_if
-
-    out = Path(out)
-    src = [out / "attribution.csv", out / "attribution.json"]
-    for f in src:
-        if not f.is_file():
-            raise ValueError(f"{f}: missing; run `tefcore reproduce --out {out} "
-                             "--attribute-again` first")
-    stamp = json.loads(src[1].read_text())
-    now = run_stamp(stamp.get("settings", {}))
-    differ = _differences(stamp, now)
-    if differ:
-        raise ValueError(f"{src[1]}: computed with another {', '.join(differ)}; run the "
-                         "reproduction again")
-    params = {n: {k: v for k, v in p.items() if v is not None}
-              for n, p in stamp.get("settings", {}).items()}
-    changed = what_if(params, list(params))
-    if changed:
-        raise ValueError(f"{src[1]}: a what-if run ({changed}); only the default reproduction "
-                         "is packaged")
-    folder = Path(target) if target is not None else _reference_dir()
-    dest = (folder / PACKAGED[0], folder / PACKAGED[1])
-    for s, d in zip(src, dest, strict=True):
-        with atomic_output(d, mode="wb") as f:
-            with open(s, "rb") as g:
-                shutil.copyfileobj(g, f)
-    return dest

@@ -41,7 +41,6 @@ before anything runs (never "0 claims passed of 0").
 
 from __future__ import annotations
 
-import json
 import os
 import queue
 import sys
@@ -60,6 +59,7 @@ from ..claims.files import ReferenceDataError, reference_dir
 from ..claims.reference import load_claims
 from ..claims.validation import claims_score, worse_than_recorded
 from ..figures.plotting import deterministic_matplotlib, savefig
+from .attribution_phase import attribute_claims, attribution_args
 from .kernel_guard import stop_notebooks, watch_children
 from .notebook_files import (
     NOTEBOOK_FIGURES,
@@ -576,61 +576,6 @@ def prepare_params(params, names, nb_dir: Path | None = None) -> dict:
     return out
 
 
-def attribute_claims(out: Path, claims: pd.DataFrame, attribution: dict | None):
-    """The attribution of the run's failing claims, written to ``OUT/attribution.csv``.
-
-    The one hook of :mod:`tefcore.paper.attribution.differences` in the reproduction: called
-    once the notebooks' claims are collected, before the report.  Where the
-    package's attribution is this run's answer (the default rotor, this code
-    and data, every claim's verdict as when it was made:
-    :func:`tefcore.paper.attribution.packaged.packaged_attribution`) it is
-    read; otherwise, or with ``again``, the failing claims are searched and
-    the search's stamp is written beside (``OUT/attribution.json``).
-
-    Parameters
-    ----------
-    out : pathlib.Path
-        The reproduction folder.
-    claims : pandas.DataFrame
-        The collected claims (:func:`collect_claims`).
-    attribution : dict or None
-        Keyword arguments of :func:`tefcore.paper.attribution.differences.attribute_run`
-        (``params``: each notebook's parameters, ``n_jobs``, ...) and
-        ``again`` (search even where the packaged attribution applies); None
-        skips it.
-
-    Returns
-    -------
-    tefcore.paper.attribution.differences.Attribution or None
-    """
-    if attribution is None:
-        return None
-    from ..attribution.differences import Attribution, attribute_run, write_attribution
-    from ..attribution.packaged import PACKAGED, packaged_attribution, write_stamp
-
-    args = dict(attribution)
-    again = bool(args.pop("again", False))
-    params = args.get("params") or {}
-    why = "asked to search again"
-    if not again:
-        table, why = packaged_attribution(claims, params)
-        if table is not None:
-            write_attribution(table, out / "attribution.csv")
-            stamp = json.loads((reference_dir() / PACKAGED[1]).read_text())
-            with atomic_output(out / "attribution.json") as f:
-                json.dump(stamp, f, indent=1, sort_keys=True)
-                f.write("\n")
-            return Attribution(table, 0.0, 0.0, 0, source=(
-                "This run read the packaged attribution of the default rotor: a search made "
-                f"with this code, data and settings, where every claim had the verdict it "
-                f"has here ({stamp.get('cpu_seconds', 0):.0f} s of CPU then); "
-                "`tefcore reproduce --attribute-again` searches anew."))
-    print(f"attribution: searching ({why})", file=sys.stderr)
-    result = attribute_run(out, claims, **args)
-    write_stamp(out / "attribution.json", claims, params, result)
-    return result
-
-
 def _phase(desc: str, total, progress: bool):
     """A progress bar of one phase of the run (:data:`BAR_FORMAT`), on stderr."""
     from tqdm.auto import tqdm
@@ -712,14 +657,6 @@ def finish_report(out: Path, runs, names, checks: pd.DataFrame | None, *,
             "paths": paths, "variants": variants, "attribution": attributed}
 
 
-def _attribution_args(attribution, params: dict, jobs) -> dict | None:
-    """:func:`attribute_claims`'s arguments from ``reproduce``'s, or None to skip it."""
-    if attribution is False or attribution is None:
-        return None
-    extra = attribution if isinstance(attribution, dict) else {}
-    return {"params": params, "n_jobs": max(1, jobs or os.cpu_count() or 1), **extra}
-
-
 def _summary(runs, done, elapsed, out, *, what_if: str = "", changes=None) -> bool:
     """Print the run's summary; True when something is not clean (exit status 1).
 
@@ -799,7 +736,7 @@ def _run_into(out: Path, merged: dict, names, *, nb_dir, jobs, progress, variant
                 stop_notebooks([running])     # the running ones' kernels stopped
                 raise
         done = finish_report(out, runs, names, checks, variant_runs=vruns, base=base,
-                             attribution=_attribution_args(attribution, merged, jobs),
+                             attribution=attribution_args(attribution, merged, jobs),
                              what_if=what_if, progress=progress)
     finally:
         stop_variant_runs(vruns)

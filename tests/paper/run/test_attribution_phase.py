@@ -1,0 +1,75 @@
+"""The reproduction's attribution phase reads the package or searches, and packages.
+
+``tefcore reproduce`` reads the default rotor's packaged attribution only where
+it is this run's answer (:mod:`tefcore.paper.attribution.packaged` decides),
+otherwise searches and stamps the search; ``package`` puts only a default
+search made with this code into the package.
+"""
+
+import json
+
+import pandas as pd
+import pytest
+
+from tefcore.paper.attribution import packaged as pk
+from tefcore.paper.attribution.differences import Attribution
+from tefcore.paper.run import attribution_phase as ap
+from tests.paper.attribution.test_packaged import _claims_of, _packaged, _params
+
+
+def test_only_a_default_search_with_this_code_is_packaged(tmp_path):
+    stamp, table = _packaged()
+    claims, params = _claims_of(stamp), _params(stamp)
+    out = tmp_path / "out"
+    out.mkdir()
+    table.to_csv(out / "attribution.csv", index=False)
+    pk.write_stamp(out / "attribution.json", claims, params, Attribution(table, 12.0, 7.0, 3))
+    target = tmp_path / "ref"
+    target.mkdir()
+    csv, meta = ap.package(out, target)
+    assert csv.read_bytes() == (out / "attribution.csv").read_bytes()
+    assert json.loads(meta.read_text())["cpu_seconds"] == 12.0
+    # a what-if search is not the default rotor's
+    nb = next(iter(params))
+    what_if = {**params, nb: {**params[nb], "overrides": {"flap.cg_offset": 0.2}}}
+    pk.write_stamp(out / "attribution.json", claims, what_if, Attribution(table, 1.0, 1.0, 1))
+    with pytest.raises(ValueError, match="what-if"):
+        ap.package(out, target)
+    # a search with other code
+    rec = json.loads((out / "attribution.json").read_text())
+    rec.update(settings=stamp["settings"], code_stamp="0" * 16)
+    (out / "attribution.json").write_text(json.dumps(rec))
+    with pytest.raises(ValueError, match="code or data"):
+        ap.package(out, target)
+    (out / "attribution.csv").unlink()
+    with pytest.raises(ValueError, match="missing"):
+        ap.package(out, target)
+
+
+def test_the_reproduction_reads_the_package_or_searches_and_stamps(tmp_path, monkeypatch, capsys):
+    from tefcore.paper.attribution import differences
+
+    stamp, table = _packaged()
+    claims, params = _claims_of(stamp), _params(stamp)
+    searched = []
+
+    def search(out, claims, params=None, n_jobs=1, **kw):
+        searched.append(out)
+        (out / "attribution.csv").write_text("claim\n")
+        return Attribution(table.iloc[0:0], 5.0, 3.0, 2)
+
+    monkeypatch.setattr(differences, "attribute_run", search)
+    got = ap.attribute_claims(tmp_path, claims, {"params": params, "n_jobs": 1})
+    assert searched == [] and got.source and got.cpu_seconds == 0.0
+    assert set(pd.read_csv(tmp_path / "attribution.csv")["claim"]) == set(table["claim"])
+    assert json.loads((tmp_path / "attribution.json").read_text()) == stamp
+    # asked to search: it searches, and stamps what it searched with
+    got = ap.attribute_claims(tmp_path, claims, {"params": params, "n_jobs": 1, "again": True})
+    assert searched == [tmp_path] and got.source == ""
+    rec = json.loads((tmp_path / "attribution.json").read_text())
+    assert rec["cpu_seconds"] == 5.0 and rec["statuses"] == stamp["statuses"]
+    # a verdict moved: the package does not apply, the run says why and searches
+    moved = claims.copy()
+    moved.loc[0, "status"] = "fail" if moved.loc[0, "status"] == "pass" else "pass"
+    ap.attribute_claims(tmp_path, moved, {"params": params, "n_jobs": 1})
+    assert len(searched) == 2 and "checked otherwise" in capsys.readouterr().err
