@@ -60,7 +60,7 @@ MARKER = "reproduction.json"
 #: The file in a reproduction still being written (``OUT.incomplete``).
 INCOMPLETE = "INCOMPLETE.txt"
 #: The names a reproduction writes at the top of its folder.
-_WRITTEN = re.compile(r"(report\.(md|html)|claims(-variants)?\.csv|attribution\.csv"
+_WRITTEN = re.compile(r"(report\.(md|html)|claims(-variants)?\.csv|attribution\.(csv|json)"
                       r"|mdart_(modes|frequency_checks)\.csv|mdart_fanplot\.(png|json)"
                       r"|notebooks|variants|\d\d_\w+|" + re.escape(MARKER) + ")")
 

@@ -47,7 +47,8 @@ def _claim(status, recorded="pass", cid="fig9b-x"):
 @pytest.fixture
 def fake(monkeypatch):
     """Fake notebooks writing ``state["rows"]`` as their claims; ``state["during"]`` runs
-    while they 'execute'; the attribution writes ``attribution.csv`` (``state["attr"]``)."""
+    while they 'execute'; the attribution writes ``attribution.csv`` and its stamp
+    ``attribution.json``, as the real one does."""
     state = {"rows": [_claim("pass")], "during": None}
 
     def run(out, params, names, progress=True, nb_dir=None, kernel_name="python3", jobs=None,
@@ -63,6 +64,7 @@ def fake(monkeypatch):
         if attribution is None:
             return None
         (out / "attribution.csv").write_text("claim,assumption\nfig9b-x,old lever\n")
+        (out / "attribution.json").write_text('{"code_stamp": "0000000000000000"}\n')
         return None
 
     monkeypatch.setattr(rp, "run_notebooks", run)
@@ -113,10 +115,12 @@ def test_a_previous_reproduction_is_replaced_whole(tmp_path, fake):
     out = tmp_path / "out"
     fake["rows"] = [_claim("fail", "fail")]
     assert rp.reproduce(out, notebooks=["04"], progress=False) == 0
-    assert (out / "attribution.csv").exists()
+    assert (out / "attribution.csv").exists() and (out / "attribution.json").exists()
+    # the same command again replaces it (every file it wrote is the reproduction's)
+    assert rp.reproduce(out, notebooks=["04"], progress=False) == 0
     fake["rows"] = [_claim("pass")]
     assert rp.reproduce(out, notebooks=["04"], progress=False, attribution=False) == 0
-    assert not (out / "attribution.csv").exists()
+    assert not (out / "attribution.csv").exists() and not (out / "attribution.json").exists()
     assert sorted(p.name for p in out.iterdir()) == [
         "04_cg_offset", "claims.csv", "report.html", "report.md", "reproduction.json"]
     assert json.loads((out / "reproduction.json").read_text())["notebooks"] == ["04_cg_offset"]
