@@ -49,13 +49,13 @@ def attribute_claims(out: Path, claims: pd.DataFrame, attribution: dict | None):
         Keyword arguments of :func:`tefcore.paper.attribution.differences.attribute_run`
         (``params``: each notebook's parameters, ``n_jobs``, ...) and
         ``again`` (search even where the packaged attribution applies); None
-        skips it.
+        skips it, as does a run that checked no claim.
 
     Returns
     -------
     tefcore.paper.attribution.differences.Attribution or None
     """
-    if attribution is None:
+    if attribution is None or claims.empty:   # nothing checked: nothing to attribute
         return None
     from ..attribution.differences import Attribution, attribute_run, write_attribution
     from ..attribution.packaged import packaged_attribution, write_stamp

@@ -251,9 +251,46 @@ def _base_config(config: str | None, aero_model: str):
     return base_config(aero_model, config=config)
 
 
-def _check_values(run: str, nb: str, params: dict, defaults: dict, config, origin: str):
+def check_notebook_values(nb: str, params: dict, defaults: dict, origin: str) -> None:
+    """A notebook's parameters' values, checked before anything runs.
+
+    The scalar settings (``n_points``, ``aero_model``, ...), ``values``, the
+    ``config`` (a shipped name or a TOML file that loads) and every override on
+    every stability figure the notebook computes (a field that exists, a value
+    in its range, a flap that fits its section).
+
+    Parameters
+    ----------
+    nb : str
+        The notebook's full name.
+    params : dict
+        The parameters given for it.
+    defaults : dict
+        Its parameters cell's values.
+    origin : str
+        Where the parameters came from, for the message.
+
+    Raises
+    ------
+    BatchFileError
+        One line naming the notebook, the parameter, its value and what is allowed.
+
+    Examples
+    --------
+    >>> from tefcore.paper.run.notebook_files import notebook_parameters, notebooks_dir
+    >>> nb = "04_cg_offset"
+    >>> defaults = notebook_parameters(notebooks_dir() / f"{nb}.ipynb")
+    >>> check_notebook_values(nb, {"n_points": -2}, defaults, "-p")
+    Traceback (most recent call last):
+    ...
+    tefcore.paper.run.batch_spec.BatchFileError: -p: 04_cg_offset: n_points = -2; allowed: null (the paper's values) or an integer >= 2
+    """
+    config = {**defaults, **params}.get("config")
+    _check_values(nb, nb, params, defaults, config, origin)
+
+
+def _check_values(where: str, nb: str, params: dict, defaults: dict, config, origin: str):
     """The shared parameters' values, and every override on every figure the notebook runs."""
-    where = f"run {run!r}, {nb}"
     p = {**defaults, **params}
     for name, allowed in _scalar_problems(p, params):
         _fail(origin, where, f"{name} = {p[name]!r}; allowed: {allowed}")
@@ -570,7 +607,8 @@ class _Batch:
                     _fail(self.origin, f"run {rname!r}", f"{nb} has no parameter {pname!r}"
                                                          f"{_close(pname, known)}; it has "
                                                          f"{', '.join(sorted(known))}")
-                _check_values(rname, nb, params[nb], known, config, self.origin)
+                _check_values(f"run {rname!r}, {nb}", nb, params[nb], known, config,
+                              self.origin)
             specs.append(RunSpec(rname, nbs, params, config, _settings(params, nbs, config)))
         return specs
 

@@ -60,6 +60,7 @@ from ..claims.reference import load_claims
 from ..claims.validation import claims_score, worse_than_recorded
 from ..figures.plotting import deterministic_matplotlib, savefig
 from .attribution_phase import attribute_claims, attribution_args
+from .batch_spec import check_notebook_values
 from .kernel_guard import stop_notebooks, watch_children
 from .notebook_files import (
     NOTEBOOK_FIGURES,
@@ -561,13 +562,18 @@ def prepare_params(params, names, nb_dir: Path | None = None) -> dict:
     Raises
     ------
     ValueError
-        A parameter a notebook does not declare (with a close match), or a
-        missing notebook.
+        A parameter a notebook does not declare (with a close match), a value
+        it does not allow (:func:`tefcore.paper.run.batch_spec.check_notebook_values`),
+        or a missing notebook.
     """
     nb_dir = nb_dir or notebooks_dir()
     layers = params if isinstance(params, list | tuple) else [params or {}]
     merged = merge_params(*layers, notebooks=names)
     check_parameters(merged, names, nb_dir)
+    for n in names:   # the values too, before anything runs (a notebook given nothing has its own)
+        if merged.get(n):
+            check_notebook_values(n, merged[n], notebook_parameters(nb_dir / f"{n}.ipynb"),
+                                  "-p/--params")
     out = {n: dict(merged.get(n, {})) for n in names}
     for n in names:
         if "interactive" not in out[n] and \

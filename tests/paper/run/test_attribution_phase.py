@@ -73,3 +73,12 @@ def test_the_reproduction_reads_the_package_or_searches_and_stamps(tmp_path, mon
     moved.loc[0, "status"] = "fail" if moved.loc[0, "status"] == "pass" else "pass"
     ap.attribute_claims(tmp_path, moved, {"params": params, "n_jobs": 1})
     assert len(searched) == 2 and "checked otherwise" in capsys.readouterr().err
+
+
+def test_a_run_that_checked_no_claim_attributes_nothing(tmp_path):
+    # a notebook that failed leaves no claims: nothing is read or searched, and the
+    # run does not say it read the package for them
+    stamp, _ = _packaged()
+    empty = _claims_of(stamp).iloc[0:0]
+    assert ap.attribute_claims(tmp_path, empty, {"params": _params(stamp), "n_jobs": 1}) is None
+    assert not (tmp_path / "attribution.csv").exists()

@@ -224,3 +224,21 @@ def test_two_runs_give_identical_csvs_and_figures(tiny_runs):
         assert filecmp.cmp(a / rel, b / rel, shallow=False), f"{rel} differs between runs"
     assert sorted(Path(p).relative_to(b) for p in b.rglob("*.csv")) == \
         [f for f in files if f.suffix == ".csv"]
+
+
+@pytest.mark.parametrize("given, said", [
+    (["-p", "n_points", "-2"], "n_points = -2; allowed"),
+    (["-p", "04:aero_model", "foo"], "aero_model = 'foo'; allowed: thin_airfoil"),
+    (["-p", "config", "nosuch.toml"], "no such configuration file: 'nosuch.toml'"),
+    (["-p", "overrides", "{flap.cg_ofset: 0.2}"], "did you mean 'flap.cg_offset'"),
+    (["-p", "overrides", "{flap.cg_offset: 3}"], "outside the allowed range [-1, 1]"),
+])
+def test_a_bad_parameter_value_is_refused_before_anything_runs(tmp_path, capsys, given, said):
+    # the values are checked as `tefcore batch` checks them: one line, exit 2, no
+    # notebook started and no output folder made
+    out = tmp_path / "o"
+    assert main(["reproduce", "--out", str(out), "--only", "04", "--no-variants",
+                 "--no-progress", *given]) == 2
+    err = capsys.readouterr().err
+    assert said in err and "04_cg_offset" in err and len(err.strip().splitlines()) == 1
+    assert not out.exists()
