@@ -280,10 +280,10 @@ def check_notebook_values(nb: str, params: dict, defaults: dict, origin: str) ->
     >>> from tefcore.paper.run.notebook_files import notebook_parameters, notebooks_dir
     >>> nb = "04_cg_offset"
     >>> defaults = notebook_parameters(notebooks_dir() / f"{nb}.ipynb")
-    >>> check_notebook_values(nb, {"n_points": -2}, defaults, "-p")
+    >>> check_notebook_values(nb, {"n_points": -2}, defaults, "-p")  # doctest: +ELLIPSIS
     Traceback (most recent call last):
     ...
-    tefcore.paper.run.batch_spec.BatchFileError: -p: 04_cg_offset: n_points = -2; allowed: null (the paper's values) or an integer >= 2
+    tefcore.paper.run.batch_spec.BatchFileError: -p: 04_cg_offset: n_points = -2; allowed: ...
     """
     config = {**defaults, **params}.get("config")
     _check_values(nb, nb, params, defaults, config, origin)
