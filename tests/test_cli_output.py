@@ -18,7 +18,7 @@ import pytest
 import tefcore.linear.stability
 import tefcore.sweeps.sweep
 from tefcore.cli import main
-from tefcore.cli.text import LEGEND, UNCERTAIN_LEGEND, WIDTH, onset, sweep_summary
+from tefcore.cli.text import LEGEND, LOCKED_LEGEND, UNCERTAIN_LEGEND, WIDTH, onset, sweep_summary
 from tests.sweeps.test_sweep import MODES, ToyPoint
 
 #: A flutter point: MDART in forward flight with an imbalanced flap
@@ -91,8 +91,10 @@ def test_stability_legend_flutter_sentence_and_wrapped_trim(flutter_point):
     assert after[0] == LEGEND
     r = table[table["flutter_root"]].iloc[0]
     name = r["label"].removesuffix(" (locked)")
-    # (a "name uncertain" legend line may come between, when a root has that note)
-    sentence = next(ln for ln in after[1:3] if ln.startswith("flutter root:"))
+    # the legend of a locked pair follows when one is listed (this point has blade flap 1's);
+    # a "name uncertain" line may come between, when a root has that note
+    assert (after[1] == LOCKED_LEGEND) == table["label"].str.endswith(" (locked)").any()
+    sentence = next(ln for ln in after[1:4] if ln.startswith("flutter root:"))
     assert sentence == (f"flutter root: {r['label']} at {r['real_part']:+.3f} /rev (continues "
                         f"from {name}), frequency {r['frequency_per_rev']:.3f} /rev")
     trim = [ln for ln in after if ln.startswith(("trim:", "flap deflection", "  "))]
@@ -153,8 +155,8 @@ def test_unstable_neutral_and_uncertain_rows_with_long_names(monkeypatch, capsys
     assert "UNSTABLE" not in rows[2] and "FLUTTER ROOT" not in rows[2]
     assert rows[3].rstrip().endswith("FLUTTER ROOT")
     assert " neutral" in rows[4] and "UNSTABLE" not in rows[4]
-    assert lines[6:8] == [LEGEND, UNCERTAIN_LEGEND]
-    assert lines[8].startswith("flutter root: blade flap 5 at +2.980 /rev")
+    assert lines[6:9] == [LEGEND, LOCKED_LEGEND, UNCERTAIN_LEGEND]
+    assert lines[9].startswith("flutter root: blade flap 5 at +2.980 /rev")
 
 
 def test_a_neutral_flutter_root_is_not_called_flutter(monkeypatch, capsys):

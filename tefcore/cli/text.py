@@ -53,7 +53,7 @@ from ..units import from_si
 if TYPE_CHECKING:
     import pandas as pd
 
-__all__ = ["LEGEND", "UNCERTAIN", "UNCERTAIN_LEGEND", "WIDTH", "flutter_row", "flutter_text",
+__all__ = ["LEGEND", "LOCKED_LEGEND", "UNCERTAIN", "UNCERTAIN_LEGEND", "WIDTH", "flutter_row", "flutter_text",
            "legend", "mechanism_choice", "modes_text", "onset", "real_part_text",
            "sweep_summary", "timing_lines", "trim_lines", "unstable", "wrap"]
 
@@ -63,6 +63,10 @@ WIDTH = 100
 #: What the notes of ``tefcore stability``'s table mean (one line).
 LEGEND = ("UNSTABLE: real part > 0 (not 'neutral'); FLUTTER ROOT: the least stable "
           "flap-induced root, unstable")
+
+#: The legend line of a locked pair, printed when a root is named ``X (locked)``.
+LOCKED_LEGEND = ("X (locked): the more damped root of X's pair at a Floquet lock "
+                 "(frequency a multiple of 1/2 /rev)")
 
 #: The note of a root whose name is not certain (``identity_certain`` False): a step
 #: of its path from zero coupling no halving decided, or the name its path brought
@@ -253,8 +257,9 @@ def modes_text(table) -> str:
 
 
 def legend(table) -> list[str]:
-    """The legend lines under :func:`modes_text`: :data:`LEGEND`, and :data:`UNCERTAIN_LEGEND`
-    when a root's name is uncertain.
+    """The legend lines under :func:`modes_text`: :data:`LEGEND`, :data:`LOCKED_LEGEND`
+    when a root is the locked partner of another, and :data:`UNCERTAIN_LEGEND` when a
+    root's name is uncertain.
 
     Parameters
     ----------
@@ -266,7 +271,9 @@ def legend(table) -> list[str]:
     list of str
     """
     uncertain = "identity_certain" in table and not _flags(table, "identity_certain", True).all()
-    return [LEGEND] + ([UNCERTAIN_LEGEND] if uncertain else [])
+    locked = "label" in table and any(str(n).endswith(" (locked)") for n in table["label"])
+    return ([LEGEND] + ([LOCKED_LEGEND] if locked else [])
+            + ([UNCERTAIN_LEGEND] if uncertain else []))
 
 
 def trim_lines(trim: dict) -> list[str]:

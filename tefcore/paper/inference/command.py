@@ -126,7 +126,8 @@ def add_infer_command(sub, formatter_class) -> None:
     p.add_argument("--trials", type=int, default=40,
                    help="finished trials the study should hold (default 40)")
     p.add_argument("--reading", choices=READINGS, default="continued",
-                   help="how the paper's 'TEF' is read: the continued root or the flutter root")
+                   help="how the paper's 'TEF' is read: the continued root (default) or the "
+                        "flutter root")
     p.add_argument("--sampler", choices=SAMPLERS, default="tpe",
                    help="tpe (default), qmc (Sobol points), random, nsga2 (one objective per "
                         "fitted figure)")

@@ -102,7 +102,9 @@ _NO_FIGURE = {"08_assumptions": "what each assumption does to the results",
               "09_design_maps": "stability maps over two parameters (beyond the paper)",
               "10_unsteady": "unsteady airloads and dynamic inflow (beyond the paper)",
               "11_watch_it_flutter": "the Floquet growth watched in the time domain (beyond the "
-                                     "paper)"}
+                                     "paper)",
+              "12_inferred_rotor": "which rotor the paper's statements describe: a seeded "
+                                   "study, mdart-inferred"}
 
 
 def cmd_reproduce(args) -> int:
@@ -217,7 +219,9 @@ def add_commands(sub, formatter_class=argparse.RawDescriptionHelpFormatter) -> N
     fmt = formatter_class
     p = sub.add_parser("reproduce", formatter_class=fmt, description=_REPRODUCE,
                        help="run the notebooks, check the paper's claims, write the report")
-    p.add_argument("--out", default="output", help="output folder (default: output)")
+    p.add_argument("--out", default="output",
+                   help="output folder, outside the source checkout (default: output, in "
+                        "the current folder)")
     p.add_argument("--params", default=None, metavar="FILE.yaml",
                    help="YAML parameters: {all: {...}, 03_overhang: {...}, ...}")
     p.add_argument("-p", "--param", nargs=2, action="append", metavar=("NAME", "VALUE"),

@@ -163,7 +163,7 @@ def check_reproduce_folder(out, names=NOTEBOOKS, nb_dir: Path | None = None) -> 
                           f"source notebooks in {nb_dir}; choose another output folder "
                           "(default: output)")
     files = [out / f for f in ("report.md", "report.html", "claims.csv", "claims-variants.csv",
-                               "attribution.csv",
+                               "attribution.csv", "attribution.json",
                                "mdart_modes.csv",
                                "mdart_frequency_checks.csv", "mdart_fanplot.png")]
     files += [out / "notebooks" / f"{n}{ext}" for n in names for ext in (".ipynb", ".html")]
