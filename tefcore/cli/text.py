@@ -53,8 +53,8 @@ from ..units import from_si
 if TYPE_CHECKING:
     import pandas as pd
 
-__all__ = ["LEGEND", "LOCKED_LEGEND", "UNCERTAIN", "UNCERTAIN_LEGEND", "WIDTH", "flutter_row", "flutter_text",
-           "legend", "mechanism_choice", "modes_text", "onset", "real_part_text",
+__all__ = ["LEGEND", "LOCKED_LEGEND", "UNCERTAIN", "UNCERTAIN_LEGEND", "WIDTH", "flutter_row",
+           "flutter_text", "legend", "mechanism_choice", "modes_text", "onset", "real_part_text",
            "sweep_summary", "timing_lines", "trim_lines", "unstable", "wrap"]
 
 #: Widest line the command prints, in characters.

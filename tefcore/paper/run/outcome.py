@@ -26,6 +26,8 @@ Examples
 from __future__ import annotations
 
 import json
+import sys
+import textwrap
 from pathlib import Path
 
 import pandas as pd
@@ -33,7 +35,7 @@ import pandas as pd
 from ..claims.reference import STATUSES
 from ..claims.variants import variant_name
 
-__all__ = ["NEUTRAL_PARAMETERS", "change_lines", "previous_claims", "run_record",
+__all__ = ["NEUTRAL_PARAMETERS", "change_lines", "previous_claims", "print_summary", "run_record",
            "same_parameters", "status_changes", "what_if"]
 
 #: Notebook parameters that change how the work is done, never its results.
@@ -200,3 +202,68 @@ def change_lines(rows, before: str = "before", limit: int = 12, width: int = 110
     if len(rows) > limit:
         lines.append(f"  ... and {len(rows) - limit} more (claims.csv)")
     return lines
+
+
+def print_summary(runs, done, elapsed, out, *, what_if: str = "", changes=None) -> bool:
+    """Print the run's summary; True when something is not clean (exit status 1).
+
+    The notebooks' outcomes, the claims' score (against the recorded statuses,
+    or, for a what-if, only counted), the other variants' scores and the
+    attribution's source, each statement wrapped to 100 columns; on stderr the
+    failed notebooks and every claim worse than recorded.
+
+    ``changes`` are the status changes since the previous run of the same
+    parameters in ``out`` (:func:`tefcore.paper.run.outcome.status_changes`),
+    None when there was none to compare with.
+    """
+    claims, worse, passed, total = (done[k] for k in ("claims", "worse", "passed", "total"))
+
+    def say(text: str) -> None:   # one statement, wrapped to the terminal's 100 columns
+        print(textwrap.fill(text, 100, subsequent_indent="  ", break_long_words=False,
+                            break_on_hyphens=False))
+
+    for r in runs:
+        print(f"{r.name:38s} {r.status:7s} {r.seconds:6.1f} s  {r.error}")
+    if what_if:
+        say(f"claims: {passed} validation claims pass of {total} on this what-if "
+              f"({what_if}); the recorded statuses are the default rotor's, so none is "
+              "compared with them")
+    else:
+        say(f"claims: {passed} validation claims passed of {total} ({len(claims)} checked "
+              f"in all); worse than recorded: {len(worse)}")
+    if changes is not None:
+        say(f"since the previous run of these parameters in {out}: "
+              + (f"{len(changes)} claim(s) changed" if changes else "no claim changed"))
+        print("\n".join(change_lines(changes)) if changes else "", end="\n" if changes else "")
+    v = done.get("variants")
+    if v:
+        say("on each variant: " + "; ".join(
+            f"{'this what-if' if what_if and n == v['base'] else n} {a} of {b} validation claims"
+            for n, (a, b) in v["scores"].items())
+            + f"; other variants worse than recorded: {len(v['worse'])}")
+    if done.get("attribution") is not None:
+        a = done["attribution"]
+        if a.source:
+            say(f"attribution: {a.table['claim'].nunique()} failing claim(s), read from the "
+                  f"package (the same code, data and verdicts) -> {out / 'attribution.csv'}")
+        else:
+            say(f"attribution: {a.table['claim'].nunique()} failing claim(s), {a.tasks} "
+                  f"levers, {a.cpu_seconds:.0f} CPU s ({a.wall_seconds:.0f} s wall) -> "
+                  f"{out / 'attribution.csv'}")
+    say(f"wrote {out / 'report.md'} and {out / 'report.html'} in {elapsed:.1f} s")
+    failed = [r.name for r in runs if r.status != "ok"]
+    if failed:
+        print(f"tefcore reproduce: notebook(s) failed: {', '.join(failed)}", file=sys.stderr)
+    if not worse.empty:
+        print(f"tefcore reproduce: {len(worse)} claim(s) worse than recorded (a regression):\n"
+              + "\n".join(change_lines(worse.to_dict("records"), before="recorded_status")),
+              file=sys.stderr)
+    bad_variants = bool(v and (v["errors"] or not v["worse"].empty))
+    if v and v["errors"]:
+        print("tefcore reproduce: " + "; ".join(v["errors"]), file=sys.stderr)
+    if v and not v["worse"].empty:
+        rows = [{**r, "id": f"{r['id']} on {r['variant']}"}
+                for r in v["worse"].to_dict("records")]
+        print("tefcore reproduce: claim(s) worse than recorded on another variant:\n"
+              + "\n".join(change_lines(rows, before="recorded_status")), file=sys.stderr)
+    return bool(failed) or not worse.empty or bad_variants

@@ -72,8 +72,8 @@ from .notebook_files import (
     resolve_notebook,
 )
 from .outcome import (
-    change_lines,
     previous_claims,
+    print_summary,
     run_record,
     same_parameters,
     status_changes,
@@ -663,61 +663,6 @@ def finish_report(out: Path, runs, names, checks: pd.DataFrame | None, *,
             "paths": paths, "variants": variants, "attribution": attributed}
 
 
-def _summary(runs, done, elapsed, out, *, what_if: str = "", changes=None) -> bool:
-    """Print the run's summary; True when something is not clean (exit status 1).
-
-    ``changes`` are the status changes since the previous run of the same
-    parameters in ``out`` (:func:`tefcore.paper.run.outcome.status_changes`),
-    None when there was none to compare with.
-    """
-    claims, worse, passed, total = (done[k] for k in ("claims", "worse", "passed", "total"))
-    for r in runs:
-        print(f"{r.name:38s} {r.status:7s} {r.seconds:6.1f} s  {r.error}")
-    if what_if:
-        print(f"claims: {passed} validation claims pass of {total} on this what-if "
-              f"({what_if}); the recorded statuses are the default rotor's, so none is "
-              "compared with them")
-    else:
-        print(f"claims: {passed} validation claims passed of {total} ({len(claims)} checked "
-              f"in all); worse than recorded: {len(worse)}")
-    if changes is not None:
-        print(f"since the previous run of these parameters in {out}: "
-              + (f"{len(changes)} claim(s) changed" if changes else "no claim changed"))
-        print("\n".join(change_lines(changes)) if changes else "", end="\n" if changes else "")
-    v = done.get("variants")
-    if v:
-        print("on each variant: " + "; ".join(
-            f"{'this what-if' if what_if and n == v['base'] else n} {a} of {b} validation claims"
-            for n, (a, b) in v["scores"].items())
-            + f"; other variants worse than recorded: {len(v['worse'])}")
-    if done.get("attribution") is not None:
-        a = done["attribution"]
-        if a.source:
-            print(f"attribution: {a.table['claim'].nunique()} failing claim(s), read from the "
-                  f"package (the same code, data and verdicts) -> {out / 'attribution.csv'}")
-        else:
-            print(f"attribution: {a.table['claim'].nunique()} failing claim(s), {a.tasks} "
-                  f"levers, {a.cpu_seconds:.0f} CPU s ({a.wall_seconds:.0f} s wall) -> "
-                  f"{out / 'attribution.csv'}")
-    print(f"wrote {out / 'report.md'} and {out / 'report.html'} in {elapsed:.1f} s")
-    failed = [r.name for r in runs if r.status != "ok"]
-    if failed:
-        print(f"tefcore reproduce: notebook(s) failed: {', '.join(failed)}", file=sys.stderr)
-    if not worse.empty:
-        print(f"tefcore reproduce: {len(worse)} claim(s) worse than recorded (a regression):\n"
-              + "\n".join(change_lines(worse.to_dict("records"), before="recorded_status")),
-              file=sys.stderr)
-    bad_variants = bool(v and (v["errors"] or not v["worse"].empty))
-    if v and v["errors"]:
-        print("tefcore reproduce: " + "; ".join(v["errors"]), file=sys.stderr)
-    if v and not v["worse"].empty:
-        rows = [{**r, "id": f"{r['id']} on {r['variant']}"}
-                for r in v["worse"].to_dict("records")]
-        print("tefcore reproduce: claim(s) worse than recorded on another variant:\n"
-              + "\n".join(change_lines(rows, before="recorded_status")), file=sys.stderr)
-    return bool(failed) or not worse.empty or bad_variants
-
-
 def _run_into(out: Path, merged: dict, names, *, nb_dir, jobs, progress, variants,
               attribution, what_if: str) -> tuple[list, dict]:
     """The notebooks, the other variant and the report, written into ``out``."""
@@ -836,7 +781,7 @@ def reproduce(out, params=None, notebooks=None, progress: bool = True,
         changes = (status_changes(done["claims"], previous_claims(out))
                    if same_parameters(folder.previous, record) else None)
         folder.commit(record)
-    unclean = _summary(runs, done, time.perf_counter() - start, out, what_if=change,
+    unclean = print_summary(runs, done, time.perf_counter() - start, out, what_if=change,
                        changes=changes)
     if done["claims"].empty and any(NOTEBOOK_FIGURES[n] for n in names):
         print("tefcore reproduce: no claim was checked", file=sys.stderr)
