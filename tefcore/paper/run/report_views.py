@@ -357,11 +357,19 @@ def _passes(counts: dict, part: str) -> str:
     return f"{n} of {of}"
 
 
-def _rotor_rows(checks: dict) -> list[dict]:
-    """Each checked rotor's validation passes by each reading: fitted, held out, all."""
+def _rotor_rows(checks: dict, best: dict | None = None) -> list[dict]:
+    """Each checked rotor's validation passes by each reading: fitted, held out, all.
+
+    The best rotor by the flutter root is said to be the same rotor as the best by the
+    continued TEF where one trial is best by both objectives.
+    """
+    best = best or {}
+    same = "trial" in best.get("flutter", {}) and \
+        best.get("flutter", {}).get("trial") == best.get("continued", {}).get("trial")
     names = {"baseline": "mdart (assumed; its sample of the space)",
              "best continued": "inferred, by the continued TEF",
-             "best flutter": "inferred, by the flutter root"}
+             "best flutter": "inferred, by the flutter root" + (
+                 " (the same rotor: best by both objectives)" if same else "")}
     return [{"rotor": names.get(k, k), "reading": r, "fitted": _passes(v[r], "fitted"),
              "held_out": _passes(v[r], "held out"), "all": _passes(v[r], "all")}
             for k, v in checks.items() for r in ("continued", "flutter") if r in v]
@@ -437,7 +445,7 @@ def inference_view(results: dict) -> dict | None:
     return {
         "verdict": _inference_verdict(summary.get("checks", {})),
         "studies": studies,
-        "rotors": _rotor_rows(summary.get("checks", {})),
+        "rotors": _rotor_rows(summary.get("checks", {}), summary.get("best", {})),
         "parameters": (_parameter_rows(best, baseline_sample(base_config("thin_airfoil"),
                                                              space), space)
                        if "params" in best else []),
@@ -450,13 +458,21 @@ def inference_view(results: dict) -> dict | None:
         "sobol": _sobol_rows(results.get("sobol")),
         "sobol_info": results.get("sobol_info", {}),
         "sobol_unmoved": _sobol_unmoved(results),
-        "agreement": " ".join(t for t in (
-            agreement_text(summary.get("agreement", {}).get(r), label)
-            for r, label in (("continued", "continued TEF"), ("flutter", "flutter root"))) if t),
+        "agreement": _agreement_paragraph(summary.get("agreement", {})),
         "truncation": truncation_text(
             _validation(summary.get("checks", {}).get("best continued", {})
                         .get("continued", {}).get("statuses", {})), _inferred_converged()),
     }
+
+
+def _agreement_paragraph(agreement: dict) -> str:
+    """Both readings' :func:`agreement_text`, and what their pass counts count."""
+    text = " ".join(t for t in (
+        agreement_text(agreement.get(r), label)
+        for r, label in (("continued", "continued TEF"), ("flutter", "flutter root"))) if t)
+    return text + (" (The fitted passes there count every fitted claim, the calibration ones "
+                   "included, as the study checked it, without refinement; the table above "
+                   "counts validation claims checked with refinement.)" if text else "")
 
 
 def agreement_text(agreement: dict | None, reading: str = "") -> str:

@@ -156,6 +156,18 @@ def test_the_report_says_whether_the_answer_depends_on_the_sampler_or_the_seed()
         assert said + ("depends" if not ag["same"] else "does not depend") in text
 
 
+def test_the_report_says_when_both_readings_pick_the_same_rotor():
+    # the best rotor by the flutter root may be a trial of a continued-reading study;
+    # where one trial is best by both objectives its rows say so, not a second rotor
+    best = RESULTS["summary"]["best"]
+    rows = [r["rotor"] for r in inference_view(RESULTS)["rotors"]]
+    same = best["flutter"]["trial"] == best["continued"]["trial"]
+    assert any("the same rotor" in r for r in rows) == same
+    other = {**RESULTS, "summary": {**RESULTS["summary"], "best": {
+        **best, "flutter": {**best["flutter"], "trial": ["another study", 1]}}}}
+    assert not any("the same rotor" in r["rotor"] for r in inference_view(other)["rotors"])
+
+
 def test_the_report_says_which_passes_of_the_inferred_rotor_hold_on_the_converged_basis():
     # the inferred rotor's converged-basis verdicts are stored for it (its config hash),
     # and the report counts its validation passes that have one and names each that is
