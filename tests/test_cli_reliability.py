@@ -156,3 +156,16 @@ def test_sweep_exits_nonzero_when_points_failed(tmp_path, monkeypatch, capsys):
     captured = capsys.readouterr()
     assert "2 of 3 point(s) failed" in captured.err
     assert pd.read_csv(csv)["status"].tolist().count("failed") == 2     # the table is written
+
+
+def test_a_sweep_value_outside_its_range_is_refused_before_computing(tmp_path, monkeypatch,
+                                                                      capsys):
+    """A value ``-s`` would refuse is refused by ``--values`` too, before any point runs."""
+    calls = []
+    monkeypatch.setattr(tefcore.linear.stability, "stability", lambda cfg, **kw: calls.append(cfg))
+    csv = tmp_path / "s.csv"
+    assert main(["sweep", "flap.cg_offset", "--values", "0", "2", "--csv", str(csv),
+                 "--quiet"]) == 2
+    err = one_error_line(capsys)
+    assert "flap.cg_offset = 2.0 is outside the allowed range [-1, 1]" in err
+    assert calls == [] and not csv.exists()

@@ -10,7 +10,10 @@ __all__ = ["add_arguments", "run_check", "run_example"]
 
 
 def run_example(args) -> int:
-    """``tefcore c81 example``: write the packaged example flap deck (or to ``--out``).
+    """``tefcore c81 example``: write the example flap deck, into the current folder or ``--out``.
+
+    The packaged copy (``tefcore/data/example_flap_generated.c81``) is written
+    only when ``--out`` names it: a user's command never writes into the package.
 
     Parameters
     ----------
@@ -25,7 +28,7 @@ def run_example(args) -> int:
     from ..aero.c81.format import write_c81
     from ..aero.c81.tables import example_deck_path, make_example_deck
 
-    out = args.out or example_deck_path()
+    out = args.out or example_deck_path().name
     check_outputs([(out, "--out")])
     print(f"wrote {write_c81(make_example_deck(), out)}")
     return 0
@@ -106,8 +109,11 @@ def add_arguments(sub, add) -> None:
             "Parse each deck and print its summary, or its first problem with file, line "
             "and column. Exit status 1 when a deck is bad.", run_check, common=False)
     q.add_argument("files", nargs="+", metavar="FILE", help="C81 deck (blade or flap)")
-    q = add(c81, "example", "regenerate the packaged example flap deck",
+    q = add(c81, "example", "write the example flap deck (the packaged one's source)",
             "Write the example flap deck, tabulated from the thin-airfoil model of the "
-            "MDART flap (GENERATED data, not test data).", run_example, common=False)
-    q.add_argument("--out", default=None, help="output file (default: the packaged "
-                                                "tefcore/data/example_flap_generated.c81)")
+            "MDART flap (GENERATED data, not test data). The package ships it as "
+            "tefcore/data/example_flap_generated.c81; give that path as --out to "
+            "regenerate it.", run_example, common=False)
+    q.add_argument("--out", default=None, help="output file (default: "
+                                                "example_flap_generated.c81 in the current "
+                                                "folder)")

@@ -40,6 +40,8 @@ def run(args) -> int:
         from .text import sweep_summary, timing_lines
 
         cfg = load(args)
+        for v in values:   # each value in its field's range before any point runs, as -s is
+            cfg.with_overrides({args.parameter: v})
         check_outputs([(args.csv, "--csv")], inputs=inputs(args, cfg),
                       stores=[(args.out, "--out")])
         if args.out:

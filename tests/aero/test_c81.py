@@ -769,6 +769,15 @@ def test_example_deck_is_the_current_model(thin_airfoil, tmp_path):
                                    atol=2 * print_tol(new.tables[c]).max())
 
 
+def test_the_example_command_writes_into_the_current_folder_not_the_package(tmp_path,
+                                                                           monkeypatch):
+    # a user's command never writes into the package (from a wheel, site-packages)
+    before = EXAMPLE.stat().st_mtime_ns
+    monkeypatch.chdir(tmp_path)
+    assert tefcore_main(["c81", "example"]) == 0
+    assert (tmp_path / EXAMPLE.name).is_file() and EXAMPLE.stat().st_mtime_ns == before
+
+
 @needs_flap_aero
 def test_example_deck_between_points_within_interpolation_bound(thin_airfoil):
     """Linear interpolation error <= h²/8 max|f''| per direction.
