@@ -47,7 +47,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from ..config.text_input import field_param
-from ..modes.names import base_name, pair_labels
+from ..modes.names import base_name, is_locked, pair_labels
 from ..units import from_si
 
 if TYPE_CHECKING:
@@ -271,7 +271,7 @@ def legend(table) -> list[str]:
     list of str
     """
     uncertain = "identity_certain" in table and not _flags(table, "identity_certain", True).all()
-    locked = "label" in table and any(str(n).endswith(" (locked)") for n in table["label"])
+    locked = "label" in table and any(is_locked(n) for n in table["label"])
     return ([LEGEND] + ([LOCKED_LEGEND] if locked else [])
             + ([UNCERTAIN_LEGEND] if uncertain else []))
 

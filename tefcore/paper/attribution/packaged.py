@@ -11,9 +11,10 @@ every claim's status); the reproduction reads it instead of searching again
 when all of that is the same:
 
 * :func:`code_stamp` -- the model code (:func:`tefcore.provenance.model_stamp`),
-  the paper layer's code that computes figures, checks claims and searches
-  levers (``paper/claims``, ``paper/figures``, ``paper/attribution``), the
-  claims' reference data and the package's input data files;
+  the paper layer's code that computes figures, checks claims, calibrates and
+  searches levers (all of it but running, reporting, the notebooks and the
+  inference studies), the claims' reference data and the package's input
+  data files;
 * the notebooks' settings the attribution reads (:data:`SETTINGS`) and the
   digests of the files the base configuration refers to;
 * each claim's status as the run checked it, in the notebook that checked it
@@ -47,8 +48,9 @@ import pandas as pd
 
 from ...safe_io import atomic_output
 
-__all__ = ["PACKAGED", "SETTINGS", "STAMPED_FOLDERS", "code_stamp", "packaged_attribution",
-           "run_stamp", "stamp_differences", "stamp_record", "write_stamp"]
+__all__ = ["DATA_FILES", "PACKAGED", "SETTINGS", "UNSTAMPED_FOLDERS", "code_stamp",
+           "packaged_attribution", "run_stamp", "stamp_differences", "stamp_record",
+           "write_stamp"]
 
 #: The packaged pair: the default reproduction's attribution and its stamp.
 PACKAGED = ("attribution-mdart.csv", "attribution-mdart.json")
@@ -57,8 +59,14 @@ PACKAGED = ("attribution-mdart.csv", "attribution-mdart.json")
 #: reads (``RunSettings.from_params``): what the attribution computes with.
 SETTINGS = ("aero_model", "config", "overrides", "n_points", "values", "fig7_overhangs")
 
-#: The paper layer's folders whose code decides an attribution (below ``tefcore/paper``).
-STAMPED_FOLDERS = ("claims", "figures", "attribution")
+#: The paper layer's folders whose code cannot change an attribution (below
+#: ``tefcore/paper``): running and reporting, the notebooks, the inference studies.
+#: Every other source of the paper layer is stamped (the claims, the figures, the
+#: attribution, the torsion calibration the levers re-run, ...).
+UNSTAMPED_FOLDERS = ("run", "notebooks", "inference")
+
+#: The package's data files the levers and figures load (``tefcore/data``).
+DATA_FILES = ("*.toml", "*.c81")
 
 
 def _reference_dir() -> Path:
@@ -70,12 +78,14 @@ def _reference_dir() -> Path:
 def code_stamp() -> str:
     """16 hex digits of SHA-256 over everything an attribution's rows depend on in code.
 
-    The model code (:func:`tefcore.provenance.model_stamp`); the sources of
-    :data:`STAMPED_FOLDERS` (but this module, which only stores and reads the
-    result); the claims' definitions
-    (``reference_data/claims.toml``); the package's data files
-    (``tefcore/data``: the configurations and aerofoil decks the levers load).
-    Any change to one of them, a comment included, changes the stamp.
+    The model code (:func:`tefcore.provenance.model_stamp`); every source of
+    the paper layer but those of :data:`UNSTAMPED_FOLDERS` and this module
+    (which only stores and reads the result); the claims' definitions as
+    :func:`tefcore.paper.claims.reference.load_claims` reads them
+    (``reference_data/claims.toml`` and ``reference_data/curves/``); the
+    package's data files (``tefcore/data``, :data:`DATA_FILES`: the
+    configurations and aerofoil decks the levers load).  Any change to one of
+    them, a comment included, changes the stamp.
 
     Returns
     -------
@@ -84,17 +94,31 @@ def code_stamp() -> str:
     from ...provenance import model_stamp
 
     h = hashlib.sha256(model_stamp().encode())
-    paper = resources.files("tefcore.paper")
-    files = [(f"paper/{d}/{e.name}", e) for d in STAMPED_FOLDERS
-             for e in paper.joinpath(d).iterdir()
-             if e.name.endswith(".py") and not (d == "attribution" and e.name == "packaged.py")]
-    files.append(("paper/reference_data/claims.toml", _reference_dir() / "claims.toml"))
-    files += [(f"data/{e.name}", e) for e in resources.files("tefcore").joinpath("data").iterdir()
-              if e.is_file()]
+    files = [(f"paper/{name}", path) for name, path in _paper_sources()
+             if name.split("/")[0] not in UNSTAMPED_FOLDERS and name != "attribution/packaged.py"]
+    ref = _reference_dir()
+    files.append(("paper/reference_data/claims.toml", ref / "claims.toml"))
+    if (ref / "curves").is_dir():
+        files += [(f"paper/reference_data/curves/{e.name}", e)
+                  for e in (ref / "curves").iterdir() if e.is_file()]
+    data = Path(str(resources.files("tefcore").joinpath("data")))
+    files += [(f"data/{e.name}", e) for pattern in DATA_FILES for e in data.glob(pattern)]
     for name, entry in sorted(files, key=lambda f: f[0]):
         data = entry.read_bytes()
         h.update(name.encode() + b"\0" + len(data).to_bytes(8, "little") + data)
     return h.hexdigest()[:16]
+
+
+def _paper_sources(folder=None, prefix: str = "") -> list[tuple[str, object]]:
+    """``(path below tefcore/paper, file)`` of every Python source of the paper layer."""
+    folder = folder if folder is not None else resources.files("tefcore.paper")
+    out = []
+    for e in folder.iterdir():
+        if e.is_dir() and e.joinpath("__init__.py").is_file():
+            out += _paper_sources(e, f"{prefix}{e.name}/")
+        elif e.name.endswith(".py"):
+            out.append((f"{prefix}{e.name}", e))
+    return out
 
 
 def _settings(params: dict) -> dict:
@@ -188,19 +212,36 @@ def write_stamp(path, claims: pd.DataFrame, params: dict, attribution) -> Path:
 
 
 def stamp_differences(stamp: dict, now: dict) -> list[str]:
-    """What differs between a packaged stamp and this run's, in words."""
-    out = [what for key, what in (("tefcore_version", "tefcore version"),
-                                   ("code_stamp", "code or data (code_stamp)"))
+    """What differs between a packaged stamp and this run's, in words.
+
+    Parameters
+    ----------
+    stamp : dict
+        The packaged attribution's stamp (:func:`stamp_record`).
+    now : dict
+        This run's :func:`run_stamp`.
+
+    Returns
+    -------
+    list of str
+        One phrase per difference (empty: the same code, data, inputs and
+        settings).
+    """
+    out = [what for key, what in (("tefcore_version", "another tefcore version"),
+                                   ("code_stamp", "other code or data (code_stamp)"))
            if stamp.get(key) != now.get(key)]
     inputs = stamp.get("inputs", {})
     if any(inputs.get(k) != v for k, v in now["inputs"].items()):
-        out.append("input files")
+        out.append("other input files")
     settings = stamp.get("settings", {})
-    for n, s in now["settings"].items():
-        if n not in settings:
-            out.append(f"notebook {n} not in it")
-        elif settings[n] != s:
-            out.append(f"the settings of {n}")
+    for what, names in (
+            ("other settings of", [n for n, s in now["settings"].items()
+                                   if n in settings and settings[n] != s]),
+            ("notebooks it was not made with:", [n for n in now["settings"]
+                                                 if n not in settings])):
+        if names:
+            more = f" and {len(names) - 2} more" if len(names) > 2 else ""
+            out.append(f"{what} {', '.join(names[:2])}{more}")
     return out
 
 
@@ -238,7 +279,7 @@ def packaged_attribution(claims: pd.DataFrame, params: dict):
     now = run_stamp({n: p for n, p in params.items() if n in run_notebooks})
     differ = stamp_differences(stamp, now)
     if differ:
-        return None, "the packaged attribution is for another " + ", ".join(differ)
+        return None, "the packaged attribution was made with " + "; ".join(differ)
     packaged = stamp.get("statuses", {})
     moved = [i for i, (nb, s) in _statuses(claims).items() if packaged.get(i) != [nb, s]]
     if moved:

@@ -21,11 +21,14 @@ from pathlib import Path
 import pandas as pd
 
 from ...safe_io import atomic_output
-from ..attribution.packaged import PACKAGED, run_stamp, stamp_differences
+from ..attribution.differences import failing_claims
+from ..attribution.packaged import PACKAGED, run_stamp, stamp_differences, stamp_record
 from ..claims.files import reference_dir
+from ..claims.reference import load_claims
+from .notebook_files import NOTEBOOKS, notebook_parameters, notebooks_dir
 from .outcome import what_if
 
-__all__ = ["attribute_claims", "attribution_args", "package"]
+__all__ = ["attribute_claims", "attribution_args", "given_settings", "package"]
 
 
 def attribute_claims(out: Path, claims: pd.DataFrame, attribution: dict | None):
@@ -62,15 +65,18 @@ def attribute_claims(out: Path, claims: pd.DataFrame, attribution: dict | None):
 
     args = dict(attribution)
     again = bool(args.pop("again", False))
-    params = args.get("params") or {}
+    settings = given_settings(args.get("params") or {})
     why = "asked to search again"
     if not again:
-        table, why = packaged_attribution(claims, params)
+        table, why = packaged_attribution(claims, settings)
         if table is not None:
             write_attribution(table, out / "attribution.csv")
             stamp = json.loads((reference_dir() / PACKAGED[1]).read_text())
+            # this run's stamp, marked as read: it is no search, and never packaged
+            record = {**stamp_record(claims, settings), "read_from_package": True,
+                      "search_cpu_seconds": stamp.get("cpu_seconds")}
             with atomic_output(out / "attribution.json") as f:
-                json.dump(stamp, f, indent=1, sort_keys=True)
+                json.dump(record, f, indent=1, sort_keys=True)
                 f.write("\n")
             return Attribution(table, 0.0, 0.0, 0, source=(
                 "This run read the packaged attribution of the default rotor: a search made "
@@ -79,12 +85,63 @@ def attribute_claims(out: Path, claims: pd.DataFrame, attribution: dict | None):
                 "`tefcore reproduce --attribute-again` searches anew."))
     print(f"attribution: searching ({why})", file=sys.stderr)
     result = attribute_run(out, claims, **args)
-    write_stamp(out / "attribution.json", claims, params, result)
+    write_stamp(out / "attribution.json", claims, settings, result)
     return result
 
 
+def given_settings(params: dict) -> dict:
+    """Each notebook's parameters without those that only name its defaults.
+
+    A value equal to the notebook's own default (its parameters cell), and
+    ``config = "mdart"`` (the default rotor by name), change nothing a search
+    computes: a stamp compares what is left, so ``-p config mdart`` reads the
+    package as the plain command does.
+
+    Parameters
+    ----------
+    params : dict
+        Notebook -> its merged parameters.
+
+    Returns
+    -------
+    dict
+
+    Examples
+    --------
+    >>> given_settings({"04_cg_offset": {"config": "mdart", "n_points": None,
+    ...                                  "overrides": {"flap.cg_offset": 0.2}}})
+    {'04_cg_offset': {'overrides': {'flap.cg_offset': 0.2}}}
+    """
+    out = {}
+    for n, p in params.items():
+        try:
+            defaults = notebook_parameters(notebooks_dir() / f"{n}.ipynb")
+        except (OSError, ValueError, KeyError):
+            defaults = {}
+        out[n] = {k: v for k, v in (p or {}).items()
+                  if not (k in defaults and v == defaults[k])
+                  and not (k == "config" and v == "mdart")}
+    return out
+
+
 def attribution_args(attribution, params: dict, jobs) -> dict | None:
-    """:func:`attribute_claims`'s arguments from ``reproduce``'s, or None to skip it."""
+    """:func:`attribute_claims`'s arguments from ``reproduce``'s, or None to skip it.
+
+    Parameters
+    ----------
+    attribution : bool, dict or None
+        ``reproduce``'s ``attribution``: False or None skips it, True attributes,
+        a dict adds its keys (``{"again": True}``: search even where the
+        package applies).
+    params : dict
+        Notebook -> its merged parameters.
+    jobs : int or None
+        The run's ``--jobs`` (default: the cores).
+
+    Returns
+    -------
+    dict or None
+    """
     if attribution is False or attribution is None:
         return None
     extra = attribution if isinstance(attribution, dict) else {}
@@ -111,8 +168,10 @@ def package(out, target=None) -> tuple[Path, Path]:
     Raises
     ------
     ValueError
-        A file is missing, or the stamp is not this code's (the code, data or
-        version changed since the run), or the run was not the default one.
+        A file is missing; the run read the package instead of searching; the
+        stamp is not this code's (the code, data or version changed since the
+        run); the run was not the default one (a what-if, another variant, a
+        subset of the notebooks); or its rows are not every failing claim's.
     """
     out = Path(out)
     src = [out / "attribution.csv", out / "attribution.json"]
@@ -121,17 +180,32 @@ def package(out, target=None) -> tuple[Path, Path]:
             raise ValueError(f"{f}: missing; run `tefcore reproduce --out {out} "
                              "--attribute-again` first")
     stamp = json.loads(src[1].read_text())
+    if stamp.get("read_from_package") or "tasks" not in stamp:
+        raise ValueError(f"{src[1]}: that run read the packaged attribution; package a search "
+                         f"(`tefcore reproduce --out {out} --attribute-again`)")
     now = run_stamp(stamp.get("settings", {}))
     differ = stamp_differences(stamp, now)
     if differ:
-        raise ValueError(f"{src[1]}: computed with another {', '.join(differ)}; run the "
-                         "reproduction again")
-    params = {n: {k: v for k, v in p.items() if v is not None}
-              for n, p in stamp.get("settings", {}).items()}
-    changed = what_if(params, list(params))
+        raise ValueError(f"{src[1]}: made with {'; '.join(differ)}; run the reproduction "
+                         "again")
+    settings = stamp.get("settings", {})
+    given = {n: {k: v for k, v in p.items() if v is not None} for n, p in settings.items()}
+    changed = what_if(given, list(given)) or "; ".join(
+        f"{n}: {k} = {v!r}" for n, p in given.items() for k, v in p.items())
     if changed:
-        raise ValueError(f"{src[1]}: a what-if run ({changed}); only the default reproduction "
-                         "is packaged")
+        raise ValueError(f"{src[1]}: a what-if or another variant ({changed}); only the "
+                         "default reproduction is packaged")
+    if set(settings) != set(NOTEBOOKS):
+        raise ValueError(f"{src[1]}: a run of {len(settings)} of the {len(NOTEBOOKS)} notebooks; "
+                         "only a reproduction of all of them is packaged")
+    tags = {c.id: c.tag for c in load_claims()}
+    checked = pd.DataFrame([{"id": i, "notebook": nb, "status": st, "tag": tags.get(i, "")}
+                            for i, (nb, st) in stamp.get("statuses", {}).items()])
+    failing = set(failing_claims(checked)["id"]) if not checked.empty else set()
+    rows = set(pd.read_csv(src[0], dtype=str, keep_default_na=False)["claim"])
+    if rows != failing:
+        raise ValueError(f"{src[0]}: attributes {len(rows)} claim(s), the run failed "
+                         f"{len(failing)}; not the run's whole attribution")
     folder = Path(target) if target is not None else reference_dir()
     dest = (folder / PACKAGED[0], folder / PACKAGED[1])
     for s, d in zip(src, dest, strict=True):

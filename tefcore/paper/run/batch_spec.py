@@ -60,8 +60,6 @@ tefcore.paper.run.batch_spec.BatchFileError: <string>: runs[0] 'a': unknown key 
 
 from __future__ import annotations
 
-import difflib
-import functools
 import itertools
 import math
 import re
@@ -69,14 +67,13 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from ...errors import TefcoreError
-from ...structure.section_inertia import check_section_inertia
 from .notebook_files import (
-    NOTEBOOK_FIGURES,
     NOTEBOOKS,
     notebook_parameters,
     notebooks_dir,
     resolve_notebook,
 )
+from .param_values import ParameterError, check_values, close_match
 from .yaml_input import plain_problem
 
 __all__ = ["MAX_RUNS", "RESERVED_NAMES", "BatchFileError", "RunSpec", "load_batch",
@@ -95,7 +92,7 @@ _SET_BY_BATCH = {"output_dir": "the batch sets each notebook's output folder",
                            "or of the file"}
 
 
-class BatchFileError(TefcoreError, ValueError):
+class BatchFileError(ParameterError):
     """A batch file that cannot be run: its message names the file, the run and the field."""
 
 
@@ -132,15 +129,10 @@ def _fail(origin: str, where: str, message: str):
     raise BatchFileError(f"{origin}: {where + ': ' if where else ''}{message}")
 
 
-def _close(word: str, options) -> str:
-    near = difflib.get_close_matches(str(word), [str(o) for o in options], n=1, cutoff=0.6)
-    return f" (did you mean {near[0]!r}?)" if near else ""
-
-
 def _check_keys(data: dict, allowed, origin: str, where: str) -> None:
     for key in data:
         if key not in allowed:
-            _fail(origin, where, f"unknown key {key!r}{_close(key, allowed)}; allowed: "
+            _fail(origin, where, f"unknown key {key!r}{close_match(key, allowed)}; allowed: "
                                  f"{', '.join(sorted(allowed))}")
 
 
@@ -148,7 +140,7 @@ def _notebook(key, origin: str, where: str) -> str:
     try:
         return resolve_notebook(str(key))
     except ValueError:
-        _fail(origin, where, f"unknown notebook {key!r}{_close(key, NOTEBOOKS)}; known: "
+        _fail(origin, where, f"unknown notebook {key!r}{close_match(key, NOTEBOOKS)}; known: "
                              f"{', '.join(NOTEBOOKS)}")
 
 
@@ -244,119 +236,6 @@ def _grid_names(axes) -> list[str]:
     return [".".join(p) for p in parts]
 
 
-@functools.lru_cache(maxsize=32)
-def _base_config(config: str | None, aero_model: str):
-    from ..figures.runs import base_config
-
-    return base_config(aero_model, config=config)
-
-
-def check_notebook_values(nb: str, params: dict, defaults: dict, origin: str) -> None:
-    """A notebook's parameters' values, checked before anything runs.
-
-    The scalar settings (``n_points``, ``aero_model``, ...), ``values``, the
-    ``config`` (a shipped name or a TOML file that loads) and every override on
-    every stability figure the notebook computes (a field that exists, a value
-    in its range, a flap that fits its section).
-
-    Parameters
-    ----------
-    nb : str
-        The notebook's full name.
-    params : dict
-        The parameters given for it.
-    defaults : dict
-        Its parameters cell's values.
-    origin : str
-        Where the parameters came from, for the message.
-
-    Raises
-    ------
-    BatchFileError
-        One line naming the notebook, the parameter, its value and what is allowed.
-
-    Examples
-    --------
-    >>> from tefcore.paper.run.notebook_files import notebook_parameters, notebooks_dir
-    >>> nb = "04_cg_offset"
-    >>> defaults = notebook_parameters(notebooks_dir() / f"{nb}.ipynb")
-    >>> check_notebook_values(nb, {"n_points": -2}, defaults, "-p")  # doctest: +ELLIPSIS
-    Traceback (most recent call last):
-    ...
-    tefcore.paper.run.batch_spec.BatchFileError: -p: 04_cg_offset: n_points = -2; allowed: ...
-    """
-    config = {**defaults, **params}.get("config")
-    _check_values(nb, nb, params, defaults, config, origin)
-
-
-def _check_values(where: str, nb: str, params: dict, defaults: dict, config, origin: str):
-    """The shared parameters' values, and every override on every figure the notebook runs."""
-    p = {**defaults, **params}
-    for name, allowed in _scalar_problems(p, params):
-        _fail(origin, where, f"{name} = {p[name]!r}; allowed: {allowed}")
-    if "values" in params:
-        _check_sweep_values(p["values"], nb, where, origin)
-    _check_overrides(p, nb, config, where, origin)
-
-
-def _scalar_problems(p: dict, given: dict):
-    """``(name, what is allowed)`` of each scalar parameter set in ``given`` with a bad value."""
-    from ..figures.plotting import MEASURES
-    from ..figures.runs import AERO_MODELS
-
-    def integer(v):
-        return isinstance(v, int) and not isinstance(v, bool)
-
-    rules = {
-        "n_points": (lambda v: v is None or (integer(v) and v >= 2),
-                     "null (the paper's values) or an integer >= 2"),
-        "n_jobs": (lambda v: integer(v) and v >= 1, "an integer >= 1"),
-        "aero_model": (lambda v: v in (*AERO_MODELS, "c81"), ", ".join(AERO_MODELS)),
-        "damping_measure": (lambda v: v in MEASURES, ", ".join(MEASURES)),
-        "interactive": (lambda v: isinstance(v, bool), "true or false"),
-    }
-    for name, (ok, allowed) in rules.items():
-        if name in given and not ok(p[name]):
-            yield name, allowed
-
-
-def _check_sweep_values(values, nb: str, where: str, origin: str) -> None:
-    """``values``: a mapping of the notebook's figures to non-empty lists of sweep values."""
-    if not isinstance(values, dict):
-        _fail(origin, where, f"values = {values!r}; allowed: a mapping of figure to sweep "
-                             "values, e.g. {fig9: [0.0, 0.2]}")
-    for fig, vals in values.items():
-        fig = str(fig)
-        if fig not in NOTEBOOK_FIGURES[nb]:
-            _fail(origin, where, f"values: {nb} computes no figure {fig!r}"
-                                 f"{_close(fig, NOTEBOOK_FIGURES[nb])}; its figures: "
-                                 f"{', '.join(NOTEBOOK_FIGURES[nb]) or 'none'}")
-        if not isinstance(vals, list) or not vals:
-            _fail(origin, where, f"values.{fig} must be a non-empty list")
-
-
-def _check_overrides(p: dict, nb: str, config, where: str, origin: str) -> None:
-    """The overrides name configuration fields, and the flap fits its section with them on
-    the base configuration and on every stability figure's the notebook runs."""
-    from ..figures.catalogue import FIGURES
-    from ..figures.runs import run_config
-
-    overrides = p.get("overrides") or {}
-    if not isinstance(overrides, dict) or not all(isinstance(k, str) for k in overrides):
-        _fail(origin, where, f"overrides = {p.get('overrides')!r}; allowed: a mapping of "
-                             "dotted configuration fields to values")
-    fig = None
-    try:
-        base = _base_config(config, str(p.get("aero_model", "thin_airfoil")))
-        check_section_inertia(base.with_overrides(overrides))   # the flap fits its section
-        for fig in (f for f in NOTEBOOK_FIGURES[nb] if f in FIGURES):   # stability figures
-            check_section_inertia(run_config(fig, base, overrides))
-    except (ValueError, OSError, TefcoreError) as exc:
-        text = " ".join(str(exc).split())
-        _fail(origin, where, f"{'overrides: ' if overrides else ''}{text}"
-                             + (f" (on the configuration of {fig})" if fig else ""))
-
-
 def _settings(params: dict, notebooks, config) -> dict:
     """Flatten a run's parameters: shared values under their name, others per notebook."""
     flat = {}
@@ -392,7 +271,7 @@ def _config_path(value, origin: str, where: str, base_dir: Path) -> str | None:
     if "/" not in value and not value.endswith(".toml"):
         if value not in available_configs():
             _fail(origin, where, f"no shipped configuration {value!r}"
-                                 f"{_close(value, available_configs())}; a file needs its "
+                                 f"{close_match(value, available_configs())}; a file needs its "
                                  ".toml suffix")
         return value
     path = (base_dir / value).resolve()
@@ -545,7 +424,7 @@ class _Batch:
                 known = self.parameters_of(nb)
                 if pname not in known:
                     _fail(self.origin, f"{where}.grid", f"{nb} has no parameter {pname!r}"
-                                                        f"{_close(pname, known)}")
+                                                        f"{close_match(pname, known)}")
                 if sub and not isinstance(known[pname], dict):
                     _fail(self.origin, f"{where}.grid", f"{pname} is not a mapping parameter, "
                                                         f"so {pname}.{sub} means nothing")
@@ -605,10 +484,13 @@ class _Batch:
                 known = self.parameters_of(nb)
                 for pname in sorted(set(params[nb]) - set(known)):
                     _fail(self.origin, f"run {rname!r}", f"{nb} has no parameter {pname!r}"
-                                                         f"{_close(pname, known)}; it has "
+                                                         f"{close_match(pname, known)}; it has "
                                                          f"{', '.join(sorted(known))}")
-                _check_values(f"run {rname!r}, {nb}", nb, params[nb], known, config,
-                              self.origin)
+                try:
+                    check_values(f"run {rname!r}, {nb}", nb, params[nb], known, config,
+                                 self.origin)
+                except ParameterError as exc:
+                    raise BatchFileError(str(exc)) from None
             specs.append(RunSpec(rname, nbs, params, config, _settings(params, nbs, config)))
         return specs
 

@@ -212,9 +212,26 @@ def print_summary(runs, done, elapsed, out, *, what_if: str = "", changes=None) 
     attribution's source, each statement wrapped to 100 columns; on stderr the
     failed notebooks and every claim worse than recorded.
 
-    ``changes`` are the status changes since the previous run of the same
-    parameters in ``out`` (:func:`tefcore.paper.run.outcome.status_changes`),
-    None when there was none to compare with.
+    Parameters
+    ----------
+    runs : list of tefcore.paper.run.reproduce.NotebookRun
+        The notebooks' outcomes.
+    done : dict
+        :func:`tefcore.paper.run.reproduce.finish_report`'s result (claims,
+        worse, passed, total, variants, attribution).
+    elapsed : float
+        Seconds the run took.
+    out : pathlib.Path
+        The output folder.
+    what_if : str, optional
+        What makes the run a what-if (:func:`what_if`); empty for the default.
+    changes : list of dict or None, optional
+        The status changes since the previous run of the same parameters
+        (:func:`status_changes`); None when there was none to compare with.
+
+    Returns
+    -------
+    bool
     """
     claims, worse, passed, total = (done[k] for k in ("claims", "worse", "passed", "total"))
 

@@ -507,9 +507,10 @@ def agreement_text(agreement: dict | None, reading: str = "") -> str:
     bests = " and ".join(f"{r['study']} (objective {r['objective']:.1f}, {r['passes']} fitted "
                          "passes)" for r in agreement["studies"])
     lead = f"Reading the paper's TEF mode as the {reading}, the" if reading else "The"
+    varied = _what_varies([r["study"] for r in agreement["studies"]])
     if agreement["same"]:
-        return (f"{lead} answer does not depend on the sampler or the seed: the best rotors "
-                f"of {bests} lie within a quarter of every range of each other.")
+        return (f"{lead} answer does not depend on {varied.replace(' and ', ' or ')}: the best "
+                f"rotors of {bests} lie within a quarter of every range of each other.")
     def where(a):
         values = list(a["values"].values())
         numbers = all(isinstance(v, (int, float)) for v in values)
@@ -517,8 +518,20 @@ def agreement_text(agreement: dict | None, reading: str = "") -> str:
                 f"{' of the range' if numbers else ''})")
 
     apart = "; ".join(where(a) for a in agreement["apart"])
-    return (f"{lead} answer depends on the sampler and the seed: the best rotors of {bests} "
+    return (f"{lead} answer depends on {varied}: the best rotors of {bests} "
             f"lie more than a quarter of their ranges apart in {apart}.")
+
+
+def _what_varies(names) -> str:
+    """What differs among the packaged studies named: "the sampler", "the seed" or both
+    (both where a study is not a packaged one)."""
+    from ..inference.packaged import STUDIES
+
+    known = {s["name"]: s for s in STUDIES}
+    if not all(n in known for n in names):
+        return "the sampler and the seed"
+    parts = [f"the {k}" for k in ("sampler", "seed") if len({known[n][k] for n in names}) > 1]
+    return " and ".join(parts) or "the sampler and the seed"
 
 
 def _validation(statuses: dict) -> dict:

@@ -60,7 +60,6 @@ from ..claims.reference import load_claims
 from ..claims.validation import claims_score, worse_than_recorded
 from ..figures.plotting import deterministic_matplotlib, savefig
 from .attribution_phase import attribute_claims, attribution_args
-from .batch_spec import check_notebook_values
 from .kernel_guard import stop_notebooks, watch_children
 from .notebook_files import (
     NOTEBOOK_FIGURES,
@@ -80,6 +79,7 @@ from .outcome import (
     what_if,
 )
 from .output_folder import ReproductionFolder, check_reproduce_folder, source_checkout
+from .param_values import check_notebook_values
 from .params import merge_params
 from .report import build_report, write_report
 from .variant_runs import (
@@ -563,7 +563,7 @@ def prepare_params(params, names, nb_dir: Path | None = None) -> dict:
     ------
     ValueError
         A parameter a notebook does not declare (with a close match), a value
-        it does not allow (:func:`tefcore.paper.run.batch_spec.check_notebook_values`),
+        it does not allow (:func:`tefcore.paper.run.param_values.check_notebook_values`),
         or a missing notebook.
     """
     nb_dir = nb_dir or notebooks_dir()

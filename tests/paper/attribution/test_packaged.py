@@ -80,7 +80,7 @@ def test_the_package_stands_in_for_a_search_of_the_same_run_only():
     # another setting of a notebook (a what-if): searched
     other = {**params, nb: {**params.get(nb, {}), "overrides": {"flap.cg_offset": 0.2}}}
     got, why = pk.packaged_attribution(claims, other)
-    assert got is None and f"the settings of {nb}" in why
+    assert got is None and f"other settings of {nb}" in why
 
 
 def test_edited_code_or_data_is_searched_again(monkeypatch):
@@ -101,3 +101,27 @@ def test_the_stamp_covers_the_claims_definitions(tmp_path, monkeypatch):
     (tmp_path / "claims.toml").write_text(text + "\n# edited\n")
     monkeypatch.setenv("TEFCORE_REFERENCE_DATA", str(tmp_path))
     assert pk.code_stamp() != before
+
+
+def test_every_paper_module_the_search_runs_is_stamped():
+    # the search's code is the model (model_stamp) and the paper modules it imports;
+    # each of them must be in the stamp, or an edit to it would read a stale package
+    import subprocess
+    import sys
+
+    code = ("import sys; import tefcore.paper.attribution.differences, "
+            "tefcore.paper.attribution.levers, tefcore.paper.attribution.search, "
+            "tefcore.paper.attribution.evaluate, tefcore.paper.calibration; "
+            "print('\\n'.join(m for m in sys.modules if m.startswith('tefcore.paper.')))")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         check=True).stdout.split()
+    stamped = {name for name, _ in pk._paper_sources()
+               if name.split("/")[0] not in pk.UNSTAMPED_FOLDERS}
+    for module in out:
+        parts = module.split(".")[2:]
+        name = "/".join(parts) + ".py"
+        if name not in {n for n, _ in pk._paper_sources()}:
+            name = "/".join(parts + ["__init__.py"])
+        assert name in stamped or name == "attribution/packaged.py", module
+    assert "calibration.py" in stamped           # the torsion calibration the levers re-run
+

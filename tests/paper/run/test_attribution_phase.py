@@ -41,9 +41,36 @@ def test_only_a_default_search_with_this_code_is_packaged(tmp_path):
     (out / "attribution.json").write_text(json.dumps(rec))
     with pytest.raises(ValueError, match="code or data"):
         ap.package(out, target)
+    # a search of another packaged variant is not the default rotor's
+    variant = {n: {**p, "config": "mdart-inferred"} for n, p in params.items()}
+    pk.write_stamp(out / "attribution.json", claims, variant, Attribution(table, 1.0, 1.0, 1))
+    with pytest.raises(ValueError, match="another variant"):
+        ap.package(out, target)
+    # a run of some of the notebooks
+    nb_claims = claims[claims["notebook"] == nb]
+    pk.write_stamp(out / "attribution.json", nb_claims, {nb: params[nb]},
+                   Attribution(table, 1.0, 1.0, 1))
+    with pytest.raises(ValueError, match="of the 12 notebooks"):
+        ap.package(out, target)
+    # rows of only some failing claims
+    pk.write_stamp(out / "attribution.json", claims, params, Attribution(table, 1.0, 1.0, 1))
+    table[table["claim"] == table["claim"].iloc[0]].to_csv(out / "attribution.csv", index=False)
+    with pytest.raises(ValueError, match="not the run's whole attribution"):
+        ap.package(out, target)
     (out / "attribution.csv").unlink()
     with pytest.raises(ValueError, match="missing"):
         ap.package(out, target)
+
+
+def test_a_run_that_read_the_package_is_never_packaged(tmp_path):
+    # reading writes this run's stamp, marked: packaging it would ship the package's
+    # rows under another run's stamp (a subset run's rows under the full run's)
+    stamp, table = _packaged()
+    claims, params = _claims_of(stamp), _params(stamp)
+    got = ap.attribute_claims(tmp_path, claims, {"params": params, "n_jobs": 1})
+    assert got.source
+    with pytest.raises(ValueError, match="read the packaged attribution"):
+        ap.package(tmp_path, tmp_path / "ref")
 
 
 def test_the_reproduction_reads_the_package_or_searches_and_stamps(tmp_path, monkeypatch, capsys):
@@ -62,7 +89,13 @@ def test_the_reproduction_reads_the_package_or_searches_and_stamps(tmp_path, mon
     got = ap.attribute_claims(tmp_path, claims, {"params": params, "n_jobs": 1})
     assert searched == [] and got.source and got.cpu_seconds == 0.0
     assert set(pd.read_csv(tmp_path / "attribution.csv")["claim"]) == set(table["claim"])
-    assert json.loads((tmp_path / "attribution.json").read_text()) == stamp
+    rec = json.loads((tmp_path / "attribution.json").read_text())
+    assert rec["read_from_package"] is True and rec["statuses"] == stamp["statuses"]
+    assert rec["code_stamp"] == stamp["code_stamp"] and "tasks" not in rec
+    # the default rotor named (-p config mdart) or a notebook's default given is the
+    # same run: the package is read
+    named = {n: {**p, "config": "mdart"} for n, p in params.items()}
+    assert ap.attribute_claims(tmp_path, claims, {"params": named, "n_jobs": 1}).source
     # asked to search: it searches, and stamps what it searched with
     got = ap.attribute_claims(tmp_path, claims, {"params": params, "n_jobs": 1, "again": True})
     assert searched == [tmp_path] and got.source == ""

@@ -232,6 +232,8 @@ def test_two_runs_give_identical_csvs_and_figures(tiny_runs):
     (["-p", "config", "nosuch.toml"], "no such configuration file: 'nosuch.toml'"),
     (["-p", "overrides", "{flap.cg_ofset: 0.2}"], "did you mean 'flap.cg_offset'"),
     (["-p", "overrides", "{flap.cg_offset: 3}"], "outside the allowed range [-1, 1]"),
+    (["-p", "values", "{fig9: [a, b]}"], "values.fig9: cannot read 'a'"),
+    (["-p", "values", "{fig9: [0.1, .nan]}"], "values.fig9: nan is not a number"),
 ])
 def test_a_bad_parameter_value_is_refused_before_anything_runs(tmp_path, capsys, given, said):
     # the values are checked as `tefcore batch` checks them: one line, exit 2, no
