@@ -35,7 +35,7 @@ import subprocess
 import sys
 import time
 
-__all__ = ["STOP_GRACE_S", "WATCH_S", "kernel_processes", "stop_kernels", "stop_notebooks",
+__all__ = ["STOP_GRACE_S", "STOP_WAIT_S", "WATCH_S", "kernel_processes", "stop_kernels", "stop_notebooks",
            "watch_children"]
 
 #: Seconds a kernel is given to end after ``SIGTERM`` before ``SIGKILL``.
@@ -96,7 +96,11 @@ def stop_kernels(grace: float = STOP_GRACE_S) -> int:
     return len(kernels)
 
 
-def stop_notebooks(futures, timeout: float = 60.0) -> None:
+#: Longest wait of :func:`stop_notebooks` for the notebooks' threads to return [s].
+STOP_WAIT_S = 60.0
+
+
+def stop_notebooks(futures, timeout: float = STOP_WAIT_S) -> None:
     """After an interruption: cancel the notebooks not started, stop the running ones' kernels.
 
     Waits until every notebook's thread has returned (a thread starting a
