@@ -35,8 +35,8 @@ import subprocess
 import sys
 import time
 
-__all__ = ["STOP_GRACE_S", "STOP_WAIT_S", "WATCH_S", "kernel_processes", "stop_kernels", "stop_notebooks",
-           "watch_children"]
+__all__ = ["STOP_GRACE_S", "STOP_WAIT_S", "WATCH_S", "kernel_processes", "stop_kernels",
+           "stop_notebooks", "watch_children"]
 
 #: Seconds a kernel is given to end after ``SIGTERM`` before ``SIGKILL``.
 STOP_GRACE_S = 3.0
